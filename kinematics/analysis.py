@@ -1,0 +1,215 @@
+"""Measures of a Jacobian: singular values, manipulability, conditioning, ellipsoids.
+
+Every function takes a Jacobian ``J`` of shape (6, n) — rows [v; ω] — or a
+batch (N, 6, n), and a ``part`` naming which rows to measure:
+
+* ``"full"``: all rows of ``J`` as given (a 6×n Jacobian mixes [m/s] and
+  [rad/s]: prefer the parts below for anything physical);
+* ``"linear"``: rows 0–2, the tool-point velocity [m/s];
+* ``"angular"``: rows 3–5, the angular velocity [rad/s];
+* ``"planar"``: rows (vx, vy, ωz), the task of a planar arm.
+
+:func:`task_rows` picks the rows the course uses for a given robot (planar
+task for planar arms, position for spatial arms with fewer than six joints,
+all six otherwise). Manipulability of a robot with fewer joints than rows is
+zero over the full Jacobian; measure its task rows instead.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from .model import Robot
+
+__all__ = [
+    "Part",
+    "PART_ROWS",
+    "select_rows",
+    "task_rows",
+    "singular_values",
+    "manipulability",
+    "condition_number",
+    "inverse_condition_number",
+    "rank",
+    "null_space",
+    "Ellipsoid",
+    "velocity_ellipsoid",
+    "force_ellipsoid",
+    "DEFAULT_RTOL",
+]
+
+Part = Literal["full", "linear", "angular", "planar"]
+PART_ROWS: dict[str, tuple[int, ...]] = {
+    "full": (0, 1, 2, 3, 4, 5),
+    "linear": (0, 1, 2),
+    "angular": (3, 4, 5),
+    "planar": (0, 1, 5),
+}
+DEFAULT_RTOL = 1e-9
+"""Relative tolerance: σ ≤ DEFAULT_RTOL · max(σmax, 1) counts as zero (rank, singularity)."""
+
+
+def select_rows(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray:
+    """Rows of ``J`` (…, 6, n) named by ``part`` (a :data:`PART_ROWS` key or explicit row indices)."""
+    J = np.asarray(J, dtype=float)
+    if J.ndim < 2 or J.shape[-2] != 6:
+        raise ValueError(f"J should have shape (6, n) or (N, 6, n), got {J.shape}")
+    if isinstance(part, str):
+        if part not in PART_ROWS:
+            raise ValueError(f"part must be one of {', '.join(PART_ROWS)}, got {part!r}")
+        rows = PART_ROWS[part]
+    else:
+        rows = tuple(part)
+    if rows == PART_ROWS["full"]:
+        return J
+    return J[..., list(rows), :]
+
+
+def task_rows(robot: Robot) -> tuple[int, ...]:
+    """The rows of J that form the robot's task: what the course's det J and cond J refer to.
+
+    ``robot.task`` when set; otherwise planar robots: (vx, vy, ωz); spatial
+    robots with fewer than 6 joints: the tool-point velocity (vx, vy, vz);
+    otherwise all six rows.
+    """
+    if robot.task != "auto":
+        return PART_ROWS[robot.task]
+    if robot.planar:
+        return PART_ROWS["planar"]
+    if robot.dof < 6:
+        return PART_ROWS["linear"]
+    return PART_ROWS["full"]
+
+
+def singular_values(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray:
+    """Singular values σ1 ≥ σ2 ≥ … of the selected rows, shape (k,) or (N, k), k = min(rows, n)."""
+    return np.linalg.svd(select_rows(J, part), compute_uv=False)
+
+
+def _zero_tol(sigma: np.ndarray, rtol: float) -> np.ndarray:
+    return rtol * np.maximum(sigma[..., :1], 1.0)
+
+
+def manipulability(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray | float:
+    """Yoshikawa's manipulability w = √det(J Jᵀ) = Π σᵢ of the selected rows.
+
+    Zero when the selected rows outnumber the joints (det(J Jᵀ) = 0): use a
+    task part for such robots. Returns a float, or (N,) for a batch.
+    """
+    Js = select_rows(J, part)
+    if Js.shape[-2] > Js.shape[-1]:
+        w = np.zeros(Js.shape[:-2])
+    else:
+        w = np.prod(np.linalg.svd(Js, compute_uv=False), axis=-1)
+    return float(w) if np.ndim(w) == 0 else w
+
+
+def condition_number(
+    J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
+) -> np.ndarray | float:
+    """2-norm condition number σmax / σmin of the selected rows; ``inf`` at a singularity.
+
+    σmin is the smallest of min(rows, n) singular values; when it is below
+    ``rtol · max(σmax, 1)`` the result is exactly ``inf``. A robot with
+    fewer joints than rows has cond = ∞ over all rows (it cannot move in
+    every direction): measure a part.
+    """
+    Js = select_rows(J, part)
+    s = np.linalg.svd(Js, compute_uv=False)
+    k_missing = Js.shape[-2] > Js.shape[-1]
+    smin = s[..., -1]
+    singular = (smin <= _zero_tol(s, rtol)[..., 0]) | k_missing
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.where(singular, np.inf, s[..., 0] / np.where(singular, 1.0, smin))
+    return float(c) if np.ndim(c) == 0 else c
+
+
+def inverse_condition_number(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray | float:
+    """σmin / σmax in [0, 1]: 1 is isotropic, 0 singular (finite everywhere, good for colour maps)."""
+    c = condition_number(J, part)
+    return 1.0 / c if np.ndim(c) == 0 else 1.0 / np.asarray(c)
+
+
+def rank(J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL) -> int | np.ndarray:
+    """Numerical rank: the number of σᵢ above ``rtol · max(σmax, 1)``."""
+    s = singular_values(J, part)
+    r = np.sum(s > _zero_tol(s, rtol), axis=-1)
+    return int(r) if np.ndim(r) == 0 else r
+
+
+def null_space(J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL) -> np.ndarray:
+    """Orthonormal basis (n, k) of the joint rates that produce no motion of the selected rows.
+
+    For one Jacobian only. Self-motions of a redundant arm, or the joint
+    motion lost at a singularity.
+    """
+    Js = select_rows(J, part)
+    if Js.ndim != 2:
+        raise ValueError("null_space takes one Jacobian (6, n), not a batch")
+    _, s, Vt = np.linalg.svd(Js)
+    r = int(np.sum(s > _zero_tol(s, rtol)))
+    return Vt[r:].T.copy()
+
+
+@dataclass(frozen=True)
+class Ellipsoid:
+    """An ellipsoid {x : x = Σ rᵢ aᵢ uᵢ, Σ uᵢ² ≤ 1} centred at the tool point.
+
+    Attributes:
+        axes: (3, 3) orthonormal, right-handed; column i is the direction of semi-axis i
+            (expressed in the frame of the Jacobian rows).
+        radii: (3,) semi-axis lengths, descending for velocity ellipsoids; a zero
+            radius means the ellipsoid is flat in that direction, ``inf`` (force
+            ellipsoid at a singularity) means unbounded.
+    """
+
+    axes: np.ndarray
+    radii: np.ndarray
+
+    def capped(self, cap: float) -> Ellipsoid:
+        """The same ellipsoid with radii clipped to [0, cap] (for drawing)."""
+        return Ellipsoid(self.axes, np.minimum(self.radii, cap))
+
+    def rotation(self) -> np.ndarray:
+        """The 3×3 rotation whose columns are the semi-axis directions (= ``axes``)."""
+        return self.axes
+
+
+def _three_row_svd(J: np.ndarray, part: Part | tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+    Js = select_rows(J, part)
+    if Js.ndim != 2 or Js.shape[0] != 3:
+        raise ValueError(f"ellipsoids need three task rows (part 'linear' or 'angular'), got {Js.shape}")
+    U, s, _ = np.linalg.svd(Js)  # U is 3×3 even when n < 3
+    sigma = np.zeros(3)
+    sigma[: len(s)] = s
+    if np.linalg.det(U) < 0:
+        U = U.copy()
+        U[:, 2] *= -1.0
+    return U, sigma
+
+
+def velocity_ellipsoid(J: np.ndarray, part: Part | tuple[int, ...] = "linear") -> Ellipsoid:
+    """Manipulability (velocity) ellipsoid: {J q̇ : ‖q̇‖ ≤ 1}.
+
+    Semi-axes σᵢ along the *left* singular vectors uᵢ of the selected 3 rows
+    of J (use the base-frame Jacobian to get them in base axes). At a
+    singularity it is flat (a radius is 0); it never has NaN.
+    """
+    U, sigma = _three_row_svd(J, part)
+    return Ellipsoid(U, sigma)
+
+
+def force_ellipsoid(J: np.ndarray, part: Part | tuple[int, ...] = "linear", rtol: float = DEFAULT_RTOL) -> Ellipsoid:
+    """Force ellipsoid: {F : ‖Jᵀ F‖ ≤ 1}, semi-axes 1/σᵢ along the same uᵢ.
+
+    Where σᵢ is zero (a singular direction) the radius is ``inf``: the
+    structure holds any force along it. Cap with :meth:`Ellipsoid.capped` to draw.
+    """
+    U, sigma = _three_row_svd(J, part)
+    tol = rtol * max(sigma[0], 1.0)
+    with np.errstate(divide="ignore"):
+        radii = np.where(sigma > tol, 1.0 / np.where(sigma > tol, sigma, 1.0), np.inf)
+    return Ellipsoid(U, radii)

@@ -1,0 +1,65 @@
+"""Inverse velocity kinematics: pseudo-inverse, damped least squares, null-space projector.
+
+The course's resolved-rate step is ``q̇ = J⁺ v`` (``J⁻¹ v`` for a square,
+regular J). Near a singularity ``J⁺`` blows up; damped least squares trades
+accuracy for bounded joint rates. Redundant arms add self-motion through
+the null-space projector ``N = I − J⁺ J``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .analysis import DEFAULT_RTOL
+
+__all__ = ["pinv", "dls", "nullspace_projector", "solve_rates"]
+
+
+def pinv(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
+    """Moore–Penrose pseudo-inverse J⁺ (n, m), singular values below ``rtol · max(σmax, 1)`` dropped.
+
+    Equals J⁻¹ for a square regular J; gives the minimum-norm least-squares
+    solution q̇ = J⁺ v otherwise. Works on batches (N, m, n).
+    """
+    J = np.asarray(J, dtype=float)
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    tol = rtol * np.maximum(s[..., :1], 1.0)
+    with np.errstate(divide="ignore"):
+        s_inv = np.where(s > tol, 1.0 / np.where(s > tol, s, 1.0), 0.0)
+    return np.swapaxes(Vt, -1, -2) @ (s_inv[..., :, None] * np.swapaxes(U, -1, -2))
+
+
+def dls(J: np.ndarray, damping: float = 0.05) -> np.ndarray:
+    """Damped least-squares inverse Jᵀ (J Jᵀ + λ² I)⁻¹ (n, m), λ = ``damping``.
+
+    Each singular value σ maps to σ / (σ² + λ²) ≤ 1 / (2λ): joint rates stay
+    bounded at a singularity. λ = 0 gives the pseudo-inverse of a full-row-rank J.
+    """
+    if not damping >= 0:
+        raise ValueError(f"damping must be ≥ 0, got {damping}")
+    J = np.asarray(J, dtype=float)
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.where(s**2 + damping**2 > 0, s / (s**2 + damping**2), 0.0)
+    return np.swapaxes(Vt, -1, -2) @ (f[..., :, None] * np.swapaxes(U, -1, -2))
+
+
+def nullspace_projector(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
+    """N = I − J⁺ J (n, n): projects joint rates onto motions that leave the task still.
+
+    ``q̇ = J⁺ v + N q̇₀`` reaches the task velocity v while following q̇₀ as
+    closely as the task allows (self-motion of a redundant arm).
+    """
+    J = np.asarray(J, dtype=float)
+    n = J.shape[-1]
+    return np.eye(n) - pinv(J, rtol) @ J
+
+
+def solve_rates(J: np.ndarray, v: np.ndarray, damping: float = 0.0) -> np.ndarray:
+    """Joint rates for a desired task velocity: J⁺ v (``damping`` = 0) or the DLS solution."""
+    J = np.asarray(J, dtype=float)
+    v = np.asarray(v, dtype=float)
+    if v.shape[-1] != J.shape[-2]:
+        raise ValueError(f"v has {v.shape[-1]} components, J has {J.shape[-2]} rows")
+    inv = pinv(J) if damping == 0 else dls(J, damping)
+    return inv @ v

@@ -1,0 +1,127 @@
+"""Small helpers for homogeneous transforms and rotations (numeric, NumPy).
+
+All transforms are 4×4 homogeneous matrices ``T_a_b`` mapping coordinates in
+frame *b* to frame *a*; angles are in radians, lengths in metres.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .errors import RobotDefinitionError
+
+__all__ = [
+    "rot_x",
+    "rot_y",
+    "rot_z",
+    "trans",
+    "rpy_to_matrix",
+    "matrix_to_rpy",
+    "rotation_z_to",
+    "check_rigid_transform",
+    "rotation_log",
+    "skew",
+]
+
+
+def rot_x(angle: float) -> np.ndarray:
+    """4×4 rotation about x by ``angle`` [rad]."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
+
+
+def rot_y(angle: float) -> np.ndarray:
+    """4×4 rotation about y by ``angle`` [rad]."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, 0, s, 0], [0, 1, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1.0]])
+
+
+def rot_z(angle: float) -> np.ndarray:
+    """4×4 rotation about z by ``angle`` [rad]."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+
+def trans(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> np.ndarray:
+    """4×4 pure translation by (x, y, z) [m]."""
+    T = np.eye(4)
+    T[:3, 3] = (x, y, z)
+    return T
+
+
+def rpy_to_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """3×3 rotation R = Rz(yaw) Ry(pitch) Rx(roll) (URDF's rpy convention) [rad]."""
+    return (rot_z(yaw) @ rot_y(pitch) @ rot_x(roll))[:3, :3]
+
+
+def matrix_to_rpy(R: np.ndarray) -> np.ndarray:
+    """Inverse of :func:`rpy_to_matrix`: (roll, pitch, yaw) [rad], pitch in [-π/2, π/2]."""
+    R = np.asarray(R, dtype=float)
+    pitch = math.atan2(-R[2, 0], math.hypot(R[0, 0], R[1, 0]))
+    if math.hypot(R[0, 0], R[1, 0]) < 1e-12:  # gimbal lock: put everything in yaw
+        return np.array([0.0, pitch, math.atan2(-R[0, 1], R[1, 1])])
+    return np.array([math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
+
+
+def rotation_z_to(axis: np.ndarray) -> np.ndarray:
+    """A 3×3 rotation whose third column is the unit vector ``axis``.
+
+    Used to make every joint move about its local z axis: a URDF joint with
+    axis ``u`` becomes a joint about z in the frame rotated by this matrix.
+    """
+    u = np.asarray(axis, dtype=float)
+    u = u / np.linalg.norm(u)
+    if np.allclose(u, [0, 0, 1], atol=1e-12):
+        return np.eye(3)
+    # Pick the coordinate axis least aligned with u to build an orthonormal basis.
+    helper = np.eye(3)[int(np.argmin(np.abs(u)))]
+    x = np.cross(helper, u)
+    x /= np.linalg.norm(x)
+    y = np.cross(u, x)
+    return np.column_stack([x, y, u])
+
+
+def check_rigid_transform(T: object, what: str, tol: float = 1e-6) -> np.ndarray:
+    """Return ``T`` as a float 4×4 array, or raise naming ``what`` and the defect."""
+    try:
+        A = np.array(T, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise RobotDefinitionError(f"{what}: expected a 4×4 numeric matrix ({exc})") from None
+    if A.shape != (4, 4):
+        raise RobotDefinitionError(f"{what}: expected a 4×4 homogeneous transform, got shape {A.shape}")
+    if not np.all(np.isfinite(A)):
+        raise RobotDefinitionError(f"{what}: contains a non-finite number (NaN or infinity)")
+    if not np.allclose(A[3], [0, 0, 0, 1], atol=tol):
+        raise RobotDefinitionError(f"{what}: last row must be [0, 0, 0, 1], got {A[3].tolist()}")
+    R = A[:3, :3]
+    if not np.allclose(R.T @ R, np.eye(3), atol=tol) or np.linalg.det(R) < 0:
+        raise RobotDefinitionError(
+            f"{what}: the upper-left 3×3 block is not a rotation (orthonormal, det = +1)"
+        )
+    A[3] = (0, 0, 0, 1)
+    return A
+
+
+def skew(w: np.ndarray) -> np.ndarray:
+    """3×3 skew-symmetric matrix [w]× with [w]× v = w × v."""
+    x, y, z = w
+    return np.array([[0, -z, y], [z, 0, -x], [-y, x, 0.0]])
+
+
+def rotation_log(R: np.ndarray) -> np.ndarray:
+    """Rotation vector (axis · angle) [rad] of a 3×3 rotation matrix, angle in [0, π]."""
+    R = np.asarray(R, dtype=float)
+    cos_angle = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
+    angle = math.acos(cos_angle)
+    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    if angle < 1e-6:
+        return 0.5 * w
+    if math.pi - angle < 1e-6:
+        # Near π: the axis is the dominant column of (R + I) / 2.
+        M = (R + np.eye(3)) / 2.0
+        k = int(np.argmax(np.diag(M)))
+        axis = M[:, k] / math.sqrt(max(M[k, k], 1e-300))
+        return axis * angle
+    return w * (angle / (2.0 * math.sin(angle)))
