@@ -71,14 +71,16 @@ def select_rows(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndar
 def task_rows(robot: Robot) -> tuple[int, ...]:
     """The rows of J that form the robot's task: what the course's det J and cond J refer to.
 
-    ``robot.task`` when set; otherwise planar robots: (vx, vy, ωz); spatial
+    ``robot.task`` when set; otherwise planar robots: (vx, vy, ωz), or (vx, vy)
+    with fewer than three joints; spatial
     robots with fewer than 6 joints: the tool-point velocity (vx, vy, vz);
     otherwise all six rows.
     """
     if robot.task != "auto":
         return PART_ROWS[robot.task]
     if robot.planar:
-        return PART_ROWS["planar"]
+        # Two joints cannot control the tool's orientation too: the task is its position.
+        return PART_ROWS["planar"] if robot.dof >= 3 else (0, 1)
     if robot.dof < 6:
         return PART_ROWS["linear"]
     return PART_ROWS["full"]

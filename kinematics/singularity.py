@@ -108,47 +108,90 @@ def assess(
     status: Status = "singular" if singular else "near singular" if cond > near_condition else "regular"
     kinds: tuple[str, ...] = ()
     if status != "regular":
-        # Compare each geometric test with the task's smallest singular value: a kind is
-        # named when its own measure is about as small (relative to the task's).
-        kinds = _kinds(robot, q, rows, tol=max(smin, rtol * scale) * 10.0 + 1e-12)
+        kinds = _kinds(robot, q, rows, KIND_TOL if singular else NEAR_KIND_TOL)
     return SingularityReport(status, kinds, smin, cond, lost, null_motion.copy())
 
 
+KIND_TOL = 1e-7
+"""A normalised geometric measure below this names the kind of an exact singularity."""
+NEAR_KIND_TOL = 0.1
+"""... and below this, the kind a near-singular configuration is close to."""
+
+
+def _ratio(A: np.ndarray) -> float:
+    """σmin / σmax over the min(rows, columns) singular values of A: 1 well spread, 0 degenerate."""
+    if A.size == 0:
+        return 0.0
+    s = np.linalg.svd(A, compute_uv=False)
+    return float(s[-1] / s[0]) if s[0] > 0 else 0.0
+
+
 def _kinds(robot: Robot, q: np.ndarray, rows: list[int], tol: float) -> tuple[str, ...]:
+    """Kinds of singularity from normalised geometric measures (each in [0, 1], 0 = degenerate).
+
+    * wrist: σmin of the three wrist axis directions [z₋₃ z₋₂ z₋₁];
+    * the arm (axes before the wrist, or all axes without a wrist) moves the
+      wrist point (where the last wrist axes meet; the tool point without a
+      wrist) through the columns zᵢ × (p − pᵢ): elbow when the last two arm
+      columns alone lose rank (stretched or folded), shoulder when the arm
+      columns lose rank although those two do not (the first axis only adds
+      motion the others already give: the wrist point is in the plane of
+      axes 1 and 2).
+    """
     W, T = _chain_single(robot, q)
     c = robot._compiled  # type: ignore[attr-defined]
     revolute = [k for k in range(len(W)) if c.revolute[k]]
-    z = W[:, :3, 2]
+    z, p = W[:, :3, 2], W[:, :3, 3]
     kinds = []
-    wants_orientation = any(r in PART_ROWS["angular"] for r in rows)
-    has_wrist = wants_orientation and len(revolute) >= 3
-    if has_wrist:
+    orientation_task = any(r in PART_ROWS["angular"] for r in rows)
+    if robot.planar and orientation_task and len(revolute) >= 3:
+        # A planar arm that also orients its tool: the last axis is its "wrist".
+        elbow_point = shoulder_point = p[revolute[-1]]
+        arm = shoulder_arm = list(range(revolute[-1]))
+    elif not robot.planar and orientation_task and len(revolute) >= 3:
         wrist_axes = revolute[-3:]
-        if _smallest(z[wrist_axes].T) <= tol:
+        if float(np.linalg.svd(z[wrist_axes].T, compute_uv=False)[-1]) <= tol:
             kinds.append("wrist")
-        # Wrist point: origin of the middle wrist axis' frame (on the axes' intersection for a
-        # spherical wrist); the arm is every axis before the wrist.
-        point = W[wrist_axes[1], :3, 3]
+        centre = _common_point(z[wrist_axes], p[wrist_axes])
         arm = list(range(wrist_axes[0]))
+        if centre is not None:  # spherical wrist: the arm positions the wrist centre
+            elbow_point = shoulder_point = centre
+            shoulder_arm = arm
+        else:  # offset wrist (UR type): the first wrist axis still moves where the last two meet
+            elbow_point, shoulder_point = p[wrist_axes[0]], p[wrist_axes[-1]]
+            shoulder_arm = list(range(wrist_axes[1]))
     else:
-        point = T[:3, 3]
-        arm = list(range(len(W)))
+        elbow_point = shoulder_point = T[:3, 3]
+        arm = shoulder_arm = list(range(len(W)))
     if not arm:
         return tuple(kinds)
-    first_rev = next((k for k in arm if c.revolute[k]), None)
-    on_axis = False
-    if first_rev is not None:
-        r = point - W[first_rev, :3, 3]
-        dist = np.linalg.norm(np.cross(z[first_rev], r))
-        on_axis = dist <= tol
-        if on_axis:
-            kinds.append("shoulder")
-    # Linear velocity of the wrist point produced by the arm axes.
-    Jp = np.empty((3, len(arm)))
-    for j, k in enumerate(arm):
-        Jp[:, j] = np.cross(z[k], point - W[k, :3, 3]) if c.revolute[k] else z[k]
-    if robot.planar:
-        Jp = Jp[:2]
-    if not on_axis and _smallest(Jp) <= tol:
-        kinds.append("elbow")
+
+    def columns(axes: list[int], point: np.ndarray) -> np.ndarray:
+        Jp = np.empty((3, len(axes)))
+        for j, k in enumerate(axes):
+            Jp[:, j] = np.cross(z[k], point - p[k]) if c.revolute[k] else z[k]
+        return Jp[:2] if robot.planar else Jp
+
+    def rank(A: np.ndarray) -> int:
+        s = np.linalg.svd(A, compute_uv=False) if A.size else np.zeros(0)
+        return int(np.sum(s > tol * s[0])) if s.size and s[0] > 0 else 0
+
+    Je, Js = columns(arm, elbow_point), columns(shoulder_arm, shoulder_point)
+    full = Je.shape[0]
+    if rank(Je) < min(full, Je.shape[1]) and rank(Je[:, -2:]) < min(2, Je.shape[1]):
+        kinds.append("elbow")  # the last two arm joints move the point along one line only
+    if "elbow" not in kinds and Js.shape[1] > 2 and rank(Js) < full and rank(Js[:, 1:]) == rank(Js):
+        kinds.append("shoulder")  # joint 1 adds no motion the others do not already give
     return tuple(kinds)
+
+
+def _common_point(z: np.ndarray, p: np.ndarray) -> np.ndarray | None:
+    """The point where the lines (pᵢ, zᵢ) meet, or None if they do not (within 1e-9 m)."""
+    P = [np.eye(3) - np.outer(zi, zi) for zi in z]
+    A, b = sum(P), sum(Pi @ pi for Pi, pi in zip(P, p))
+    if np.linalg.svd(A, compute_uv=False)[-1] < 1e-9:
+        return None
+    x = np.linalg.solve(A, b)
+    if max(np.linalg.norm(Pi @ (x - pi)) for Pi, pi in zip(P, p)) > 1e-9:
+        return None
+    return x

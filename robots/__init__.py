@@ -1,0 +1,199 @@
+"""The robot library: one TOML file per robot in ``robots/data/`` (``puma560.toml`` is the
+commented example of the format), and its loader. Files are in metres and DEGREES (alpha, theta,
+revolute limits and configuration entries, base/tool rpy); the loader converts to radians and
+builds a :class:`kinematics.Robot`. It only parses data (tomllib); nothing is ever evaluated.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from kinematics import NamedConfiguration, Robot
+from kinematics.errors import RobotDefinitionError, UnknownRobotError
+from kinematics.transforms import rpy_to_matrix
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["DATA_DIR", "TASKS", "names", "load", "load_file", "info"]
+
+DATA_DIR = Path(__file__).resolve().parent / "data"
+SUFFIXES = (".toml", ".urdf")
+TASKS = ("auto", "full", "linear", "angular", "planar")  # the optional task key: kinematics.Robot.task
+
+# key -> type; float means "a finite int or float" (not a bool).
+_TOP = {"name": str, "title": str, "description": str, "source": str, "convention": str, "joints": list}
+_TOP_OPTIONAL = {"planar": bool, "task": str, "base": dict, "tool": dict, "configurations": list}
+_JOINT = {"joint": str, "a": float, "alpha": float, "d": float, "theta": float}
+_JOINT_OPTIONAL = {"name": str, "qlim": list}
+_CONF = {"name": str, "q": list}
+_CONF_OPTIONAL = {"description": str, "singular": str}
+_FRAME_OPTIONAL = {"xyz": list, "rpy": list}
+
+
+def names() -> list[str]:
+    """Names of the robots in the library (the stems of ``robots/data/*.toml``), sorted."""
+    return sorted(p.stem for p in DATA_DIR.glob("*.toml"))
+
+
+def load(name_or_path: str | Path) -> Robot:
+    """A robot by library name (``"puma560"``), or from a ``.toml`` robot file or a ``.urdf`` file.
+
+    Raises:
+        UnknownRobotError: not a library name (nor a file path); the message lists the names.
+        RobotDefinitionError: the file is invalid; the message names the file and the key or row.
+    """
+    path = _resolve(name_or_path)
+    return _load_library(path.stem) if path.parent == DATA_DIR else load_file(path)
+
+
+def info(name_or_path: str | Path) -> dict:
+    """Metadata of a robot file, without building the robot: name, title, description, source,
+    convention, planar and task (``"auto"`` unless the file sets it)."""
+    path = _resolve(name_or_path)
+    doc = _validated(path, _read(path))
+    return {"name": doc["name"], "convention": doc["convention"]} | _meta(doc)
+
+
+def load_file(path: str | Path) -> Robot:
+    """Build a robot from a ``.toml`` robot file or a ``.urdf`` file (the whole chain)."""
+    path = Path(path)
+    if path.suffix.lower() == ".urdf":
+        return Robot.from_urdf(str(path))
+    if path.suffix.lower() != ".toml":
+        raise RobotDefinitionError(f"{path.name}: expected a .toml robot file or a .urdf file")
+    doc = _validated(path, _read(path))
+    rows, revolute = [], [j["joint"] == "revolute" for j in doc["joints"]]
+    for j, rev in zip(doc["joints"], revolute, strict=True):
+        row = {**j, "alpha": math.radians(j["alpha"]), "theta": math.radians(j["theta"])}
+        if "qlim" in j:
+            row["qlim"] = tuple(math.radians(v) if rev else float(v) for v in j["qlim"])
+        rows.append(row)
+    confs = []
+    for c in doc.get("configurations", []):
+        q = [math.radians(v) if rev else v for v, rev in zip(c["q"], revolute, strict=True)]
+        text = _text(c.get("description", ""))
+        confs.append(NamedConfiguration(c["name"], np.array(q, dtype=float), text, c.get("singular", "")))
+    base, tool, meta = _frame(doc, "base"), _frame(doc, "tool"), _meta(doc)
+    try:
+        return Robot.from_dh(rows, doc["convention"], base, tool, doc["name"], configurations=confs, **meta)
+    except RobotDefinitionError as exc:
+        raise RobotDefinitionError(f"{path.name}: {exc}") from None
+
+
+def _resolve(name_or_path: str | Path) -> Path:
+    text = str(name_or_path)
+    if isinstance(name_or_path, Path) or any(ch in text for ch in "/\\") or text.lower().endswith(SUFFIXES):
+        return Path(name_or_path)
+    if text not in names():
+        raise UnknownRobotError(f"unknown robot {text!r}; available robots: {', '.join(names())}")
+    return DATA_DIR / f"{text}.toml"
+
+
+@functools.cache
+def _load_library(name: str) -> Robot:
+    return load_file(DATA_DIR / f"{name}.toml")
+
+
+def _read(path: Path) -> dict:
+    if not path.is_file():
+        raise RobotDefinitionError(f"{path}: no such robot file")
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except tomllib.TOMLDecodeError as exc:
+        raise RobotDefinitionError(f"{path.name}: not valid TOML: {exc}") from None
+
+
+def _check_table(table: object, required: dict, optional: dict, where: str) -> None:
+    if not isinstance(table, dict):
+        raise RobotDefinitionError(f"{where}: expected a table, got {table!r}")
+    missing = [k for k in required if k not in table]
+    if missing:
+        raise RobotDefinitionError(f"{where}: missing key(s) {', '.join(map(repr, missing))}")
+    unknown = sorted(set(table) - set(required) - set(optional))
+    if unknown:
+        bad, allowed = ", ".join(map(repr, unknown)), ", ".join([*required, *optional])
+        raise RobotDefinitionError(f"{where}: unknown key(s) {bad}; allowed: {allowed}")
+    for key, kind in (required | optional).items():
+        if key in table and kind is float:
+            _number(table[key], f"{where}, key {key!r}")
+        elif key in table and not isinstance(table[key], kind):
+            got = table[key]
+            raise RobotDefinitionError(f"{where}, key {key!r}: expected a {kind.__name__}, got {got!r}")
+
+
+def _number(x: object, where: str) -> None:
+    if isinstance(x, bool) or not isinstance(x, (int, float)):
+        raise RobotDefinitionError(f"{where}: expected a number, got {x!r}")
+    if not math.isfinite(x):
+        raise RobotDefinitionError(f"{where}: expected a finite number, got {x}")
+
+
+def _one_of(value: str, allowed: tuple[str, ...], where: str) -> None:
+    if value not in allowed:
+        raise RobotDefinitionError(f"{where}: expected one of {', '.join(allowed)}; got {value!r}")
+
+
+def _numbers(x: list, length: int, where: str) -> None:
+    if len(x) != length:
+        raise RobotDefinitionError(f"{where}: expected {length} numbers, got {len(x)}")
+    for v in x:
+        _number(v, where)
+
+
+def _validated(path: Path, doc: dict) -> dict:
+    f = path.name
+    _check_table(doc, _TOP, _TOP_OPTIONAL, f)
+    if doc["name"] != path.stem:
+        raise RobotDefinitionError(f"{f}, key 'name': {doc['name']!r} must equal the file stem {path.stem!r}")
+    _one_of(doc["convention"], ("standard", "modified"), f"{f}, key 'convention'")
+    _one_of(doc.get("task", "auto"), TASKS, f"{f}, key 'task'")
+    if not doc["joints"]:
+        raise RobotDefinitionError(f"{f}, key 'joints': expected at least one [[joints]] row")
+    for i, j in enumerate(doc["joints"]):
+        where = f"{f}, joints row {i + 1}"
+        _check_table(j, _JOINT, _JOINT_OPTIONAL, where)
+        _one_of(j["joint"], ("revolute", "prismatic"), f"{where}, key 'joint'")
+        if "qlim" in j:
+            _numbers(j["qlim"], 2, f"{where}, key 'qlim' (lower, upper)")
+    for side in ("base", "tool"):
+        if side in doc:
+            _check_table(doc[side], {}, _FRAME_OPTIONAL, f"{f}, [{side}]")
+            for key in ("xyz", "rpy"):
+                if key in doc[side]:
+                    _numbers(doc[side][key], 3, f"{f}, [{side}] key {key!r}")
+    seen: set[str] = set()
+    for i, c in enumerate(doc.get("configurations", [])):
+        where = f"{f}, configurations entry {i + 1}"
+        _check_table(c, _CONF, _CONF_OPTIONAL, where)
+        if c["name"] in seen:
+            raise RobotDefinitionError(f"{where}, key 'name': duplicate configuration name {c['name']!r}")
+        seen.add(c["name"])
+        _numbers(c["q"], len(doc["joints"]), f"{where} ({c['name']!r}), key 'q' (one value per joint)")
+    return doc
+
+
+def _meta(doc: dict) -> dict:
+    texts = {k: _text(doc[k]) for k in ("title", "description", "source")}
+    return texts | {"planar": doc.get("planar", False), "task": doc.get("task", "auto")}
+
+
+def _text(s: str) -> str:
+    """One paragraph: the line breaks of a TOML multi-line string become spaces."""
+    return " ".join(s.split())
+
+
+def _frame(doc: dict, side: str) -> np.ndarray:
+    table = doc.get(side, {})
+    T = np.eye(4)
+    T[:3, :3] = rpy_to_matrix(*(math.radians(v) for v in table.get("rpy", (0, 0, 0))))
+    T[:3, 3] = table.get("xyz", (0, 0, 0))
+    return T

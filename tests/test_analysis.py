@@ -1,0 +1,176 @@
+"""Measures of J (singular values, manipulability, conditioning, ellipsoids), inverses and singularities."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import robots
+from kinematics import (
+    assess,
+    condition_number,
+    dls,
+    force_ellipsoid,
+    jacobian,
+    manipulability,
+    null_space,
+    nullspace_projector,
+    pinv,
+    rank,
+    select_rows,
+    singular_values,
+    task_rows,
+    velocity_ellipsoid,
+)
+
+from kinematics_helpers import random_q
+
+NAMES = robots.names()
+ROBOTS = {name: robots.load(name) for name in NAMES}
+seeds = st.integers(min_value=0, max_value=2**32 - 1)
+
+
+@pytest.mark.parametrize("name", NAMES)
+@given(seed=seeds)
+def test_measures_agree_with_their_definitions(name, seed):
+    robot = ROBOTS[name]
+    J = jacobian(robot, random_q(robot, np.random.default_rng(seed)))
+    for part in ("linear", "angular", "planar", "full", task_rows(robot)):
+        Js = select_rows(J, part)
+        s = singular_values(J, part)
+        np.testing.assert_allclose(s, np.sqrt(np.clip(np.sort(np.linalg.eigvalsh(Js.T @ Js))[::-1][: len(s)], 0, None)),
+                                   atol=1e-6)
+        if Js.shape[0] <= Js.shape[1]:
+            scale = max(1.0, np.abs(Js).max()) ** (2 * Js.shape[0])
+            assert manipulability(J, part) ** 2 == pytest.approx(np.linalg.det(Js @ Js.T), abs=1e-12 * scale)
+        else:
+            assert manipulability(J, part) == 0.0
+        c = condition_number(J, part)
+        if rank(J, part) < min(Js.shape):
+            assert c == math.inf
+        elif Js.shape[0] <= Js.shape[1]:
+            assert c == pytest.approx(np.linalg.cond(Js), rel=1e-9)
+
+
+def test_planar_2r_singularity_measures():
+    robot = ROBOTS["planar2"]
+    J = jacobian(robot, [0.4, 0.0])  # stretched out: det J = a1 a2 sin q2 = 0
+    assert condition_number(J, "planar") == math.inf
+    assert rank(J, "linear") == 1
+    assert manipulability(J, (0, 1)) == pytest.approx(0.0, abs=1e-12)
+    a1, a2 = robot.dh[0].a, robot.dh[1].a
+    J = jacobian(robot, [0.4, 1.0])
+    assert manipulability(J, (0, 1)) == pytest.approx(a1 * a2 * math.sin(1.0), rel=1e-12)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_velocity_ellipsoid_is_the_image_of_the_unit_ball(name):
+    """Semi-axes σᵢ uᵢ are images of right singular vectors; random unit rates land inside."""
+    robot = ROBOTS[name]
+    rng = np.random.default_rng(5)
+    J = jacobian(robot, random_q(robot, rng))
+    E = velocity_ellipsoid(J, "linear")
+    assert np.allclose(E.axes.T @ E.axes, np.eye(3)) and np.linalg.det(E.axes) == pytest.approx(1.0)
+    assert np.all(np.diff(E.radii) <= 1e-12)
+    for _ in range(200):
+        qd = rng.normal(size=robot.dof)
+        v = J[:3] @ (qd / np.linalg.norm(qd))
+        coords = E.axes.T @ v  # components along the semi-axes
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inside = np.sum(np.where(E.radii > 1e-12, (coords / E.radii) ** 2, 0.0))
+        assert inside <= 1 + 1e-9
+        assert np.all(np.abs(coords[E.radii <= 1e-12]) < 1e-9)  # nothing leaves a flat direction
+    # The longest semi-axis is reached: ‖J v1‖ = σ1 along u1.
+    _, s, Vt = np.linalg.svd(J[:3])
+    assert np.linalg.norm(J[:3] @ Vt[0]) == pytest.approx(E.radii[0])
+    assert abs(E.axes[:, 0] @ (J[:3] @ Vt[0])) == pytest.approx(s[0])
+
+
+def test_ellipsoids_at_a_singularity_are_flat_not_nan():
+    robot = ROBOTS["planar2"]
+    J = jacobian(robot, [0.3, 0.0])
+    E = velocity_ellipsoid(J, "linear")
+    assert np.all(np.isfinite(E.radii)) and np.isfinite(E.axes).all()
+    assert np.sum(E.radii > 1e-9) == 1  # a segment: only one direction of motion left
+    F = force_ellipsoid(J, "linear")
+    assert np.isinf(F.radii).sum() == 2 and np.all(F.capped(5.0).radii <= 5.0)
+    # The velocity semi-axis that survives is perpendicular to the stretched arm (the x axis rotated by q1).
+    u = E.axes[:, 0]
+    assert abs(u @ [math.cos(0.3), math.sin(0.3), 0]) < 1e-9
+
+
+def test_force_ellipsoid_is_dual_to_velocity():
+    robot = ROBOTS["puma560"]
+    J = jacobian(robot, random_q(robot, np.random.default_rng(1)))
+    V, F = velocity_ellipsoid(J), force_ellipsoid(J)
+    np.testing.assert_allclose(V.radii * F.radii, 1.0)
+    np.testing.assert_allclose(np.abs(V.axes.T @ F.axes), np.eye(3), atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["planar3", "panda", "iiwa14"])
+def test_redundant_null_space_motion_leaves_the_tool_still(name):
+    robot = ROBOTS[name]
+    rng = np.random.default_rng(2)
+    J = jacobian(robot, random_q(robot, rng))
+    Jt = select_rows(J, task_rows(robot))
+    N = null_space(J, task_rows(robot))
+    assert N.shape == (robot.dof, robot.dof - Jt.shape[0])
+    np.testing.assert_allclose(Jt @ N, 0, atol=1e-10)
+    P = nullspace_projector(Jt)
+    qd0 = rng.normal(size=robot.dof)
+    np.testing.assert_allclose(Jt @ (P @ qd0), 0, atol=1e-10)
+    np.testing.assert_allclose(P @ P, P, atol=1e-10)
+
+
+@given(seed=seeds)
+def test_pinv_and_dls(seed):
+    rng = np.random.default_rng(seed)
+    J = rng.normal(size=(6, 7))
+    Jp = pinv(J)
+    np.testing.assert_allclose(J @ Jp @ J, J, atol=1e-9)
+    np.testing.assert_allclose(Jp, np.linalg.pinv(J), atol=1e-9)
+    lam = 0.1
+    np.testing.assert_allclose(dls(J, lam), J.T @ np.linalg.inv(J @ J.T + lam**2 * np.eye(6)), atol=1e-9)
+    # DLS rates stay bounded at a singularity: ‖dls(J)‖ ≤ 1 / (2λ).
+    Js = J.copy()
+    Js[5] = Js[4]
+    assert np.linalg.norm(dls(Js, lam), 2) <= 1 / (2 * lam) + 1e-9
+
+
+def test_course_trr_inverse_is_pinv():
+    robot = ROBOTS["trr"]
+    J = jacobian(robot, [5.0, math.radians(60), math.radians(-15)])[:3]
+    qd = pinv(J) @ np.array([17.256, -20.13, 0.5])
+    np.testing.assert_allclose(qd, [0.5, math.pi / 2, math.pi / 4], atol=2e-3)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_named_configurations_are_assessed_as_tagged(name):
+    robot = ROBOTS[name]
+    for cfg in robot.configurations:
+        report = assess(robot, cfg.q)
+        assert np.isfinite(report.sigma_min) and np.isfinite(report.lost_twist).all()
+        if cfg.singular:
+            assert report.status == "singular", (name, cfg.name, report)
+            assert report.condition == math.inf
+            J = jacobian(robot, cfg.q)
+            rows = list(task_rows(robot))
+            # The lost direction is (nearly) unreachable: no joint rate produces motion along it.
+            assert np.abs(report.lost_twist[rows] @ J[rows]).max() < 1e-8
+            if cfg.singular in ("wrist", "elbow", "shoulder"):
+                assert cfg.singular in report.kinds, (name, cfg.name, report.kinds)
+        else:
+            assert report.status != "singular", (name, cfg.name)
+
+
+def test_puma_singularity_kinds():
+    robot = ROBOTS["puma560"]
+    q = np.array([0.3, -0.4, 0.5, 0.7, 0.0, 0.2])  # q5 = 0: wrist axes 4 and 6 line up
+    assert assess(robot, q).kinds == ("wrist",)
+    assert assess(robot, q).text() == "singular: wrist"
+    q = np.array([0.3, -0.4, 0.5, 0.7, 0.9, 0.2])
+    assert assess(robot, q).status == "regular" and assess(robot, q).text() == "regular"

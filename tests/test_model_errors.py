@@ -1,0 +1,170 @@
+"""Every bad input to the model raises a project error whose message names the problem."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from kinematics import (
+    ConfigurationError,
+    JacobianLabError,
+    Robot,
+    RobotDefinitionError,
+    UrdfError,
+    fk,
+    jacobian,
+)
+from kinematics.urdf import robot_from_urdf, robot_from_urdf_string
+
+ROW = dict(joint="revolute", a=0.5, alpha=0.0, d=0.0, theta=0.0)
+
+
+def with_(**changes):
+    row = dict(ROW)
+    row.update(changes)
+    return row
+
+
+@pytest.mark.parametrize(
+    ("rows", "message"),
+    [
+        ([], "empty"),
+        ("not rows", "sequence of mappings"),
+        ([ROW, {k: v for k, v in ROW.items() if k != "alpha"}], r"DH row 2: missing key\(s\) 'alpha'"),
+        ([with_(joint="spherical")], "DH row 1: 'joint' must be 'revolute' or 'prismatic', got 'spherical'"),
+        ([with_(a=float("nan"))], "DH row 1, key 'a': expected a finite number, got nan"),
+        ([with_(d=math.inf)], "DH row 1, key 'd': expected a finite number"),
+        ([with_(theta="90")], "DH row 1, key 'theta': expected a number, got '90'"),
+        ([with_(alpha=True)], "DH row 1, key 'alpha': expected a number"),
+        ([with_(qlim=(1.0, -1.0))], "lower limit 1.0 must be below upper limit -1.0"),
+        ([with_(qlim=(0.0,))], r"DH row 1, key 'qlim': expected \(lower, upper\)"),
+        ([with_(length=1.0)], "DH row 1: unknown key\\(s\\) 'length'"),
+        ([42], "DH row 1: expected a mapping"),
+        ([with_(name="a"), with_(name="a")], "joint names are not unique"),
+    ],
+)
+def test_bad_dh_rows(rows, message):
+    with pytest.raises(RobotDefinitionError, match=message):
+        Robot.from_dh(rows)
+
+
+def test_bad_convention():
+    with pytest.raises(RobotDefinitionError, match="convention must be 'standard' or 'modified', got 'craig'"):
+        Robot.from_dh([ROW], convention="craig")
+
+
+@pytest.mark.parametrize(
+    ("T", "message"),
+    [
+        (np.eye(3), r"tool: expected a 4×4 homogeneous transform, got shape \(3, 3\)"),
+        (np.diag([2.0, 1, 1, 1]), "tool: the upper-left 3×3 block is not a rotation"),
+        (np.diag([-1.0, 1, 1, 1]), "tool: the upper-left 3×3 block is not a rotation"),
+        (np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 1, 1.0]]), "last row must be"),
+        (np.full((4, 4), np.nan), "tool: contains a non-finite number"),
+        ("eye", "tool: expected a 4×4 numeric matrix"),
+    ],
+)
+def test_bad_tool_transform(T, message):
+    with pytest.raises(RobotDefinitionError, match=message):
+        Robot.from_dh([ROW], tool=T)
+
+
+def test_bad_base_is_named():
+    with pytest.raises(RobotDefinitionError, match="^base: "):
+        Robot.from_dh([ROW], base=np.zeros((4, 4)))
+
+
+@pytest.mark.parametrize(
+    ("q", "message"),
+    [
+        ([0.0, 0.0, 0.0], r"q has shape \(3,\); robot 'two' expects \(2,\) or \(N, 2\)"),
+        ([[[0.0, 0.0]]], r"q has shape \(1, 1, 2\)"),
+        ([0.0, float("nan")], "q contains NaN or infinity"),
+        (["a", "b"], "q must be numeric"),
+    ],
+)
+def test_bad_configuration(q, message):
+    robot = Robot.from_dh([ROW, ROW], name="two")
+    with pytest.raises(ConfigurationError, match=message):
+        jacobian(robot, q)
+    with pytest.raises(ConfigurationError):
+        fk(robot, q)
+
+
+def test_errors_are_value_errors():
+    assert issubclass(JacobianLabError, ValueError)
+    assert issubclass(UrdfError, RobotDefinitionError)
+
+
+def test_bad_frame_argument():
+    with pytest.raises(ValueError, match="frame must be 'base' or 'tool', got 'world'"):
+        jacobian(Robot.from_dh([ROW]), [0.0], frame="world")
+
+
+LINK = '<link name="{}"/>'
+
+
+def joint(name, parent, child, kind="revolute", extra=""):
+    return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+            f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>{extra}</joint>')
+
+
+def urdf(*parts):
+    return '<robot name="r">' + "".join(parts) + "</robot>"
+
+
+@pytest.mark.parametrize(
+    ("text", "kwargs", "message"),
+    [
+        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "a", "c")),
+         {}, r"the tree below 'a' has 2 leaves \(b, c\); choose one as tip_link"),
+        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")), {"tip_link": "hand"},
+         "unknown tip_link 'hand'; links: a, b"),
+        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")), {"base_link": "world"},
+         "unknown base_link 'world'"),
+        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="floating")), {},
+         "joint 'j1' is floating"),
+        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="planar")), {},
+         "joint 'j1' is planar"),
+        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "c", "b")),
+         {}, "not a tree"),
+        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="fixed")), {}, "no moving joint"),
+        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "b", "c")),
+         {"base_link": "c", "tip_link": "a"}, "tip_link 'a' is not below base_link 'c'"),
+        ("<robot name='r'><link name='a'>", {}, "cannot parse URDF"),
+        ('<!DOCTYPE r [<!ENTITY x "y">]><robot name="r"/>', {}, "must not contain a DOCTYPE"),
+        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", extra='<mimic joint="nope"/>')), {},
+         "mimics 'nope', which is not an actuated joint"),
+    ],
+)
+def test_bad_urdf(text, kwargs, message):
+    with pytest.raises(UrdfError, match=message):
+        robot_from_urdf_string(text, **kwargs)
+
+
+def test_missing_urdf_file(tmp_path):
+    with pytest.raises(UrdfError, match="cannot read URDF"):
+        robot_from_urdf(tmp_path / "nope.urdf")
+
+
+def test_urdf_chain_without_meshes(tmp_path):
+    """A URDF with mesh references that do not exist still loads (only the tree is needed)."""
+    text = urdf(
+        '<link name="base"><visual><geometry><mesh filename="package://missing/base.stl"/></geometry></visual></link>',
+        LINK.format("l1"), LINK.format("l2"), LINK.format("tip"),
+        joint("shoulder", "base", "l1"),
+        '<joint name="slide" type="prismatic"><parent link="l1"/><child link="l2"/><origin xyz="0.5 0 0" rpy="0 1.5707963267948966 0"/>'
+        '<axis xyz="1 0 0"/><limit lower="0" upper="0.3" effort="1" velocity="1"/></joint>',
+        '<joint name="flange" type="fixed"><parent link="l2"/><child link="tip"/><origin xyz="0 0 0.1"/></joint>',
+    )
+    path = tmp_path / "arm.urdf"
+    path.write_text(text)
+    robot = Robot.from_urdf(str(path))
+    assert robot.joint_names == ("shoulder", "slide") and robot.joint_types == ("revolute", "prismatic")
+    assert robot.joints[1].qlim == (0.0, 0.3)
+    # Tool: after the slide (along the l1 x axis rotated by pitch 90° → along -z of l1), then 0.1 along l2 z.
+    T = fk(robot, [0.0, 0.2])
+    # slide axis x of l2-frame-before-motion = Ry(90°)·x = -z; tool offset z of l2 = Ry(90°)·z = +x.
+    np.testing.assert_allclose(T[:3, 3], [0.5 + 0.1, 0.0, -0.2], atol=1e-12)
