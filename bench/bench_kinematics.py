@@ -59,12 +59,18 @@ def bench_robot(name: str, rtb_name: str, batch: int) -> list[tuple[str, float]]
     model = pin.buildModelFromXML(to_urdf(robot))
     data = model.createData()
     fid = model.getFrameId("tool")
-    rows.append(("Pinocchio computeFrameJacobian",
-                 per_call(lambda: pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED))))
+    rows.append(
+        (
+            "Pinocchio computeFrameJacobian",
+            per_call(lambda: pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)),
+        )
+    )
     J_pin = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)
     pin_gap = np.abs(J_pin - J_ours).max()
-    print(f"\n{name}: {robot.dof} joints.  max |J_ours − J_pinocchio| = {pin_gap:.1e}; "
-          f"max |ω rows ours − RTB {rtb_name}| = {angular_gap:.1e}")
+    print(
+        f"\n{name}: {robot.dof} joints.  max |J_ours − J_pinocchio| = {pin_gap:.1e}; "
+        f"max |ω rows ours − RTB {rtb_name}| = {angular_gap:.1e}"
+    )
     return rows
 
 
@@ -78,11 +84,14 @@ def main() -> None:
         fastest_single_peer = min(v for k, v in rows if not k.startswith("ours"))
         for label, seconds in rows:
             print(f"  {label:40s} {seconds * 1e6:9.2f} µs")
-        print(f"  ratio ours single / RTB compiled ETS      {t['ours, single'] / t['RTB compiled ETS jacob0']:6.2f}"
-              "   (target ≤ 3)")
-        print(f"  ratio ours single / Pinocchio             {t['ours, single'] / t['Pinocchio computeFrameJacobian']:6.2f}")
-        print(f"  ratio ours batched / fastest peer single  "
-              f"{t['ours, batched (per configuration)'] / fastest_single_peer:6.2f}   (target ≤ 1)")
+        single = t["ours, single"]
+        ets, pin_ = t["RTB compiled ETS jacob0"], t["Pinocchio computeFrameJacobian"]
+        print(f"  ratio ours single / RTB compiled ETS      {single / ets:6.2f}   (target ≤ 3)")
+        print(f"  ratio ours single / Pinocchio             {single / pin_:6.2f}")
+        print(
+            f"  ratio ours batched / fastest peer single  "
+            f"{t['ours, batched (per configuration)'] / fastest_single_peer:6.2f}   (target ≤ 1)"
+        )
 
 
 if __name__ == "__main__":

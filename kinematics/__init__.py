@@ -27,14 +27,6 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from .errors import (
-    ConfigurationError,
-    JacobianLabError,
-    RepresentationSingularityError,
-    RobotDefinitionError,
-    UnknownRobotError,
-    UrdfError,
-)
 from .analysis import (
     Ellipsoid,
     condition_number,
@@ -49,6 +41,14 @@ from .analysis import (
     velocity_ellipsoid,
 )
 from .analytic import analytic_jacobian, euler_angles, euler_rate_matrix
+from .errors import (
+    ConfigurationError,
+    JacobianLabError,
+    RepresentationSingularityError,
+    RobotDefinitionError,
+    UnknownRobotError,
+    UrdfError,
+)
 from .inverse import dls, nullspace_projector, pinv, solve_rates
 from .model import Axis, DHRow, Joint, NamedConfiguration, Robot
 from .numeric import as_configuration, fk, jacobian, jacobian_dot, joint_frames, link_frames

@@ -135,14 +135,18 @@ def inverse_condition_number(J: np.ndarray, part: Part | tuple[int, ...] = "full
     return 1.0 / c if np.ndim(c) == 0 else 1.0 / np.asarray(c)
 
 
-def rank(J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL) -> int | np.ndarray:
+def rank(
+    J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
+) -> int | np.ndarray:
     """Numerical rank: the number of σᵢ above ``rtol · max(σmax, 1)``."""
     s = singular_values(J, part)
     r = np.sum(s > _zero_tol(s, rtol), axis=-1)
     return int(r) if np.ndim(r) == 0 else r
 
 
-def null_space(J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL) -> np.ndarray:
+def null_space(
+    J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
+) -> np.ndarray:
     """Orthonormal basis (n, k) of the joint rates that produce no motion of the selected rows.
 
     For one Jacobian only. Self-motions of a redundant arm, or the joint
@@ -204,7 +208,9 @@ def velocity_ellipsoid(J: np.ndarray, part: Part | tuple[int, ...] = "linear") -
     return Ellipsoid(U, sigma)
 
 
-def force_ellipsoid(J: np.ndarray, part: Part | tuple[int, ...] = "linear", rtol: float = DEFAULT_RTOL) -> Ellipsoid:
+def force_ellipsoid(
+    J: np.ndarray, part: Part | tuple[int, ...] = "linear", rtol: float = DEFAULT_RTOL
+) -> Ellipsoid:
     """Force ellipsoid: {F : ‖Jᵀ F‖ ≤ 1}, semi-axes 1/σᵢ along the same uᵢ.
 
     Where σᵢ is zero (a singular direction) the radius is ``inf``: the

@@ -281,9 +281,7 @@ class Robot:
             2
         """
         if convention not in ("standard", "modified"):
-            raise RobotDefinitionError(
-                f"DH convention must be 'standard' or 'modified', got {convention!r}"
-            )
+            raise RobotDefinitionError(f"DH convention must be 'standard' or 'modified', got {convention!r}")
         if isinstance(rows, (str, bytes, Mapping)) or not isinstance(rows, Sequence):
             raise RobotDefinitionError("DH rows: expected a sequence of mappings, one per joint")
         if len(rows) == 0:
@@ -311,7 +309,9 @@ class Robot:
                     T_jc = np.eye(4)
                 corners = ()
             offset = r.theta if revolute else r.d
-            axes.append(Axis(name_i, r.joint, i, 1.0, offset, _frozen_array(T_pj), _frozen_array(T_jc), corners))
+            axes.append(
+                Axis(name_i, r.joint, i, 1.0, offset, _frozen_array(T_pj), _frozen_array(T_jc), corners)
+            )
         return cls(
             name=name,
             joints=tuple(joints),
@@ -351,9 +351,7 @@ def _parse_dh_row(i: int, row: Mapping[str, object]) -> DHRow:
         )
     kind = row["joint"]
     if kind not in _JOINT_TYPES:
-        raise RobotDefinitionError(
-            f"{where}: 'joint' must be 'revolute' or 'prismatic', got {kind!r}"
-        )
+        raise RobotDefinitionError(f"{where}: 'joint' must be 'revolute' or 'prismatic', got {kind!r}")
     vals = {k: _finite(row[k], f"{where}, key {k!r}") for k in ("a", "alpha", "d", "theta")}
     qlim = row.get("qlim")
     if qlim is not None:

@@ -188,10 +188,10 @@ def _kinds(robot: Robot, q: np.ndarray, rows: list[int], tol: float) -> tuple[st
 def _common_point(z: np.ndarray, p: np.ndarray) -> np.ndarray | None:
     """The point where the lines (pᵢ, zᵢ) meet, or None if they do not (within 1e-9 m)."""
     P = [np.eye(3) - np.outer(zi, zi) for zi in z]
-    A, b = sum(P), sum(Pi @ pi for Pi, pi in zip(P, p))
+    A, b = sum(P), sum(Pi @ pi for Pi, pi in zip(P, p, strict=True))
     if np.linalg.svd(A, compute_uv=False)[-1] < 1e-9:
         return None
     x = np.linalg.solve(A, b)
-    if max(np.linalg.norm(Pi @ (x - pi)) for Pi, pi in zip(P, p)) > 1e-9:
+    if max(np.linalg.norm(Pi @ (x - pi)) for Pi, pi in zip(P, p, strict=True)) > 1e-9:
         return None
     return x

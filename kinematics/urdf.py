@@ -227,9 +227,8 @@ def to_urdf(robot: Robot) -> str:
             f'    <limit lower="{lim[0]!r}" upper="{lim[1]!r}" effort="0" velocity="0"/>',
         ]
         if mimic:
-            out.append(
-                f'    <mimic joint="{_attr(joint.name)}" multiplier="{ax.multiplier!r}" offset="{ax.offset!r}"/>'
-            )
+            factors = f'multiplier="{ax.multiplier!r}" offset="{ax.offset!r}"'
+            out.append(f'    <mimic joint="{_attr(joint.name)}" {factors}/>')
         seen.add(ax.joint_index)
         out.append("  </joint>")
     out += [
