@@ -299,7 +299,8 @@ class Robot:
                     corners = ((0.0, 0.0, r.d),) if r.d != 0 and r.a != 0 else ()
                 else:
                     T_jc = trans(x=r.a) @ rot_x(r.alpha)
-                    corners = ()
+                    # The slide ends at the moved joint origin; the link then runs along x by a.
+                    corners = ((0.0, 0.0, 0.0),) if r.a != 0 else ()
             else:
                 T_pj = rot_x(r.alpha) @ trans(x=r.a)
                 if revolute:

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from kinematics_helpers import random_q
 
 import robots
 from kinematics import (
@@ -26,8 +27,6 @@ from kinematics import (
     task_rows,
     velocity_ellipsoid,
 )
-
-from kinematics_helpers import random_q
 
 NAMES = robots.names()
 ROBOTS = {name: robots.load(name) for name in NAMES}

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from kinematics_helpers import random_q
 
 import robots
 from kinematics import (
@@ -31,8 +32,6 @@ from kinematics import (
 )
 from kinematics.transforms import rotation_log
 from kinematics.urdf import robot_from_urdf_string, to_urdf
-
-from kinematics_helpers import random_q
 
 NAMES = robots.names()
 ROBOTS = {name: robots.load(name) for name in NAMES}

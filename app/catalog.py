@@ -1,0 +1,76 @@
+"""The robots a client can choose: the library (``robots.names()``) plus files named on the command line.
+
+Robots are immutable, so one loaded robot is shared by every client.
+"""
+
+from __future__ import annotations
+
+import threading
+from pathlib import Path
+
+import robots
+from kinematics import Robot
+from kinematics.errors import UnknownRobotError
+
+__all__ = ["RobotCatalog", "DEFAULT_ROBOT"]
+
+DEFAULT_ROBOT = "puma560"
+"""The first robot a student sees: the textbook 6R arm, whose DH frames, spherical wrist and three
+named singularities (wrist, elbow, shoulder) are the course's running example."""
+
+
+class RobotCatalog:
+    """Names shown in the robot dropdown and the robots behind them.
+
+    Args:
+        files: Extra robot files (``.urdf`` or ``.toml``); each is listed under its file stem
+            (with a suffix if that name is taken).
+    """
+
+    def __init__(self, files: list[str | Path] = ()) -> None:
+        self._files: dict[str, Path] = {}
+        self._cache: dict[str, Robot] = {}
+        self._lock = threading.Lock()
+        for f in files:
+            self.add_file(f)
+
+    def add_file(self, path: str | Path) -> str:
+        """List the robot file ``path`` (an upload, a DH table saved by an editor); returns its name."""
+        path = Path(path)
+        with self._lock:
+            name = path.stem
+            while name in robots.names() or name in self._files:
+                name += " (file)"
+            self._files[name] = path
+        return name
+
+    def names(self) -> list[str]:
+        """Dropdown entries: the files given first, then the library robots."""
+        return [*self._files, *robots.names()]
+
+    def default(self) -> str:
+        """The first file given, else :data:`DEFAULT_ROBOT` (or the first library robot)."""
+        if self._files:
+            return next(iter(self._files))
+        names = robots.names()
+        return DEFAULT_ROBOT if DEFAULT_ROBOT in names else names[0]
+
+    def load(self, name: str) -> Robot:
+        """The robot listed as ``name`` (loaded once).
+
+        Raises:
+            UnknownRobotError: ``name`` is not listed (the message lists what is).
+            RobotDefinitionError: the robot file is invalid.
+        """
+        with self._lock:
+            if name in self._cache:
+                return self._cache[name]
+        if name in self._files:
+            robot = robots.load_file(self._files[name])
+        elif name in robots.names():
+            robot = robots.load(name)
+        else:
+            raise UnknownRobotError(f"unknown robot {name!r}; available: {', '.join(self.names())}")
+        with self._lock:
+            self._cache[name] = robot
+        return robot

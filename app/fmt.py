@@ -1,0 +1,80 @@
+"""Numbers for humans: significant digits, real minus signs, units, ∞ and no NaN.
+
+Everything the panel shows goes through these functions, so no ``nan`` or
+``inf`` text can reach the page: an infinite value reads ``∞`` and a NaN
+(which should never happen) reads ``—``.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+
+__all__ = ["number", "quantity", "fixed", "escape", "MINUS"]
+
+MINUS = "\u2212"
+_SUPERSCRIPT = str.maketrans(
+    "-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079"
+)
+
+
+def number(x: float, digits: int = 3) -> str:
+    """``x`` with ``digits`` significant digits: ``0.432``, ``12.3``, ``1.23×10⁴``, ``∞``.
+
+    Magnitudes in [1e-3, 1e5) are written plainly; others in scientific form.
+    A value that rounds to zero is written ``0``.
+    """
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        return "—"
+    if math.isnan(x):
+        return "—"
+    if math.isinf(x):
+        return "∞" if x > 0 else f"{MINUS}∞"
+    if x == 0.0 or abs(x) < 1e-12:
+        return "0"
+    mag = abs(x)
+    if 1e-3 <= mag < 1e5:
+        decimals = max(0, digits - 1 - int(math.floor(math.log10(mag))))
+        text = f"{mag:.{decimals}f}"
+        if "." in text:
+            text = text.rstrip("0").rstrip(".")
+    else:
+        mantissa, exponent = f"{mag:.{digits - 1}e}".split("e")
+        if "." in mantissa:
+            mantissa = mantissa.rstrip("0").rstrip(".")
+        text = f"{mantissa}×10{str(int(exponent)).translate(_SUPERSCRIPT)}"
+    return (MINUS if x < 0 else "") + text
+
+
+def quantity(x: float, unit: str = "", digits: int = 3) -> str:
+    """``number(x)`` followed by a thin space and ``unit`` (no space before ``°``)."""
+    text = number(x, digits)
+    if not unit or text == "—":
+        return text
+    return f"{text}{unit}" if unit.startswith("°") else f"{text}\u2009{unit}"
+
+
+def fixed(x: float, decimals: int = 3) -> str:
+    """``x`` with a fixed number of decimals, for aligned matrix entries (``−0.432``, ``0``).
+
+    Values that round to zero are written ``0`` (no ``−0.000``); non-finite values as in :func:`number`.
+    """
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        return "—"
+    if not math.isfinite(x):
+        return number(x)
+    if abs(x) < 0.5 * 10.0**-decimals:
+        return "0"
+    if abs(x) >= 1e5:
+        return number(x)
+    text = f"{abs(x):.{decimals}f}"
+    return (MINUS if x < 0 else "") + text
+
+
+def escape(text: str) -> str:
+    """HTML-escape ``text`` for the panel."""
+    return html.escape(text, quote=True)

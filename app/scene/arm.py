@@ -1,0 +1,296 @@
+"""The arm: the DH picture (links as a and d segments, joint axes as cylinders), URDF meshes, frames.
+
+For every robot the app draws the joint axes zᵢ₋₁ as coloured cylinders
+(boxes for prismatic joints) in the colour of the joint's slider, and the
+links as grey segments through the DH "d then a" corners, so the course's
+frame picture is visible. A URDF robot whose mesh files are present shows
+its meshes instead of the grey segments. All nodes are built once per
+robot and then only updated.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+from dataclasses import dataclass
+from functools import partial
+from pathlib import Path
+
+import numpy as np
+import viser
+
+from kinematics import Robot, joint_frames, link_frames
+
+from ..palette import LINK_RGB, STATUS_RGB, joint_color
+from ..snapshot import Snapshot
+from ..state import Options
+from .geometry import finite, segment_instances, unit_box, unit_cylinder, wxyz
+
+__all__ = ["ArmGeometry", "ArmView"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class ArmGeometry:
+    """What the drawing needs to know about a robot, worked out once per robot.
+
+    Attributes:
+        size: Length of the drawn chain at home [m]: the scale of every glyph.
+        axis_joint: Joint index driving each axis (m,).
+        revolute: Whether each axis is revolute (m,).
+        first_axis: For each joint, the first axis it drives (n,).
+        moved_from_link: inv(T_joint_child) per axis (m, 4, 4): moved joint frame from link frame.
+        corners: Homogeneous corner points per axis (in the moved joint frame).
+    """
+
+    size: float
+    axis_joint: np.ndarray
+    revolute: np.ndarray
+    first_axis: np.ndarray
+    moved_from_link: np.ndarray
+    corners: tuple[np.ndarray, ...]
+
+    @classmethod
+    def of(cls, robot: Robot) -> ArmGeometry:
+        """The geometry of ``robot`` (its size measured at home)."""
+        axes = robot.axes
+        corners = tuple(
+            np.column_stack([np.asarray(ax.corners, float).reshape(-1, 3), np.ones(len(ax.corners))])
+            for ax in axes
+        )
+        idx = np.array([ax.joint_index for ax in axes])
+        geom = cls(
+            size=1.0,
+            axis_joint=idx,
+            revolute=np.array([ax.kind == "revolute" for ax in axes]),
+            first_axis=np.array([int(np.flatnonzero(idx == j)[0]) for j in range(robot.dof)]),
+            moved_from_link=np.stack([np.linalg.inv(ax.T_joint_child) for ax in axes]),
+            corners=corners,
+        )
+        pts = geom.polyline(link_frames(robot, robot.home), joint_frames(robot, robot.home))
+        length = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+        return dataclasses.replace(geom, size=max(length, 0.2))
+
+    def polyline(self, L: np.ndarray, W: np.ndarray) -> np.ndarray:
+        """Points (P, 3) of the drawn chain: frame 0; per axis its origin, corners, link frame; the tool.
+
+        Args:
+            L: Link frames (m + 2, 4, 4) as from :func:`kinematics.link_frames`.
+            W: Joint frames (m, 4, 4) as from :func:`kinematics.joint_frames`.
+        """
+        pts = [L[0, :3, 3]]
+        for k in range(len(W)):
+            pts.append(W[k, :3, 3])
+            if len(self.corners[k]):
+                moved = L[k + 1] @ self.moved_from_link[k]
+                pts.extend((moved @ self.corners[k].T).T[:, :3])
+            pts.append(L[k + 1, :3, 3])
+        pts.append(L[-1, :3, 3])
+        return np.array(pts)
+
+
+class ArmView:
+    """Scene nodes of the arm for one client; :meth:`update` moves them."""
+
+    def __init__(self, scene: viser.SceneApi, target: viser.ClientHandle, robot: Robot, root: str) -> None:
+        self.robot = robot
+        self.geometry = g = ArmGeometry.of(robot)
+        s = g.size
+        self._status = ""
+        self._meshes = _load_urdf_meshes(target, robot, f"{root}/urdf")
+        L0 = link_frames(robot, robot.home)
+        floor = min(0.0, float(L0[:, 2, 3].min())) - 0.02 * s
+        self._nodes: list = [self._meshes] if self._meshes is not None else []
+        self.grid = scene.add_grid(
+            f"{root}/grid",
+            width=3 * s,
+            height=3 * s,
+            cell_size=_nice(s / 8),
+            section_size=_nice(s / 2),
+            position=(0.0, 0.0, floor),
+            shadow_opacity=0.1,
+        )
+        base = robot.base[:3, 3]
+        self.pedestal = scene.add_cylinder(
+            f"{root}/pedestal",
+            radius=0.06 * s,
+            height=max(base[2] - floor, 1e-3),
+            color=(90, 94, 102),
+            position=(base[0], base[1], (base[2] + floor) / 2),
+        )
+        m = len(robot.axes)
+        self._rev = np.flatnonzero(g.revolute)
+        self._pri = np.flatnonzero(~g.revolute)
+        self._draw_links = self._meshes is None
+        self._n_links = len(g.polyline(L0, joint_frames(robot, robot.home))) - 1 if self._draw_links else 0
+        n_cyl = self._n_links + len(self._rev)
+        self._axis_radius = 0.04 * s * (1.0 - 0.07 * np.arange(m))  # nested when axes line up
+        self._axis_length = 0.17 * s * (1.0 + 0.1 * np.arange(m))
+        cyl_colors = np.array(
+            [LINK_RGB] * self._n_links + [joint_color(int(g.axis_joint[k])) for k in self._rev],
+            dtype=np.uint8,
+        ).reshape(n_cyl, 3)
+        v, f = unit_cylinder()
+        self.cylinders = (
+            scene.add_batched_meshes_simple(
+                f"{root}/cylinders",
+                v,
+                f,
+                batched_wxyzs=np.tile([1.0, 0, 0, 0], (n_cyl, 1)),
+                batched_positions=np.zeros((n_cyl, 3)),
+                batched_colors=cyl_colors,
+                lod="off",
+            )
+            if n_cyl
+            else None
+        )
+        v, f = unit_box()
+        self.boxes = (
+            scene.add_batched_meshes_simple(
+                f"{root}/prismatic",
+                v,
+                f,
+                batched_wxyzs=np.tile([1.0, 0, 0, 0], (len(self._pri), 1)),
+                batched_positions=np.zeros((len(self._pri), 3)),
+                batched_colors=np.array(
+                    [joint_color(int(g.axis_joint[k])) for k in self._pri], np.uint8
+                ).reshape(-1, 3),
+                lod="off",
+            )
+            if len(self._pri)
+            else None
+        )
+        n_frames = m + 2
+        self.frames = scene.add_batched_axes(
+            f"{root}/frames",
+            batched_wxyzs=np.tile([1.0, 0, 0, 0], (n_frames, 1)),
+            batched_positions=np.zeros((n_frames, 3)),
+            axes_length=0.12 * s,
+            axes_radius=0.006 * s,
+            visible=False,
+        )
+        self.labels = [
+            scene.add_label(f"{root}/label_{j}", _short(name), font_screen_scale=1.0, anchor="bottom-center")
+            for j, name in enumerate(robot.joint_names)
+        ]
+        self._nodes += [self.grid, self.pedestal, self.cylinders, self.boxes, self.frames, *self.labels]
+
+    def update(self, snap: Snapshot, options: Options) -> None:
+        """Move every node to ``snap`` (its joint frames and link frames)."""
+        g, L, W = self.geometry, snap.link_frames, snap.joint_frames
+        if self._meshes is not None:
+            self._meshes.update(snap.q)
+        z = W[:, :3, 2]
+        o = W[:, :3, 3]
+        half = self._axis_length / 2
+        if self.cylinders is not None:
+            parts = []
+            if self._draw_links:
+                pts = g.polyline(L, W)
+                parts.append(segment_instances(pts[:-1], pts[1:], 0.026 * g.size))
+            r = self._rev
+            parts.append(
+                segment_instances(
+                    o[r] - z[r] * half[r, None], o[r] + z[r] * half[r, None], self._axis_radius[r]
+                )
+            )
+            pos, quat, scale = (np.concatenate(x) for x in zip(*parts, strict=True))
+            self.cylinders.batched_positions = finite(pos)
+            self.cylinders.batched_wxyzs = finite(quat)
+            self.cylinders.batched_scales = finite(scale)
+            if snap.report.status != self._status and self._draw_links:
+                colors = self.cylinders.batched_colors.copy()
+                colors[: self._n_links] = _tint(LINK_RGB, snap.report.status)
+                self.cylinders.batched_colors = colors
+        if self.boxes is not None:
+            p = self._pri
+            width = 2.2 * self._axis_radius[p]
+            self.boxes.batched_positions = finite(o[p])
+            self.boxes.batched_wxyzs = finite(wxyz(W[p, :3, :3]))
+            self.boxes.batched_scales = finite(np.column_stack([width, width, 2 * half[p]]))
+        self._status = snap.report.status
+        self.frames.visible = options.frames
+        if options.frames:
+            self.frames.batched_positions = finite(L[:, :3, 3])
+            self.frames.batched_wxyzs = finite(wxyz(L[:, :3, :3]))
+        for j, label in enumerate(self.labels):
+            label.visible = options.labels
+            if options.labels:
+                k = g.first_axis[j]
+                label.position = tuple(finite(o[k] + z[k] * (half[k] + 0.02 * g.size)))
+
+    def remove(self) -> None:
+        """Remove every node of this arm."""
+        for node in self._nodes:
+            if node is not None:
+                node.remove()
+
+
+def _short(name: str) -> str:
+    """Label of a joint in the 3-D view: its first word ("q1 waist" → "q1")."""
+    return name.split()[0] if name.strip() else name
+
+
+def _nice(x: float) -> float:
+    """A round grid spacing near ``x`` (1, 2 or 5 × 10ᵏ)."""
+    k = np.floor(np.log10(x))
+    m = x / 10**k
+    return float((1 if m < 1.5 else 2 if m < 3.5 else 5) * 10**k)
+
+
+def _tint(rgb: tuple[int, int, int], status: str) -> np.ndarray:
+    """The link colour blended towards the status colour (unchanged when regular)."""
+    if status == "regular":
+        return np.array(rgb, np.uint8)
+    mix = 0.65 if status == "singular" else 0.45
+    return (np.array(rgb) * (1 - mix) + np.array(STATUS_RGB[status]) * mix).astype(np.uint8)
+
+
+class _UrdfMeshes:
+    """A URDF's visual meshes (viser's ViserUrdf), driven by the robot's joint values."""
+
+    def __init__(self, urdf_view, names: tuple[str, ...], robot: Robot) -> None:
+        self._view = urdf_view
+        index = {name: i for i, name in enumerate(robot.joint_names)}
+        self._map = [index.get(name) for name in names]
+
+    def update(self, q: np.ndarray) -> None:
+        cfg = np.array([q[i] if i is not None else 0.0 for i in self._map])
+        self._view.update_cfg(cfg)
+
+    def remove(self) -> None:
+        self._view.remove()
+
+
+def _load_urdf_meshes(target: viser.ClientHandle, robot: Robot, root: str) -> _UrdfMeshes | None:
+    """ViserUrdf for a URDF robot whose every visual geometry loads, else ``None`` (generated geometry)."""
+    if not robot.urdf_path:
+        return None
+    try:
+        import yourdfpy
+        from viser.extras import ViserUrdf
+
+        path = Path(robot.urdf_path)
+        urdf = yourdfpy.URDF.load(
+            str(path),
+            build_scene_graph=True,
+            load_meshes=True,
+            filename_handler=partial(yourdfpy.filename_handler_magic, dir=path.parent),
+        )
+        wanted = sum(1 for link in urdf.robot.links for v in link.visuals if v.geometry is not None)
+        if wanted == 0 or urdf.scene is None or len(urdf.scene.geometry) < wanted:
+            log.info(
+                "%s: %d of %d visual meshes found; drawing generated geometry",
+                path.name,
+                0 if urdf.scene is None else len(urdf.scene.geometry),
+                wanted,
+            )
+            return None
+        view = ViserUrdf(target, urdf, root_node_name=root)
+        return _UrdfMeshes(view, view.get_actuated_joint_names(), robot)
+    except Exception:  # a broken mesh must not stop the app: fall back to generated geometry
+        log.warning(
+            "cannot load the meshes of %s; drawing generated geometry", robot.urdf_path, exc_info=True
+        )
+        return None

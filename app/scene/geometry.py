@@ -1,0 +1,72 @@
+"""Drawing helpers: unit meshes, instance poses for segments, and the finite-number guard.
+
+Nothing here is kinematics: these functions turn points and frames the
+snapshot already holds into what viser's batched meshes take (positions,
+quaternions, per-axis scales), and make sure no non-finite number reaches
+the 3-D scene.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import trimesh
+import viser.transforms as vtf
+
+__all__ = ["finite", "wxyz", "segment_instances", "unit_cylinder", "unit_box", "TINY"]
+
+TINY = 1e-4
+"""Smallest drawn extent [m]: degenerate shapes are drawn this thin instead of vanishing."""
+_LIMIT = 1e3
+
+
+def finite(a: object, limit: float = _LIMIT) -> np.ndarray:
+    """``a`` as float32 with NaN → 0 and values clipped to ±``limit``: safe to send to the scene."""
+    arr = np.nan_to_num(np.asarray(a, dtype=np.float64), nan=0.0, posinf=limit, neginf=-limit)
+    return np.clip(arr, -limit, limit).astype(np.float32)
+
+
+def wxyz(R: np.ndarray) -> np.ndarray:
+    """Unit quaternions (…, 4) [w, x, y, z] of rotation matrices (…, 3, 3)."""
+    q = vtf.SO3.from_matrix(np.asarray(R, dtype=np.float64)).wxyz
+    norm = np.linalg.norm(q, axis=-1, keepdims=True)
+    ok = np.isfinite(q).all(axis=-1, keepdims=True) & (norm > 0.5)
+    identity = np.array([1.0, 0.0, 0.0, 0.0])
+    return np.where(ok, q / np.where(ok, norm, 1.0), identity)
+
+
+def segment_instances(p0: np.ndarray, p1: np.ndarray, radius: np.ndarray | float) -> tuple[np.ndarray, ...]:
+    """Poses of unit cylinders (radius 1, height 1 along z, centred) spanning p0[i] → p1[i].
+
+    Returns positions (N, 3), wxyzs (N, 4), scales (N, 3). The rotation is the shortest arc
+    from z to the segment (quaternion [1 + z·d, z × d], normalised), so a cylinder never
+    spins about its own axis as the arm moves. A zero-length segment gets height :data:`TINY`.
+    """
+    p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
+    d = p1 - p0
+    length = np.linalg.norm(d, axis=1)
+    u = d / np.where(length > TINY, length, 1.0)[:, None]
+    u[length <= TINY] = (0.0, 0.0, 1.0)
+    q = np.column_stack([1.0 + u[:, 2], -u[:, 1], u[:, 0], np.zeros(len(u))])
+    norm = np.linalg.norm(q, axis=1)
+    flipped = norm < 1e-9  # pointing along -z: half a turn about x
+    q[flipped] = (0.0, 1.0, 0.0, 0.0)
+    q /= np.where(flipped, 1.0, norm)[:, None]
+    r = np.broadcast_to(np.asarray(radius, float), length.shape)
+    scales = np.column_stack([r, r, np.maximum(length, TINY)])
+    return (p0 + p1) / 2.0, q, scales
+
+
+@functools.cache
+def unit_cylinder() -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and faces of a cylinder of radius 1 and height 1 along z, centred at the origin."""
+    mesh = trimesh.creation.cylinder(radius=1.0, height=1.0, sections=24)
+    return np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32)
+
+
+@functools.cache
+def unit_box() -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and faces of a unit cube centred at the origin."""
+    mesh = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    return np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32)

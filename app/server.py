@@ -1,0 +1,160 @@
+"""Start the Jacobian Lab server: one viser server, one :class:`~app.session.ClientSession` per browser tab.
+
+Example::
+
+    from app.server import serve
+    lab = serve(robot="panda", port=0, block=False)   # prints the URL
+    ...
+    lab.stop()
+"""
+
+from __future__ import annotations
+
+import logging
+import multiprocessing
+import socket
+import threading
+import time
+from pathlib import Path
+
+import viser
+
+from .catalog import RobotCatalog
+from .session import ClientSession
+from .symbolic import SymbolicService
+
+__all__ = ["serve", "Lab"]
+
+log = logging.getLogger(__name__)
+
+
+class Lab:
+    """A running Jacobian Lab: the viser server, the robot catalogue and the client sessions.
+
+    Args:
+        robot: Library robot (or robot file path) shown first; default :data:`app.catalog.DEFAULT_ROBOT`.
+        urdf: URDF file shown first (listed in the dropdown beside the library).
+        host: Address to listen on (127.0.0.1: this machine only; 0.0.0.0: the classroom network).
+        port: Port; 0 picks a free one. A busy port makes viser try the next one.
+
+    Raises:
+        UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
+            (checked before the server starts).
+    """
+
+    def __init__(
+        self, robot: str | None = None, urdf: str | None = None, host: str = "127.0.0.1", port: int = 8080
+    ) -> None:
+        files = [urdf] if urdf else []
+        if robot and _is_path(robot):
+            files.append(robot)
+            robot = None
+        self.catalog = RobotCatalog(files)
+        self.default_robot = robot or self.catalog.default()
+        self.catalog.load(self.default_robot)  # fail before starting the server
+        self.symbolic = SymbolicService()
+        self.host = host
+        self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        self.server.scene.set_up_direction("+z")
+        self.server.initial_camera.position = (1.3, -1.5, 0.9)
+        self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
+        self.sessions: dict[int, ClientSession] = {}
+        self._lock = threading.Lock()
+        self.server.on_client_connect(self._connect)
+        self.server.on_client_disconnect(self._disconnect)
+
+    @property
+    def port(self) -> int:
+        """The port actually bound."""
+        return self.server.get_port()
+
+    @property
+    def url(self) -> str:
+        """The address to open in a browser."""
+        host = self.host
+        if host in ("0.0.0.0", "::", ""):
+            host = socket.gethostname()
+        elif ":" in host:
+            host = f"[{host}]"
+        return f"http://{host}:{self.port}"
+
+    def _connect(self, client: viser.ClientHandle) -> None:
+        try:
+            session = ClientSession(client, self.catalog, self.symbolic, self.default_robot)
+        except Exception as exc:  # this client sees the error; the server and other clients carry on
+            log.error("client %s: cannot start a session", client.client_id, exc_info=exc)
+            try:
+                client.add_notification(
+                    "Jacobian Lab could not start", f"{type(exc).__name__}: {exc}", color="red"
+                )
+            except Exception:
+                pass
+            return
+        with self._lock:
+            self.sessions[client.client_id] = session
+
+    def _disconnect(self, client: viser.ClientHandle) -> None:
+        with self._lock:
+            session = self.sessions.pop(client.client_id, None)
+        if session is not None:
+            session.close()
+
+    def session(self, timeout: float = 10.0) -> ClientSession:
+        """The most recent client's session, waiting up to ``timeout`` seconds for one (for tests)."""
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            with self._lock:
+                if self.sessions:
+                    return self.sessions[max(self.sessions)]
+            time.sleep(0.02)
+        raise TimeoutError("no client connected")
+
+    def stop(self) -> None:
+        """Stop the server and the symbolic workers."""
+        self.server.stop()
+        self.symbolic.close()
+
+
+def _is_path(text: str) -> bool:
+    return Path(text).suffix.lower() in (".toml", ".urdf") or "/" in text or "\\" in text
+
+
+def serve(
+    robot: str | None = None,
+    urdf: str | None = None,
+    host: str = "127.0.0.1",
+    port: int = 8080,
+    block: bool = True,
+) -> Lab:
+    """Start the browser app and print its URL.
+
+    Args:
+        robot: Library robot shown first (default: the PUMA 560).
+        urdf: A URDF file shown first instead (also listed in the robot dropdown).
+        host: Address to listen on; 127.0.0.1 serves this machine only.
+        port: Port (0 picks a free one).
+        block: Serve until Ctrl-C (then stop and return); ``False`` returns the running :class:`Lab`.
+
+    From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
+    worker process imports the main script, as every "spawn" worker does).
+    """
+    if multiprocessing.parent_process() is not None:
+        # The symbolic worker is started with "spawn", which imports the main script again.
+        raise RuntimeError(
+            "serve() was called while a worker process imported the main script: "
+            "call it under `if __name__ == '__main__':`"
+        )
+    logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
+    logging.getLogger("websockets").setLevel(logging.WARNING)
+    lab = Lab(robot=robot, urdf=urdf, host=host, port=port)
+    print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
+    if not block:
+        return lab
+    try:
+        while True:
+            time.sleep(3600)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        lab.stop()
+    return lab

@@ -1,0 +1,173 @@
+"""A minimal client of viser's websocket protocol, for tests and benchmarks (no browser).
+
+It connects like the browser does (subprotocol ``viser-v<version>``), sends
+one camera message (viser counts a client as connected only after it),
+then decodes every frame the server sends: zstd-compressed msgpack followed
+by raw binary buffers, which come back as NumPy arrays.
+
+Example::
+
+    with ViserWsClient(f"ws://127.0.0.1:{port}") as ws:
+        mark = ws.mark()
+        ws.set_value(slider_uuid, 30.0)
+        t, msg = ws.wait_for(lambda m: m["type"] == "SceneNodeUpdateMessage", after=mark)
+"""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
+
+import msgspec.msgpack
+import numpy as np
+import viser
+import websockets
+import zstandard
+from viser import _messages
+
+__all__ = ["ViserWsClient", "decode_frame"]
+
+
+def decode_frame(data: bytes) -> list[dict[str, Any]]:
+    """The messages of one server → client frame, binary placeholders replaced by arrays."""
+    raw_size = int.from_bytes(data[:8], "little")
+    compressed_size = int.from_bytes(data[8:16], "little")
+    inner = zstandard.ZstdDecompressor().decompress(data[16 : 16 + compressed_size], max_output_size=raw_size)
+    payload = msgspec.msgpack.decode(inner)
+    buffers = []
+    offset = 16 + compressed_size
+    for length in payload.get("binaryBufferLengths", ()):
+        offset += (8 - offset % 8) % 8
+        buffers.append(data[offset : offset + length])
+        offset += length
+
+    def restore(obj: Any) -> Any:
+        if isinstance(obj, dict):
+            if "__binary_index" in obj and "dtype" in obj:
+                return np.frombuffer(buffers[obj["__binary_index"]], dtype=np.dtype(obj["dtype"]))
+            return {k: restore(v) for k, v in obj.items()}
+        if isinstance(obj, list):
+            return [restore(v) for v in obj]
+        return obj
+
+    return [restore(m) for m in payload["messages"]]
+
+
+class ViserWsClient:
+    """A headless viser client running its own event loop thread.
+
+    Attributes:
+        messages: Every message received, as (perf_counter time, message dict), in order.
+    """
+
+    def __init__(self, url: str, width: int = 800, height: int = 600) -> None:
+        self.url = url
+        self.size = (width, height)
+        self.messages: list[tuple[float, dict[str, Any]]] = []
+        self._cond = threading.Condition()
+        self._loop = asyncio.new_event_loop()
+        self._ws: Any = None
+        self._error: BaseException | None = None
+        self._thread = threading.Thread(target=self._loop.run_forever, daemon=True, name="viser-ws-client")
+
+    def __enter__(self) -> ViserWsClient:
+        self.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def start(self, timeout: float = 10.0) -> None:
+        """Connect and announce a camera (the server then builds this client's session)."""
+        self._thread.start()
+        asyncio.run_coroutine_threadsafe(self._connect(), self._loop).result(timeout)
+
+    async def _connect(self) -> None:
+        self._ws = await websockets.connect(
+            self.url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None, compression=None
+        )
+        self._loop.create_task(self._receive())
+        w, h = self.size
+        await self._ws.send(
+            self._encode(
+                _messages.ViewerCameraMessage(
+                    wxyz=(1.0, 0.0, 0.0, 0.0),
+                    position=(2.0, -2.0, 1.5),
+                    fov=1.0,
+                    near=0.01,
+                    far=100.0,
+                    image_height=h,
+                    image_width=w,
+                    look_at=(0.0, 0.0, 0.0),
+                    up_direction=(0.0, 0.0, 1.0),
+                )
+            )
+        )
+
+    async def _receive(self) -> None:
+        try:
+            async for frame in self._ws:
+                t = time.perf_counter()
+                msgs = decode_frame(frame)
+                with self._cond:
+                    self.messages.extend((t, m) for m in msgs)
+                    self._cond.notify_all()
+        except websockets.ConnectionClosed:
+            pass
+        except BaseException as exc:  # surfaced by wait_for
+            self._error = exc
+            with self._cond:
+                self._cond.notify_all()
+
+    @staticmethod
+    def _encode(message: _messages.Message) -> bytes:
+        return msgspec.msgpack.encode(message.as_serializable_dict())
+
+    def send(self, message: _messages.Message) -> None:
+        """Send one client → server message."""
+        data = self._encode(message)
+        asyncio.run_coroutine_threadsafe(self._ws.send(data), self._loop).result(5.0)
+
+    def set_value(self, uuid: str, value: Any) -> float:
+        """Change a GUI input as the browser would; returns the send time (perf_counter)."""
+        t = time.perf_counter()
+        self.send(_messages.GuiUpdateMessage(uuid, {"value": value}))
+        return t
+
+    def mark(self) -> int:
+        """Index of the next message to arrive (for :meth:`wait_for`)."""
+        with self._cond:
+            return len(self.messages)
+
+    def wait_for(
+        self, predicate: Callable[[dict[str, Any]], bool], after: int = 0, timeout: float = 10.0
+    ) -> tuple[float, dict[str, Any]]:
+        """The first message from index ``after`` on that satisfies ``predicate``."""
+        end = time.monotonic() + timeout
+        i = after
+        with self._cond:
+            while True:
+                while i < len(self.messages):
+                    t, m = self.messages[i]
+                    if predicate(m):
+                        return t, m
+                    i += 1
+                if self._error is not None:
+                    raise RuntimeError("the websocket client failed") from self._error
+                left = end - time.monotonic()
+                if left <= 0:
+                    raise TimeoutError("no matching message arrived")
+                self._cond.wait(left)
+
+    def close(self) -> None:
+        """Disconnect and stop the thread."""
+        if self._ws is not None:
+            try:
+                asyncio.run_coroutine_threadsafe(self._ws.close(), self._loop).result(5.0)
+            except Exception:
+                pass
+        self._loop.call_soon_threadsafe(self._loop.stop)
+        self._thread.join(5.0)

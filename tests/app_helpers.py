@@ -1,0 +1,87 @@
+"""Helpers for the app tests: a running lab with a headless websocket client, and finiteness scans."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import re
+import time
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+
+from app.server import Lab
+from app.session import ClientSession
+from app.wsclient import ViserWsClient
+
+_BAD_TEXT = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)
+
+
+@contextlib.contextmanager
+def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClient]]:
+    """A Lab on a free port with one connected websocket client; always stopped."""
+    lab = Lab(port=0, **kwargs)
+    try:
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws:
+            session = lab.session()
+            yield lab, session, ws
+    finally:
+        lab.stop()
+
+
+def wait_until(predicate, timeout: float = 10.0, interval: float = 0.02) -> None:
+    """Poll ``predicate`` until it is true or fail."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if predicate():
+            return
+        time.sleep(interval)
+    raise AssertionError("condition not reached in time")
+
+
+def nonfinite_paths(obj: Any, path: str = "") -> list[str]:
+    """Paths inside ``obj`` (message dicts, props, arrays) holding NaN/∞ numbers or "nan"/"inf" text."""
+    bad: list[str] = []
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            bad += nonfinite_paths(v, f"{path}.{k}")
+    elif isinstance(obj, (list, tuple)):
+        for i, v in enumerate(obj):
+            bad += nonfinite_paths(v, f"{path}[{i}]")
+    elif isinstance(obj, np.ndarray):
+        if obj.dtype.kind == "f" and not np.isfinite(obj).all():
+            bad.append(path)
+    elif isinstance(obj, float):
+        if not math.isfinite(obj):
+            bad.append(path)
+    elif isinstance(obj, str):
+        text = re.sub(r"<[^>]*>", " ", obj)  # only the visible text, not tag or attribute names
+        if _BAD_TEXT.search(text):
+            bad.append(f"{path}: {text[:80]!r}")
+    return bad
+
+
+def scene_props(session: ClientSession) -> dict[str, Any]:
+    """Every prop of every scene node of the session's client, by node name."""
+    api = session.client.scene
+    out = {}
+    for name, handle in list(api._handle_from_node_name.items()):
+        impl = handle._impl
+        out[name] = {**vars(impl.props), "position": impl.position, "wxyz": impl.wxyz}
+    return out
+
+
+def gui_contents(session: ClientSession) -> list[str]:
+    """The HTML shown by the session's readouts (status, measures, matrix, bars, twist)."""
+    p = session.panel
+    handles = [
+        p.status,
+        p.measures,
+        p.matrix.numeric,
+        p.matrix.symbolic,
+        p.velocity.twist,
+        p.velocity.rates,
+        p.force.torques,
+    ]
+    return [h.content for h in handles]
