@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import tempfile
 
 from hypothesis import HealthCheck, settings
 
@@ -14,3 +15,9 @@ settings.register_profile(
     "ci", max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
 )
 settings.load_profile("ci" if os.environ.get("CI") else "default")
+
+
+# Keep the tests' on-disk caches (symbolic Jacobians) out of the user's ~/.cache, and start
+# every run cold so that cached results never hide a fresh computation's failure.
+_CACHE_ROOT = tempfile.mkdtemp(prefix="jacobian-lab-test-cache-")
+os.environ["XDG_CACHE_HOME"] = _CACHE_ROOT

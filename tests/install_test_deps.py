@@ -1,4 +1,8 @@
-"""Install what the test suite needs beyond PyPI: Debian's Chromium (for the browser tests).
+"""Install what the test suite needs beyond PyPI, from Debian's packages.
+
+* Chromium (``/usr/bin/chromium``) for the browser tests;
+* Node.js and npm, which run KaTeX (pinned in ``tests/katex``) to check that
+  the exported LaTeX typesets.
 
 Run by the README's test command before pytest. Idempotent and quick when
 everything is already there. Never downloads a browser build of its own
@@ -15,34 +19,41 @@ import sys
 CHROMIUM = "/usr/bin/chromium"
 
 
-def _run(cmd: list[str]) -> int:
-    print("+", " ".join(cmd), flush=True)
-    return subprocess.call(cmd)
-
-
-def ensure_chromium() -> bool:
-    if os.path.exists(CHROMIUM):
-        return True
+def _apt_install(packages: list[str]) -> bool:
     if shutil.which("apt-get") is None:
-        print(f"install_test_deps: {CHROMIUM} is missing and apt-get is not available; "
-              "install Chromium yourself to run the browser tests", file=sys.stderr)
+        print(f"install_test_deps: apt-get is not available; install {' '.join(packages)} yourself",
+              file=sys.stderr)
         return False
     sudo = [] if os.geteuid() == 0 else (["sudo", "-n"] if shutil.which("sudo") else None)
     if sudo is None:
-        print("install_test_deps: need root to apt-get install chromium", file=sys.stderr)
+        print(f"install_test_deps: need root to apt-get install {' '.join(packages)}", file=sys.stderr)
         return False
     env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    for cmd in (sudo + ["apt-get", "update", "-qq"], sudo + ["apt-get", "install", "-y", "-qq", "chromium"]):
+    for cmd in (sudo + ["apt-get", "update", "-qq"], sudo + ["apt-get", "install", "-y", "-qq", *packages]):
         print("+", " ".join(cmd), flush=True)
         if subprocess.call(cmd, env=env, stdout=subprocess.DEVNULL) != 0:
             print(f"install_test_deps: '{' '.join(cmd)}' failed", file=sys.stderr)
             return False
-    return os.path.exists(CHROMIUM)
+    return True
+
+
+def ensure_packages() -> bool:
+    """Chromium, node and npm, each installed only when missing."""
+    wanted = []
+    if not os.path.exists(CHROMIUM):
+        wanted.append("chromium")
+    if shutil.which("node") is None:
+        wanted.append("nodejs")
+    if shutil.which("npm") is None:
+        wanted.append("npm")
+    if wanted and not _apt_install(wanted):
+        return False
+    return os.path.exists(CHROMIUM) and shutil.which("node") is not None and shutil.which("npm") is not None
 
 
 def main() -> int:
-    ok = ensure_chromium()
-    # In CI a missing browser must fail the run (the browser tests would fail anyway).
+    ok = ensure_packages()
+    # In CI anything missing fails the run (the tests that need it would fail anyway).
     if not ok and os.environ.get("CI"):
         return 1
     return 0

@@ -1,0 +1,76 @@
+"""Symbolic (SymPy) kinematics from the same :class:`~kinematics.Robot` model as the numeric code.
+
+* :func:`fk`, :func:`jacobian`: ``T_base_tool(q)`` and J(q) (rows [v; ω]) as
+  ``sympy.Matrix`` in the real symbols ``q1 … qn``, simplified the way a
+  person writes them (sums of angles collapsed, common factors pulled out)
+  within a time limit, and cached on disk (:func:`derive`).
+* The course's four derivations (:mod:`.derivations`) and
+  :func:`check_derivations`, which shows they agree exactly and numerically.
+* :func:`determinant`: det J (or det(J Jᵀ)) factored, and its singular sets.
+* :func:`analytic_jacobian`: J_A for ZYX or ZYZ Euler angles, with its
+  representation singularity.
+* Printing in the course's compact notation (cᵢ, sᵢ, cᵢⱼ, …):
+  :class:`Notation`, :func:`jacobian_latex`, :func:`jacobian_mathml`.
+
+Numeric link parameters stay exact (π/2 stays π/2, 0.4318 becomes 2159/5000
+and prints as 0.4318); ``symbolic_params=True`` keeps the DH lengths and
+offsets as symbols (a2, d4, …; l1, l2, l3 for the course's robots).
+Nothing here imports viser, and nothing parses user text into SymPy.
+"""
+
+from __future__ import annotations
+
+from .analytic import AnalyticJacobian, analytic_jacobian, euler_rate_matrix
+from .codegen import numeric_function, python_source
+from .core import DEFAULT_TIMEOUT, Derivation, derive, fk, jacobian, joint_symbols
+from .derivations import (
+    DERIVATIONS,
+    Agreement,
+    check_derivations,
+    jacobian_differentiation,
+    jacobian_force_propagation,
+    jacobian_velocity_propagation,
+    jacobian_whitney,
+)
+from .model import PARAM_NAMES, SymbolicError, SymbolicModel, build_model
+from .printing import Notation
+from .render import jacobian_latex, jacobian_mathml, latex_parts, mathml_parts
+from .singular import Determinant, SingularSet, det_rows, determinant, singular_sets
+from .trig import is_zero, normal_form
+
+__all__ = [
+    "fk",
+    "jacobian",
+    "derive",
+    "Derivation",
+    "joint_symbols",
+    "DEFAULT_TIMEOUT",
+    "jacobian_differentiation",
+    "jacobian_whitney",
+    "jacobian_velocity_propagation",
+    "jacobian_force_propagation",
+    "DERIVATIONS",
+    "check_derivations",
+    "Agreement",
+    "determinant",
+    "Determinant",
+    "singular_sets",
+    "SingularSet",
+    "det_rows",
+    "analytic_jacobian",
+    "AnalyticJacobian",
+    "euler_rate_matrix",
+    "Notation",
+    "jacobian_latex",
+    "jacobian_mathml",
+    "latex_parts",
+    "mathml_parts",
+    "numeric_function",
+    "python_source",
+    "build_model",
+    "SymbolicModel",
+    "SymbolicError",
+    "PARAM_NAMES",
+    "normal_form",
+    "is_zero",
+]

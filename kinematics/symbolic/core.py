@@ -1,0 +1,197 @@
+"""The symbolic forward kinematics and Jacobian, simplified and cached: what the exports show.
+
+:func:`derive` computes J with Whitney's columns (the fastest of the
+derivations in :mod:`.derivations`), simplifies every entry the way a person
+would (:mod:`.trig`) within a time limit, and caches the result on disk keyed
+by the robot's fingerprint and the options, so a second request is instant.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+import sympy as sp
+
+from ..model import Robot
+from . import cache
+from .chain import frames
+from .derivations import jacobian_whitney
+from .model import SymbolicError, build_model, check_frame
+from .trig import AngleShift, Deadline, Progress, simplify_matrix
+
+__all__ = ["Derivation", "derive", "fk", "jacobian", "joint_symbols", "DEFAULT_TIMEOUT"]
+
+DEFAULT_TIMEOUT = 60.0
+"""Default time budget [s] for simplification; past it, entries stay unsimplified (with a note)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Derivation:
+    """A simplified symbolic Jacobian and forward kinematics, with what is needed to print them.
+
+    Attributes:
+        robot: Robot name.
+        frame: ``"base"`` or ``"tool"``: the axes of J's rows.
+        q: Joint symbols ``q1 … qn``.
+        joint_kinds: ``"revolute"`` or ``"prismatic"`` per joint.
+        T: ``T_base_tool`` (4×4), simplified.
+        J: Geometric Jacobian (6×n), rows [v; ω], simplified.
+        params: Symbolic parameters → values [m] / [rad] (empty without ``symbolic_params``).
+        display: LaTeX display names of the symbols (θᵢ / dᵢ for joints).
+        notes: Human-readable notes (e.g. entries left unsimplified at the time limit).
+        complete: True if every entry was simplified.
+        seconds: Time the derivation took when it was computed [s].
+        timeout: Time budget it was computed with [s] (``None``: unlimited).
+        from_cache: True if this result was read from the cache.
+    """
+
+    robot: str
+    frame: str
+    q: tuple[sp.Symbol, ...]
+    joint_kinds: tuple[str, ...]
+    T: sp.Matrix
+    J: sp.Matrix
+    params: dict[sp.Symbol, float]
+    display: dict[sp.Symbol, str]
+    notes: tuple[str, ...]
+    complete: bool
+    seconds: float
+    timeout: float | None
+    from_cache: bool = False
+
+
+def _check_timeout(timeout: object) -> float | None:
+    if timeout is None:
+        return None
+    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not timeout > 0:
+        raise SymbolicError(f"timeout must be a positive number of seconds or None, got {timeout!r}")
+    return float(timeout)
+
+
+def derive(
+    robot: Robot,
+    frame: str = "base",
+    *,
+    symbolic_params: bool = False,
+    timeout: float | None = DEFAULT_TIMEOUT,
+    use_cache: bool = True,
+    progress: Progress | None = None,
+) -> Derivation:
+    """Derive, simplify and cache J(q) and T_base_tool(q) of ``robot``.
+
+    Args:
+        robot: The robot.
+        frame: ``"base"`` or ``"tool"``.
+        symbolic_params: Keep DH lengths and offsets as symbols (a2, d4, …; l1, l2, l3 for the
+            course's robots).
+        timeout: Simplification budget [s]; past it the remaining entries stay unsimplified
+            (exact but long) and :attr:`Derivation.notes` says so. ``None``: no limit.
+        use_cache: Read and write the cache (memory and ``kinematics.cache_dir()/symbolic``).
+        progress: Called with short progress messages.
+
+    Raises:
+        SymbolicError: unknown frame, bad timeout, or symbolic parameters for a non-DH robot.
+    """
+    frame = check_frame(frame)
+    timeout = _check_timeout(timeout)
+    model = build_model(robot, symbolic_params)
+    key = f"derive|{model.cache_key()}|{frame}"
+    if use_cache:
+        hit = cache.load(key)
+        if isinstance(hit, dict) and (
+            hit["complete"]
+            or (timeout is not None and hit["timeout"] is not None and timeout <= hit["timeout"])
+        ):
+            return Derivation(**{**hit, "robot": robot.name, "from_cache": True})
+    start = time.perf_counter()
+    deadline = Deadline(timeout)
+    if progress is not None:
+        progress(f"deriving the {frame}-frame Jacobian of {robot.name} ({robot.dof} joints)")
+    shift = AngleShift(model.q, model.angle_offsets())
+    J, notes_J = simplify_matrix(
+        jacobian_whitney(robot, frame, symbolic_params), model.q, deadline, progress, "J", shift
+    )
+    T, notes_T = simplify_matrix(frames(model).tool, model.q, deadline, progress, "T", shift)
+    notes = tuple(notes_J + notes_T)
+    result = Derivation(
+        robot.name,
+        frame,
+        model.q,
+        robot.joint_types,
+        T,
+        J,
+        dict(model.params),
+        dict(model.display),
+        notes,
+        not notes,
+        time.perf_counter() - start,
+        timeout,
+    )
+    if use_cache:
+        cache.store(key, {f.name: getattr(result, f.name) for f in dataclasses.fields(result)})
+    return result
+
+
+def fk(
+    robot: Robot,
+    *,
+    symbolic_params: bool = False,
+    simplify: bool = True,
+    timeout: float | None = DEFAULT_TIMEOUT,
+    use_cache: bool = True,
+) -> sp.Matrix:
+    """Symbolic forward kinematics ``T_base_tool(q)`` (4×4 ``sympy.Matrix``) in ``q1 … qn``.
+
+    Args:
+        robot: The robot.
+        symbolic_params: Keep DH lengths and offsets as symbols.
+        simplify: Simplified and cached (default) or the raw expanded product.
+        timeout: Simplification budget [s] (see :func:`derive`).
+        use_cache: Read and write the cache.
+
+    Example:
+        >>> import robots
+        >>> fk(robots.load("planar2"), use_cache=False)[0, 3]
+        cos(q1) + cos(q1 + q2)
+    """
+    if not simplify:
+        return frames(build_model(robot, symbolic_params)).tool
+    return derive(robot, "base", symbolic_params=symbolic_params, timeout=timeout, use_cache=use_cache).T
+
+
+def jacobian(
+    robot: Robot,
+    frame: str = "base",
+    *,
+    symbolic_params: bool = False,
+    simplify: bool = True,
+    timeout: float | None = DEFAULT_TIMEOUT,
+    use_cache: bool = True,
+) -> sp.Matrix:
+    """Symbolic geometric Jacobian J(q) (6×n ``sympy.Matrix``), rows [v; ω], in ``q1 … qn``.
+
+    Args:
+        robot: The robot.
+        frame: ``"base"`` or ``"tool"`` axes.
+        symbolic_params: Keep DH lengths and offsets as symbols.
+        simplify: Simplified and cached (default) or Whitney's raw columns.
+        timeout: Simplification budget [s] (see :func:`derive`).
+        use_cache: Read and write the cache.
+
+    Example:
+        >>> import robots
+        >>> jacobian(robots.load("planar2"), symbolic_params=True, use_cache=False)[:2, :]
+        Matrix([
+        [-a1*sin(q1) - a2*sin(q1 + q2), -a2*sin(q1 + q2)],
+        [ a1*cos(q1) + a2*cos(q1 + q2),  a2*cos(q1 + q2)]])
+    """
+    if not simplify:
+        return jacobian_whitney(robot, frame, symbolic_params)
+    return derive(robot, frame, symbolic_params=symbolic_params, timeout=timeout, use_cache=use_cache).J
+
+
+def joint_symbols(robot: Robot) -> tuple[sp.Symbol, ...]:
+    """The real symbols ``q1 … qn`` used for ``robot``'s joints."""
+    return build_model(robot, False).q

@@ -1,0 +1,279 @@
+"""The symbolic twin of a :class:`~kinematics.model.Robot`: the same chain, in SymPy.
+
+Every numeric quantity of the model becomes an exact SymPy number
+(:mod:`.exact`: π/2 stays π/2, 0.4318 becomes 2159/5000). With
+``symbolic_params=True`` the DH lengths and offsets become symbols instead
+(``a2``, ``d4``, … in the usual DH names; ``l1, l2, l3`` for the course's
+robots, see :data:`PARAM_NAMES`), which is how a course writes J.
+
+Joint variables are the real symbols ``q1 … qn``; their display names
+(θᵢ for a revolute joint, dᵢ for a prismatic one) are kept in
+:attr:`SymbolicModel.display` for the printers.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+
+from ..errors import JacobianLabError
+from ..model import Robot
+from .exact import exact_angle, exact_number, exact_transform, is_right_angle_multiple, rot_x, rot_z, trans
+
+__all__ = [
+    "SymbolicError",
+    "SymbolicModel",
+    "build_model",
+    "check_frame",
+    "PARAM_NAMES",
+    "FRAMES",
+]
+
+FRAMES = ("base", "tool")
+
+PARAM_NAMES: dict[str, dict[str, str]] = {
+    "trr": {"a1": "l1", "a2": "l2", "a3": "l3"},
+    "planar3": {"a1": "l1", "a2": "l2", "a3": "l3"},
+    "elbow3r": {"a1": "L1", "a2": "L2", "xt": "L3"},
+}
+"""Course names of the symbolic parameters, per library robot: default name → course name.
+
+Default names are the DH ones (``a{i}``, ``alpha{i}``, ``d{i}``, ``theta{i}``; for the
+modified convention ``a`` and ``alpha`` of row i are Craig's a_{i-1}, α_{i-1}), ``d{i}0`` /
+``theta{i}0`` for the constant offset of a joint variable, and ``xt, yt, zt`` / ``xb, yb, zb``
+for the tool / base translation.
+"""
+
+
+class SymbolicError(JacobianLabError):
+    """A symbolic request is invalid: unknown frame or option, or a robot it cannot handle."""
+
+
+def check_frame(frame: object) -> str:
+    """Return ``frame`` if it is ``"base"`` or ``"tool"``, else raise :class:`SymbolicError`."""
+    if frame not in FRAMES:
+        raise SymbolicError(f"frame must be 'base' or 'tool', got {frame!r}")
+    return frame  # type: ignore[return-value]
+
+
+@dataclass(frozen=True, eq=False)
+class SymbolicModel:
+    """A robot's chain in SymPy: ``T_base_tool = base · Π_k [parent_joint[k] · M_k · joint_child[k]] · tool``.
+
+    Attributes:
+        robot: The numeric robot this model was built from.
+        q: Joint symbols ``q1 … qn`` (real).
+        kinds: ``"revolute"`` or ``"prismatic"`` per axis.
+        axis_joint: Index into ``q`` of the joint driving each axis.
+        axis_value: θ [rad] or d [m] of each axis, ``multiplier · q_j + offset``.
+        parent_joint, joint_child: The fixed 4×4 transforms around each axis.
+        base, tool: 4×4 transforms.
+        params: Symbolic parameters → their values [m] or [rad] (empty unless ``symbolic_params``).
+        display: LaTeX display names of the joint and parameter symbols.
+        symbolic_params: Whether DH lengths and offsets are symbols.
+    """
+
+    robot: Robot
+    q: tuple[sp.Symbol, ...]
+    kinds: tuple[str, ...]
+    axis_joint: tuple[int, ...]
+    axis_value: tuple[sp.Expr, ...]
+    parent_joint: tuple[sp.Matrix, ...]
+    joint_child: tuple[sp.Matrix, ...]
+    base: sp.Matrix
+    tool: sp.Matrix
+    params: dict[sp.Symbol, float] = field(default_factory=dict)
+    display: dict[sp.Symbol, str] = field(default_factory=dict)
+    symbolic_params: bool = False
+
+    @property
+    def dof(self) -> int:
+        """Number of joint symbols."""
+        return len(self.q)
+
+    @property
+    def joint_kinds(self) -> tuple[str, ...]:
+        """``"revolute"`` or ``"prismatic"`` per joint symbol."""
+        return self.robot.joint_types
+
+    def cache_key(self) -> str:
+        """Text identifying the model for caches: fingerprint, option and parameter names."""
+        names = ",".join(sorted(str(s) for s in self.params))
+        return f"{self.robot.fingerprint()}|params={self.symbolic_params}|{names}"
+
+    def angle_offsets(self) -> dict[sp.Symbol, sp.Expr]:
+        """Joint symbol → constant offset of its revolute axis, for offsets that are not multiples of π/2.
+
+        Only for one axis per joint driving it with multiplier 1 (θ = q + offset).
+        """
+        out = {}
+        for kind, j, value in zip(self.kinds, self.axis_joint, self.axis_value, strict=True):
+            off = sp.expand(value - self.q[j])
+            if (
+                kind == "revolute"
+                and off != 0
+                and not off.has(*self.q)
+                and not (off / (sp.pi / 2)).is_Integer
+            ):
+                out[self.q[j]] = off
+        return out if len(self.kinds) == self.dof else {}
+
+    def exact_values(self) -> dict[sp.Symbol, sp.Expr]:
+        """Parameter symbols → their exact values (what the model holds with ``symbolic_params=False``)."""
+        return {s: exact_angle(v) if _is_angle(s) else exact_number(v) for s, v in self.params.items()}
+
+    def numeric_values(self) -> dict[sp.Symbol, sp.Float]:
+        """Parameter symbols → their values as SymPy floats (for evaluating an expression)."""
+        return {s: sp.Float(v, 17) for s, v in self.params.items()}
+
+
+class _Params:
+    """Collects parameter symbols while a model is built."""
+
+    def __init__(self, robot: Robot, enabled: bool) -> None:
+        self.enabled = enabled
+        self.rename = PARAM_NAMES.get(robot.name, {})
+        self.values: dict[sp.Symbol, float] = {}
+        self.display: dict[sp.Symbol, str] = {}
+
+    def length(self, name: str, value: float, latex: str) -> sp.Expr:
+        if not self.enabled or abs(value) < 1e-12:
+            return exact_number(value)
+        return self._symbol(name, value, latex)
+
+    def angle(self, name: str, value: float, latex: str) -> sp.Expr:
+        if not self.enabled or is_right_angle_multiple(value):
+            return exact_angle(value)
+        return self._symbol(name, value, latex)
+
+    def _symbol(self, name: str, value: float, latex: str) -> sp.Symbol:
+        if name in self.rename:
+            name = self.rename[name]
+            latex = _generic_latex(name)
+        sym = sp.Symbol(name, real=True)
+        self.values[sym] = float(value)
+        self.display[sym] = latex
+        return sym
+
+
+def _is_angle(s: sp.Symbol) -> bool:
+    return str(s).startswith(("alpha", "theta"))
+
+
+def _generic_latex(name: str) -> str:
+    stem = name.rstrip("0123456789")
+    digits = name[len(stem) :]
+    greek = {"alpha", "theta", "beta", "gamma"}
+    head = f"\\{stem}" if stem in greek else stem
+    return f"{head}_{{{digits}}}" if digits else head
+
+
+def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list] | None:
+    """(parent_joint, joint_child, offsets) rebuilt from the DH table; None if it does not match the axes."""
+    if robot.dh is None or len(robot.axes) != len(robot.dh):
+        return None
+    modified = robot.convention == "modified"
+    pj, jc, offsets = [], [], []
+    for i, (row, ax) in enumerate(zip(robot.dh, robot.axes, strict=True), start=1):
+        k = i - 1 if modified else i  # Craig's a_{i-1}, alpha_{i-1}
+        a = P.length(f"a{k}", row.a, f"a_{{{k}}}")
+        alpha = P.angle(f"alpha{k}", row.alpha, f"\\alpha_{{{k}}}")
+        revolute = row.joint == "revolute"
+        if revolute:
+            d = P.length(f"d{i}", row.d, f"d_{{{i}}}")
+            theta = P.angle(f"theta{i}0", row.theta, f"\\theta_{{{i}}}^{{0}}")
+        else:
+            d = P.length(f"d{i}0", row.d, f"d_{{{i}}}^{{0}}")
+            theta = P.angle(f"theta{i}", row.theta, f"\\theta_{{{i}}}")
+        if modified:
+            T_pj = rot_x(alpha) * trans(x=a) * (sp.eye(4) if revolute else rot_z(theta))
+            T_jc = trans(z=d) if revolute else sp.eye(4)
+        else:
+            T_pj = sp.eye(4) if revolute else rot_z(theta)
+            T_jc = trans(z=d) * trans(x=a) * rot_x(alpha) if revolute else trans(x=a) * rot_x(alpha)
+        pj.append(T_pj)
+        jc.append(T_jc)
+        offsets.append(theta if revolute else d)
+        if ax.kind != row.joint or ax.joint_index != i - 1 or ax.multiplier != 1.0:
+            return None
+    return pj, jc, offsets
+
+
+def _frame(T: np.ndarray, P: _Params, side: str) -> sp.Matrix:
+    M = exact_transform(T)
+    for r, axis in enumerate("xyz"):
+        M[r, 3] = P.length(f"{axis}{side[0]}", float(T[r, 3]), f"{axis}_{{\\mathrm{{{side[0]}}}}}")
+    return M
+
+
+def _numeric_mismatch(model: SymbolicModel) -> bool:
+    """True if the exact transforms do not reproduce the robot's numeric ones (to 1e-9)."""
+    vals = model.numeric_values()
+    for ax, pj, jc in zip(model.robot.axes, model.parent_joint, model.joint_child, strict=True):
+        for S, N in ((pj, ax.T_parent_joint), (jc, ax.T_joint_child)):
+            if not np.allclose(np.array(S.xreplace(vals).evalf(), dtype=float), N, atol=1e-9):
+                return True
+    return False
+
+
+@functools.lru_cache(maxsize=64)
+def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
+    """The :class:`SymbolicModel` of ``robot`` (cached per robot object and option).
+
+    Args:
+        robot: Any robot (DH or URDF chain).
+        symbolic_params: Keep DH lengths and offsets, and base/tool translations, as symbols.
+
+    Raises:
+        SymbolicError: ``symbolic_params`` for a robot that has no DH table.
+    """
+    if not isinstance(robot, Robot):
+        raise SymbolicError(f"expected a kinematics.Robot, got {type(robot).__name__}")
+    if not isinstance(symbolic_params, bool):
+        raise SymbolicError(f"symbolic_params must be True or False, got {symbolic_params!r}")
+    P = _Params(robot, symbolic_params)
+    n = robot.dof
+    q = tuple(sp.Symbol(f"q{i + 1}", real=True) for i in range(n))
+    kinds = tuple(ax.kind for ax in robot.axes)
+    dh = _dh_axes(robot, P)
+    if dh is None and symbolic_params:
+        raise SymbolicError(
+            f"robot {robot.name!r}: symbolic parameters need a robot built from a DH table "
+            "(this one is a URDF or hand-built chain); use symbolic_params=False"
+        )
+    if dh is not None:
+        pj, jc, offsets = dh
+        values = [q[ax.joint_index] + off for ax, off in zip(robot.axes, offsets, strict=True)]
+    else:
+        pj = [exact_transform(ax.T_parent_joint) for ax in robot.axes]
+        jc = [exact_transform(ax.T_joint_child) for ax in robot.axes]
+        values = [
+            exact_number(ax.multiplier) * q[ax.joint_index]
+            + (exact_angle(ax.offset) if ax.kind == "revolute" else exact_number(ax.offset))
+            for ax in robot.axes
+        ]
+    display = {
+        s: (f"\\theta_{{{i + 1}}}" if k == "revolute" else f"d_{{{i + 1}}}")
+        for i, (s, k) in enumerate(zip(q, robot.joint_types, strict=True))
+    }
+    base, tool = _frame(robot.base, P, "base"), _frame(robot.tool, P, "tool")
+    model = SymbolicModel(
+        robot,
+        q,
+        kinds,
+        tuple(ax.joint_index for ax in robot.axes),
+        tuple(values),
+        tuple(pj),
+        tuple(jc),
+        base,
+        tool,
+        dict(P.values),
+        {**display, **P.display},
+        symbolic_params,
+    )
+    if dh is not None and _numeric_mismatch(model):  # a DH table that does not describe the axes
+        raise SymbolicError(f"robot {robot.name!r}: its DH table does not reproduce its axes")
+    return model

@@ -1,0 +1,279 @@
+"""The course's compact notation in LaTeX and MathML: cᵢ, sᵢ, cᵢⱼ, sᵢⱼ with a legend.
+
+``cos(q2 + q3)`` prints as c₂₃, ``sin(q1)`` as s₁; joint variables print as θᵢ
+(revolute) or dᵢ (prismatic); rationals with a finite decimal expansion print
+as decimals (2159/5000 → 0.4318); in a product, numbers, parameters and
+trigonometric factors come first and parenthesised sums last
+(``s_1 (a_2 c_2 + a_3 c_{23})``). A :class:`Notation` remembers which
+abbreviations it used, so its legend lists exactly those.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping, Sequence
+from decimal import Decimal, localcontext
+
+import sympy as sp
+from sympy.printing.latex import LatexPrinter
+from sympy.printing.mathml import MathMLPresentationPrinter
+from sympy.printing.precedence import PRECEDENCE, precedence
+
+__all__ = ["Notation", "decimal_text"]
+
+
+def decimal_text(r: sp.Rational, max_digits: int = 12) -> str | None:
+    """``r`` as an exact decimal if its expansion is finite and short (2159/5000 → "0.4318"), else None."""
+    q = int(r.q)
+    for f in (2, 5):
+        while q % f == 0:
+            q //= f
+    if q != 1:
+        return None
+    with localcontext() as ctx:
+        ctx.prec = 60
+        text = format((Decimal(int(r.p)) / Decimal(int(r.q))).normalize(), "f")
+    return text if len(text.replace("-", "").replace(".", "")) <= max_digits else None
+
+
+class Notation:
+    """Printer state for one robot: symbols, display names and the abbreviations used so far.
+
+    Args:
+        q: Joint symbols ``q1 … qn``.
+        display: LaTeX display names of joint and parameter symbols.
+        joint_kinds: ``"revolute"`` / ``"prismatic"`` per joint.
+        params: Symbolic parameters → values [m] / [rad], listed in the legend.
+    """
+
+    def __init__(
+        self,
+        q: Sequence[sp.Symbol],
+        display: Mapping[sp.Symbol, str],
+        joint_kinds: Sequence[str],
+        params: Mapping[sp.Symbol, float] | None = None,
+    ) -> None:
+        self.q = tuple(q)
+        self.index = {s: i + 1 for i, s in enumerate(self.q)}
+        self.display = dict(display)
+        self.joint_kinds = tuple(joint_kinds)
+        self.params = dict(params or {})
+        self.used: set[tuple[str, tuple[int, ...]]] = set()
+
+    # ---------------------------------------------------------------- helpers
+    def compact(self, f: sp.Expr) -> tuple[str, str] | None:
+        """("c" or "s", subscript) for cos/sin of a plain sum of joint angles, else None."""
+        terms = sp.Add.make_args(f.args[0])
+        if not all(t in self.index for t in terms):
+            return None
+        idx = tuple(sorted(self.index[t] for t in terms))
+        if len(set(idx)) != len(idx):
+            return None
+        letter = "c" if isinstance(f, sp.cos) else "s"
+        self.used.add((letter, idx))
+        sep = "," if len(self.q) > 9 else ""
+        return letter, sep.join(str(i) for i in idx)
+
+    def factor_key(self, f: sp.Expr) -> tuple:
+        """Order of factors in a product: constants, parameters, joint values, trig by joint, sums."""
+        base = f.as_base_exp()[0]
+        if base.is_Add:
+            return (5, 0, "")
+        if not base.free_symbols:
+            return (0, 0, "")
+        if base.is_Symbol:
+            return (2, self.index[base], "") if base in self.index else (1, 0, _natural(base.name))
+        if isinstance(base, (sp.sin, sp.cos)):
+            joints = sorted(self.index.get(s, 99) for s in base.free_symbols)
+            return (3, tuple(joints), "c" if isinstance(base, sp.cos) else "s")
+        return (4, 0, str(base))
+
+    # ------------------------------------------------------------------ LaTeX
+    def latex(self, expr: sp.Basic) -> str:
+        """LaTeX of an expression or matrix (matrices as ``bmatrix``)."""
+        return _Latex(self).doprint(expr)
+
+    def _legend(self) -> tuple[list[str], list[str], list[sp.Symbol]]:
+        """What the legend lists: index patterns of the abbreviations used ("i", "ij", …),
+        the joint kinds present, and the parameters."""
+        sizes = sorted({len(idx) for _, idx in self.used})
+        patterns = ["ijkl"[:k] if k <= 4 else "i…" for k in sizes]
+        kinds = [k for k in ("revolute", "prismatic") if k in self.joint_kinds]
+        return patterns, kinds, sorted(self.params, key=lambda s: _natural(str(s)))
+
+    def _unit(self, s: sp.Symbol) -> str:
+        return "rad" if str(s).startswith(("alpha", "theta")) else "m"
+
+    def latex_legend(self) -> str:
+        """LaTeX legend of the abbreviations used so far and of the parameters (a ``\\text`` line)."""
+        patterns, kinds, params = self._legend()
+        out = []
+        for sub in patterns:
+            sub = sub.replace("…", "\\ldots ")
+            arg = (
+                f"\\theta_{{{sub}}}"
+                if len(sub) == 1
+                else "(" + " + ".join(f"\\theta_{{{c}}}" for c in sub) + ")"
+            )
+            out.append(f"c_{{{sub}}} = \\cos {arg}, \\; s_{{{sub}}} = \\sin {arg}")
+        joint = {
+            "revolute": "\\theta_{i}\\text{: angle of revolute joint } i \\ [\\mathrm{rad}]",
+            "prismatic": "d_{i}\\text{: extension of prismatic joint } i \\ [\\mathrm{m}]",
+        }
+        out += [joint[k] for k in kinds]
+        out += [f"{self.display[s]} = {self.params[s]:.6g}\\,\\mathrm{{{self._unit(s)}}}" for s in params]
+        return "\\text{where } " + ", \\quad ".join(out)
+
+    # ----------------------------------------------------------------- MathML
+    def mathml(self, expr: sp.Basic) -> str:
+        """Presentation MathML (the inner element, without ``<math>``) of an expression or matrix."""
+        return _MathML(self).doprint(expr).replace("<mo>-</mo>", "<mo>\u2212</mo>")
+
+    def mathml_legend(self) -> str:
+        """The legend as presentation MathML: one ``<mrow>`` of ``<mtext>`` and formulas ("" if empty)."""
+        patterns, kinds, params = self._legend()
+        theta = lambda i: f"<msub><mi>θ</mi><mi>{i}</mi></msub>"  # noqa: E731
+        out = []
+        for sub in patterns:
+            arg = (
+                theta(sub)
+                if len(sub) == 1
+                else "<mo>(</mo>" + "<mo>+</mo>".join(map(theta, sub)) + "<mo>)</mo>"
+            )
+            out += [
+                f"<msub><mi>{ab}</mi><mi>{sub}</mi></msub><mo>=</mo><mi>{fn}</mi><mo>&#x2061;</mo>{arg}"
+                for ab, fn in (("c", "cos"), ("s", "sin"))
+            ]
+        joint = {
+            "revolute": f"{theta('i')}<mtext>: angle of revolute joint i [rad]</mtext>",
+            "prismatic": "<msub><mi>d</mi><mi>i</mi></msub>"
+            "<mtext>: extension of prismatic joint i [m]</mtext>",
+        }
+        out += [joint[k] for k in kinds]
+        out += [
+            f"{_mathml_name(self.display[s])}<mo>=</mo><mn>{self.params[s]:.6g}</mn>"
+            f"<mtext>&#xa0;{self._unit(s)}</mtext>"
+            for s in params
+        ]
+        if not out:
+            return ""
+        sep = '<mo separator="true">,</mo><mspace width="1em"/>'
+        return "<mrow><mtext>where&#xa0;</mtext>" + sep.join(out) + "</mrow>"
+
+
+def _natural(name: str) -> tuple:
+    m = re.match(r"([^\d]*)(\d*)(.*)", name)
+    return (m.group(1), int(m.group(2) or 0), m.group(3))  # type: ignore[union-attr]
+
+
+_GREEK = {"alpha": "α", "theta": "θ", "beta": "β", "gamma": "γ"}
+_DISPLAY = re.compile(r"^\\?([A-Za-z]+)(?:_\{(?:\\mathrm\{)?([A-Za-z0-9]+)\}?\})?(?:\^\{(\w+)\})?$")
+
+
+def _mathml_name(latex: str) -> str:
+    """MathML of one of our display names (``\\theta_{2}``, ``a_{3}``, ``x_{\\mathrm{t}}``, ``d_{3}^{0}``)."""
+    m = _DISPLAY.match(latex)
+    if m is None:
+        return f"<mi>{latex}</mi>"
+    name, sub, sup = m.groups()
+    head = f"<mi>{_GREEK.get(name, name)}</mi>"
+    sub_el = (
+        f"<mn>{sub}</mn>" if sub and sub.isdigit() else f'<mi mathvariant="normal">{sub}</mi>' if sub else ""
+    )
+    if sub and sup:
+        return f"<msubsup>{head}{sub_el}<mn>{sup}</mn></msubsup>"
+    if sub:
+        return f"<msub>{head}{sub_el}</msub>"
+    return f"<msup>{head}<mn>{sup}</mn></msup>" if sup else head
+
+
+class _Latex(LatexPrinter):
+    def __init__(self, notation: Notation) -> None:
+        super().__init__({"mat_str": "bmatrix", "mat_delim": "", "symbol_names": notation.display})
+        self.notation = notation
+
+    def _print_trig(self, expr: sp.Expr, exp: str | None = None) -> str:
+        c = self.notation.compact(expr)
+        if c is None:  # sin(θ₂ + 0.2): written out (LatexPrinter would dispatch back here)
+            power = f"^{{{exp}}}" if exp else ""
+            return f"\\{type(expr).__name__}{power}{{\\left({self._print(expr.args[0])} \\right)}}"
+        letter, sub = c
+        return f"{letter}_{{{sub}}}" + (f"^{{{exp}}}" if exp else "")
+
+    _print_sin = _print_trig
+    _print_cos = _print_trig
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        text = decimal_text(expr)
+        return text if text is not None else super()._print_Rational(expr)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        coeff, factors = expr.as_coeff_mul()
+        if any(f.as_base_exp()[1].could_extract_minus_sign() for f in factors) or not factors:
+            return super()._print_Mul(expr)
+        ordered = sorted(factors, key=self.notation.factor_key)
+        body = " ".join(
+            f"\\left({self._print(f)}\\right)" if precedence(f) < PRECEDENCE["Mul"] else self._print(f)
+            for f in ordered
+        )
+        if coeff == 1:
+            return body
+        if coeff == -1:
+            return "- " + body
+        return f"{self._print(coeff)} {body}"
+
+
+class _MathML(MathMLPresentationPrinter):
+    def __init__(self, notation: Notation) -> None:
+        super().__init__({"mat_delim": "["})
+        self.notation = notation
+
+    def _element(self, xml: str):  # parse one of our own small, well-formed snippets
+        from xml.dom.minidom import parseString
+
+        return parseString(f"<mrow>{xml}</mrow>").documentElement
+
+    def _print_trig(self, expr: sp.Expr):
+        c = self.notation.compact(expr)
+        if c is None:
+            return super()._print_Function(expr)
+        letter, sub = c
+        return self._element(f"<msub><mi>{letter}</mi><mn>{sub}</mn></msub>")
+
+    _print_sin = _print_trig
+    _print_cos = _print_trig
+
+    def _print_Pi(self, expr: sp.Expr):  # the character, not the HTML-only entity &pi;
+        return self._element("<mi>π</mi>")
+
+    def _print_Symbol(self, sym: sp.Symbol, style: str = "plain"):
+        if sym in self.notation.display:
+            return self._element(_mathml_name(self.notation.display[sym]))
+        return super()._print_Symbol(sym, style)
+
+    def _print_Rational(self, expr: sp.Rational):
+        text = decimal_text(expr)
+        if text is None:
+            return super()._print_Rational(expr)
+        sign = "<mo>-</mo>" if text.startswith("-") else ""
+        return self._element(f"{sign}<mn>{text.lstrip('-')}</mn>")
+
+    def _print_Mul(self, expr: sp.Mul):
+        coeff, factors = expr.as_coeff_mul()
+        if any(f.as_base_exp()[1].could_extract_minus_sign() for f in factors) or not factors:
+            return super()._print_Mul(expr)
+        mrow = self.dom.createElement("mrow")
+        if coeff.could_extract_minus_sign():
+            mo = self.dom.createElement("mo")
+            mo.appendChild(self.dom.createTextNode("-"))
+            mrow.appendChild(mo)
+            coeff = -coeff
+        if coeff != 1:
+            mrow.appendChild(self._print(coeff))
+        for f in sorted(factors, key=self.notation.factor_key):
+            if mrow.childNodes and mrow.lastChild.nodeName != "mo":
+                mo = self.dom.createElement("mo")
+                mo.appendChild(self.dom.createTextNode("\u2062"))  # invisible times
+                mrow.appendChild(mo)
+            mrow.appendChild(self.parenthesize(f, PRECEDENCE["Mul"]))
+        return mrow

@@ -1,0 +1,270 @@
+"""Targeted trigonometric simplification with a deadline.
+
+``sympy.simplify`` on a 7-joint Jacobian can run for minutes and cannot be
+interrupted. Entries of a Jacobian are polynomials in cᵢ = cos qᵢ and
+sᵢ = sin qᵢ (and in prismatic joint values and link parameters), so a few
+cheap, predictable steps do what a person does by hand:
+
+1. :func:`normal_form`: expand into cᵢ, sᵢ and reduce modulo sᵢ² + cᵢ² − 1
+   (a Gröbner basis, so the remainder is canonical: an expression is
+   identically zero exactly when its normal form is 0, see :func:`is_zero`);
+2. :func:`collapse`: sums of angles collapsed, c₂c₃ − s₂s₃ → c₂₃ (SymPy's
+   ``fu`` rule TR10i, keeping only collapses into sums of joint angles);
+3. :func:`nest`: common factors pulled out, greedily, outermost joints first.
+
+:func:`simplify_matrix` runs them entry by entry and checks a
+:class:`Deadline` between entries: past it, the remaining entries keep their
+unsimplified form and a note says so.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import Counter
+from collections.abc import Callable, Sequence
+
+import sympy as sp
+from sympy.simplify.fu import TR10i
+
+__all__ = [
+    "Deadline",
+    "normal_form",
+    "is_zero",
+    "collapse",
+    "nest",
+    "simplify_entry",
+    "simplify_matrix",
+    "MAX_TERMS",
+]
+
+MAX_TERMS = 600
+"""Entries with more terms than this in normal form are not collapsed nor nested (too slow to be worth it)."""
+
+Progress = Callable[[str], None]
+
+
+class Deadline:
+    """A point in time after which optional work is skipped.
+
+    Args:
+        seconds: Time budget [s] from now; ``None`` for no limit.
+    """
+
+    def __init__(self, seconds: float | None) -> None:
+        self.seconds = seconds
+        self.start = time.perf_counter()
+
+    def expired(self) -> bool:
+        """True once the budget is spent."""
+        return self.seconds is not None and time.perf_counter() - self.start > self.seconds
+
+    def elapsed(self) -> float:
+        """Seconds since the deadline was created."""
+        return time.perf_counter() - self.start
+
+
+def _single_angle(expr: sp.Expr, q: Sequence[sp.Symbol]) -> bool:
+    qs = set(q)
+    return all(f.args[0] in qs or not (f.args[0].free_symbols & qs) for f in expr.atoms(sp.sin, sp.cos))
+
+
+def trig_angles(expr: sp.Expr, q: Sequence[sp.Symbol]) -> list[sp.Expr]:
+    """The angles whose sine and cosine act as polynomial variables: the joints ``q`` and any
+    angle free of q (a link twist α = 3/10 or a symbol α₁), whose sin and cos obey s² + c² = 1 too."""
+    qs = set(q)
+    const = {f.args[0] for f in expr.atoms(sp.sin, sp.cos) if not (f.args[0].free_symbols & qs)}
+    return [*q, *sorted(const, key=sp.default_sort_key)]
+
+
+def normal_form(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
+    """Expanded form of ``expr`` in sin qᵢ, cos qᵢ with no sin² qᵢ (replaced by 1 − cos² qᵢ).
+
+    Canonical: two expressions are equal for all q exactly when their normal
+    forms are identical. For a Jacobian entry it is the expansion of degree at
+    most one in each (cᵢ, sᵢ) pair. Sines and cosines of constant angles (a
+    link twist that is not a multiple of π/2) are reduced the same way.
+
+    Args:
+        expr: A polynomial in sines and cosines of sums of joint angles.
+        q: The joint symbols.
+    """
+    if not _single_angle(expr, q):
+        expr = sp.expand_trig(expr)
+    expr = sp.expand(expr)
+    fwd, pairs = {}, []
+    for a in trig_angles(expr, q):
+        s, c = sp.Dummy(f"s{a}"), sp.Dummy(f"c{a}")
+        fwd[sp.sin(a)], fwd[sp.cos(a)] = s, c
+        pairs.append((s, c))
+    poly = expr.xreplace(fwd)
+    pairs = [(s, c) for s, c in pairs if poly.has(s)]
+    if pairs:
+        gens = [s for s, _ in pairs] + [c for _, c in pairs]
+        _, poly = sp.reduced(poly, [s**2 + c**2 - 1 for s, c in pairs], *gens, order="lex")
+    back = {v: k for k, v in fwd.items()}
+    return sp.expand(poly.xreplace(back))
+
+
+def is_zero(expr: sp.Expr, q: Sequence[sp.Symbol]) -> bool:
+    """True if ``expr`` vanishes for every q (exact test via :func:`normal_form`)."""
+    return normal_form(expr, q) == 0
+
+
+def _is_joint_sum(arg: sp.Expr, q: Sequence[sp.Symbol]) -> bool:
+    """True for ±qᵢ ± qⱼ ± … (integer coefficients, no constant): the angles a person writes."""
+    coeffs = sp.Add.make_args(arg)
+    qs = set(q)
+    return all(
+        (t in qs) or (t.is_Mul and len(t.args) == 2 and t.args[0].is_Integer and t.args[1] in qs)
+        for t in coeffs
+    )
+
+
+def collapse(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
+    """Collapse sums of products into functions of angle sums: c₂c₃ − s₂s₃ → cos(q₂ + q₃).
+
+    Collapses that would introduce a phase (s₁ + c₁ → √2 sin(q₁ + π/4)) are undone.
+    """
+    out = TR10i(expr)
+    bad = {
+        f: sp.expand_trig(f)
+        for f in out.atoms(sp.sin, sp.cos)
+        if f.args[0].free_symbols
+        and not _is_joint_sum(f.args[0], q)
+        and not (f.args[0].free_symbols - set(q))
+        and f not in expr.atoms(sp.sin, sp.cos)
+    }
+    if bad:
+        out = sp.expand(out.xreplace(bad))
+    return out
+
+
+def _factor_key(f: sp.Expr, order: dict[sp.Symbol, int]) -> tuple:
+    syms = [order.get(s, len(order)) for s in f.free_symbols]
+    trig = isinstance(f, (sp.sin, sp.cos))
+    return (trig, -min(syms, default=len(order)), isinstance(f, sp.cos))
+
+
+def _factors(term: sp.Expr) -> set[sp.Expr]:
+    out = set()
+    for f in sp.Mul.make_args(term):
+        base, exp = f.as_base_exp()
+        if not base.is_Number and exp.is_Integer and exp > 0:
+            out.add(base)
+    return out
+
+
+def nest(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
+    """Pull out common factors greedily: a·c₁·x + b·c₁·y → c₁ (a x + b y), recursively.
+
+    The factor shared by most terms goes first (ties: trigonometric factors of
+    the earliest joint), which gives the nested form of a hand derivation,
+    e.g. c₁ (a₂ c₂ + a₃ c₂₃) rather than a₂ c₁ c₂ + a₃ c₁ c₂₃.
+    """
+    terms = sp.Add.make_args(expr)
+    if len(terms) < 2:
+        return expr
+    counts: Counter = Counter()
+    for t in terms:
+        counts.update(_factors(t))
+    if not counts:
+        return expr
+    order = {s: i for i, s in enumerate(q)}
+    best = max(counts, key=lambda f: (counts[f], *_factor_key(f, order)))
+    if counts[best] < 2:
+        return expr
+    inner = [t / best for t in terms if best in _factors(t)]
+    rest = [t for t in terms if best not in _factors(t)]
+    inside = nest(sp.Add(*inner), q)
+    negative = sum(t.could_extract_minus_sign() for t in sp.Add.make_args(inside))
+    if inside.is_Add and 2 * negative > len(inside.args):
+        nested = -best * (-inside)  # -c1 (a s2 + b s23) rather than c1 (-a s2 - b s23)
+    else:
+        nested = best * inside
+    return sp.Add(nested, nest(sp.Add(*rest), q)) if rest else nested
+
+
+class AngleShift:
+    """Work in θᵢ = qᵢ + offsetᵢ for joints whose DH offset is not a multiple of π/2.
+
+    sin(q₂ + 1/5) expanded is sin q₂ cos(1/5) + cos q₂ sin(1/5): with many such
+    offsets the normal form explodes. In θᵢ the offsets disappear; the result is
+    written back in qᵢ (sin(q₂ + 1/5) stays whole).
+
+    Args:
+        q: Joint symbols.
+        offsets: Joint symbol → its constant offset (only the joints to shift).
+    """
+
+    def __init__(self, q: Sequence[sp.Symbol], offsets: dict[sp.Symbol, sp.Expr] | None = None) -> None:
+        offsets = offsets or {}
+        t = {qi: sp.Dummy(f"theta_{qi}", real=True) for qi in offsets}
+        self.fwd = {qi: t[qi] - off for qi, off in offsets.items()}
+        self.back = {t[qi]: qi + off for qi, off in offsets.items()}
+        self.vars = tuple(t.get(qi, qi) for qi in q)
+
+    def apply(self, expr: sp.Expr) -> sp.Expr:
+        """``expr`` in the shifted angles."""
+        return expr.xreplace(self.fwd) if self.fwd else expr
+
+    def undo(self, expr: sp.Expr) -> sp.Expr:
+        """``expr`` back in the joint symbols."""
+        return expr.xreplace(self.back) if self.back else expr
+
+
+def simplify_entry(expr: sp.Expr, q: Sequence[sp.Symbol], shift: AngleShift | None = None) -> sp.Expr:
+    """:func:`normal_form`, then :func:`collapse`, then :func:`nest`: what a person would write.
+
+    Entries that are still longer than :data:`MAX_TERMS` terms in normal form are
+    returned expanded (collapsing and nesting them would take minutes).
+    """
+    shift = shift or AngleShift(q)
+    v = shift.vars
+    out = normal_form(shift.apply(expr), v)
+    if len(sp.Add.make_args(out)) <= MAX_TERMS:
+        out = nest(collapse(out, v), v)
+    return shift.undo(out)
+
+
+def simplify_matrix(
+    M: sp.Matrix,
+    q: Sequence[sp.Symbol],
+    deadline: Deadline | None = None,
+    progress: Progress | None = None,
+    label: str = "J",
+    shift: AngleShift | None = None,
+) -> tuple[sp.Matrix, list[str]]:
+    """Simplify every entry of ``M`` with :func:`simplify_entry`, within ``deadline``.
+
+    Args:
+        M: Matrix of exact expressions.
+        q: Joint symbols.
+        deadline: Checked between entries; once expired, the remaining entries
+            are left unsimplified.
+        progress: Called with a short message before each entry.
+        label: Name of the matrix in messages and notes.
+        shift: Joint offsets to work around (see :class:`AngleShift`).
+
+    Returns:
+        The simplified matrix and a list of notes (empty when every entry was simplified).
+    """
+    out = sp.zeros(*M.shape)
+    skipped = []
+    total = M.rows * M.cols
+    for k in range(total):
+        i, j = divmod(k, M.cols)
+        if deadline is not None and deadline.expired():
+            skipped.append((i, j))
+            out[i, j] = M[i, j]
+            continue
+        if progress is not None:
+            progress(f"simplifying {label}: entry {k + 1}/{total}")
+        out[i, j] = simplify_entry(M[i, j], q, shift)
+    notes = []
+    if skipped:
+        notes.append(
+            f"time limit of {deadline.seconds:g} s reached while simplifying {label}: "  # type: ignore[union-attr]
+            f"{len(skipped)} of {total} entries are shown unsimplified (exact, but long); "
+            "raise the timeout to simplify them all"
+        )
+    return out, notes

@@ -1,0 +1,167 @@
+"""Exports of the symbolic Jacobian (Python module, JSON, MathML) and the ``export`` command line."""
+
+from __future__ import annotations
+
+import importlib.util
+import io
+import json
+import time
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import kinematics
+import robots
+from kinematics import export as ex
+from kinematics.symbolic import jacobian_mathml
+
+MATHML = "{http://www.w3.org/1998/Math/MathML}"
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _private_cache(tmp_path_factory):
+    mp = pytest.MonkeyPatch()
+    mp.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
+    yield
+    mp.undo()
+
+
+def import_source(path, text, name):
+    path.write_text(text)
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def random_configurations(robot, count=4, seed=3):
+    rng = np.random.default_rng(seed)
+    lim = robot.qlim
+    lo = np.where(np.isfinite(lim[0]), lim[0], -np.pi)
+    hi = np.where(np.isfinite(lim[1]), lim[1], np.pi)
+    return rng.uniform(lo, hi, size=(count, robot.dof))
+
+
+@pytest.mark.parametrize(
+    "name, frame, params",
+    [
+        ("puma560", "base", False),
+        ("stanford", "tool", False),
+        ("panda", "base", False),
+        ("elbow3r", "base", True),
+        ("trr", "tool", True),
+    ],
+)
+def test_python_module_matches_numeric_jacobian(tmp_path, name, frame, params):
+    robot = robots.load(name)
+    module = import_source(tmp_path / f"J_{name}.py", ex.export(robot, "python", frame, params), f"J_{name}")
+    assert module.ROBOT == name and module.FRAME == frame and module.FINGERPRINT == robot.fingerprint()
+    qs = random_configurations(robot)
+    for q in qs:
+        np.testing.assert_allclose(module.J(q), kinematics.jacobian(robot, q, frame), atol=1e-9, rtol=0)
+    np.testing.assert_allclose(
+        module.J(qs), kinematics.jacobian(robot, qs, frame), atol=1e-9, rtol=0
+    )  # batch
+    with pytest.raises(ValueError, match="shape"):
+        module.J(np.zeros(robot.dof + 1))
+    if params:  # parameters are keyword arguments with their values as defaults: doubling every
+        assert module.PARAMETERS  # length doubles the linear velocities of the revolute joints
+        scaled = module.J(qs[0], **{k: 2 * v for k, v in module.PARAMETERS.items()})
+        rev = [k == "revolute" for k in robot.joint_types]
+        np.testing.assert_allclose(scaled[:3, rev], 2 * module.J(qs[0])[:3, rev], atol=1e-12)
+
+
+def test_python_module_shares_subexpressions():
+    text = ex.export(robots.load("panda"), "python")
+    assert text.count("numpy.sin(q1)") == 1 and "x0 = " in text
+
+
+def test_json_export():
+    robot = robots.load("elbow3r")
+    doc = json.loads(ex.export(robot, "json", symbolic_params=True))
+    assert doc["robot"] == "elbow3r" and doc["shape"] == [6, 3] and doc["frame"] == "base"
+    assert doc["parameters"] == {"L1": 0.2, "L2": 0.5, "L3": 0.4}
+    assert doc["entries"][2][1] == "L2*cos(q2) + L3*cos(q2 + q3)"
+    assert [j["symbol"] for j in doc["joints"]] == ["q1", "q2", "q3"]
+    assert doc["determinant"]["rows"] == ["vx", "vy", "vz"]
+    assert {s["kind"] for s in doc["determinant"]["singular_sets"]} == {"elbow", "shoulder"}
+    assert "c_{23}" in doc["latex"]["matrix"] and doc["simplified"] is True
+
+
+def parse_math(fragment):
+    return ET.fromstring(f'<div xmlns="http://www.w3.org/1998/Math/MathML">{fragment}</div>')
+
+
+def test_jacobian_mathml_for_the_app():
+    text = jacobian_mathml(robots.load("puma560"), "base", timeout=30)
+    assert text.startswith('<math display="block"')
+    root = parse_math(text.replace("<math", "<math xmlns='http://www.w3.org/1998/Math/MathML'"))
+    assert root.find(f".//{MATHML}mtable") is not None
+    subs = {"".join(e.itertext()) for e in root.iter(f"{MATHML}msub")}
+    assert {"s23", "c1", "c23"} <= subs  # compact notation
+    assert 'class="jl-legend"' in text and "cos" in text
+
+
+def test_mathml_page_is_well_formed():
+    page = ex.export(robots.load("stanford"), "mathml", "tool")
+    assert page.startswith("<!DOCTYPE html>")
+    body = page[page.index("<body>") + 6 : page.index("</body>")]
+    root = ET.fromstring(f"<body>{body}</body>")
+    assert len(root.findall("math")) >= 1 + 6 + 1  # J, six columns, det
+    assert "wrist singularity" in page
+
+
+def test_export_rejects_bad_input():
+    robot = robots.load("planar2")
+    with pytest.raises(ex.ExportError, match="format must be one of"):
+        ex.export(robot, "pdf")
+    with pytest.raises(kinematics.JacobianLabError, match="frame"):
+        ex.export(robot, "latex", frame="world")
+    with pytest.raises(ex.ExportError, match="kinematics.Robot"):
+        ex.export("planar2", "latex")
+
+
+# ------------------------------------------------------------------------- CLI
+def test_cli_stdout_and_file(tmp_path, capsys):
+    assert ex.main(["planar2", "--format", "json"]) == 0
+    assert json.loads(capsys.readouterr().out)["robot"] == "planar2"
+    out = tmp_path / "J.py"
+    assert ex.main(["trr", "--format", "python", "--symbolic-params", "--frame", "tool", "-o", str(out)]) == 0
+    assert capsys.readouterr().out == ""
+    module = import_source(tmp_path / "J_trr.py", out.read_text(), "J_trr_cli")
+    assert module.FRAME == "tool" and "l2" in module.PARAMETERS
+
+
+def test_cli_accepts_a_robot_file_path(tmp_path, capsys):
+    src = robots.DATA_DIR / "planar3.toml"
+    dst = tmp_path / "planar3.toml"
+    dst.write_text(src.read_text())
+    assert ex.main([str(dst), "-f", "latex"]) == 0
+    assert "\\begin{bmatrix}" in capsys.readouterr().out
+
+
+def test_cli_errors(tmp_path, capsys):
+    assert ex.main(["no_such_robot"]) == 1
+    err = capsys.readouterr().err
+    assert "unknown robot 'no_such_robot'" in err and "puma560" in err
+    assert ex.main(["planar2", "--format", "pdf"]) == 2
+    assert "invalid choice" in capsys.readouterr().err
+    assert ex.main(["planar2", "-o", str(tmp_path / "missing" / "J.tex")]) == 1
+    assert "cannot write" in capsys.readouterr().err
+    assert ex.main(["planar2", "--timeout", "-3"]) == 1
+    assert "timeout" in capsys.readouterr().err
+    assert ex.main(["--help"]) == 0
+
+
+def test_progress_only_after_a_second():
+    quiet = io.StringIO()
+    with ex._StderrProgress(quiet, after=1.0) as progress:
+        progress("fast step")
+    assert quiet.getvalue() == ""
+    slow = io.StringIO()
+    with ex._StderrProgress(slow, after=0.05) as progress:
+        progress("simplifying J: entry 3/36")
+        time.sleep(0.5)
+    lines = slow.getvalue().splitlines()
+    assert "simplifying J: entry 3/36" in lines[0] and lines[-1].endswith("done")
