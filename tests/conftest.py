@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import tempfile
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 settings.register_profile(
@@ -21,3 +22,12 @@ settings.load_profile("ci" if os.environ.get("CI") else "default")
 # every run cold so that cached results never hide a fresh computation's failure.
 _CACHE_ROOT = tempfile.mkdtemp(prefix="jacobian-lab-test-cache-")
 os.environ["XDG_CACHE_HOME"] = _CACHE_ROOT
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _private_cache(tmp_path_factory):
+    """A cold, private cache folder for every test module."""
+    mp = pytest.MonkeyPatch()
+    mp.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
+    yield
+    mp.undo()

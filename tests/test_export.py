@@ -19,13 +19,6 @@ from kinematics.symbolic import jacobian_mathml
 MATHML = "{http://www.w3.org/1998/Math/MathML}"
 
 
-@pytest.fixture(autouse=True, scope="module")
-def _private_cache(tmp_path_factory):
-    mp = pytest.MonkeyPatch()
-    mp.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
-    yield
-    mp.undo()
-
 
 def import_source(path, text, name):
     path.write_text(text)

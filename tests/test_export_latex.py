@@ -23,13 +23,6 @@ from kinematics import export as ex
 KATEX_DIR = Path(__file__).resolve().parent / "katex"
 
 
-@pytest.fixture(autouse=True, scope="module")
-def _private_cache(tmp_path_factory):
-    mp = pytest.MonkeyPatch()
-    mp.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
-    yield
-    mp.undo()
-
 
 def _unavailable(reason: str):
     if os.environ.get("CI"):

@@ -16,15 +16,6 @@ LIBRARY = [n for n in robots.names() if robots.load(n).dof <= 7]
 SMALL = ["planar2", "planar3", "trr", "elbow3r", "wrist", "scara"]
 
 
-@pytest.fixture(autouse=True, scope="module")
-def _private_cache(tmp_path_factory):
-    """Every test module works in its own cache directory (never the user's)."""
-    mp = pytest.MonkeyPatch()
-    mp.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
-    yield
-    mp.undo()
-
-
 def random_configurations(robot, count=5, seed=1):
     rng = np.random.default_rng(seed)
     lim = robot.qlim

@@ -14,14 +14,6 @@ from kinematics import symbolic
 from kinematics.symbolic import SymbolicError
 
 
-@pytest.fixture(autouse=True, scope="module")
-def _private_cache(tmp_path_factory):
-    mp = pytest.MonkeyPatch()
-    mp.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
-    yield
-    mp.undo()
-
-
 def q_symbols(n):
     return sp.symbols(f"q1:{n + 1}", real=True)
 

@@ -134,6 +134,24 @@ def _parts(d: Derivation, det: Determinant | None, latex: bool) -> TypesetParts:
     return TypesetParts(matrix, columns, det_text, singular, legend, notes)
 
 
+def _typeset(
+    robot: Robot,
+    frame: str,
+    latex: bool,
+    symbolic_params: bool,
+    with_det: bool,
+    timeout: float | None,
+    progress: Progress | None,
+) -> TypesetParts:
+    d = derive(robot, frame, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
+    det = (
+        determinant(robot, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
+        if with_det
+        else None
+    )
+    return _parts(d, det, latex=latex)
+
+
 def latex_parts(
     robot: Robot,
     frame: str = "base",
@@ -144,13 +162,7 @@ def latex_parts(
     progress: Progress | None = None,
 ) -> TypesetParts:
     """LaTeX source of J, its columns, det J, the singular sets and the legend (one formula each)."""
-    d = derive(robot, frame, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
-    det = (
-        determinant(robot, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
-        if with_det
-        else None
-    )
-    return _parts(d, det, latex=True)
+    return _typeset(robot, frame, True, symbolic_params, with_det, timeout, progress)
 
 
 def mathml_parts(
@@ -163,13 +175,7 @@ def mathml_parts(
     progress: Progress | None = None,
 ) -> TypesetParts:
     """The same pieces as :func:`latex_parts`, as MathML elements (without ``<math>``)."""
-    d = derive(robot, frame, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
-    det = (
-        determinant(robot, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
-        if with_det
-        else None
-    )
-    return _parts(d, det, latex=False)
+    return _typeset(robot, frame, False, symbolic_params, with_det, timeout, progress)
 
 
 def jacobian_latex(
