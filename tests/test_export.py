@@ -96,6 +96,22 @@ def test_jacobian_mathml_for_the_app():
     assert 'class="jl-legend"' in text and "cos" in text
 
 
+def test_wide_jacobians_are_shown_column_by_column():
+    """A 7-joint arm's J is too wide to read as one matrix: the app gets J1 … J7, one block each."""
+    panda = robots.load("panda")
+    text = jacobian_mathml(panda, "base", timeout=60)
+    blocks = [b for b in text.split("\n") if b.startswith('<math display="block"')]
+    assert len(blocks) == panda.dof
+    for j, block in enumerate(blocks, start=1):
+        root = parse_math(block.replace("<math", "<math xmlns='http://www.w3.org/1998/Math/MathML'", 1))
+        first = root.find(f".//{MATHML}msub")
+        assert "".join(first.itertext()) == f"J{j}"  # J_j = [...]
+    puma = jacobian_mathml(robots.load("puma560"), "base", timeout=30, layout="columns")
+    assert puma.count('<math display="block"') == 6
+    with pytest.raises(ValueError, match="layout must be"):
+        jacobian_mathml(panda, layout="rows")
+
+
 def test_mathml_page_is_well_formed():
     page = ex.export(robots.load("stanford"), "mathml", "tool")
     assert page.startswith("<!DOCTYPE html>")

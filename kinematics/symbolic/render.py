@@ -189,12 +189,18 @@ def jacobian_latex(
     return latex_parts(robot, frame, symbolic_params=symbolic_params, with_det=False, timeout=timeout).matrix
 
 
+_LEFT_MTD = '<mtd style="text-align: left">'
+WIDE_MATHML = 15_000
+"""Above this many characters of MathML, ``layout="auto"`` shows J column by column."""
+
+
 def jacobian_mathml(
     robot: Robot,
     frame: str = "base",
     timeout: float | None = DEFAULT_TIMEOUT,
     *,
     symbolic_params: bool = False,
+    layout: str = "auto",
 ) -> str:
     """J(q) for the browser: ``<math display="block">J = […]</math>`` and a legend line.
 
@@ -206,9 +212,21 @@ def jacobian_mathml(
         frame: ``"base"`` or ``"tool"``.
         timeout: Simplification budget [s] (the result is cached, so only the first call pays).
         symbolic_params: Keep DH lengths and offsets as symbols.
+        layout: ``"matrix"`` (one J = […]), ``"columns"`` (J₁ = […], J₂ = […], … one per
+            block, for arms whose whole matrix is too wide to read), or ``"auto"``: columns
+            when the matrix exceeds :data:`WIDE_MATHML` characters (the 7-joint arms).
     """
+    if layout not in ("auto", "matrix", "columns"):
+        raise ValueError(f"layout must be 'auto', 'matrix' or 'columns', got {layout!r}")
     p = mathml_parts(robot, frame, symbolic_params=symbolic_params, with_det=False, timeout=timeout)
-    out = f'<math display="block" style="{MATH_STYLE}"><mrow>{p.matrix}</mrow></math>'
+    if layout == "columns" or (layout == "auto" and len(p.matrix) > WIDE_MATHML):
+        # Left-aligned entries, so that short ones (0, 1) stay in view beside very long ones.
+        columns = [column.replace("<mtd>", _LEFT_MTD) for column in p.columns]
+        out = "\n".join(
+            f'<math display="block" style="{MATH_STYLE}"><mrow>{column}</mrow></math>' for column in columns
+        )
+    else:
+        out = f'<math display="block" style="{MATH_STYLE}"><mrow>{p.matrix}</mrow></math>'
     if p.legend:
         out += f'\n<p class="jl-legend"><math style="{MATH_STYLE}">{p.legend}</math></p>'
     for note in p.notes:
