@@ -27,7 +27,11 @@ class RobotCatalog:
             (with a suffix if that name is taken).
     """
 
-    def __init__(self, files: list[str | Path] = ()) -> None:
+    def __init__(
+        self, files: list[str | Path] = (), base_link: str | None = None, tip_link: str | None = None
+    ) -> None:
+        self.base_link = base_link
+        self.tip_link = tip_link
         self._files: dict[str, Path] = {}
         self._cache: dict[str, Robot] = {}
         self._lock = threading.Lock()
@@ -66,7 +70,7 @@ class RobotCatalog:
             if name in self._cache:
                 return self._cache[name]
         if name in self._files:
-            robot = robots.load_file(self._files[name])
+            robot = _load_file(self._files[name], self.base_link, self.tip_link)
         elif name in robots.names():
             robot = robots.load(name)
         else:
@@ -74,3 +78,10 @@ class RobotCatalog:
         with self._lock:
             self._cache[name] = robot
         return robot
+
+
+def _load_file(path: Path, base_link: str | None, tip_link: str | None) -> Robot:
+    """A robot file, with the URDF chain chosen by ``base_link`` / ``tip_link`` when given."""
+    if base_link is None and tip_link is None:
+        return robots.load_file(path)
+    return robots.load_file(path, base_link=base_link, tip_link=tip_link)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import html
 import math
 
-__all__ = ["number", "quantity", "fixed", "escape", "MINUS"]
+__all__ = ["number", "quantity", "fixed", "escape", "cleaned", "MINUS"]
 
 MINUS = "\u2212"
 _SUPERSCRIPT = str.maketrans(
@@ -78,3 +78,14 @@ def fixed(x: float, decimals: int = 3) -> str:
 def escape(text: str) -> str:
     """HTML-escape ``text`` for the panel."""
     return html.escape(text, quote=True)
+
+
+def cleaned(values: object, rel: float = 1e-9) -> list[float]:
+    """``values`` with float noise set to 0: entries below ``rel`` × the largest magnitude.
+
+    A joint rate of −5.4×10⁻¹² °/s next to 200 °/s is round-off, not a rate: it reads ``0``.
+    """
+    xs = [float(x) for x in values]  # type: ignore[attr-defined]
+    finite = [abs(x) for x in xs if math.isfinite(x)]
+    big = max(finite, default=0.0)
+    return [0.0 if math.isfinite(x) and abs(x) <= rel * big else x for x in xs]

@@ -20,6 +20,7 @@ from pathlib import Path
 import viser
 
 from .catalog import RobotCatalog
+from .hub import Hub
 from .session import ClientSession
 from .symbolic import SymbolicService
 
@@ -36,6 +37,7 @@ class Lab:
         urdf: URDF file shown first (listed in the dropdown beside the library).
         host: Address to listen on (127.0.0.1: this machine only; 0.0.0.0: the classroom network).
         port: Port; 0 picks a free one. A busy port makes viser try the next one.
+        base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -43,13 +45,19 @@ class Lab:
     """
 
     def __init__(
-        self, robot: str | None = None, urdf: str | None = None, host: str = "127.0.0.1", port: int = 8080
+        self,
+        robot: str | None = None,
+        urdf: str | None = None,
+        host: str = "127.0.0.1",
+        port: int = 8080,
+        base_link: str | None = None,
+        tip_link: str | None = None,
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
             files.append(robot)
             robot = None
-        self.catalog = RobotCatalog(files)
+        self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link)
         self.default_robot = robot or self.catalog.default()
         self.catalog.load(self.default_robot)  # fail before starting the server
         self.symbolic = SymbolicService()
@@ -59,6 +67,8 @@ class Lab:
         self.server.initial_camera.position = (1.3, -1.5, 0.9)
         self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
         self.sessions: dict[int, ClientSession] = {}
+        self.hub = Hub()
+        self._gone: set[int] = set()
         self._lock = threading.Lock()
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
@@ -91,12 +101,20 @@ class Lab:
                 pass
             return
         with self._lock:
-            self.sessions[client.client_id] = session
+            gone = client.client_id in self._gone
+            self._gone.discard(client.client_id)
+            if not gone:
+                self.sessions[client.client_id] = session
+        if gone:  # the tab closed while its session was being built
+            session.close()
 
     def _disconnect(self, client: viser.ClientHandle) -> None:
         with self._lock:
             session = self.sessions.pop(client.client_id, None)
+            if session is None:
+                self._gone.add(client.client_id)
         if session is not None:
+            self.hub.leave(client.client_id)
             session.close()
 
     def session(self, timeout: float = 10.0) -> ClientSession:
@@ -110,7 +128,12 @@ class Lab:
         raise TimeoutError("no client connected")
 
     def stop(self) -> None:
-        """Stop the server and the symbolic workers."""
+        """Stop the server, every tab's ticker and the symbolic workers."""
+        with self._lock:
+            sessions = list(self.sessions.values())
+            self.sessions.clear()
+        for session in sessions:
+            session.close()
         self.server.stop()
         self.symbolic.close()
 
@@ -125,6 +148,8 @@ def serve(
     host: str = "127.0.0.1",
     port: int = 8080,
     block: bool = True,
+    base_link: str | None = None,
+    tip_link: str | None = None,
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -134,6 +159,7 @@ def serve(
         host: Address to listen on; 127.0.0.1 serves this machine only.
         port: Port (0 picks a free one).
         block: Serve until Ctrl-C (then stop and return); ``False`` returns the running :class:`Lab`.
+        base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -146,7 +172,7 @@ def serve(
         )
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     logging.getLogger("websockets").setLevel(logging.WARNING)
-    lab = Lab(robot=robot, urdf=urdf, host=host, port=port)
+    lab = Lab(robot=robot, urdf=urdf, host=host, port=port, base_link=base_link, tip_link=tip_link)
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if not block:
         return lab

@@ -1,235 +1,326 @@
-"""One browser tab: its state, its scene and panel handles, its lock, and the one update path.
+"""One browser tab: its frozen state, one dispatch, one compute and one atomic redraw per event.
 
-Every change goes the same way: a callback (in viser's thread pool) takes
-the session's lock, changes :attr:`ClientSession.state`, and calls
-:meth:`ClientSession.refresh`, which computes one
-:class:`~app.snapshot.Snapshot` and redraws scene and panel in one
-``atomic`` batch. Inputs the session sets itself (a configuration button
-moving every slider) are written with callbacks muted, so one click is one
-computation.
+The flow is one-way::
 
-The public methods (:meth:`set_joint`, :meth:`set_configuration`,
-:meth:`apply`, ...) are the session's API for future features too: a
-classroom mode calls :meth:`apply` with the presenter's state on every
-student session; IK target dragging and resolved-rate animation call
-:meth:`set_configuration` from their own callbacks or threads (under the
-lock, which is re-entrant); a DH editor or URDF upload lists its file with
-:meth:`~app.catalog.RobotCatalog.add_file` and calls :meth:`set_robot`.
+    view input ─► dispatch(action) ─► reduce(state, action) ─► state ─► compute(state) ─► snapshot
+                                                                          └──────► views draw(state, snapshot)
 
-An exception in any callback is caught here: it is logged, shown to this
-client as a notification, and never reaches the server or other clients.
+:meth:`ClientSession.dispatch` is the only way in, for the views, the
+tab's :class:`~app.ticker.Ticker` and the server's :class:`~app.hub.Hub`
+alike. Actions that arrive while a redraw is running are queued and reduced
+together, so a burst of slider messages costs one computation; redraws of
+one tab are at most :data:`MAX_REDRAWS_PER_SECOND`. Two actions are
+*commands* the session carries out itself: loading a robot
+(:class:`~app.actions.ChooseRobot`) and preparing a download.
+
+After each change the session tells its subscribers (a presenter hub, a
+recorder) the new state, starts or stops the ticker, asks for the symbolic
+J when the robot or frame changed, and re-frames the camera when what is
+drawn left the view after a jump (a named configuration, a robot switch, a
+reshaped canvas).
+
+An error in any action is logged and shown to this tab only, in words.
 """
 
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import logging
-import math
 import threading
-from collections.abc import Callable, Iterator
+import time
+from collections.abc import Callable
 from concurrent.futures import Future
 
+import numpy as np
 import viser
 
-from kinematics import as_configuration
 from kinematics.analysis import task_rows
 
-from . import fmt
+from .actions import (
+    Action,
+    ChooseRobot,
+    GoTo,
+    ReplaceState,
+    RequestDownload,
+    SetConfiguration,
+    SetJoint,
+    SetRobot,
+)
+from .camera import FROM_ABOVE, CameraMove, View, facing, framing, needs_framing
 from .catalog import RobotCatalog
 from .panel import PanelView
+from .reducer import reduce
 from .scene import SceneView
 from .snapshot import Snapshot, compute
 from .state import LabState
 from .symbolic import SymbolicService, SymbolicUnavailable
+from .ticker import Ticker
 
-__all__ = ["ClientSession"]
+__all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 
 log = logging.getLogger(__name__)
 
+MAX_REDRAWS_PER_SECOND = 40.0
+"""A tab is redrawn at most this often; faster input is coalesced (only the latest values count)."""
+_JUMP = 0.35
+"""A joint moving more than this [rad | m] in one action is a jump: the camera may re-frame."""
+
 
 class ClientSession:
-    """State and handles of one connected client.
+    """State, views and effects of one connected tab.
 
     Attributes:
         client: The viser client handle.
-        state: What this client has chosen (:class:`~app.state.LabState`).
+        state: What this tab has chosen (frozen :class:`~app.state.LabState`).
         snapshot: The last computed snapshot (what is on screen).
-        scene: The client's 3-D view.
-        panel: The client's GUI.
-        lock: Re-entrant lock guarding all of the above.
-        errors: Number of callback errors shown to this client.
-        refreshes: Number of redraws so far (one per event).
+        ticker: The tab's clock (moves the joints while playing).
+        errors: Number of errors shown to this tab.
+        redraws: Number of redraws so far (one per batch of events).
     """
 
     def __init__(
-        self, client: viser.ClientHandle, catalog: RobotCatalog, symbolic: SymbolicService, robot_name: str
+        self,
+        client: viser.ClientHandle,
+        catalog: RobotCatalog,
+        symbolic: SymbolicService,
+        robot_name: str,
+        ticker: Ticker | None = None,
     ) -> None:
         self.client = client
         self.catalog = catalog
         self.symbolic = symbolic
         self.lock = threading.RLock()
         self.errors = 0
-        self.refreshes = 0
-        self._muted = 0
+        self.redraws = 0
+        self._queue: list[Action] = []
+        self._queue_lock = threading.Lock()
+        self._busy = False
+        self._drawing = threading.local()
         self._closed = False
+        self._last_redraw = 0.0
+        self._subscribers: list[Callable[[LabState], None]] = []
+        self._symbolic_wanted: tuple | None = None
+        self._camera = CameraMove(self._set_camera)
+        self._aspect = 0.0
+        self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.snapshot: Snapshot | None = None
         self.scene: SceneView | None = None
-        self._symbolic_wanted: tuple | None = None
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
-            self.panel = PanelView(client, self, catalog.names(), self.state)
-            self._build()
+            self.panel = PanelView(client, self.dispatch, catalog.names(), self.state)
+            self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
 
-    # ------------------------------------------------------------- wiring
-    def on_update(self, handle: viser.GuiInputHandle, fn: Callable[[viser.GuiInputHandle], None]) -> None:
-        """Call ``fn(handle)`` when the user changes ``handle`` (guarded, locked, muted while syncing)."""
-        handle.on_update(self._guarded(lambda event: fn(event.target)))
+    # ------------------------------------------------------------------ the way in
+    def dispatch(self, action: Action) -> None:
+        """Apply ``action`` (from a view, the ticker or the hub) and redraw once.
 
-    def on_click(self, button: viser.GuiButtonHandle, fn: Callable[[], None]) -> None:
-        """Call ``fn()`` when ``button`` is clicked (guarded and locked)."""
-        button.on_click(self._guarded(lambda event: fn()))
+        Safe from any thread. Echoes of the session's own redraw (inputs it sets) are ignored.
+        """
+        if getattr(self._drawing, "active", False) or self._closed:
+            return
+        with self._queue_lock:
+            self._queue.append(action)
+            if self._busy:
+                return  # the thread already draining this tab's queue will take it
+            self._busy = True
+        try:
+            self._drain()
+        except BaseException:
+            with self._queue_lock:
+                self._busy = False
+            raise
 
-    def on_click_value(self, group: viser.GuiButtonGroupHandle, fn: Callable[[str], None]) -> None:
-        """Call ``fn(option)`` when a button of ``group`` is clicked (guarded and locked)."""
-        group.on_click(self._guarded(lambda event: fn(event.target.value)))
+    def _drain(self) -> None:
+        """Reduce queued actions in batches until the queue is empty (then release the tab)."""
+        while True:
+            wait = self._last_redraw + 1.0 / MAX_REDRAWS_PER_SECOND - time.monotonic()
+            if wait > 0 and not self._closed:
+                time.sleep(wait)  # collect the actions of this interval; they are reduced together
+            with self._queue_lock:
+                actions, self._queue = self._queue, []
+                if not actions or self._closed:
+                    self._busy = False
+                    return
+            with self.lock:
+                state, jump = self.state, False
+                for action in actions:
+                    try:
+                        before = state
+                        state = self._apply(state, action)
+                        jump = jump or _is_jump(before, state, action)
+                    except Exception as exc:  # one tab's bad input never reaches the server or other tabs
+                        self.report_error(exc)
+                if state is not self.state:
+                    self._commit(state, rebuild=state.robot is not self.state.robot, jump=jump)
 
-    def _guarded(self, fn: Callable[[viser.GuiEvent], None]) -> Callable[[viser.GuiEvent], None]:
-        def callback(event: viser.GuiEvent) -> None:
-            try:
-                with self.lock:
-                    if self._closed or self._muted or event.target._impl.removed:
-                        return
-                    fn(event)
-            except Exception as exc:  # one client's error must never reach the server or other clients
-                self.report_error(exc)
+    def _apply(self, state: LabState, action: Action) -> LabState:
+        """Reduce ``action``; carry out the commands (load a robot, prepare a download)."""
+        if isinstance(action, ChooseRobot):
+            if action.name == state.robot_name:
+                return state
+            return reduce(state, SetRobot(action.name, self.catalog.load(action.name)))
+        if isinstance(action, RequestDownload):
+            self._download(state, action.label)
+            return state
+        return reduce(state, action)
 
-        return callback
-
-    @contextlib.contextmanager
-    def muted(self) -> Iterator[None]:
-        """Within this block, inputs the session sets do not call back."""
+    def subscribe(self, fn: Callable[[LabState], None]) -> Callable[[], None]:
+        """Call ``fn(state)`` after every change (a hub, a recorder); returns the unsubscribe function."""
         with self.lock:
-            self._muted += 1
+            self._subscribers.append(fn)
+
+        def unsubscribe() -> None:
+            with self.lock, contextlib.suppress(ValueError):
+                self._subscribers.remove(fn)
+
+        return unsubscribe
+
+    # ------------------------------------------------------------------ commit and draw
+    def _commit(self, state: LabState, rebuild: bool, jump: bool) -> None:
+        """Take ``state``: compute its snapshot once, redraw in one batch, then run the effects."""
+        old = self.state
+        snap = compute(state)
+        self._drawing.active = True
+        try:
+            with self.client.atomic():
+                if rebuild or self.scene is None:
+                    if self.scene is not None:
+                        self.scene.remove()
+                    self.scene = SceneView(self.client, state.robot)
+                    self.panel.build_robot(state.robot, task_rows(state.robot))
+                self.scene.update(snap, state)
+                self.panel.draw(state, snap)
+        finally:
+            self._drawing.active = False
+        self.state, self.snapshot = state, snap
+        self.redraws += 1
+        self._last_redraw = time.monotonic()
+        if state.playing:
+            self.ticker.start()
+        else:
+            self.ticker.stop()
+        if rebuild or state.options.jacobian_frame != old.options.jacobian_frame:
+            self._request_symbolic()
+        if rebuild:
+            assert self.scene is not None
+            self._frame(
+                direction=FROM_ABOVE if state.robot.planar else facing(self.scene.extent), glide=False
+            )
+        elif jump:
+            self._frame_if_needed()
+        for fn in list(self._subscribers):
             try:
-                yield
-            finally:
-                self._muted -= 1
+                fn(state)
+            except Exception:
+                log.exception("a subscriber of client %s failed", self.client.client_id)
 
     def report_error(self, exc: BaseException) -> None:
-        """Log ``exc`` and tell this client, in words, that its last action failed."""
+        """Log ``exc`` and tell this tab, in words, that its last action failed."""
         self.errors += 1
-        log.error("client %s: %s", self.client.client_id, exc, exc_info=exc)
+        log.error("client %s: %s", self.client.client_id, str(exc)[:300])
         with contextlib.suppress(Exception):
             self.client.add_notification(
-                "That did not work", f"{type(exc).__name__}: {exc}", color="red", auto_close_seconds=10.0
+                "That did not work",
+                f"{type(exc).__name__}: {str(exc)[:300]}",
+                color="red",
+                auto_close_seconds=10.0,
             )
 
-    # ------------------------------------------------------------- actions
-    def set_joint(self, i: int, value: float) -> None:
-        """Set joint ``i`` to ``value`` [rad | m] and redraw."""
-        with self.lock:
-            self.state.q[i] = _finite(value, "joint value")
-            self.state.configuration = ""
-            self._show_inputs()
-            self.refresh()
+    # ------------------------------------------------------------------ camera
+    def _view(self) -> View | None:
+        cam = self.client.camera
+        try:
+            aspect = float(cam.aspect)
+            fov = float(cam.fov)
+        except Exception:
+            return None
+        if not (np.isfinite(aspect) and aspect > 0.05 and np.isfinite(fov) and fov > 0.05):
+            return None
+        return View(
+            np.asarray(cam.position, float),
+            np.asarray(cam.look_at, float),
+            np.array([0.0, 0, 1]),
+            fov,
+            aspect,
+        )
 
-    def go_to(self, name: str) -> None:
-        """Move to the named configuration ``name`` ("home" or one of the robot's)."""
-        robot = self.state.robot
-        q = robot.home if name == "home" else robot.configuration(name)
-        self.set_configuration(q, name)
+    def _frame_if_needed(self) -> None:
+        view = self._view()
+        if view is not None and self.scene is not None and needs_framing(view, self.scene.extent):
+            self._frame()
 
-    def set_configuration(self, q: object, name: str = "") -> None:
-        """Move every joint to ``q`` (n,) [rad | m]: sliders follow, one redraw."""
-        with self.lock:
-            q = as_configuration(self.state.robot, q)
-            if q.ndim != 1:
-                raise ValueError(
-                    f"expected one configuration of shape ({self.state.robot.dof},), got {q.shape}"
-                )
-            self.state.q = q.copy()
-            self.state.configuration = name
-            self._show_inputs()
-            self.refresh()
+    def _frame(self, direction: np.ndarray | None = None, glide: bool = True) -> None:
+        """Point the camera at everything drawn (from ``direction``, default the current one)."""
+        view = self._view()
+        if self.scene is None:
+            return
+        if view is None:  # no camera message yet: assume a 16:9 canvas and viser's default fov
+            view = View(np.array([1.3, -1.5, 0.9]), np.zeros(3), np.array([0.0, 0, 1]), 1.3, 1.4)
+        end = framing(view, self.scene.extent, direction)
+        if glide:
+            self._camera.to((view.position, view.look_at), end)
+        else:
+            self._camera.cancel()
+            self._set_camera(*end)
 
-    def set_rate(self, i: int, value: float) -> None:
-        """Set joint rate q̇ᵢ [rad/s | m/s] of the forward view."""
-        with self.lock:
-            self.state.qd[i] = _finite(value, "joint rate")
-            self._show_inputs()
-            self.refresh()
+    def _set_camera(self, position: np.ndarray, look_at: np.ndarray) -> None:
+        if self._closed:
+            return
+        cam = self.client.camera
+        cam.up_direction = (0.0, 0.0, 1.0)
+        cam.position = tuple(float(x) for x in position)
+        cam.look_at = tuple(float(x) for x in look_at)  # after position: setting position moves look_at
 
-    def stop_rates(self) -> None:
-        """Set every joint rate of the forward view to zero."""
-        with self.lock:
-            self.state.qd[:] = 0.0
-            self._show_inputs()
-            self.refresh()
+    def _camera_moved(self, camera: viser.CameraHandle) -> None:
+        """The canvas changed shape (a panel collapsed, the window resized): keep everything in view."""
+        try:
+            aspect = float(camera.aspect)
+            if self._aspect and abs(aspect - self._aspect) > 0.05 * self._aspect:
+                with self.lock:
+                    if not self._closed:
+                        self._frame_if_needed()
+            self._aspect = aspect
+        except Exception as exc:
+            self.report_error(exc)
 
-    def set_desired(self, row: int, value: float) -> None:
-        """Set component ``row`` of the desired tool twist [m/s | rad/s]."""
-        with self.lock:
-            self.state.v_desired[row] = _finite(value, "tool velocity")
-            self._show_inputs()
-            self.refresh()
-
-    def set_wrench(self, row: int, value: float) -> None:
-        """Set component ``row`` of the wrench applied at the tool [N | N·m]."""
-        with self.lock:
-            self.state.wrench[row] = _finite(value, "force")
-            self._show_inputs()
-            self.refresh()
-
-    def clear_wrench(self) -> None:
-        """Remove the force and moment applied at the tool."""
-        with self.lock:
-            self.state.wrench[:] = 0.0
-            self._show_inputs()
-            self.refresh()
-
-    def set_option(self, **changes: object) -> None:
-        """Change display options (see :class:`~app.state.Options`) and redraw."""
-        with self.lock:
-            old = self.state.options
-            for key in ("scale", "damping"):
-                if key in changes:
-                    changes[key] = _finite(changes[key], key)
-            self.state.options = dataclasses.replace(old, **changes)
-            if self.state.options.jacobian_frame != old.jacobian_frame:
-                self._request_symbolic()
-            self._show_inputs()
-            self.refresh()
-
-    def set_robot(self, name: str) -> None:
-        """Switch to robot ``name`` of the catalogue: rebuild scene and panel, keep the display options."""
-        with self.lock:
-            if name == self.state.robot_name:
-                return
-            try:
-                robot = self.catalog.load(name)
-            except Exception:
-                with self.muted():
-                    self.panel.robot.value = self.state.robot_name
-                raise
-            self.apply(LabState.initial(name, robot, self.state.options))
-
-    def apply(self, state: LabState) -> None:
-        """Take over a whole state (e.g. a presenter's): rebuild if the robot differs, else update inputs."""
-        with self.lock:
-            rebuild = state.robot is not self.state.robot
-            self.state = state.copy()
-            if rebuild:
-                self._build()
-            else:
-                self._show_inputs()
-                self._request_symbolic()
-                self.refresh()
-
-    def download(self, label: str) -> None:
-        """Send J(q) exported as ``label`` ("LaTeX", "Python" or "JSON") to this client when it is ready."""
+    # ------------------------------------------------------------------ symbolic J and downloads
+    def _request_symbolic(self) -> None:
+        """Ask for the symbolic J(q) of the current robot and frame (releasing the previous request)."""
         robot, frame = self.state.robot, self.state.options.jacobian_frame
+        if self._symbolic_wanted == (robot, frame):
+            return
+        self._release_symbolic()
+        self._symbolic_wanted = (robot, frame)
+        future = self.symbolic.mathml(robot, frame)
+        if not future.done() and self.panel.matrix is not None:
+            self.panel.matrix.show_symbolic(
+                None, "computing the symbolic form… (the numeric J above is live)"
+            )
+        future.add_done_callback(lambda f: self._symbolic_ready(f, robot, frame))
+
+    def _release_symbolic(self) -> None:
+        if self._symbolic_wanted is not None:
+            self.symbolic.release(*self._symbolic_wanted)
+            self._symbolic_wanted = None
+
+    def _symbolic_ready(self, future: Future[str], robot, frame: str) -> None:
+        try:
+            with self.lock:
+                if self._closed or self._symbolic_wanted != (robot, frame) or self.panel.matrix is None:
+                    return
+                try:
+                    mathml, note = future.result(), f"J(q) in {frame} axes, from kinematics.symbolic."
+                except SymbolicUnavailable as exc:
+                    mathml, note = None, str(exc)
+                except Exception as exc:
+                    mathml, note = None, f"symbolic form not available: {type(exc).__name__}: {exc}"
+                self.panel.matrix.show_symbolic(mathml, note)
+        except Exception as exc:
+            self.report_error(exc)
+
+    def _download(self, state: LabState, label: str) -> None:
+        robot, frame = state.robot, state.options.jacobian_frame
         note = self.client.add_notification(
             f"Preparing J(q) as {label}…",
             f"{robot.title or robot.name}, {frame} axes",
@@ -254,93 +345,21 @@ class ClientSession:
         else:
             self.client.send_file_download(filename, content, save_immediately=True)
 
-    # ------------------------------------------------------------- drawing
-    def _show_inputs(self) -> None:
-        """Put the state on every input, muted: inputs already showing their value send nothing."""
-        with self.muted():
-            self.panel.show_inputs(self.state)
-
-    def refresh(self) -> None:
-        """Compute the snapshot of the current state once and redraw everything in one batch."""
-        with self.lock:
-            if self._closed:
-                return
-            snap = compute(self.state)
-            with self.client.atomic():
-                self.scene.update(snap, self.state)
-                self.panel.update(snap, self.state)
-            self.snapshot = snap
-            self.refreshes += 1
-
-    def _build(self) -> None:
-        """Build scene and robot-dependent panel parts for the current robot, then draw."""
-        robot = self.state.robot
-        with self.client.atomic():
-            if self.scene is not None:
-                self.scene.remove()
-            self.scene = SceneView(self.client, robot)
-            self.panel.build_robot(robot, task_rows(robot))
-            self._show_inputs()
-        self.refresh()
-        self.scene.frame_camera(self.snapshot, robot.planar)
-        self._request_symbolic()
-
-    def _camera_moved(self, _camera: viser.CameraHandle) -> None:
-        try:
-            with self.lock:
-                if not self._closed and self.scene is not None:
-                    self.scene.follow_canvas()
-        except Exception as exc:
-            self.report_error(exc)
-
-    def _request_symbolic(self) -> None:
-        """Ask for the symbolic J(q) of the current robot and frame (releasing the previous request)."""
-        robot, frame = self.state.robot, self.state.options.jacobian_frame
-        if self._symbolic_wanted == (robot, frame):
-            return
-        self._release_symbolic()
-        self._symbolic_wanted = (robot, frame)
-        future = self.symbolic.mathml(robot, frame)
-        if not future.done():
-            self.panel.matrix.show_symbolic(
-                None, "computing the symbolic form… (the numeric J above is live)"
-            )
-        future.add_done_callback(lambda f: self._symbolic_ready(f, robot, frame))
-
-    def _release_symbolic(self) -> None:
-        if self._symbolic_wanted is not None:
-            self.symbolic.release(*self._symbolic_wanted)
-            self._symbolic_wanted = None
-
-    def _symbolic_ready(self, future: Future[str], robot, frame: str) -> None:
-        try:
-            with self.lock:
-                if (
-                    self._closed
-                    or robot is not self.state.robot
-                    or frame != self.state.options.jacobian_frame
-                ):
-                    return
-                try:
-                    mathml, note = future.result(), f"J(q) in {frame} axes, from kinematics.symbolic."
-                except SymbolicUnavailable as exc:
-                    mathml, note = None, str(exc)
-                except Exception as exc:
-                    mathml, note = None, f"symbolic form not available: {type(exc).__name__}: {exc}"
-                self.panel.matrix.show_symbolic(mathml, note)
-        except Exception as exc:
-            self.report_error(exc)
-
+    # ------------------------------------------------------------------ end
     def close(self) -> None:
-        """Forget the client (it has gone: its handles went with its connection)."""
+        """Forget the tab (it has gone: its handles went with its connection). Stops its ticker."""
+        self._closed = True
+        self.ticker.close()
+        self._camera.cancel()
         with self.lock:
-            self._closed = True
             self._release_symbolic()
+            self._subscribers.clear()
 
 
-def _finite(value: object, what: str) -> float:
-    """``value`` as a finite float, or ValueError naming ``what`` (state never holds NaN or ∞)."""
-    x = float(value)  # type: ignore[arg-type]
-    if not math.isfinite(x):
-        raise ValueError(f"{what} must be a finite number, got {fmt.number(x)}")
-    return x
+def _is_jump(before: LabState, after: LabState, action: Action) -> bool:
+    """Whether ``action`` moved the arm far at once (the camera may need to follow)."""
+    if isinstance(action, (GoTo, SetConfiguration, ReplaceState)):
+        return True
+    if isinstance(action, SetJoint) and before.robot is after.robot:
+        return bool(np.max(np.abs(np.asarray(after.q) - np.asarray(before.q))) > _JUMP)
+    return False

@@ -2,9 +2,10 @@
 
 :func:`compute` is the only place the app asks for maths: forward
 kinematics, the Jacobian in base and tool axes, the singularity report,
-the measures the panel reads out, the ellipsoids, and the three mappings of
-the course (v = J q̇, q̇ = J⁺ v, τ = Jᵀ F). The scene and the panel only
-draw a :class:`Snapshot`; they never compute.
+the measures the panel reads out, the ellipsoids, the lost direction
+(rotations weighed by the arm's reach), and the three mappings of the
+course: v = J q̇, q̇ = J⁺ v (with the twist it actually produces and what is
+lost), τ = Jᵀ F. Views only draw a :class:`Snapshot`; they never compute.
 """
 
 from __future__ import annotations
@@ -14,19 +15,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinematics import jacobian, joint_frames, link_frames
-from kinematics.analysis import (
-    Ellipsoid,
-    condition_number,
-    force_ellipsoid,
-    manipulability,
-    rank,
-    singular_values,
-    task_rows,
-    velocity_ellipsoid,
-)
+from kinematics.analysis import DEFAULT_RTOL, Ellipsoid, force_ellipsoid, task_rows, velocity_ellipsoid
 from kinematics.inverse import solve_rates
+from kinematics.lost import LostDirection, lost_direction
 from kinematics.singularity import SingularityReport, assess
 
+from .ranges import reach
 from .state import LabState
 
 __all__ = ["Snapshot", "compute", "translational_rows"]
@@ -39,26 +33,30 @@ def translational_rows(planar: bool) -> tuple[int, ...]:
 
 @dataclass(frozen=True, eq=False)
 class Snapshot:
-    """The state of one client after one event, ready to draw.
+    """One tab's state after one event, ready to draw.
 
     Attributes:
         q: Joint values (n,) [rad | m].
         link_frames: T_base_link (m + 2, 4, 4): frame 0, every link frame, the tool.
         joint_frames: T_base_joint (m, 4, 4): the frame of every moving axis (z = axis).
         J_base: Geometric Jacobian (6, n), rows [v; ω] in base axes.
-        J_shown: The Jacobian in the frame the client chose (6, n).
-        rows: Task rows of J (what the course's det J, cond J and rank refer to).
-        report: Singularity report (status, kinds, lost direction).
+        J_shown: The Jacobian in the frame the tab chose (6, n).
+        rows: Task rows of J (what det J, κ and rank refer to).
+        report: Singularity report (status, kinds, σmin, κ).
         sigma: Singular values of the task rows, descending.
-        manipulability: Yoshikawa's w = Π σᵢ of the task rows.
-        det: det J of the task rows when they form a square matrix, else ``None``.
+        manipulability: Yoshikawa's w = Π σᵢ of the task rows (0 with more rows than joints).
+        det: det J of the task rows when square, else ``None``.
         rank: Numerical rank of the task rows.
-        cond_translational, cond_rotational: Condition numbers of the linear and angular
-            rows (``inf`` when singular); a planar arm has no rotational one (``None``).
-        velocity, rotational, force: Ellipsoids at the tool point (base axes); a planar
-            arm has no rotational ellipsoid (``None``).
+        cond_translational, cond_rotational: κ of the v rows and of the ω rows (``inf`` when
+            singular); a planar arm has no rotational one (``None``).
+        velocity, rotational, force: Ellipsoids at the tool point (base axes); the force
+            ellipsoid only when it is drawn (``None`` otherwise).
+        lost: The lost direction, ω rows weighed by ``length``.
+        length: Characteristic length L [m] (the arm's reach) weighing rad/s against m/s.
         twist: J_base q̇ (6,) [m/s; rad/s].
-        rates: Joint rates reaching the desired twist, J⁺ v (or damped) (n,).
+        rates: Joint rates for the desired twist, J⁺ v or damped (n,).
+        produced: The task twist those rates actually produce, J q̇ (task rows, others 0) (6,).
+        shortfall: What is lost, v − J q̇ over the task rows (6,).
         torques: Jᵀ F (n,) [N·m | N] balancing the applied wrench.
     """
 
@@ -77,9 +75,13 @@ class Snapshot:
     cond_rotational: float | None
     velocity: Ellipsoid
     rotational: Ellipsoid | None
-    force: Ellipsoid
+    force: Ellipsoid | None
+    lost: LostDirection
+    length: float
     twist: np.ndarray
     rates: np.ndarray
+    produced: np.ndarray
+    shortfall: np.ndarray
     torques: np.ndarray
 
     @property
@@ -88,39 +90,61 @@ class Snapshot:
         return self.link_frames[-1, :3, 3]
 
 
+def _condition(radii: np.ndarray, k: int) -> float:
+    """σ₁/σ_k of the first ``k`` singular values ``radii`` (descending), ``inf`` when σ_k ≈ 0."""
+    s = radii[:k]
+    return float("inf") if s[-1] <= DEFAULT_RTOL * max(s[0], 1.0) else float(s[0] / s[-1])
+
+
 def compute(state: LabState) -> Snapshot:
     """Evaluate everything the views draw for ``state`` (one call per event)."""
     robot, q = state.robot, state.q
-    planar = robot.planar
+    planar, n = robot.planar, robot.dof
     L = link_frames(robot, q)
     W = joint_frames(robot, q)
     J = jacobian(robot, q, "base")
-    if state.options.jacobian_frame == "tool":
-        J_shown = jacobian(robot, q, "tool")
-    else:
-        J_shown = J
+    J_shown = jacobian(robot, q, "tool") if state.options.jacobian_frame == "tool" else J
     rows = task_rows(robot)
     report = assess(robot, q, J)
     J_task = J[list(rows)]
-    square = J_task.shape[0] == J_task.shape[1]
+    sigma = np.linalg.svd(J_task, compute_uv=False)
+    square = J_task.shape[0] == n
+    velocity = velocity_ellipsoid(J, "linear")
+    rotational = velocity_ellipsoid(J, "angular") if not planar else None
+    k_lin = min(len(translational_rows(planar)), n)
+    cond_t = _condition(velocity.radii, k_lin) if len(translational_rows(planar)) <= n else float("inf")
+    if planar:
+        cond_t = _condition(np.linalg.svd(J[[0, 1]], compute_uv=False), min(2, n))
+    cond_r = None if rotational is None else (_condition(rotational.radii, 3) if n >= 3 else float("inf"))
+    length = reach(robot)
+    v_task = state.v_desired[list(rows)]
+    rates = solve_rates(J_task, v_task, state.options.damping) if np.any(v_task) else np.zeros(n)
+    produced = np.zeros(6)
+    produced[list(rows)] = J_task @ rates
+    shortfall = np.zeros(6)
+    shortfall[list(rows)] = state.v_desired[list(rows)] - produced[list(rows)]
     return Snapshot(
-        q=q.copy(),
+        q=np.array(q),
         link_frames=L,
         joint_frames=W,
         J_base=J,
         J_shown=J_shown,
         rows=rows,
         report=report,
-        sigma=singular_values(J, rows),
-        manipulability=float(manipulability(J, rows)),
+        sigma=sigma,
+        manipulability=float(np.prod(sigma)) if len(rows) <= n else 0.0,
         det=float(np.linalg.det(J_task)) if square else None,
-        rank=int(rank(J, rows)),
-        cond_translational=float(condition_number(J, translational_rows(planar))),
-        cond_rotational=None if planar else float(condition_number(J, "angular")),
-        velocity=velocity_ellipsoid(J, "linear"),
-        rotational=velocity_ellipsoid(J, "angular") if not planar else None,
-        force=force_ellipsoid(J, "linear"),
+        rank=int(np.sum(sigma > DEFAULT_RTOL * max(float(sigma[0]), 1.0))),
+        cond_translational=cond_t,
+        cond_rotational=cond_r,
+        velocity=velocity,
+        rotational=rotational,
+        force=force_ellipsoid(J, "linear") if state.options.force_ellipsoid else None,
+        lost=lost_direction(J, rows, length),
+        length=length,
         twist=J @ state.qd,
-        rates=solve_rates(J_task, state.v_desired[list(rows)], state.options.damping),
+        rates=rates,
+        produced=produced,
+        shortfall=shortfall,
         torques=J.T @ state.wrench,
     )

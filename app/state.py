@@ -1,12 +1,11 @@
-"""The state of one browser tab, as plain data: no handles, no threads.
+"""The state of one browser tab: a frozen value, changed only by :func:`app.reducer.reduce`.
 
-:class:`LabState` is everything a client has chosen (robot, joint values,
-joint rates, desired tool velocity, applied force, display options). It is
-a value: :meth:`LabState.copy` gives an independent copy, so a future
-classroom mode can mirror a presenter's state to every student, an
-animation can step it, and a test can build one without a browser. The GUI
-reads it to set its inputs and writes it from their callbacks; the maths
-reads it in :func:`app.snapshot.compute`.
+:class:`LabState` is everything a tab has chosen (robot, joint values,
+joint rates, desired tool twist, applied wrench, display options, whether
+the joints are moving in time). It is immutable: its arrays are read-only
+and a new state is made with :func:`dataclasses.replace` (the reducer does
+it), so a presenter can hand the same state to sixty tabs, a recorder can
+keep every state, and a test can build one without a browser.
 
 Units are SI with radians, like :mod:`kinematics`; degrees exist only on
 the sliders.
@@ -21,15 +20,25 @@ from typing import Literal
 import numpy as np
 
 from kinematics import Robot
+from kinematics.analysis import task_rows
 
-__all__ = ["Options", "LabState"]
+__all__ = ["Options", "LabState", "Frame", "frozen", "default_options"]
 
 Frame = Literal["base", "tool"]
 
 
-@dataclass
+def frozen(values: object, length: int | None = None) -> np.ndarray:
+    """A read-only float copy of ``values`` (shape (length,) when given)."""
+    a = np.array(values, dtype=float)
+    if length is not None and a.shape != (length,):
+        raise ValueError(f"expected {length} values, got shape {a.shape}")
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True)
 class Options:
-    """What the client chose to see.
+    """What the tab chose to see.
 
     Attributes:
         frames: Draw a triad at every DH/link frame and at the tool.
@@ -56,30 +65,66 @@ class Options:
     damping: float = 0.0
 
 
-@dataclass
+GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")
+"""Options that say which Jacobian glyphs are drawn: their defaults depend on the robot's task."""
+
+
+def default_options(robot: Robot, keep: Options | None = None) -> Options:
+    """Options for ``robot``: glyphs that fit its task (rotational ones for an orientation task).
+
+    ``keep``: options whose non-glyph choices (scale, frame, damping, frames, labels) are kept.
+    """
+    base = keep if keep is not None else Options()
+    angular_task = set(task_rows(robot)) <= {3, 4, 5}
+    return dataclasses.replace(
+        base,
+        columns=not angular_task,
+        angular_columns=angular_task,
+        velocity_ellipsoid=not angular_task,
+        rotational_ellipsoid=angular_task,
+        force_ellipsoid=False,
+    )
+
+
+@dataclass(frozen=True, eq=False)
 class LabState:
-    """Everything one client has chosen.
+    """Everything one tab has chosen.
 
     Attributes:
-        robot_name: Catalogue name of the robot (library name or URDF path).
+        robot_name: Catalogue name of the robot (library name or file).
         robot: The immutable robot model.
-        q: Joint values (n,) [rad | m].
-        qd: Joint rates for the forward view v = J q̇ (n,) [rad/s | m/s].
+        q: Joint values (n,) [rad | m], read-only.
+        qd: Joint rates of the forward view v = J q̇ (n,) [rad/s | m/s], read-only.
         v_desired: Desired tool twist (6,) [m/s; rad/s], base axes, rows [v; ω];
-            only the robot's task rows are used.
-        wrench: Force and moment applied at the tool point (6,) [N; N·m], base axes.
+            only the robot's task rows are used. Read-only.
+        wrench: Force and moment applied at the tool point (6,) [N; N·m], base axes. Read-only.
         options: Display options.
-        configuration: Name of the named configuration last visited ("" once a joint moves).
+        configuration: Name of the named configuration the arm is at ("" when none).
+        playing: The joints move at q̇ in time (a ticker dispatches :class:`~app.actions.Step`).
+        time: Time moved so far [s].
+        stopped: Why the last motion stopped ("" when it did not), shown to the user.
     """
 
     robot_name: str
     robot: Robot
     q: np.ndarray
     qd: np.ndarray
-    v_desired: np.ndarray = field(default_factory=lambda: np.zeros(6))
-    wrench: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    v_desired: np.ndarray = field(default_factory=lambda: frozen(np.zeros(6)))
+    wrench: np.ndarray = field(default_factory=lambda: frozen(np.zeros(6)))
     options: Options = field(default_factory=Options)
     configuration: str = ""
+    playing: bool = False
+    time: float = 0.0
+    stopped: str = ""
+
+    def __post_init__(self) -> None:
+        n = self.robot.dof
+        for name, length in (("q", n), ("qd", n), ("v_desired", 6), ("wrench", 6)):
+            value = getattr(self, name)
+            if not (isinstance(value, np.ndarray) and not value.flags.writeable and value.shape == (length,)):
+                object.__setattr__(self, name, frozen(value, length))
+            if not np.isfinite(getattr(self, name)).all():
+                raise ValueError(f"LabState.{name} must be finite")
 
     @classmethod
     def initial(cls, robot_name: str, robot: Robot, options: Options | None = None) -> LabState:
@@ -88,19 +133,12 @@ class LabState:
         return cls(
             robot_name=robot_name,
             robot=robot,
-            q=np.array(robot.home, dtype=float),
-            qd=np.zeros(robot.dof),
-            options=dataclasses.replace(options) if options is not None else Options(),
+            q=frozen(robot.home),
+            qd=frozen(np.zeros(robot.dof)),
+            options=default_options(robot, options),
             configuration=home,
         )
 
-    def copy(self) -> LabState:
-        """An independent copy (arrays and options copied; the robot is immutable and shared)."""
-        return dataclasses.replace(
-            self,
-            q=self.q.copy(),
-            qd=self.qd.copy(),
-            v_desired=self.v_desired.copy(),
-            wrench=self.wrench.copy(),
-            options=dataclasses.replace(self.options),
-        )
+    def replace(self, **changes: object) -> LabState:
+        """A new state with ``changes`` (arrays are copied read-only)."""
+        return dataclasses.replace(self, **changes)  # type: ignore[arg-type]

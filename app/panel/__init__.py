@@ -1,37 +1,38 @@
-"""The GUI of one client: robot choice, status, joints, velocity and force views, display options, J.
+"""The GUI of one tab: robot choice, status, joints, and one tab per view of J.
 
-Layout: the main control panel (right) holds the robot dropdown, the status
-banner and four tabs (Joints, Velocity, Force, View); a second panel docked
-on the left shows the Jacobian (frame choice, numeric J, measures, symbolic
-J(q) and downloads). Robot-independent parts are built once per client;
-robot-dependent parts (:meth:`PanelView.build_robot`) are rebuilt on a robot
-switch in place.
+Layout (one panel, docked right, so the 3-D view keeps most of the window):
+the robot dropdown, the status banner (with the visited configuration's
+description and the lost direction in words), the joint sliders, then tabs
+for J(q) (numeric J, measures, symbolic J and downloads), v = J q̇,
+q̇ = J⁺ v, τ = Jᵀ F and the View options. The joint sliders stay visible
+whichever tab is open, so a student moves a joint while watching any view.
+
+Views never hold the session: they get ``dispatch`` and turn user input
+into actions. :meth:`PanelView.draw` puts a state and its snapshot on
+screen.
 """
 
 from __future__ import annotations
-
-import logging
-from typing import TYPE_CHECKING
 
 import viser
 
 from kinematics import Robot
 
+from ..actions import ChooseRobot, SetOption
 from ..snapshot import Snapshot
 from ..state import LabState, Options
-from .common import sync_value
-from .joints import JointsPanel
+from ..viser_adapter import run_javascript
+from .common import Dispatch, bind, sync_value
+from .joints import JointsPanel, configurations_html
 from .matrix import MatrixPanel
-from .rates import ForcePanel, VelocityPanel
+from .motion import ForcePanel, ForwardPanel, InversePanel
 from .readouts import measures_html, status_html
-from .style import BASE_CSS, SLIDER_KEYS_JS
+from .style import BASE_CSS, page_js, status_css
 
-if TYPE_CHECKING:
-    from ..session import ClientSession
+__all__ = ["PanelView", "PANEL_WIDTH"]
 
-__all__ = ["PanelView"]
-
-log = logging.getLogger(__name__)
+PANEL_WIDTH = 400
+"""Width of the docked panel [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
 
 _TOGGLES = (
     (
@@ -52,119 +53,105 @@ _TOGGLES = (
     ("labels", "Joint labels", "Name each joint axis in the 3-D view."),
 )
 
+_LEGEND = (
+    "**Colours.** Each joint has one colour: slider, axis, column arrow and bars. "
+    "Ellipsoid and links: blue regular, amber near singular, red singular. "
+    "Lost direction (dark crimson): an arrow for a lost translation, "
+    "an axis with a ring for a lost rotation. "
+    "Black arrow: v = J q̇; umber: ω; light grey: the desired v; navy: the applied force and moment."
+)
+
 
 class PanelView:
-    """Every GUI handle of one client, grouped by tab."""
+    """Every GUI handle of one tab."""
 
     def __init__(
-        self, client: viser.ClientHandle, session: ClientSession, robot_names: list[str], state: LabState
+        self, client: viser.ClientHandle, dispatch: Dispatch, robot_names: list[str], state: LabState
     ):
         self.gui = gui = client.gui
-        self.session = session
-        gui.configure_theme(control_width="large", show_share_button=False, brand_color=(66, 99, 235))
+        self.dispatch = dispatch
+        gui.configure_theme(control_width="large", show_share_button=False, brand_color=(59, 91, 219))
         gui.set_panel_label("Jacobian Lab")
         gui.main_panel.dock_right()
-        gui.main_panel.set_width(400)
-        gui.add_html(BASE_CSS, order=0)
-        _run_javascript(client, SLIDER_KEYS_JS)
+        gui.main_panel.set_width(PANEL_WIDTH)
+        gui.add_html(BASE_CSS + f"<style>{status_css()}</style>", order=0)
+        run_javascript(client, page_js())
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
-        session.on_update(self.robot, lambda h: session.set_robot(h.value))
+        bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
         self.status = gui.add_html("", order=2)
-        tabs = gui.add_tab_group(order=3)
-        self.tab_joints = tabs.add_tab("Joints", viser.Icon.ADJUSTMENTS)
-        self.tab_velocity = tabs.add_tab("Velocity", viser.Icon.ARROW_UP_RIGHT)
-        self.tab_force = tabs.add_tab("Force", viser.Icon.WEIGHT)
-        self.tab_view = tabs.add_tab("View", viser.Icon.EYE)
+        # The views of J live in a second panel docked under the joints: both stay in sight.
+        self.views = gui.add_panel()
+        self.tab_matrix = self.views.add_tab("J(q)", viser.Icon.MATH)
+        self.tab_forward = self.views.add_tab("v = J q̇", viser.Icon.ARROW_UP_RIGHT)
+        self.tab_inverse = self.views.add_tab("q̇ = J⁺v", viser.Icon.ARROW_BACK_UP)
+        self.tab_force = self.views.add_tab("τ = JᵀF", viser.Icon.WEIGHT)
+        self.tab_view = self.views.add_tab("View", viser.Icon.EYE)
+        self.views.dock_below(gui.main_panel)
         with self.tab_view:
             self.toggles = {}
             for key, label, hint in _TOGGLES:
                 box = gui.add_checkbox(label, initial_value=getattr(state.options, key), hint=hint)
-                session.on_update(box, lambda h, key=key: session.set_option(**{key: bool(h.value)}))
+                bind(box, dispatch, lambda v, key=key: SetOption(key, bool(v)))
                 self.toggles[key] = box
             self.scale = gui.add_slider(
-                "Arrow & ellipsoid scale",
+                "Glyph scale",
                 min=0.1,
                 max=3.0,
                 step=0.05,
                 initial_value=state.options.scale,
                 hint="1: a column of 1 m/rad is drawn 0.5 m long",
             )
-            session.on_update(self.scale, lambda h: session.set_option(scale=float(h.value)))
-            gui.add_markdown(
-                "**Colours.** Each joint has one colour: slider, axis, column arrow and bars. "
-                "Ellipsoid and links: blue regular, amber near singular, red singular. "
-                "Lost direction (σmin): dark red arrow for its v part, purple for its ω part. "
-                "Black arrow: v = J q̇, green: ω; pink: the applied force."
-            )
-        side = gui.add_panel()
-        self.tab_jacobian = side.add_tab("Jacobian J(q)", viser.Icon.MATH)
-        side.dock_left()
-        self.side = side
-        with self.tab_jacobian:
-            self.frame = gui.add_dropdown(
-                "Frame of J",
-                ("base", "tool"),
-                initial_value=state.options.jacobian_frame,
-                order=10,
-                hint="Axes in which the numeric and symbolic J are written",
-            )
-            session.on_update(self.frame, lambda h: session.set_option(jacobian_frame=h.value))
-            self.measures = gui.add_html("", order=30)
+            bind(self.scale, dispatch, lambda v: SetOption("scale", float(v)))
+            gui.add_markdown(_LEGEND)
         self.joints: JointsPanel | None = None
-        self.velocity: VelocityPanel | None = None
+        self.forward: ForwardPanel | None = None
+        self.inverse: InversePanel | None = None
         self.force: ForcePanel | None = None
         self.matrix: MatrixPanel | None = None
+        self.about: viser.GuiHtmlHandle | None = None
 
     def build_robot(self, robot: Robot, rows: tuple[int, ...]) -> None:
-        """(Re)build the robot-dependent parts of every tab."""
+        """(Re)build the robot-dependent parts."""
         self.remove_robot()
-        with self.tab_joints:
-            self.joints = JointsPanel(self.gui, self.session, robot, order=100)
-        with self.tab_velocity:
-            self.velocity = VelocityPanel(self.gui, self.session, robot, rows, order=100)
+        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3)
+        with self.tab_matrix:
+            self.gui.add_html('<div class="jl-views-marker"></div>', order=0)
+            self.matrix = MatrixPanel(self.gui, self.dispatch, robot, order=100)
+        with self.tab_forward:
+            self.forward = ForwardPanel(self.gui, self.dispatch, robot, order=100)
+        with self.tab_inverse:
+            self.inverse = InversePanel(self.gui, self.dispatch, robot, rows, order=100)
         with self.tab_force:
-            self.force = ForcePanel(self.gui, self.session, robot, order=100)
-        with self.tab_jacobian:
-            self.matrix = MatrixPanel(self.gui, self.session, robot, order=20, symbolic_order=40)
-        self.side.set_width(420 + 60 * max(robot.dof - 6, 0))  # room for every column of J
+            self.force = ForcePanel(self.gui, self.dispatch, robot, order=100)
+        with self.tab_view:
+            self.about = self.gui.add_html(configurations_html(robot), order=200)
 
     def remove_robot(self) -> None:
-        for part in (self.joints, self.velocity, self.force, self.matrix):
+        for part in (self.joints, self.forward, self.inverse, self.force, self.matrix, self.about):
             if part is not None:
                 part.remove()
-        self.joints = self.velocity = self.force = self.matrix = None
+        self.joints = self.forward = self.inverse = self.force = self.matrix = self.about = None
 
-    def show_inputs(self, state: LabState) -> None:
-        """Put the state on every input (called with the session's callbacks muted)."""
-        assert self.joints and self.velocity and self.force
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes)."""
+        assert self.joints and self.forward and self.inverse and self.force and self.matrix
         sync_value(self.robot, state.robot_name)
-        self.joints.show(state.q)
-        self.velocity.show_inputs(state.qd, state.v_desired, state.options.damping)
-        self.force.show_inputs(state.wrench)
-        self.show_options(state.options)
+        self.joints.show(state.q, state.configuration)
+        self.forward.show(state)
+        self.inverse.show(state)
+        self.force.show(state)
+        self.matrix.show(state.options.jacobian_frame)
+        self._show_options(state.options)
+        status = status_html(snap, state)
+        self.status.content = status
+        self.matrix.update(
+            snap.J_shown, snap.rows, state.options.jacobian_frame, status, measures_html(snap, state.robot)
+        )
+        self.forward.update(snap, state)
+        self.inverse.update(snap, state)
+        self.force.update(snap, state)
 
-    def show_options(self, options: Options) -> None:
+    def _show_options(self, options: Options) -> None:
         for key, box in self.toggles.items():
             sync_value(box, getattr(options, key))
         sync_value(self.scale, float(options.scale))
-        sync_value(self.frame, options.jacobian_frame)
-
-    def update(self, snap: Snapshot, state: LabState) -> None:
-        """Refresh every readout from ``snap``."""
-        assert self.velocity and self.force and self.matrix
-        status = status_html(snap)
-        self.status.content = status
-        self.measures.content = measures_html(snap, state.robot)
-        self.matrix.update(snap.J_shown, snap.rows, state.options.jacobian_frame, status)
-        self.velocity.update(snap)
-        self.force.update(snap)
-
-
-def _run_javascript(client: viser.ClientHandle, source: str) -> None:
-    """Run ``source`` in this client's page (viser's own message for it; no public API in viser 1.1)."""
-    try:
-        from viser._messages import RunJavascriptMessage
-
-        client._websock_connection.queue_message(RunJavascriptMessage(source=source))
-    except Exception:  # a page without the fix still works; only the arrow keys also turn the camera
-        log.warning("cannot send page script to client %s", client.client_id, exc_info=True)

@@ -1,12 +1,40 @@
-"""Small helpers shared by the panel modules."""
+"""Small helpers shared by the panel modules: binding inputs to actions, showing values."""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import viser
 
-__all__ = ["sync_value"]
+from ..actions import Action
+from ..viser_adapter import is_removed
+
+__all__ = ["sync_value", "bind", "bind_click", "Dispatch"]
+
+Dispatch = Callable[[Action], None]
+
+
+def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[object], Action | None]) -> None:
+    """When the user changes ``handle``, dispatch ``make(value)`` (nothing when it returns ``None``)."""
+
+    def callback(event: viser.GuiEvent) -> None:
+        if not is_removed(event.target):
+            action = make(event.target.value)
+            if action is not None:
+                dispatch(action)
+
+    handle.on_update(callback)
+
+
+def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable[[], Action]) -> None:
+    """When ``button`` is clicked, dispatch ``make()``."""
+
+    def callback(event: viser.GuiEvent) -> None:
+        if not is_removed(event.target):
+            dispatch(make())
+
+    button.on_click(callback)
 
 
 def sync_value(handle: viser.GuiInputHandle, value: float | str | bool) -> None:

@@ -1,15 +1,15 @@
-"""The Jacobian itself: the numeric J at the current q, its symbolic form J(q), downloads, a projector view.
+"""The Jacobian itself: the numeric J at the current q, measures, its symbolic form J(q), downloads,
+and an enlarged projector view.
 
-The numeric table has one coloured column per joint (the joint's slider
-colour) and one row per twist component; rows outside the robot's task are
-greyed. The symbolic form arrives from :class:`~app.symbolic.SymbolicService`
-in the background; until then (or if the symbolic module is missing) a note
-says so.
+The numeric table has one coloured column per joint headed q1…qn (the
+joint's own name on hover) and one row per twist component; rows outside
+the robot's task are greyed. The enlarged view is a modal that stays live
+and closes with Escape, its × or a click outside (see the page script).
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import threading
 
 import numpy as np
 import viser
@@ -17,104 +17,122 @@ import viser
 from kinematics import Robot
 
 from .. import fmt
-from ..palette import joint_hex
+from ..actions import RequestDownload, SetOption
+from ..palette import joint_hex, joint_text_hex
+from ..symbolic import EXPORT_FORMATS
+from .common import Dispatch, bind, sync_value
 from .readouts import ROW_NAMES
-
-if TYPE_CHECKING:
-    from ..session import ClientSession
 
 __all__ = ["matrix_html", "MatrixPanel"]
 
 
 def matrix_html(J: np.ndarray, robot: Robot, rows: tuple[int, ...], frame: str, big: bool = False) -> str:
-    """HTML table of J (6, n): coloured joint columns, [v; ω] rows, non-task rows greyed."""
+    """HTML table of J (6, n): coloured joint columns headed q1…qn, [v; ω] rows, non-task rows greyed."""
     head = "".join(
-        f'<th class="col" style="color:{joint_hex(i)};border-color:{joint_hex(i)}">'
-        f"{fmt.escape(j.name.split()[0])}</th>"
+        f'<th class="col" style="color:{joint_text_hex(i)};border-color:{joint_hex(i)}" '
+        f'title="{fmt.escape(j.name)}">q{i + 1}</th>'
         for i, j in enumerate(robot.joints)
     )
+    values = np.array(fmt.cleaned(np.asarray(J, float).ravel())).reshape(J.shape)
     body = []
     for r in range(6):
         classes = [c for c in ("off" if r not in rows else "", "split" if r == 3 else "") if c]
-        cells = "".join(f"<td>{fmt.fixed(x, 3)}</td>" for x in J[r])
+        cells = "".join(f"<td>{fmt.fixed(x, 3)}</td>" for x in values[r])
         body.append(f'<tr class="{" ".join(classes)}"><th class="row">{ROW_NAMES[r]}</th>{cells}</tr>')
-    where = "base" if frame == "base" else "tool"
-    units = "v rows: m/rad (revolute), m/m (prismatic); ω rows: rad/rad."
     caption = (
-        f'<div class="jl-note">J(q) in {where} axes, rows [v; ω], v = velocity of the tool point. {units}'
+        f'<div class="jl-note">J(q) in {"base" if frame == "base" else "tool"} axes, rows [v; ω], '
+        "v = velocity of the tool point; v rows in m/rad (m/m for a prismatic joint), ω rows in rad/rad."
         + (" Grey rows are outside the task." if len(rows) < 6 else "")
         + "</div>"
     )
     table = f'<table class="jl-matrix"><tr><th></th>{head}</tr>{"".join(body)}</table>'
-    return (
-        f'<div class="jl{" jl-big" if big else ""}"><div class="jl-matrix-wrap">{table}</div>{caption}</div>'
-    )
+    return f'<div class="jl{" jl-big" if big else ""}">{table}{caption}</div>'
 
 
 def _mathml_html(inner: str, note: str = "") -> str:
-    return f'<div class="jl"><div class="jl-mathml">{inner}</div><div class="jl-note">{note}</div></div>'
+    note_html = f'<div class="jl-note">{fmt.escape(note)}</div>'
+    return f'<div class="jl"><div class="jl-mathml">{inner}</div>{note_html}</div>'
 
 
 class MatrixPanel:
-    """Numeric and symbolic J for one robot, with downloads and an enlarged view."""
+    """Numeric and symbolic J for one robot, measures, downloads and an enlarged view."""
 
-    def __init__(
-        self, gui: viser.GuiApi, session: ClientSession, robot: Robot, order: float, symbolic_order: float
-    ) -> None:
+    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
         self.gui = gui
-        self.session = session
         self.robot = robot
         self._modal: viser.GuiModalHandle | None = None
         self._modal_html: viser.GuiHtmlHandle | None = None
-        self._last: tuple = (np.zeros((6, robot.dof)), (), "base", "")
+        self._last = ""
+        self._last_args: tuple = (np.zeros((6, robot.dof)), (), "base", "")
+        self._lock = threading.RLock()
         self._symbolic = ""
         self.root = gui.add_folder(None, order=order)
         with self.root:
+            self.frame = gui.add_dropdown(
+                "Frame of J", ("base", "tool"), initial_value="base", hint="Axes in which J is written"
+            )
+            bind(self.frame, dispatch, lambda v: SetOption("jacobian_frame", str(v)))
             self.numeric = gui.add_html("")
-            enlarge = gui.add_button("Enlarge J for the projector", icon=viser.Icon.ARROWS_MAXIMIZE)
-            session.on_click(enlarge, self.open_large)
-        self.symbolic_root = gui.add_folder("Symbolic J(q)", order=symbolic_order)
-        with self.symbolic_root:
-            self.symbolic = gui.add_html(_mathml_html("", "computing the symbolic form…"))
-            self.download = gui.add_button_group("Download J(q)", ("LaTeX", "Python", "JSON"))
-            session.on_click_value(self.download, session.download)
+            enlarge = gui.add_button("Enlarge J (Esc closes)", icon=viser.Icon.ARROWS_MAXIMIZE)
+            enlarge.on_click(lambda _event: self.open_large())
+            self.measures = gui.add_html("")
+            with gui.add_folder("Symbolic J(q)", expand_by_default=False):
+                self.symbolic = gui.add_html(_mathml_html("", "computing the symbolic form…"))
+                self.download = gui.add_button_group("Download J(q)", tuple(EXPORT_FORMATS))
+                self.download.on_click(lambda event: dispatch(RequestDownload(event.target.value)))
 
-    def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str) -> None:
-        """Show the numeric J, and in the enlarged view (if open) J under the ``status`` banner."""
+    def show(self, frame: str) -> None:
+        sync_value(self.frame, frame)
+
+    def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:
+        """Show the numeric J and measures, and in the enlarged view (if open) J under the status."""
         self.numeric.content = matrix_html(J, self.robot, rows, frame)
-        self._last = (J, rows, frame, status)
-        if self._modal_html is not None:
-            self._modal_html.content = self._big()
+        self.measures.content = measures
+        with self._lock:
+            self._last_args = (J, rows, frame, status)
+            if self._modal_html is not None:
+                self._modal_html.content = self._big()
 
     def _big(self) -> str:
-        J, rows, frame, status = self._last
+        J, rows, frame, status = self._last_args
+        self._last = status + matrix_html(J, self.robot, rows, frame, big=True)
         symbolic = f'<div class="jl jl-big">{self._symbolic}</div>' if self._symbolic else ""
-        return status + matrix_html(J, self.robot, rows, frame, big=True) + symbolic
+        return '<button class="jl-close-x" title="Close (Esc)">×</button>' + self._last + symbolic
 
     def show_symbolic(self, mathml: str | None, note: str) -> None:
         """Show the symbolic J(q) (``None``: only the note), here and in the enlarged view."""
         self.symbolic.content = _mathml_html(mathml or "", note)
-        self._symbolic = _mathml_html(mathml, note) if mathml else ""
-        if self._modal_html is not None:
-            self._modal_html.content = self._big()
+        with self._lock:
+            self._symbolic = _mathml_html(mathml, note) if mathml else ""
+            if self._modal_html is not None:
+                self._modal_html.content = self._big()
+
+    @property
+    def enlarged(self) -> bool:
+        """Whether the enlarged view is open."""
+        return self._modal is not None
 
     def open_large(self) -> None:
-        """Open the projector view of the numeric J (a wide modal, updated live)."""
-        if self._modal is not None:
-            return
+        """Open the projector view of J (a wide modal, updated live)."""
+        with self._lock:
+            if self._modal is None:
+                self._open()
+
+    def _open(self) -> None:
         with self.gui.add_modal(f"Jacobian J(q) of the {self.robot.title or self.robot.name}") as modal:
             self._modal = modal
             self._modal_html = self.gui.add_html(self._big())
             close = self.gui.add_button("Close", icon=viser.Icon.X)
-            self.session.on_click(close, self.close_large)
+            close.on_click(lambda _event: self.close_large())
 
     def close_large(self) -> None:
-        if self._modal is not None:
-            self._modal.close()
-        self._modal = None
-        self._modal_html = None
+        """Close the enlarged view (no-op when closed)."""
+        with self._lock:
+            if self._modal is not None:
+                self._modal.close()
+            self._modal = None
+            self._modal_html = None
 
     def remove(self) -> None:
         self.close_large()
         self.root.remove()
-        self.symbolic_root.remove()

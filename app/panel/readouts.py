@@ -1,7 +1,8 @@
 """Live readouts as HTML: the status banner and the labelled measures of J.
 
-Pure functions of a :class:`~app.snapshot.Snapshot`: easy to test, and the
-panel only assigns the returned strings (viser skips unchanged ones).
+Pure functions of a :class:`~app.snapshot.Snapshot` (and the state): easy
+to test, and the panel only assigns the returned strings (viser skips
+unchanged ones).
 """
 
 from __future__ import annotations
@@ -11,8 +12,9 @@ from kinematics import Robot
 from .. import fmt
 from ..palette import status_hex
 from ..snapshot import Snapshot
+from ..state import LabState
 
-__all__ = ["status_html", "measures_html", "ROW_NAMES", "row_label", "task_name"]
+__all__ = ["status_html", "measures_html", "ROW_NAMES", "row_label", "task_name", "lost_text"]
 
 ROW_NAMES = (
     "v<sub>x</sub>",
@@ -34,30 +36,64 @@ def task_name(rows: tuple[int, ...]) -> str:
     if rows == (0, 1, 2, 3, 4, 5):
         return "all six rows"
     if rows == (0, 1, 2):
-        return "tool-point velocity rows"
+        return "tool-point velocity"
+    if rows == (3, 4, 5):
+        return "tool rotation"
     if rows == (0, 1, 5):
         return "planar rows"
     return "rows " + row_label(rows)
 
 
-def status_html(snap: Snapshot) -> str:
-    """The coloured banner: "regular", "near singular: wrist", "singular: wrist", with κ."""
-    r = snap.report
-    color = status_hex(r.status)
-    icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
-    return (
-        f'<div class="jl"><div class="jl-status" style="background:{color}" data-status="{r.status}">'
-        f"<span>{icon}</span><span>{fmt.escape(r.text())}</span>"
-        f'<small style="margin-left:auto">κ = {fmt.number(r.condition)}</small></div></div>'
+def lost_text(snap: Snapshot, planar: bool) -> str:
+    """What the lost direction is, in words (empty when regular)."""
+    if snap.report.status == "regular":
+        return ""
+    lost = snap.lost
+    parts = []
+    if lost.translation_share >= 0.1:
+        parts.append(f"translation {fmt.number(100 * lost.translation_share, 2)} %")
+    if lost.rotation_share >= 0.1 and not planar:
+        parts.append(f"rotation {fmt.number(100 * lost.rotation_share, 2)} %")
+    weigh = (
+        f" (rad/s weighed as the tool moving L = {fmt.quantity(lost.length, 'm')}, the arm's reach)"
+        if any(r < 3 for r in snap.rows) and any(r >= 3 for r in snap.rows)
+        else ""
     )
+    return f"Lost direction: {' + '.join(parts) or 'mixed'}{weigh}."
+
+
+def status_html(snap: Snapshot, state: LabState) -> str:
+    """The coloured banner ("regular", "near singular: wrist", "singular: wrist") with κ, and one line
+    under it: the visited configuration's description, or why a motion stopped."""
+    r = snap.report
+    icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
+    banner = (
+        f'<div class="jl-status" style="background:{status_hex(r.status)}" data-status="{r.status}">'
+        f"<span>{icon}</span><span>{fmt.escape(r.text())}</span>"
+        f'<small style="margin-left:auto">κ = {fmt.number(r.condition)}</small></div>'
+    )
+    robot = state.robot
+    sub = ""
+    if state.stopped:
+        sub = fmt.escape(state.stopped)
+    elif state.configuration:
+        conf = next((c for c in robot.configurations if c.name == state.configuration), None)
+        text = conf.description if conf is not None and conf.description else ""
+        sub = f"<b>{fmt.escape(state.configuration.replace('_', ' '))}</b>" + (
+            f": {fmt.escape(text)}" if text else ""
+        )
+    lost = lost_text(snap, robot.planar)
+    lines = "".join(
+        f'<div class="jl-sub" title="{fmt.escape(_plain(x))}">{x}</div>' for x in (sub, lost) if x
+    )
+    return f'<div class="jl">{banner}{lines}</div>'
 
 
 def measures_html(snap: Snapshot, robot: Robot) -> str:
     """The table of measures, each labelled with what it is (task rows named)."""
     n_rows, n = len(snap.rows), robot.dof
     rows = [
-        ("Status", fmt.escape(snap.report.text())),
-        (f"Condition number κ (task: {task_name(snap.rows)})", fmt.number(snap.report.condition)),
+        (f"κ, task ({task_name(snap.rows)})", fmt.number(snap.report.condition)),
         (
             "κ translational (v rows)"
             if not robot.planar
@@ -68,20 +104,25 @@ def measures_html(snap: Snapshot, robot: Robot) -> str:
     if snap.cond_rotational is not None:
         rows.append(("κ rotational (ω rows)", fmt.number(snap.cond_rotational)))
     rows += [
-        ("Manipulability w = √det(J Jᵀ)", fmt.number(snap.manipulability)),
-        ("Singular values σ", ", ".join(fmt.number(s) for s in snap.sigma)),
-        (
-            "det J" if snap.det is not None else "det J",
-            fmt.number(snap.det) if snap.det is not None else f"— (task J is {n_rows}×{n}, not square)",
-        ),
-        ("Rank", f"{snap.rank} of {min(n_rows, n)}" + (f" (task has {n_rows} rows)" if n_rows > n else "")),
+        ("w = √det(J Jᵀ)", fmt.number(snap.manipulability)),
+        ("σ", ", ".join(fmt.number(s) for s in fmt.cleaned(snap.sigma))),
+        ("det J", fmt.number(snap.det) if snap.det is not None else f"— ({n_rows}×{n}, not square)"),
+        ("rank", f"{snap.rank} of {min(n_rows, n)}"),
     ]
     body = "".join(
         f'<tr><th>{label}</th><td class="{"v wrap" if ", " in value else "v"}">{value}</td></tr>'
         for label, value in rows
     )
     note = (
-        f'<div class="jl-note">Task rows: {row_label(snap.rows)} of the base-frame J. '
+        f'<div class="jl-note">Task rows {row_label(snap.rows)} of the base-frame J. '
         "κ = σ<sub>max</sub>/σ<sub>min</sub> (∞ at a singularity); w = Π σ<sub>i</sub>.</div>"
     )
     return f'<div class="jl"><table class="jl-table">{body}</table>{note}</div>'
+
+
+def _plain(html_text: str) -> str:
+    """The visible text of a small HTML fragment (for a hover title)."""
+    import html
+    import re
+
+    return html.unescape(re.sub(r"<[^>]*>", "", html_text))

@@ -1,82 +1,168 @@
-"""CSS for the panel: projector-sized readouts, the matrix, bars, and joint-coloured sliders.
+"""CSS and the page script: projector-sized readouts, the matrix, bars, joint-coloured sliders, keys.
 
 viser renders ``add_html`` content as raw HTML, so a ``<style>`` element
-added once per client styles the whole page. Our own HTML uses ``jl-``
+added once per tab styles the whole page. Our own HTML uses ``jl-``
 classes; sliders are coloured through the ``id`` viser gives their root
 element (the handle's uuid) and their label's ``for`` attribute.
 """
 
 from __future__ import annotations
 
-__all__ = ["BASE_CSS", "slider_css", "SLIDER_KEYS_JS"]
+from ..palette import STATUS_TEXT, joint_hex, joint_text_hex
+
+__all__ = ["BASE_CSS", "slider_css", "PAGE_JS", "PAGE_TITLE"]
+
+PAGE_TITLE = "Jacobian Lab"
 
 BASE_CSS = """
 <style>
-.jl { font-size: 15px; line-height: 1.35; color: #1f2328; }
-.jl-status { display: flex; align-items: center; gap: 0.6em; padding: 0.35em 0.6em; border-radius: 8px;
-  color: white; font-weight: 700; font-size: 19px; letter-spacing: 0.2px; }
-.jl-status small { font-weight: 500; font-size: 14px; opacity: 0.95; }
+.jl { font-size: 14px; line-height: 1.35; color: #1f2328; }
+.jl-status { display: flex; align-items: center; gap: 0.5em; padding: 0.3em 0.6em; border-radius: 8px;
+  font-weight: 700; font-size: 18px; letter-spacing: 0.2px; margin-bottom: 10px; }
+.jl-status small { font-weight: 600; font-size: 14px; }
+.jl-sub { color: #3d434b; font-size: 13px; margin: -4px 0 6px 0; white-space: nowrap; overflow: hidden;
+  text-overflow: ellipsis; }
 .jl-table { border-collapse: collapse; width: 100%; }
-.jl-table td, .jl-table th { padding: 2px 4px; vertical-align: baseline; }
-.jl-table th { text-align: left; font-weight: 500; color: #555; }
-.jl-table td.v { text-align: right; font-variant-numeric: tabular-nums; font-weight: 650;
-  white-space: nowrap; }
+.jl-table td, .jl-table th { padding: 1px 4px; vertical-align: baseline; }
+.jl-table th { text-align: left; font-weight: 500; color: #3d434b; }
+.jl-table td.v { text-align: right; font-variant-numeric: tabular-nums; font-weight: 650; white-space: nowrap; }
 .jl-table td.v.wrap { white-space: normal; }
-.jl-note { color: #666; font-size: 13px; }
-.jl-matrix { border-collapse: collapse; margin: 4px auto; font-variant-numeric: tabular-nums; font-size: 14px;
+.jl-note { color: #4f5660; font-size: 12.5px; }
+.jl-matrix { border-collapse: collapse; margin: 2px auto; font-variant-numeric: tabular-nums; font-size: 12.5px;
   font-family: "DejaVu Sans Mono", "Menlo", "Consolas", monospace; }
-.jl-matrix td, .jl-matrix th { padding: 2px 5px; text-align: right; white-space: nowrap; }
+.jl-matrix td, .jl-matrix th { padding: 1px 3px; text-align: right; white-space: nowrap; }
 .jl-matrix th.col { text-align: center; font-family: inherit; font-weight: 700; border-bottom: 3px solid; }
-.jl-matrix th.row { text-align: left; font-weight: 600; color: #333; padding-right: 10px; }
-.jl-matrix tr.off td, .jl-matrix tr.off th.row { color: #aaa; }
-.jl-matrix tr.split td, .jl-matrix tr.split th { border-top: 1px solid #ccc; }
-.jl-matrix-wrap { overflow-x: auto; padding-bottom: 4px; }
+.jl-matrix th.row { text-align: left; font-weight: 600; color: #1f2328; padding-right: 6px; }
+.jl-matrix tr.off td, .jl-matrix tr.off th.row { color: #767c85; }
+.jl-matrix tr.split td, .jl-matrix tr.split th { border-top: 1px solid #bbb; }
 .jl-big .jl-matrix { font-size: 26px; }
 .jl-big .jl-matrix td, .jl-big .jl-matrix th { padding: 4px 14px; }
-.jl-mathml { overflow-x: auto; padding: 4px 0; font-size: 17px; }
-.jl-big .jl-mathml { font-size: 24px; }
+.jl-mathml { padding: 4px 0; font-size: 16px; overflow-wrap: anywhere; }
+.jl-big .jl-mathml { font-size: 22px; }
 .jl-bars { width: 100%; border-collapse: collapse; }
-.jl-bars td { padding: 2px 3px; font-variant-numeric: tabular-nums; white-space: nowrap; }
-.jl-bars td.name { font-weight: 700; width: 3.2em; }
+.jl-bars td { padding: 1px 3px; font-variant-numeric: tabular-nums; white-space: nowrap; font-size: 13.5px; }
+.jl-bars td.name { font-weight: 700; width: 2.4em; }
 .jl-bars td.track { width: 100%; position: relative; }
 .jl-bars td.val { text-align: right; width: 6.5em; font-weight: 600; }
-.jl-bar-bg { position: relative; height: 14px; background: #eef0f3; border-radius: 3px; }
-.jl-bar-mid { position: absolute; left: 50%; top: -2px; bottom: -2px; width: 1px; background: #999; }
-.jl-bar { position: absolute; top: 0; height: 14px; border-radius: 3px; }
+.jl-bar-bg { position: relative; height: 12px; background: #eef0f3; border-radius: 3px; }
+.jl-bar-mid { position: absolute; left: 50%; top: -2px; bottom: -2px; width: 1px; background: #888; }
+.jl-bar { position: absolute; top: 0; height: 12px; border-radius: 3px; }
 .jl-bar.over {
-  background-image: repeating-linear-gradient(45deg, transparent 0 5px, rgba(255,255,255,.55) 5px 9px); }
-.jl-twist { font-variant-numeric: tabular-nums; }
+  background-image: repeating-linear-gradient(45deg, transparent 0 5px, rgba(255,255,255,.6) 5px 9px); }
+.jl-vec { border-collapse: collapse; width: 100%; font-variant-numeric: tabular-nums; font-size: 13.5px; }
+.jl-vec th { text-align: right; font-weight: 600; color: #3d434b; padding: 1px 4px; }
+.jl-vec th.rowname { text-align: left; }
+.jl-vec td { text-align: right; padding: 1px 4px; white-space: nowrap; }
+.jl-vec tr.lost td { color: #96001a; font-weight: 700; }
+.jl-warn { color: #96001a; font-weight: 600; font-size: 13px; }
+.jl-conf { margin: 2px 0 0 0; padding-left: 1.1em; font-size: 12.5px; color: #3d434b; }
+.jl-conf li { margin: 1px 0; }
+.jl-conf b { color: #1f2328; }
+.jl-close-x { position: absolute; top: 6px; right: 10px; border: 0; background: transparent; font-size: 30px;
+  line-height: 1; cursor: pointer; color: #3d434b; }
+/* Slider labels and numbers readable from the back row. */
+.mantine-Slider-root { min-height: 1.9em; }
+label { font-size: 13px !important; }
 /* The projector view of J: a modal as wide as the screen allows. */
-.mantine-Modal-inner:has(.jl-big) .mantine-Modal-content { flex: 0 0 auto; width: auto; max-width: 96vw; }
+.mantine-Modal-inner:has(.jl-big) .mantine-Modal-content { flex: 0 0 auto; width: auto; max-width: 96vw;
+  position: relative; }
 .mantine-Modal-inner:has(.jl-big) .mantine-Modal-title { font-size: 22px; font-weight: 700; }
 </style>
 """
 
 
-def slider_css(uuid: str, color: str) -> str:
-    """CSS rules colouring the slider whose root has id ``uuid`` (bar, thumb and label) in ``color``."""
-    return (
-        f'[id="{uuid}"] .mantine-Slider-bar {{ background: {color} !important; }}\n'
-        f'[id="{uuid}"] .mantine-Slider-thumb {{ background: {color} !important; }}\n'
-        f'label[for="{uuid}"] {{ color: {color}; font-weight: 700; }}\n'
+def status_css() -> str:
+    """Banner text colours per status (contrast ≥ 4.5:1 on each status colour)."""
+    return "".join(
+        f'.jl-status[data-status="{status}"] {{ color: {colour}; }}\n'
+        for status, colour in STATUS_TEXT.items()
     )
 
 
-SLIDER_KEYS_JS = """
-if (!window.__jacobianLabSliderKeys) {
-  window.__jacobianLabSliderKeys = true;
+def slider_css(uuid: str, joint: int) -> str:
+    """CSS colouring the slider whose root has id ``uuid``: track and thumb in the joint's colour,
+    its label in a darker shade of it (contrast ≥ 4.5:1 on white)."""
+    color, text = joint_hex(joint), joint_text_hex(joint)
+    return (
+        f'[id="{uuid}"] .mantine-Slider-bar {{ background: {color} !important; }}\n'
+        f'[id="{uuid}"] .mantine-Slider-thumb {{ background: {color} !important; }}\n'
+        f'label[for="{uuid}"] {{ color: {text}; font-weight: 700; }}\n'
+    )
+
+
+PAGE_JS = """
+(() => {
+  const TITLE = %(title)s;
+  document.title = TITLE;
+  if (!window.__jacobianLabTitle) {
+    window.__jacobianLabTitle = new MutationObserver(() => {
+      if (document.title !== TITLE) document.title = TITLE;
+    });
+    const head = document.querySelector("title") || document.head;
+    window.__jacobianLabTitle.observe(head, { childList: true, subtree: true, characterData: true });
+  }
+  // The joints (top) get more of the right-hand column than the views of J (bottom), once.
+  let tries = 0;
+  const split = setInterval(() => {
+    tries += 1;
+    const marker = document.querySelector(".jl-views-marker");
+    let cell = marker;
+    while (cell && !(cell.style && cell.style.flex && cell.style.flex.startsWith("0.5 "))) cell = cell.parentElement;
+    if (cell && cell.parentElement) {
+      const cells = [...cell.parentElement.children].filter((c) => c.style && c.style.flex && c.style.flex.startsWith("0.5 "));
+      if (cells.length === 2) {
+        cells[0].style.flex = cells[0] === cell ? "0.4 1 0px" : "0.6 1 0px";
+        cells[1].style.flex = cells[1] === cell ? "0.4 1 0px" : "0.6 1 0px";
+      }
+      clearInterval(split);
+    } else if (tries > 40) clearInterval(split);
+  }, 250);
+  if (window.__jacobianLabKeys) return;
+  window.__jacobianLabKeys = true;
+  const modalClose = () => {
+    for (const content of document.querySelectorAll(".mantine-Modal-content")) {
+      if (!content.querySelector(".jl-big")) continue;
+      for (const button of content.querySelectorAll("button")) {
+        if (button.textContent.trim() === "Close") { button.click(); return true; }
+      }
+    }
+    return false;
+  };
+  // Arrow keys on a focused slider: move it (10 fine steps; with Shift one fine step), never the camera.
   document.body.addEventListener("keydown", (event) => {
     const target = event.target;
-    if (event.key.startsWith("Arrow") && target instanceof Element && target.closest('[role="slider"]')) {
+    if (event.key === "Escape" && modalClose()) { event.stopPropagation(); return; }
+    if (!event.key.startsWith("Arrow") || !(target instanceof Element)) return;
+    const thumb = target.closest('[role="slider"]');
+    if (!thumb) return;
+    if (!event.isTrusted || event.shiftKey) return;  // one fine step: the slider's own handler
+    event.preventDefault();
+    event.stopPropagation();
+    for (let i = 0; i < 10; i++) {
+      thumb.dispatchEvent(new KeyboardEvent("keydown", { key: event.key, bubbles: true, cancelable: true }));
+    }
+  }, true);
+  document.body.addEventListener("keydown", (event) => {
+    if (event.key.startsWith("Arrow") && event.target instanceof Element && event.target.closest('[role="slider"]')) {
       event.stopPropagation();
     }
   });
-}
+  // The enlarged J closes with its x, and with a click outside it.
+  document.addEventListener("click", (event) => {
+    const target = event.target;
+    if (!(target instanceof Element)) return;
+    if (target.closest(".jl-close-x")) { modalClose(); return; }
+    if (target.classList.contains("mantine-Modal-inner") || target.classList.contains("mantine-Modal-overlay")) {
+      const open = document.querySelector(".mantine-Modal-content .jl-big");
+      if (open) modalClose();
+    }
+  }, true);
+})();
 """
-"""Keeps arrow keys on a focused slider from also orbiting the camera.
 
-viser's keyboard camera controls listen on ``document`` and ignore only
-input, textarea and select elements, not Mantine's slider thumbs. This
-listener on ``body`` (reached after the slider's own handler, before
-``document``) stops the event there.
-"""
+
+def page_js() -> str:
+    """The page script with the title filled in."""
+    import json
+
+    return PAGE_JS % {"title": json.dumps(PAGE_TITLE)}

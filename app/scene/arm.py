@@ -24,7 +24,7 @@ from kinematics import Robot, joint_frames, link_frames
 from ..palette import LINK_RGB, STATUS_RGB, joint_color
 from ..snapshot import Snapshot
 from ..state import Options
-from .geometry import finite, segment_instances, unit_box, unit_cylinder, wxyz
+from .geometry import finite, segment_instances, set_if_changed, unit_box, unit_cylinder, wxyz
 
 __all__ = ["ArmGeometry", "ArmView"]
 
@@ -93,12 +93,13 @@ class ArmGeometry:
 class ArmView:
     """Scene nodes of the arm for one client; :meth:`update` moves them."""
 
-    def __init__(self, scene: viser.SceneApi, target: viser.ClientHandle, robot: Robot, root: str) -> None:
+    def __init__(self, client: viser.ClientHandle, robot: Robot, root: str) -> None:
+        scene = client.scene
         self.robot = robot
         self.geometry = g = ArmGeometry.of(robot)
         s = g.size
         self._status = ""
-        self._meshes = _load_urdf_meshes(target, robot, f"{root}/urdf")
+        self._meshes = _load_urdf_meshes(client, robot, f"{root}/urdf")
         L0 = link_frames(robot, robot.home)
         floor = min(0.0, float(L0[:, 2, 3].min())) - 0.02 * s
         self._nodes: list = [self._meshes] if self._meshes is not None else []
@@ -210,12 +211,12 @@ class ArmView:
             self.boxes.batched_wxyzs = finite(wxyz(W[p, :3, :3]))
             self.boxes.batched_scales = finite(np.column_stack([width, width, 2 * half[p]]))
         self._status = snap.report.status
-        self.frames.visible = options.frames
+        set_if_changed(self.frames, "visible", options.frames)
         if options.frames:
             self.frames.batched_positions = finite(L[:, :3, 3])
             self.frames.batched_wxyzs = finite(wxyz(L[:, :3, :3]))
         for j, label in enumerate(self.labels):
-            label.visible = options.labels
+            set_if_changed(label, "visible", options.labels)
             if options.labels:
                 k = g.first_axis[j]
                 label.position = tuple(finite(o[k] + z[k] * (half[k] + 0.02 * g.size)))

@@ -14,7 +14,7 @@ import numpy as np
 import trimesh
 import viser.transforms as vtf
 
-__all__ = ["finite", "wxyz", "segment_instances", "unit_cylinder", "unit_box", "TINY"]
+__all__ = ["set_if_changed", "finite", "wxyz", "segment_instances", "unit_cylinder", "unit_box", "TINY"]
 
 TINY = 1e-4
 """Smallest drawn extent [m]: degenerate shapes are drawn this thin instead of vanishing."""
@@ -23,7 +23,10 @@ _LIMIT = 1e3
 
 def finite(a: object, limit: float = _LIMIT) -> np.ndarray:
     """``a`` as float32 with NaN → 0 and values clipped to ±``limit``: safe to send to the scene."""
-    arr = np.nan_to_num(np.asarray(a, dtype=np.float64), nan=0.0, posinf=limit, neginf=-limit)
+    arr = np.asarray(a, dtype=np.float64)
+    if np.isfinite(arr).all() and (arr.size == 0 or float(np.abs(arr).max()) <= limit):
+        return arr.astype(np.float32)
+    arr = np.nan_to_num(arr, nan=0.0, posinf=limit, neginf=-limit)
     return np.clip(arr, -limit, limit).astype(np.float32)
 
 
@@ -70,3 +73,18 @@ def unit_box() -> tuple[np.ndarray, np.ndarray]:
     """Vertices and faces of a unit cube centred at the origin."""
     mesh = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
     return np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32)
+
+
+_UNSET = object()
+
+
+def set_if_changed(handle: object, name: str, value: object) -> None:
+    """Assign a scalar prop (``visible``, a length, a colour) only when it differs from what we last set.
+
+    viser compares every assignment with the stored value, at a cost; a plain dict lookup is cheaper.
+    """
+    cache = handle.__dict__.setdefault("_jl_last", {})
+    if cache.get(name, _UNSET) == value:
+        return
+    setattr(handle, name, value)
+    cache[name] = value

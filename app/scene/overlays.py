@@ -1,18 +1,20 @@
-"""What the Jacobian says, drawn at the tool: ellipsoids, column arrows, the lost direction, v = J q̇, F.
+"""The Jacobian's glyphs at the tool: ellipsoids, column arrows, lost direction, twist and force.
 
-Scales (all multiplied by the client's scale option):
+Scales, so sizes mean something:
 
-* linear quantities (J's linear columns, the velocity ellipsoid, the twist
-  v = J q̇) are drawn at ``LINEAR_SECONDS`` × their value: a column of
-  0.8 m/rad becomes a 0.4 m arrow, and since the columns are the images of
-  the unit joint rates they end inside the ellipsoid, which is the image of
-  the unit ball ‖q̇‖ ≤ 1;
+* linear quantities are drawn :data:`LINEAR_SECONDS` metres per m/s (per
+  m/rad for a column), so the column arrows (images of unit joint rates)
+  end inside the ellipsoid, which is the image of the unit ball ‖q̇‖ ≤ 1;
 * unitless directions (angular columns, rotational ellipsoid, lost direction)
   scale with the robot's size;
-* the force ellipsoid (semi-axes 1/σ) is drawn at a scale that makes it equal
-  to the velocity ellipsoid for σ = 0.4 × robot size, and capped at
-  ``ELLIPSOID_CAP`` robot sizes, so at a singularity it becomes a long cigar
-  instead of infinity.
+* the force ellipsoid (semi-axes 1/σ) coincides with the velocity ellipsoid
+  where σ = FORCE_SIGMA_REF × size, and is capped at ``ELLIPSOID_CAP`` sizes,
+  so at a singularity it becomes a long cigar instead of infinity.
+
+Cheap to redraw: all column arrows are one batched node, all angular
+columns another, and the twist, desired twist, force and moment arrows a
+third; an ellipsoid is a unit sphere whose scale and orientation change;
+hidden glyphs cost nothing.
 """
 
 from __future__ import annotations
@@ -21,54 +23,66 @@ import numpy as np
 import viser
 
 from ..palette import (
+    DESIRED_RGB,
     FORCE_ELLIPSOID_RGB,
     FORCE_RGB,
-    LOST_ANGULAR_RGB,
     LOST_RGB,
-    ROTATION_RGB,
+    ROTATION_ELLIPSOID_RGB,
     STATUS_RGB,
+    TWIST_ANGULAR_RGB,
     TWIST_RGB,
     joint_color,
 )
 from ..snapshot import Snapshot
-from ..state import Options
+from ..state import LabState
 from .arm import ArmGeometry
-from .geometry import TINY, finite, wxyz
+from .geometry import TINY, finite, set_if_changed, wxyz
 
-__all__ = ["Overlays", "LINEAR_SECONDS", "ELLIPSOID_CAP"]
+__all__ = ["Overlays", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE"]
 
 LINEAR_SECONDS = 0.5
 """Drawn length [m] per [m/s] of tool-point velocity (and per [m/rad] of a column)."""
 ELLIPSOID_CAP = 1.2
 """Largest drawn ellipsoid semi-axis, in robot sizes (× scale): where a force ellipsoid goes to infinity."""
 FORCE_SIGMA_REF = 0.4
-"""The force ellipsoid (radii 1/σ) is drawn as LINEAR_SECONDS · σ_ref² / σ with σ_ref = this × robot size:
-it coincides with the velocity ellipsoid where σ = σ_ref, and is long where that one is short."""
+SHOWN_SHARE = 0.1
+"""A lost translation (rotation) is drawn when it carries at least this share of the lost direction."""
 _MIN_LENGTH = 1e-3
 
 
-class _Arrow:
-    """One arrow node whose head stays in proportion to its length; hidden when too short to see."""
+class _Arrows:
+    """One batched arrows node: only the arrows long enough to see are sent."""
 
-    def __init__(self, scene: viser.SceneApi, name: str, rgb: tuple[int, int, int], radius: float) -> None:
+    def __init__(self, scene: viser.SceneApi, name: str, radius: float) -> None:
         self.radius = radius
         self.node = scene.add_arrows(
             name,
             points=np.zeros((1, 2, 3), np.float32),
-            colors=np.array([rgb], np.uint8),
+            colors=np.zeros((1, 3), np.uint8),
             shaft_radius=radius,
             head_radius=2.4 * radius,
             head_length=6 * radius,
             visible=False,
         )
+        self._mask: tuple = ()
+        self.tips: np.ndarray = np.zeros((0, 3))
 
-    def set(self, start: np.ndarray, vector: np.ndarray, show: bool = True) -> None:
-        length = float(np.linalg.norm(vector)) if np.isfinite(vector).all() else 0.0
-        visible = bool(show and length > max(_MIN_LENGTH, self.radius))
-        self.node.visible = visible
-        if visible:
-            self.node.head_length = float(min(6 * self.radius, 0.4 * length))
-            self.node.points = finite(np.stack([start, start + vector])[None])
+    def set(self, starts: np.ndarray, vectors: np.ndarray, colors: np.ndarray, show: bool = True) -> None:
+        lengths = np.linalg.norm(vectors, axis=1) if len(vectors) else np.zeros(0)
+        keep = np.isfinite(lengths) & (lengths > max(_MIN_LENGTH, self.radius)) if show else lengths < 0
+        self.tips = (starts + vectors)[keep]
+        if not keep.any():
+            set_if_changed(self.node, "visible", False)
+            return
+        points = finite(np.stack([starts[keep], starts[keep] + vectors[keep]], axis=1))
+        shortest = float(lengths[keep].min())
+        set_if_changed(self.node, "head_length", round(float(min(6 * self.radius, 0.4 * shortest)), 4))
+        mask = tuple(np.flatnonzero(keep))
+        if mask != self._mask:
+            self.node.colors = np.asarray(colors[keep], np.uint8)
+            self._mask = mask
+        self.node.points = points
+        set_if_changed(self.node, "visible", True)
 
 
 class _Ellipsoid:
@@ -85,18 +99,32 @@ class _Ellipsoid:
             cast_shadow=False,
             receive_shadow=False,
         )
+        self.extent: np.ndarray = np.zeros((0, 3))
 
     def set(self, center: np.ndarray, axes: np.ndarray, radii: np.ndarray, show: bool, cap: float) -> None:
-        self.node.visible = show
+        set_if_changed(self.node, "visible", bool(show))
+        self.extent = np.zeros((0, 3))
         if show:
             r = np.clip(np.nan_to_num(radii, nan=0.0, posinf=cap), TINY, cap)
             self.node.scale = tuple(float(x) for x in r)
-            self.node.wxyz = tuple(finite(wxyz(axes)))
-            self.node.position = tuple(finite(center))
+            self.node.wxyz = tuple(float(x) for x in finite(wxyz(axes)))
+            self.node.position = tuple(float(x) for x in finite(center))
+            self.extent = center + np.concatenate([axes * r, -(axes * r)], axis=1).T
+
+
+def _ring(center: np.ndarray, axis: np.ndarray, radius: float, segments: int = 28) -> np.ndarray:
+    """Line segments (segments, 2, 3) of a circle about ``axis`` through ``center``."""
+    helper = np.array([1.0, 0, 0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1, 0])
+    e1 = np.cross(axis, helper)
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    t = np.linspace(0.0, 2 * np.pi * 0.85, segments + 1)  # an open ring: it reads as a turn
+    pts = center + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
+    return np.stack([pts[:-1], pts[1:]], axis=1)
 
 
 class Overlays:
-    """The Jacobian's glyphs around the tool for one client."""
+    """The Jacobian's glyphs around the tool for one tab."""
 
     def __init__(
         self, scene: viser.SceneApi, geometry: ArmGeometry, dof: int, planar: bool, root: str
@@ -106,84 +134,114 @@ class Overlays:
         s = geometry.size
         self._status = ""
         self.velocity = _Ellipsoid(scene, f"{root}/velocity_ellipsoid", STATUS_RGB["regular"], 0.28)
-        self.rotational = _Ellipsoid(scene, f"{root}/rotational_ellipsoid", ROTATION_RGB, 0.22)
+        self.rotational = _Ellipsoid(scene, f"{root}/rotational_ellipsoid", ROTATION_ELLIPSOID_RGB, 0.22)
         self.force = _Ellipsoid(scene, f"{root}/force_ellipsoid", FORCE_ELLIPSOID_RGB, 0.2)
         r = 0.009 * s
-        self.columns = [_Arrow(scene, f"{root}/column_{i}", joint_color(i), r) for i in range(dof)]
-        self.angular = [_Arrow(scene, f"{root}/angular_{i}", joint_color(i), 0.75 * r) for i in range(dof)]
-        self.lost_v = _Arrow(scene, f"{root}/lost_linear", LOST_RGB, 1.6 * r)
-        self.lost_w = _Arrow(scene, f"{root}/lost_angular", LOST_ANGULAR_RGB, 1.2 * r)
-        self.lost_labels = [
-            scene.add_label(f"{root}/lost_{part}_label", f"lost {part}", visible=False, anchor="bottom-left")
-            for part in ("v", "ω")
-        ]
-        self.twist_v = _Arrow(scene, f"{root}/twist_linear", TWIST_RGB, 1.3 * r)
-        self.twist_w = _Arrow(scene, f"{root}/twist_angular", ROTATION_RGB, 1.0 * r)
-        self.force_arrow = _Arrow(scene, f"{root}/force", FORCE_RGB, 1.3 * r)
-        self.moment_arrow = _Arrow(scene, f"{root}/moment", FORCE_RGB, 0.9 * r)
-        self._nodes = [e.node for e in (self.velocity, self.rotational, self.force)]
-        self._nodes += [
-            a.node
-            for a in (
-                *self.columns,
-                *self.angular,
-                self.lost_v,
-                self.lost_w,
-                self.twist_v,
-                self.twist_w,
-                self.force_arrow,
-                self.moment_arrow,
-            )
-        ]
-        self._nodes += self.lost_labels
+        self._joint_colors = np.array([joint_color(i) for i in range(dof)], np.uint8)
+        self.columns = _Arrows(scene, f"{root}/columns", r)
+        self.angular = _Arrows(scene, f"{root}/angular_columns", 0.75 * r)
+        self.motion = _Arrows(scene, f"{root}/twist_and_force", 1.2 * r)
+        self.lost_v = _Arrows(scene, f"{root}/lost_translation", 1.6 * r)
+        self.lost_w = scene.add_line_segments(
+            f"{root}/lost_rotation",
+            points=np.zeros((1, 2, 3), np.float32),
+            colors=LOST_RGB,
+            line_width=4.0,
+            visible=False,
+        )
+        self.lost_labels = {
+            part: scene.add_label(f"{root}/lost_{part}_label", text, visible=False, anchor="bottom-left")
+            for part, text in (("v", "lost translation"), ("w", "lost rotation axis"))
+        }
+        self._nodes: list = [e.node for e in (self.velocity, self.rotational, self.force)]
+        self._nodes += [a.node for a in (self.columns, self.angular, self.motion, self.lost_v)]
+        self._nodes += [self.lost_w, *self.lost_labels.values()]
+        self.extent: np.ndarray = np.zeros((0, 3))
 
-    def update(self, snap: Snapshot, options: Options, wrench: np.ndarray) -> None:
+    def update(self, snap: Snapshot, state: LabState) -> None:
         """Redraw every glyph for ``snap``."""
+        options, wrench = state.options, state.wrench
         g, s, k = self.geometry, self.geometry.size, options.scale
         p = snap.tool_point
         J = snap.J_base
         status = snap.report.status
         lin = LINEAR_SECONDS * k
         unit = 0.2 * s * k  # drawn length of a unit direction (angular columns, lost direction)
+        cap = ELLIPSOID_CAP * s * k
 
         e = snap.velocity
-        self.velocity.set(p, e.axes, e.radii * lin, options.velocity_ellipsoid, ELLIPSOID_CAP * s * k)
+        self.velocity.set(p, e.axes, e.radii * lin, options.velocity_ellipsoid, cap)
         if status != self._status:
             self.velocity.node.color = STATUS_RGB[status]
             self._status = status
         if snap.rotational is not None:
             e = snap.rotational
-            self.rotational.set(
-                p, e.axes, e.radii * 0.6 * unit, options.rotational_ellipsoid, ELLIPSOID_CAP * s * k
-            )
+            self.rotational.set(p, e.axes, e.radii * 0.6 * unit, options.rotational_ellipsoid, cap)
         else:
             self.rotational.set(p, np.eye(3), np.zeros(3), False, 1.0)
         e = snap.force
-        radii = e.radii * (lin * FORCE_SIGMA_REF**2 * s * s)
-        if self.planar:  # a planar arm's force ellipse lies in the plane: flatten the out-of-plane axis
-            radii = np.where(np.abs(e.axes[2]) > 0.99, 0.0, radii)
-        self.force.set(p, e.axes, radii, options.force_ellipsoid, ELLIPSOID_CAP * s * k)
+        if e is not None:
+            radii = e.radii * (lin * FORCE_SIGMA_REF**2 * s * s)
+            if self.planar:  # a planar arm's force ellipse lies in the plane: flatten the out-of-plane axis
+                radii = np.where(np.abs(e.axes[2]) > 0.99, 0.0, radii)
+            self.force.set(p, e.axes, radii, options.force_ellipsoid, cap)
+        else:
+            self.force.set(p, np.eye(3), np.zeros(3), False, cap)
 
-        for i, arrow in enumerate(self.columns):
-            arrow.set(p, J[:3, i] * lin, options.columns)
-        W = snap.joint_frames
-        for i, arrow in enumerate(self.angular):
-            arrow.set(W[g.first_axis[i], :3, 3], J[3:, i] * unit, options.angular_columns)
+        n = J.shape[1]
+        self.columns.set(np.tile(p, (n, 1)), J[:3].T * lin, self._joint_colors, options.columns)
+        origins = snap.joint_frames[g.first_axis, :3, 3]
+        self.angular.set(origins, J[3:].T * unit, self._joint_colors, options.angular_columns)
 
-        singular = status != "regular"
-        lost = snap.report.lost_twist  # unit [v; ω] direction of σmin (its parts drawn separately)
-        for arrow, label, part in zip(
-            (self.lost_v, self.lost_w), self.lost_labels, (lost[:3], lost[3:]), strict=True
-        ):
-            arrow.set(p, part * 2 * unit, singular)
-            label.visible = arrow.node.visible
-            if label.visible:
-                label.position = tuple(finite(p + part * 2 * unit))
+        rows = list(snap.rows)
+        desired = np.zeros(6)
+        desired[rows] = state.v_desired[rows]
+        vectors = np.array(
+            [
+                snap.twist[:3] * lin,
+                snap.twist[3:] * unit,
+                desired[:3] * lin,
+                wrench[:3] * 0.04 * s * k,
+                wrench[3:] * 0.04 * s * k,
+            ]
+        )
+        colors = np.array([TWIST_RGB, TWIST_ANGULAR_RGB, DESIRED_RGB, FORCE_RGB, FORCE_RGB], np.uint8)
+        self.motion.set(np.tile(p, (5, 1)), vectors, colors)
 
-        self.twist_v.set(p, snap.twist[:3] * lin)
-        self.twist_w.set(p, snap.twist[3:] * unit)
-        self.force_arrow.set(p, wrench[:3] * 0.04 * s * k)
-        self.moment_arrow.set(p, wrench[3:] * 0.04 * s * k)
+        self._lost(snap, p, unit)
+        parts = [
+            snap.link_frames[:, :3, 3],
+            self.velocity.extent,
+            self.rotational.extent,
+            self.force.extent,
+            self.columns.tips,
+            self.angular.tips,
+            self.motion.tips,
+            self.lost_v.tips,
+        ]
+        self.extent = np.concatenate([x for x in parts if len(x)])
+
+    def _lost(self, snap: Snapshot, p: np.ndarray, unit: float) -> None:
+        """The lost direction: an arrow for its translation, an axis with a ring for its rotation."""
+        lost, singular = snap.lost, snap.report.status != "regular"
+        show_v = singular and lost.translation_share >= SHOWN_SHARE
+        show_w = singular and lost.rotation_share >= SHOWN_SHARE and not self.planar
+        length = 2.0 * unit
+        vector = lost.translation * length * np.sqrt(lost.translation_share)
+        self.lost_v.set(p[None], vector[None], np.array([LOST_RGB], np.uint8), show=show_v)
+        label_v = self.lost_labels["v"]
+        set_if_changed(label_v, "visible", bool(show_v))
+        if show_v:
+            label_v.position = tuple(float(x) for x in finite(self.lost_v.tips[0]))
+        label_w = self.lost_labels["w"]
+        set_if_changed(self.lost_w, "visible", bool(show_w))
+        set_if_changed(label_w, "visible", bool(show_w))
+        if show_w:
+            a = lost.rotation
+            half = length * np.sqrt(lost.rotation_share)
+            axis = np.array([[p - a * half, p + a * half]])
+            self.lost_w.points = finite(np.concatenate([axis, _ring(p + a * 0.6 * half, a, 0.25 * half)]))
+            label_w.position = tuple(float(x) for x in finite(p + a * half))
 
     def remove(self) -> None:
         for node in self._nodes:

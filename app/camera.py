@@ -1,0 +1,173 @@
+"""Keeping what matters in view: a frustum test, a framing, and a smooth camera move.
+
+The scene says which points must stay visible (arm, tool, ellipsoids,
+arrow tips). After a named configuration, a large move, a robot switch or a
+change of the canvas's shape (a panel collapsed), the session asks
+:func:`needs_framing`; if something left the view, :func:`framing` finds a
+camera that keeps the user's viewing direction and fits everything, and a
+:class:`CameraMove` glides there in a few frames (time lives in that object,
+not in the session).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "View",
+    "in_view",
+    "needs_framing",
+    "framing",
+    "facing",
+    "CameraMove",
+    "THREE_QUARTER",
+    "FROM_ABOVE",
+]
+
+THREE_QUARTER = np.array([1.25, -1.45, 0.8])
+"""Default viewing direction (from the target towards the camera) for spatial arms."""
+FROM_ABOVE = np.array([0.25, -0.35, 1.6])
+"""... and for planar arms, which move in the base x-y plane."""
+
+
+@dataclass(frozen=True)
+class View:
+    """A pinhole camera: where it is, what it looks at, its vertical field of view and aspect.
+
+    Attributes:
+        position, look_at: (3,) [m] in base coordinates.
+        up: (3,) up direction.
+        fov: Vertical field of view [rad].
+        aspect: Width / height of the canvas.
+    """
+
+    position: np.ndarray
+    look_at: np.ndarray
+    up: np.ndarray
+    fov: float
+    aspect: float
+
+
+def _basis(view: View) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    forward = view.look_at - view.position
+    forward = forward / max(np.linalg.norm(forward), 1e-12)
+    right = np.cross(forward, view.up)
+    if np.linalg.norm(right) < 1e-9:
+        right = np.cross(forward, np.array([1.0, 0, 0]))
+    right /= np.linalg.norm(right)
+    return forward, right, np.cross(right, forward)
+
+
+def in_view(view: View, points: np.ndarray, margin: float = 0.92) -> np.ndarray:
+    """Which ``points`` (N, 3) lie inside ``margin`` of the view's half-angles (and in front of it)."""
+    forward, right, up = _basis(view)
+    d = np.asarray(points, float) - view.position
+    z = d @ forward
+    tan_v = np.tan(view.fov / 2) * margin
+    tan_h = tan_v * view.aspect
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ok = (z > 1e-6) & (np.abs(d @ up) <= tan_v * z) & (np.abs(d @ right) <= tan_h * z)
+    return ok
+
+
+def needs_framing(view: View, points: np.ndarray) -> bool:
+    """True when some finite point is out of view, or everything fits in a small part of it."""
+    pts = np.asarray(points, float)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    if not len(pts):
+        return False
+    if not in_view(view, pts).all():
+        return True
+    # Far too small (the arm a speck after a large move back): fits in a quarter of the view.
+    return bool(in_view(view, pts, margin=0.2).all())
+
+
+def framing(
+    view: View, points: np.ndarray, direction: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Camera (position, look_at) that sees all ``points`` from ``direction`` (default: the view's own).
+
+    The target is the centre of the points' bounding box; the distance fits their bounding
+    sphere in the narrower of the two fields of view, with a 10 % margin.
+    """
+    pts = np.asarray(points, float)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    center = (lo + hi) / 2
+    radius = max(float(np.linalg.norm(pts - center, axis=1).max()), 0.05) * 1.1
+    if direction is None:
+        direction = view.position - view.look_at
+    direction = np.asarray(direction, float)
+    direction = direction / max(np.linalg.norm(direction), 1e-12)
+    half = min(view.fov, 2 * np.arctan(np.tan(view.fov / 2) * view.aspect)) / 2
+    return center + direction * radius / np.sin(half), center
+
+
+def facing(points: np.ndarray) -> np.ndarray:
+    """A viewing direction that shows ``points`` (N, 3) spread out: across their best-fit plane.
+
+    The normal of the plane the arm and its glyphs lie closest to (smallest principal axis), turned
+    a little towards the default three-quarter view and lifted at least 20° above the horizon, so
+    arrows in that plane are seen side-on instead of end-on.
+    """
+    pts = np.asarray(points, float)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    if len(pts) < 3:
+        return THREE_QUARTER / np.linalg.norm(THREE_QUARTER)
+    _, vectors = np.linalg.eigh(np.cov((pts - pts.mean(axis=0)).T))
+    normal = vectors[:, 0]
+    tq = THREE_QUARTER / np.linalg.norm(THREE_QUARTER)
+    if normal @ tq < 0:
+        normal = -normal
+    d = normal + 0.5 * tq
+    d /= np.linalg.norm(d)
+    horizontal = np.hypot(d[0], d[1])
+    if d[2] < np.sin(np.radians(20)) or horizontal < 1e-6:
+        h = d[:2] / horizontal if horizontal > 1e-6 else tq[:2] / np.linalg.norm(tq[:2])
+        d = np.array([*(h * np.cos(np.radians(25))), np.sin(np.radians(25))])
+    return d
+
+
+class CameraMove:
+    """Glide a client's camera to a new pose in a few frames (a new move replaces a running one).
+
+    Args:
+        apply: Sets the camera to (position, look_at).
+        duration: Length of the move [s].
+        frames: Number of intermediate poses.
+    """
+
+    def __init__(self, apply, duration: float = 0.35, frames: int = 10) -> None:
+        self.apply = apply
+        self.duration = duration
+        self.frames = frames
+        self._generation = 0
+        self._lock = threading.Lock()
+
+    def to(self, start: tuple[np.ndarray, np.ndarray], end: tuple[np.ndarray, np.ndarray]) -> None:
+        """Start gliding from ``start`` to ``end`` (each (position, look_at))."""
+        with self._lock:
+            self._generation += 1
+            generation = self._generation
+        threading.Thread(target=self._run, args=(generation, start, end), daemon=True).start()
+
+    def cancel(self) -> None:
+        """Stop a running move where it is."""
+        with self._lock:
+            self._generation += 1
+
+    def _run(self, generation: int, start, end) -> None:
+        (p0, t0), (p1, t1) = start, end
+        for k in range(1, self.frames + 1):
+            with self._lock:
+                if generation != self._generation:
+                    return
+            s = k / self.frames
+            s = s * s * (3 - 2 * s)  # ease in and out
+            self.apply(p0 + (p1 - p0) * s, t0 + (t1 - t0) * s)
+            if k < self.frames:
+                time.sleep(self.duration / self.frames)

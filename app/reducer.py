@@ -1,0 +1,172 @@
+"""The pure reducer: ``reduce(state, action) -> state``. No handles, no threads, no clock.
+
+Every rule about what an input means lives here, once: values are finite
+or refused with a message naming the input; a joint value is clamped to its
+slider and snapped onto a named configuration's value when it comes within
+reach; the configuration name follows q; a robot switch keeps the display
+choices that do not depend on the robot; time moves the joints at q̇ and
+stops, saying why, at the end of a slider.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .actions import (
+    Action,
+    ChooseRobot,
+    ClearWrench,
+    GoTo,
+    Play,
+    ReplaceState,
+    RequestDownload,
+    SetConfiguration,
+    SetDesired,
+    SetJoint,
+    SetOption,
+    SetRate,
+    SetRobot,
+    SetWrench,
+    Step,
+    StopRates,
+)
+from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
+from .state import LabState, Options, default_options, frozen
+
+__all__ = ["reduce", "InvalidAction", "named_configuration_at"]
+
+_FLOAT_OPTIONS = {"scale": (0.1, 3.0), "damping": (0.0, 1.0)}
+_CHOICES = {"jacobian_frame": ("base", "tool")}
+
+
+class InvalidAction(ValueError):
+    """An action the state cannot take (a NaN, an unknown option or configuration), with the reason."""
+
+
+def _finite(value: object, what: str) -> float:
+    try:
+        x = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidAction(f"{what} must be a number, got {str(value)[:40]!r}") from None
+    if not math.isfinite(x):
+        raise InvalidAction(f"{what} must be a finite number, got {x}")
+    return x
+
+
+def _index(i: object, n: int, what: str) -> int:
+    if not isinstance(i, (int, np.integer)) or isinstance(i, bool) or not 0 <= int(i) < n:
+        raise InvalidAction(f"{what} index must be 0 to {n - 1}, got {i!r}")
+    return int(i)
+
+
+def _with(a: np.ndarray, i: int, x: float) -> np.ndarray:
+    b = a.copy()
+    b[i] = x
+    return frozen(b)
+
+
+def named_configuration_at(state: LabState, q: np.ndarray) -> str:
+    """The name of the robot's named configuration (or "home") equal to ``q``, else ""."""
+    robot = state.robot
+    for c in robot.configurations:
+        if np.allclose(c.q, q, rtol=0.0, atol=1e-12):
+            return c.name
+    return "home" if np.allclose(robot.home, q, rtol=0.0, atol=1e-12) else ""
+
+
+def reduce(state: LabState, action: Action) -> LabState:
+    """The state after ``action``.
+
+    Raises:
+        InvalidAction: the action cannot apply (the message names the input and the reason).
+    """
+    robot, n = state.robot, state.robot.dof
+    match action:
+        case SetJoint(index=i, value=value):
+            i = _index(i, n, "joint")
+            x = joint_ranges(robot)[i].clamp_si(_finite(value, f"joint {robot.joints[i].name}"))
+            q = _with(state.q, i, snap_joint(robot, i, x))
+            return state.replace(q=q, configuration=named_configuration_at(state, q), stopped="")
+        case SetConfiguration(q=values, name=name):
+            q = np.array([_finite(v, "joint value") for v in values]) if len(values) == n else None
+            if q is None:
+                raise InvalidAction(f"a configuration needs {n} joint values, got {len(values)}")
+            return state.replace(q=frozen(q), configuration=name or named_configuration_at(state, q))
+        case GoTo(name=name):
+            if name == "home":
+                q = robot.home
+            else:
+                names = [c.name for c in robot.configurations]
+                if name not in names:
+                    raise InvalidAction(f"{robot.name} has no configuration {name!r}; it has {names}")
+                q = robot.configuration(name)
+            return state.replace(q=frozen(q), configuration=name, playing=False, stopped="")
+        case SetRate(index=i, value=value):
+            i = _index(i, n, "joint rate")
+            x = rate_ranges(robot)[i].clamp_si(_finite(value, f"rate of {robot.joints[i].name}"))
+            return state.replace(qd=_with(state.qd, i, x))
+        case StopRates():
+            return state.replace(qd=frozen(np.zeros(n)), playing=False)
+        case SetDesired(row=r, value=value):
+            r = _index(r, 6, "twist row")
+            x = twist_ranges(robot)[r].clamp_si(_finite(value, "desired tool velocity"))
+            return state.replace(v_desired=_with(state.v_desired, r, x))
+        case SetWrench(row=r, value=value):
+            r = _index(r, 6, "wrench row")
+            x = wrench_ranges(robot)[r].clamp_si(_finite(value, "applied force"))
+            return state.replace(wrench=_with(state.wrench, r, x))
+        case ClearWrench():
+            return state.replace(wrench=frozen(np.zeros(6)))
+        case SetOption(name=name, value=value):
+            return state.replace(options=_option(state.options, name, value))
+        case SetRobot(name=name, robot=new):
+            fresh = LabState.initial(name, new, default_options(new, state.options))
+            return fresh
+        case ReplaceState(state=other):
+            return other
+        case Play(playing=playing):
+            if playing and not np.any(state.qd):
+                return state.replace(playing=False, stopped="set a joint rate q̇ first")
+            return state.replace(playing=bool(playing), stopped="")
+        case Step(dt=dt):
+            return _step(state, _finite(dt, "time step"))
+        case ChooseRobot() | RequestDownload():
+            raise InvalidAction(
+                f"{type(action).__name__} is a command the session carries out, not a state change"
+            )
+    raise InvalidAction(f"unknown action {action!r}")
+
+
+def _option(options: Options, name: str, value: object) -> Options:
+    fields = {f.name: f for f in dataclasses.fields(Options)}
+    if name not in fields:
+        raise InvalidAction(f"unknown display option {name!r}; options are {sorted(fields)}")
+    if name in _FLOAT_OPTIONS:
+        lo, hi = _FLOAT_OPTIONS[name]
+        value = min(max(_finite(value, name), lo), hi)
+    elif name in _CHOICES:
+        if value not in _CHOICES[name]:
+            raise InvalidAction(f"{name} must be one of {_CHOICES[name]}, got {value!r}")
+    elif not isinstance(value, bool):
+        raise InvalidAction(f"{name} is on or off (a bool), got {value!r}")
+    return dataclasses.replace(options, **{name: value})
+
+
+def _step(state: LabState, dt: float) -> LabState:
+    """Advance the joints by q̇ dt while playing; stop at a slider end and say which joint stopped."""
+    if not state.playing or dt <= 0.0:
+        return state
+    ranges = joint_ranges(state.robot)
+    q = np.array(state.q) + np.array(state.qd) * dt
+    lo = np.array([r.clamp_si(-np.inf) for r in ranges])
+    hi = np.array([r.clamp_si(np.inf) for r in ranges])
+    hit = np.flatnonzero((q <= lo) | (q >= hi))
+    q = np.clip(q, lo, hi)
+    changes: dict[str, object] = {"q": frozen(q), "time": state.time + dt, "configuration": ""}
+    if hit.size:
+        names = ", ".join(state.robot.joints[i].name for i in hit)
+        changes.update(playing=False, stopped=f"stopped: {names} reached the end of its range")
+    return state.replace(**changes)
