@@ -1,31 +1,399 @@
-"""The one module that touches viser's private API (checked by tests/test_viser_adapter.py)."""
+"""The one module that touches viser's private API; everything else in ``app/`` uses viser's public API.
+
+Each function here wraps one private detail of viser (tested with the versions in
+:data:`TESTED_VISER`). When an upgrade moves that detail, the function raises
+:class:`ViserApiChanged` naming itself and the installed viser version, and
+``tests/test_viser_adapter.py`` (which runs each function against a real
+``viser.ViserServer``) fails with the same message.
+
+Wrapped:
+* :func:`message_class` — a protocol message class (``viser._messages``), for the test client.
+* :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
+  to one client through ``client._websock_connection``.
+* :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
+  internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
+* :func:`install_message_limits` — what one websocket message and one tab may cost:
+  replaces ``viser.infra._infra._message_consumer`` (looked up by viser's connection
+  handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``.
+"""
 
 from __future__ import annotations
 
+import asyncio
+import dataclasses
+import inspect
+import json
 import logging
+import threading
+import time
+import traceback
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import viser
 
-__all__ = ["run_javascript", "handle_uuid", "is_removed"]
+__all__ = [
+    "TESTED_VISER",
+    "ViserApiChanged",
+    "message_class",
+    "run_javascript",
+    "set_page_title",
+    "handle_uuid",
+    "is_removed",
+    "scene_handles",
+    "node_props",
+    "MessageLimits",
+    "install_message_limits",
+    "uninstall_message_limits",
+    "clip",
+]
 
 log = logging.getLogger(__name__)
 
+TESTED_VISER = ">=1.1.1,<1.2"
+"""The viser versions this module was tested with (the same range as the pin in pyproject.toml)."""
+
+T = TypeVar("T")
+
+
+class ViserApiChanged(RuntimeError):
+    """A private detail of viser that :mod:`app.viser_adapter` relies on is gone or changed.
+
+    The message names the adapter function, what it looked for, and the installed viser version.
+    """
+
+    def __init__(self, function: str, detail: str) -> None:
+        super().__init__(
+            f"app.viser_adapter.{function}: {detail} — viser {viser.__version__} is installed, the "
+            f"adapter was tested with viser{TESTED_VISER}; update app/viser_adapter.py for this version"
+        )
+
+
+def _private(function: str, what: str, get: Callable[[], T]) -> T:
+    """``get()``, turning the errors of a moved attribute into :class:`ViserApiChanged`."""
+    try:
+        return get()
+    except (AttributeError, ImportError, KeyError, TypeError) as exc:
+        raise ViserApiChanged(function, f"{what} ({type(exc).__name__}: {exc})") from exc
+
+
+def clip(text: object, limit: int = 200) -> str:
+    """``str(text)`` cut to at most ``limit`` characters (with a note of the full length) for a log line."""
+    s = str(text)
+    if len(s) <= limit:
+        return s
+    return f"{s[: limit - 40]}… [{len(s)} characters]"
+
+
+# --------------------------------------------------------------------------- messages and handles
+def message_class(name: str) -> type:
+    """The viser protocol message class called ``name`` (e.g. ``"GuiUpdateMessage"``).
+
+    Raises:
+        ViserApiChanged: viser has no such message class.
+    """
+
+    def get() -> type:
+        from viser import _messages
+
+        cls = getattr(_messages, name)
+        if not (isinstance(cls, type) and issubclass(cls, _messages.Message)):
+            raise TypeError(f"{name} is not a message class")
+        return cls
+
+    return _private("message_class", f"viser._messages.{name}", get)
+
 
 def run_javascript(client: viser.ClientHandle, source: str) -> None:
-    """Run ``source`` in this client's page (viser has no public API for it in 1.1)."""
-    try:
-        from viser._messages import RunJavascriptMessage
+    """Run the JavaScript ``source`` in this client's page (viser's ``RunJavascriptMessage``).
 
-        client._websock_connection.queue_message(RunJavascriptMessage(source=source))  # type: ignore[attr-defined]
-    except Exception:
-        log.warning("cannot send a page script to client %s", client.client_id, exc_info=True)
+    The page runs it once when the message arrives; nothing is kept for later tabs.
 
-
-def handle_uuid(handle: object) -> str:
-    """The DOM id of a GUI handle's root element."""
-    return str(handle._impl.uuid)  # type: ignore[attr-defined]
+    Raises:
+        ViserApiChanged: the message class or the client's connection moved.
+    """
+    cls = message_class("RunJavascriptMessage")
+    connection = _private("run_javascript", "client._websock_connection", lambda: client._websock_connection)
+    _private("run_javascript", "queue_message", lambda: connection.queue_message(cls(source=source)))
 
 
-def is_removed(handle: object) -> bool:
-    """Whether a GUI handle was removed."""
-    return bool(handle._impl.removed)  # type: ignore[attr-defined]
+_TITLE_SCRIPT = """(() => {
+  window.__jacobianLabTitle = %s;
+  const apply = () => {
+    if (document.title !== window.__jacobianLabTitle) document.title = window.__jacobianLabTitle;
+  };
+  apply();
+  if (!window.__jacobianLabTitleObserver) {
+    window.__jacobianLabTitleObserver = new MutationObserver(apply);
+    const options = {subtree: true, childList: true, characterData: true};
+    window.__jacobianLabTitleObserver.observe(document.head, options);
+  }
+})();"""
+
+
+def set_page_title(client: viser.ClientHandle, title: str) -> None:
+    """Title this client's browser tab ``title`` (viser's says "Viser"), kept if the page resets it.
+
+    ``title`` is passed as a JSON string literal, never as code.
+    """
+    run_javascript(client, _TITLE_SCRIPT % json.dumps(str(title)))
+
+
+def handle_uuid(handle: Any) -> str:
+    """The id of a GUI handle: its element's DOM ``id`` in the page (e.g. for per-slider CSS)."""
+    uuid = _private("handle_uuid", "handle._impl.uuid", lambda: handle._impl.uuid)
+    if not isinstance(uuid, str):
+        raise ViserApiChanged("handle_uuid", f"handle._impl.uuid is a {type(uuid).__name__}, not a str")
+    return uuid
+
+
+def is_removed(handle: Any) -> bool:
+    """Whether a GUI or scene handle was removed (its callbacks may still see late events)."""
+    removed = _private("is_removed", "handle._impl.removed", lambda: handle._impl.removed)
+    if not isinstance(removed, bool):
+        raise ViserApiChanged("is_removed", f"handle._impl.removed is a {type(removed).__name__}, not a bool")
+    return removed
+
+
+def scene_handles(scene_api: Any) -> dict[str, Any]:
+    """A copy of the scene's node table: node name (e.g. ``"/lab/arm"``) → handle, of ``server.scene`` or
+    ``client.scene``."""
+    table = _private(
+        "scene_handles", "SceneApi._handle_from_node_name", lambda: scene_api._handle_from_node_name
+    )
+    return dict(table)
+
+
+def node_props(handle: Any) -> dict[str, Any]:
+    """The props the scene node ``handle`` sends to the browser, with ``position``, ``wxyz``, ``visible``."""
+
+    def get() -> dict[str, Any]:
+        impl = handle._impl
+        return {**vars(impl.props), "position": impl.position, "wxyz": impl.wxyz, "visible": impl.visible}
+
+    return _private("node_props", "handle._impl.props / position / wxyz / visible", get)
+
+
+# --------------------------------------------------------------------------- message limits
+@dataclasses.dataclass
+class MessageLimits:
+    """What one websocket message and one connection may cost, and counts of what was refused.
+
+    Attributes:
+        max_message_bytes: Largest message accepted [bytes]; a larger one closes the connection (1009).
+        max_messages_per_second: Steady rate of messages accepted per connection [1/s].
+        burst: Messages a connection may send at once above the steady rate.
+        close_after_drops: A connection that had this many messages dropped (forgiven at the steady
+            rate) is closed (1008).
+        accepted: Messages passed on to viser, over all connections.
+        dropped: Messages dropped for exceeding the rate, over all connections.
+        malformed: Messages that could not be decoded (logged in one bounded line each).
+        closed: Connections closed for violating a limit (too large or too many messages).
+    """
+
+    max_message_bytes: int = 64 * 1024
+    max_messages_per_second: float = 200.0
+    burst: int = 400
+    close_after_drops: int = 400
+    accepted: int = 0
+    dropped: int = 0
+    malformed: int = 0
+    closed: int = 0
+    _lock: threading.Lock = dataclasses.field(default_factory=threading.Lock, repr=False)
+
+    def count(self, field: str) -> None:
+        with self._lock:
+            setattr(self, field, getattr(self, field) + 1)
+
+
+_limits: MessageLimits | None = None
+_original: dict[str, Any] = {}
+
+
+def install_message_limits(
+    max_message_bytes: int = 64 * 1024,
+    max_messages_per_second: float = 200.0,
+    burst: int = 400,
+    close_after_drops: int = 400,
+) -> MessageLimits:
+    """Limit what a browser tab's messages may cost every viser server in this process.
+
+    Call before creating the ``viser.ViserServer`` (the size limit is then enforced by the
+    websocket layer before a byte of a large message is buffered; servers already running
+    get it per connection, from their next connection on). Calling again replaces the limits.
+    Our GUI messages are a few hundred bytes; viser's own large client messages (file uploads,
+    ``get_render`` images) need a larger ``max_message_bytes``.
+
+    Errors in viser's handling of a message (e.g. a slider value that is not a number) are
+    logged in one line of at most ~200 characters of the message's text, with their place.
+
+    Returns:
+        The active limits, whose counters the caller may read.
+    """
+    global _limits
+    if max_message_bytes < 1024 or max_messages_per_second <= 0 or burst < 1 or close_after_drops < 1:
+        raise ValueError(
+            "install_message_limits: expected max_message_bytes >= 1024, max_messages_per_second > 0, "
+            f"burst >= 1, close_after_drops >= 1; got {max_message_bytes}, {max_messages_per_second}, "
+            f"{burst}, {close_after_drops}"
+        )
+    infra = _private("install_message_limits", "viser.infra._infra", _infra_module)
+    consumer = getattr(infra, "_message_consumer", None)
+    if (
+        not callable(consumer)
+        or len(inspect.signature(consumer).parameters) != 3
+        or not hasattr(infra, "websockets")
+    ):
+        raise ViserApiChanged(
+            "install_message_limits", "viser.infra._infra._message_consumer(3 args) / .websockets not found"
+        )
+    _limits = MessageLimits(max_message_bytes, max_messages_per_second, burst, close_after_drops)
+    if not _original:
+        _original["_message_consumer"] = infra._message_consumer
+        _original["websockets"] = infra.websockets
+        infra._message_consumer = _guarded_consumer
+        ws = infra.websockets  # seen by viser.infra._infra only: the package with our serve()
+        infra.websockets = _Overlay(
+            ws, asyncio=_Overlay(ws.asyncio, server=_Overlay(ws.asyncio.server, serve=_serve_with_limit))
+        )
+    return _limits
+
+
+def uninstall_message_limits() -> None:
+    """Give viser back its own message handling (for tests)."""
+    global _limits
+    if _original:
+        infra = _infra_module()
+        infra._message_consumer = _original.pop("_message_consumer")
+        infra.websockets = _original.pop("websockets")
+    _limits = None
+
+
+def _infra_module() -> Any:
+    from viser.infra import _infra
+
+    return _infra
+
+
+def _serve_with_limit(*args: Any, **kwargs: Any) -> Any:
+    """``websockets.asyncio.server.serve`` as viser calls it, with our ``max_size``."""
+    if _limits is not None:
+        kwargs["max_size"] = _limits.max_message_bytes
+    return _original["websockets"].asyncio.server.serve(*args, **kwargs)
+
+
+class _Overlay:
+    """A module seen through a few replaced attributes."""
+
+    def __init__(self, real: Any, **overrides: Any) -> None:
+        self._real = real
+        self._overrides = overrides
+
+    def __getattr__(self, name: str) -> Any:
+        if name in self._overrides:
+            return self._overrides[name]
+        return getattr(self._real, name)
+
+
+class _TokenBucket:
+    """``burst`` tokens, refilled at ``rate`` per second; each message takes one."""
+
+    def __init__(self, rate: float, burst: int) -> None:
+        self.rate, self.burst = rate, float(burst)
+        self.tokens, self.stamp = float(burst), time.monotonic()
+
+    def take(self) -> bool:
+        now = time.monotonic()
+        self.tokens = min(self.burst, self.tokens + (now - self.stamp) * self.rate)
+        self.stamp = now
+        if self.tokens >= 1.0:
+            self.tokens -= 1.0
+            return True
+        return False
+
+
+class _LeakyCounter:
+    """A count that leaks away at ``rate`` per second."""
+
+    def __init__(self, rate: float) -> None:
+        self.rate, self.level, self.stamp = rate, 0.0, time.monotonic()
+
+    def add(self) -> float:
+        now = time.monotonic()
+        self.level = max(0.0, self.level - (now - self.stamp) * self.rate) + 1.0
+        self.stamp = now
+        return self.level
+
+
+async def _guarded_consumer(
+    websocket: Any, handle_message: Callable[[Any], None], message_class: type
+) -> None:
+    """viser's ``_message_consumer`` with limits: size, rate, bounded logging of bad messages."""
+    limits = _limits
+    if limits is None:  # uninstalled while a server runs: behave as viser does
+        await _original_consumer()(websocket, handle_message, message_class)
+        return
+    _bound_loop_logging(asyncio.get_running_loop())
+    protocol = getattr(websocket, "protocol", None)
+    if protocol is not None and hasattr(protocol, "max_message_size"):
+        protocol.max_message_size = limits.max_message_bytes  # for servers started before the install
+    bucket = _TokenBucket(limits.max_messages_per_second, limits.burst)
+    strikes = _LeakyCounter(limits.max_messages_per_second)  # drops, forgiven at the steady rate
+    peer = clip(getattr(websocket, "remote_address", "?"), 60)
+    import websockets.exceptions as wse
+
+    while True:
+        try:
+            raw = await websocket.recv()
+        except wse.ConnectionClosedError as exc:
+            if exc.sent is not None and exc.sent.code == 1009:
+                limits.count("closed")
+                log.warning(
+                    "closed the connection of %s: a message over %d bytes", peer, limits.max_message_bytes
+                )
+            raise
+        if not bucket.take():
+            limits.count("dropped")
+            if strikes.add() >= limits.close_after_drops:
+                limits.count("closed")
+                log.warning(
+                    "closed the connection of %s: over %g messages per second",
+                    peer,
+                    limits.max_messages_per_second,
+                )
+                await websocket.close(1008, "too many messages")
+            continue
+        if not isinstance(raw, bytes) or len(raw) > limits.max_message_bytes:
+            limits.count("malformed")
+            log.warning("dropped a message from %s: %s", peer, clip(f"{type(raw).__name__} of {len(raw)}"))
+            continue
+        try:
+            message = message_class.deserialize(raw)
+        except Exception as exc:  # a hostile or broken client must not end the server's loop
+            limits.count("malformed")
+            log.warning("dropped a message from %s: %s: %s", peer, type(exc).__name__, clip(exc))
+            continue
+        limits.count("accepted")
+        handle_message(message)
+
+
+def _original_consumer() -> Callable[..., Any]:
+    return _original.get("_message_consumer") or _infra_module()._message_consumer
+
+
+def _bound_loop_logging(loop: asyncio.AbstractEventLoop) -> None:
+    """Make the loop log an unhandled task error in one bounded line (viser's float cast quotes the value)."""
+    if loop.get_exception_handler() is not _bounded_exception_handler:
+        loop.set_exception_handler(_bounded_exception_handler)
+
+
+def _bounded_exception_handler(loop: asyncio.AbstractEventLoop, context: dict[str, Any]) -> None:
+    exc = context.get("exception")
+    where = ""
+    if isinstance(exc, BaseException) and exc.__traceback__ is not None:
+        frames = traceback.extract_tb(exc.__traceback__)
+        where = " at " + " < ".join(
+            f"{f.name} ({f.filename.rsplit('/', 1)[-1]}:{f.lineno})" for f in frames[-3:][::-1]
+        )
+    text = f"{type(exc).__name__}: {clip(exc)}" if exc is not None else ""
+    log.error("%s: %s%s", clip(context.get("message", "error in the event loop"), 80), text, clip(where, 300))

@@ -25,10 +25,12 @@ import re
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
-from app.wsclient import ViserWsClient
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
 
 ARM_NODE = "/lab/arm/cylinders"
 

@@ -10,10 +10,10 @@ from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
+from wsclient import ViserWsClient
 
 from app.server import Lab
 from app.session import ClientSession
-from app.wsclient import ViserWsClient
 
 _BAD_TEXT = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)
 

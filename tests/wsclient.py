@@ -26,7 +26,8 @@ import numpy as np
 import viser
 import websockets
 import zstandard
-from viser import _messages
+
+from app.viser_adapter import message_class
 
 __all__ = ["ViserWsClient", "decode_frame"]
 
@@ -93,7 +94,7 @@ class ViserWsClient:
         w, h = self.size
         await self._ws.send(
             self._encode(
-                _messages.ViewerCameraMessage(
+                message_class("ViewerCameraMessage")(
                     wxyz=(1.0, 0.0, 0.0, 0.0),
                     position=(2.0, -2.0, 1.5),
                     fov=1.0,
@@ -123,18 +124,22 @@ class ViserWsClient:
                 self._cond.notify_all()
 
     @staticmethod
-    def _encode(message: _messages.Message) -> bytes:
+    def _encode(message: Any) -> bytes:
         return msgspec.msgpack.encode(message.as_serializable_dict())
 
-    def send(self, message: _messages.Message) -> None:
+    def send(self, message: Any) -> None:
         """Send one client → server message."""
         data = self._encode(message)
         asyncio.run_coroutine_threadsafe(self._ws.send(data), self._loop).result(5.0)
 
+    def send_bytes(self, data: bytes) -> None:
+        """Send one raw binary frame (e.g. a malformed or oversized message, for tests of limits)."""
+        asyncio.run_coroutine_threadsafe(self._ws.send(data), self._loop).result(30.0)
+
     def set_value(self, uuid: str, value: Any) -> float:
         """Change a GUI input as the browser would; returns the send time (perf_counter)."""
         t = time.perf_counter()
-        self.send(_messages.GuiUpdateMessage(uuid, {"value": value}))
+        self.send(message_class("GuiUpdateMessage")(uuid, {"value": value}))
         return t
 
     def mark(self) -> int:

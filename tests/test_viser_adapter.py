@@ -1,0 +1,246 @@
+"""Every function of app.viser_adapter against a real viser server and a websocket client.
+
+A viser upgrade that moves one of the private details the adapter wraps makes the
+matching test fail with ViserApiChanged, whose message names the adapter function and
+the installed viser version.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import re
+import threading
+import time
+from pathlib import Path
+
+import msgspec
+import numpy as np
+import pytest
+import viser
+import websockets.sync.client
+from packaging.specifiers import SpecifierSet
+from wsclient import ViserWsClient
+
+from app import viser_adapter as va
+
+try:
+    import tomllib
+except ImportError:  # Python 3.10
+    import tomli as tomllib
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _poll(predicate, timeout: float = 10.0) -> None:
+    end = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() > end:
+            raise AssertionError("condition not reached in time")
+        time.sleep(0.01)
+
+
+@pytest.fixture
+def server():
+    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    try:
+        yield srv
+    finally:
+        srv.stop()
+
+
+@pytest.fixture
+def connected(server):
+    """(server, client handle, websocket client) with one connected tab."""
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
+        _poll(lambda: len(server.get_clients()) == 1)
+        (client,) = server.get_clients().values()
+        yield server, client, ws
+
+
+def test_the_tested_range_is_the_pin_and_includes_the_installed_viser():
+    deps = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]
+    (pin,) = [d for d in deps if d.startswith("viser")]
+    assert pin == f"viser{va.TESTED_VISER}"
+    assert viser.__version__ in SpecifierSet(va.TESTED_VISER), (
+        f"viser {viser.__version__} is outside the range app/viser_adapter.py was tested with"
+    )
+
+
+def test_message_class_returns_protocol_messages_and_names_itself_when_missing():
+    cls = va.message_class("GuiUpdateMessage")
+    message = cls("abc", {"value": 1.5})
+    assert message.as_serializable_dict()["type"] == "GuiUpdateMessage"
+    with pytest.raises(va.ViserApiChanged) as info:
+        va.message_class("NoSuchMessage")
+    assert "app.viser_adapter.message_class" in str(info.value)
+    assert f"viser {viser.__version__}" in str(info.value)
+
+
+def test_errors_name_the_function_and_the_viser_version():
+    for fn in (va.handle_uuid, va.is_removed, va.node_props, va.scene_handles):
+        with pytest.raises(va.ViserApiChanged) as info:
+            fn(object())
+        assert f"app.viser_adapter.{fn.__name__}:" in str(info.value)
+        assert f"viser {viser.__version__} is installed" in str(info.value)
+
+
+def test_run_javascript_reaches_only_that_client(connected):
+    server, client, ws = connected
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as other:
+        _poll(lambda: len(server.get_clients()) == 2)
+        mark, other_mark = ws.mark(), other.mark()
+        va.run_javascript(client, "window.__probe = 41 + 1;")
+        _, msg = ws.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=mark)
+        assert msg["source"] == "window.__probe = 41 + 1;"
+        # The other tab gets nothing: the first script it receives is one sent to it afterwards.
+        (other_client,) = [c for c in server.get_clients().values() if c is not client]
+        va.run_javascript(other_client, "/* marker */")
+        _, got = other.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=other_mark)
+        assert got["source"] == "/* marker */"
+
+
+def test_set_page_title_passes_the_title_as_a_string_literal(connected):
+    _, client, ws = connected
+    title = 'Jacobian Lab"; alert(1); // </title>\u2028'
+    mark = ws.mark()
+    va.set_page_title(client, title)
+    _, msg = ws.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=mark)
+    literal = re.search(r"window\.__jacobianLabTitle = (.*);\n", msg["source"]).group(1)
+    assert json.loads(literal) == title
+    assert "alert(1); //" not in msg["source"].replace(literal, "")
+
+
+def test_handle_uuid_is_the_id_the_page_sends_updates_for(connected):
+    _, client, ws = connected
+    mark = ws.mark()
+    slider = client.gui.add_slider("q1", min=-1.0, max=1.0, step=0.01, initial_value=0.0)
+    uuid = va.handle_uuid(slider)
+    _, msg = ws.wait_for(lambda m: m["type"] == "GuiSliderMessage", after=mark)
+    assert msg["uuid"] == uuid
+    seen = threading.Event()
+    slider.on_update(lambda _: seen.set())
+    ws.set_value(uuid, 0.25)
+    assert seen.wait(5.0)
+    assert slider.value == 0.25
+
+
+def test_is_removed_follows_remove_for_gui_and_scene_handles(connected):
+    _, client, _ = connected
+    button = client.gui.add_button("go")
+    box = client.scene.add_box("/probe/box", dimensions=(1.0, 1.0, 1.0))
+    assert (va.is_removed(button), va.is_removed(box)) == (False, False)
+    button.remove()
+    box.remove()
+    assert (va.is_removed(button), va.is_removed(box)) == (True, True)
+
+
+def test_scene_handles_and_node_props_read_what_is_sent(connected):
+    _, client, ws = connected
+    sphere = client.scene.add_icosphere("/probe/ellipsoid", radius=1.0, scale=(0.3, 0.2, 0.1))
+    sphere.position = (0.5, -0.25, 1.0)
+    handles = va.scene_handles(client.scene)
+    assert handles["/probe/ellipsoid"] is sphere
+    props = va.node_props(sphere)
+    np.testing.assert_allclose(props["scale"], (0.3, 0.2, 0.1))
+    np.testing.assert_allclose(props["position"], (0.5, -0.25, 1.0))
+    assert props["radius"] == 1.0 and props["visible"] is True
+    mark = ws.mark()
+    sphere.visible = False
+    assert va.node_props(sphere)["visible"] is False
+    ws.wait_for(
+        lambda m: m["type"] == "SetSceneNodeVisibilityMessage" and m["name"] == "/probe/ellipsoid", after=mark
+    )
+    sphere.remove()
+    assert "/probe/ellipsoid" not in va.scene_handles(client.scene)
+
+
+# ----------------------------------------------------------------------------- message limits
+@pytest.fixture
+def limited():
+    """Limits installed for one test (small, so that the test is fast), then viser's own handling back."""
+    limits = va.install_message_limits(
+        max_message_bytes=8 * 1024, max_messages_per_second=50.0, burst=20, close_after_drops=100
+    )
+    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    try:
+        yield srv, limits
+    finally:
+        srv.stop()
+        va.uninstall_message_limits()
+
+
+def _raw_client(port: int):
+    return websockets.sync.client.connect(
+        f"ws://127.0.0.1:{port}", subprotocols=[f"viser-v{viser.__version__}"], max_size=None, close_timeout=1
+    )
+
+
+def _encode(message) -> bytes:
+    return msgspec.msgpack.encode(message.as_serializable_dict())
+
+
+def _camera() -> bytes:
+    cls = va.message_class("ViewerCameraMessage")
+    return _encode(cls((1.0, 0, 0, 0), (2.0, -2.0, 1.5), 1.0, 0.01, 100.0, 600, 800, (0, 0, 0), (0, 0, 1)))
+
+
+def test_a_message_over_the_size_limit_closes_that_connection_only(limited):
+    server, limits = limited
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as good:
+        _poll(lambda: len(server.get_clients()) == 1)
+        with _raw_client(server.get_port()) as bad:  # as its very first message
+            with pytest.raises(websockets.exceptions.ConnectionClosed) as info:
+                bad.send(b"\x00" * (64 * 1024))
+                while True:  # the frames queued before the close, then the close frame
+                    bad.recv(timeout=10)
+            assert info.value.rcvd is not None and info.value.rcvd.code == 1009
+        _poll(lambda: limits.closed == 1)
+        (client,) = server.get_clients().values()
+        mark = good.mark()
+        va.run_javascript(client, "1")
+        good.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=mark)
+
+
+def test_a_flood_is_dropped_beyond_the_rate_and_then_closed(limited):
+    server, limits = limited
+    slider = server.gui.add_slider("q", min=0.0, max=10000.0, step=1.0, initial_value=0.0)
+    calls = []
+    slider.on_update(lambda e: calls.append(slider.value))
+    update = va.message_class("GuiUpdateMessage")
+    with _raw_client(server.get_port()) as bad:
+        bad.send(_camera())
+        _poll(lambda: len(server.get_clients()) == 1)
+        start = time.monotonic()
+        with pytest.raises(websockets.exceptions.ConnectionClosed) as info:
+            for i in range(1, 5001):
+                bad.send(_encode(update(va.handle_uuid(slider), {"value": float(i)})))
+            while True:
+                bad.recv(timeout=10)
+        elapsed = time.monotonic() - start
+    assert info.value.rcvd is not None and info.value.rcvd.code == 1008
+    _poll(lambda: limits.closed == 1)
+    assert limits.dropped >= 100
+    # Accepted: the camera message, the burst and what the rate allowed until the close.
+    assert 20 <= limits.accepted <= 20 + 50.0 * elapsed + 2
+    _poll(lambda: len(calls) == limits.accepted - 1)
+
+
+def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
+    server, limits = limited
+    slider = server.gui.add_slider("q", min=0.0, max=1.0, step=0.1, initial_value=0.5)
+    update = va.message_class("GuiUpdateMessage")
+    caplog.set_level(logging.WARNING)
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
+        _poll(lambda: len(server.get_clients()) == 1)
+        ws.send(update(va.handle_uuid(slider), {"value": "9" * 5000 + "x"}))  # float() quotes the value
+        _poll(lambda: any("could not convert" in r.getMessage() for r in caplog.records))
+        ws.send_bytes(b"\xc1 not msgpack")
+        _poll(lambda: limits.malformed == 1)
+        ws.set_value(va.handle_uuid(slider), 0.7)  # the connection still works
+        _poll(lambda: slider.value == 0.7)
+    lines = [r.getMessage() for r in caplog.records if r.name == "app.viser_adapter"]
+    assert len(lines) == 2
+    assert all(len(line) < 700 for line in lines), [len(line) for line in lines]
+    assert "could not convert" in lines[0] and "characters]" in lines[0] and "_handle_gui_updates" in lines[0]
+    assert "DecodeError" in lines[1]
