@@ -51,8 +51,10 @@ def _finite(value: object, what: str) -> float:
         x = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):
         raise InvalidAction(f"{what} must be a number, got {str(value)[:40]!r}") from None
-    if not math.isfinite(x):
-        raise InvalidAction(f"{what} must be a finite number, got {x}")
+    if math.isnan(x):
+        raise InvalidAction(f"{what} must be a finite number; the value given is not a number")
+    if math.isinf(x):
+        raise InvalidAction(f"{what} must be a finite number, got {'−' if x < 0 else ''}∞")
     return x
 
 

@@ -152,7 +152,10 @@ class ClientSession:
                     except Exception as exc:  # one tab's bad input never reaches the server or other tabs
                         self.report_error(exc)
                 if state is not self.state:
-                    self._commit(state, rebuild=state.robot is not self.state.robot, jump=jump)
+                    try:
+                        self._commit(state, rebuild=state.robot is not self.state.robot, jump=jump)
+                    except Exception as exc:  # the tab keeps its last good state on screen
+                        self.report_error(exc)
 
     def _apply(self, state: LabState, action: Action) -> LabState:
         """Reduce ``action``; carry out the commands (load a robot, prepare a download)."""
@@ -164,6 +167,32 @@ class ClientSession:
             self._download(state, action.label)
             return state
         return reduce(state, action)
+
+    @property
+    def busy(self) -> bool:
+        """Whether a thread is reducing and drawing this tab's actions right now."""
+        with self._queue_lock:
+            return self._busy
+
+    @property
+    def queued(self) -> int:
+        """How many actions wait to be reduced."""
+        with self._queue_lock:
+            return len(self._queue)
+
+    def settle(self, timeout: float = 10.0) -> None:
+        """Wait until every dispatched action has been drawn (for tests and scripts).
+
+        Raises:
+            TimeoutError: actions are still queued after ``timeout`` seconds.
+        """
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            with self._queue_lock:
+                if not self._busy and not self._queue:
+                    return
+            time.sleep(0.005)
+        raise TimeoutError(f"client {self.client.client_id}: actions still queued after {timeout} s")
 
     def subscribe(self, fn: Callable[[LabState], None]) -> Callable[[], None]:
         """Call ``fn(state)`` after every change (a hub, a recorder); returns the unsubscribe function."""

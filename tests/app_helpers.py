@@ -14,6 +14,7 @@ from wsclient import ViserWsClient
 
 from app.server import Lab
 from app.session import ClientSession
+from app.viser_adapter import node_props, scene_handles
 
 _BAD_TEXT = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)
 
@@ -31,7 +32,7 @@ def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClie
 
 
 def wait_until(predicate, timeout: float = 10.0, interval: float = 0.02) -> None:
-    """Poll ``predicate`` until it is true or fail."""
+    """Poll ``predicate`` until it is true or fail (never a fixed sleep)."""
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         if predicate():
@@ -64,24 +65,26 @@ def nonfinite_paths(obj: Any, path: str = "") -> list[str]:
 
 def scene_props(session: ClientSession) -> dict[str, Any]:
     """Every prop of every scene node of the session's client, by node name."""
-    api = session.client.scene
-    out = {}
-    for name, handle in list(api._handle_from_node_name.items()):
-        impl = handle._impl
-        out[name] = {**vars(impl.props), "position": impl.position, "wxyz": impl.wxyz}
-    return out
+    return {name: node_props(h) for name, h in scene_handles(session.client.scene).items()}
+
+
+def scene_node(session: ClientSession, name: str) -> Any:
+    """The scene handle called ``name`` of the session's client."""
+    return scene_handles(session.client.scene)[name]
 
 
 def gui_contents(session: ClientSession) -> list[str]:
     """The HTML shown by the session's readouts (status, measures, matrix, bars, twist)."""
     p = session.panel
+    assert p.matrix and p.forward and p.inverse and p.force
     handles = [
         p.status,
-        p.measures,
+        p.matrix.measures,
         p.matrix.numeric,
         p.matrix.symbolic,
-        p.velocity.twist,
-        p.velocity.rates,
+        p.forward.twist,
+        p.inverse.rates,
+        p.inverse.result,
         p.force.torques,
     ]
     return [h.content for h in handles]

@@ -21,8 +21,10 @@ CHROMIUM = "/usr/bin/chromium"
 
 def _apt_install(packages: list[str]) -> bool:
     if shutil.which("apt-get") is None:
-        print(f"install_test_deps: apt-get is not available; install {' '.join(packages)} yourself",
-              file=sys.stderr)
+        print(
+            f"install_test_deps: apt-get is not available; install {' '.join(packages)} yourself",
+            file=sys.stderr,
+        )
         return False
     sudo = [] if os.geteuid() == 0 else (["sudo", "-n"] if shutil.which("sudo") else None)
     if sudo is None:

@@ -41,8 +41,9 @@ def test_measures_agree_with_their_definitions(name, seed):
     for part in ("linear", "angular", "planar", "full", task_rows(robot)):
         Js = select_rows(J, part)
         s = singular_values(J, part)
-        np.testing.assert_allclose(s, np.sqrt(np.clip(np.sort(np.linalg.eigvalsh(Js.T @ Js))[::-1][: len(s)], 0, None)),
-                                   atol=1e-6)
+        np.testing.assert_allclose(
+            s, np.sqrt(np.clip(np.sort(np.linalg.eigvalsh(Js.T @ Js))[::-1][: len(s)], 0, None)), atol=1e-6
+        )
         if Js.shape[0] <= Js.shape[1]:
             scale = max(1.0, np.abs(Js).max()) ** (2 * Js.shape[0])
             assert manipulability(J, part) ** 2 == pytest.approx(np.linalg.det(Js @ Js.T), abs=1e-12 * scale)

@@ -23,7 +23,6 @@ from kinematics import export as ex
 KATEX_DIR = Path(__file__).resolve().parent / "katex"
 
 
-
 def _unavailable(reason: str):
     if os.environ.get("CI"):
         pytest.fail(f"LaTeX renderer unavailable in CI: {reason}")

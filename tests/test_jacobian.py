@@ -51,8 +51,20 @@ def fd_jacobian(robot: Robot, q: np.ndarray, eps: float = 1e-6) -> np.ndarray:
 
 
 def test_library_is_complete():
-    expected = {"planar2", "planar3", "trr", "elbow3r", "scara", "stanford", "wrist", "puma560",
-                "puma560_mdh", "ur5", "panda", "iiwa14"}
+    expected = {
+        "planar2",
+        "planar3",
+        "trr",
+        "elbow3r",
+        "scara",
+        "stanford",
+        "wrist",
+        "puma560",
+        "puma560_mdh",
+        "ur5",
+        "panda",
+        "iiwa14",
+    }
     assert expected <= set(NAMES)
 
 
@@ -98,7 +110,9 @@ def test_jacobian_dot_matches_finite_differences_along_qd(name, seed):
     q, qd = random_q(robot, rng), rng.normal(size=robot.dof)
     eps = 1e-6
     expected = (jacobian(robot, q + eps * qd) - jacobian(robot, q - eps * qd)) / (2 * eps)
-    np.testing.assert_allclose(jacobian_dot(robot, q, qd), expected, atol=2e-6 * max(1, np.abs(expected).max()))
+    np.testing.assert_allclose(
+        jacobian_dot(robot, q, qd), expected, atol=2e-6 * max(1, np.abs(expected).max())
+    )
 
 
 @pytest.mark.parametrize("convention", ["zyx", "zyz"])
@@ -115,7 +129,9 @@ def test_analytic_jacobian_matches_euler_angle_differences(name, convention, see
     for i in range(robot.dof):
         dq = np.zeros(robot.dof)
         dq[i] = eps
-        dphi = euler_angles(fk(robot, q + dq)[:3, :3], convention) - euler_angles(fk(robot, q - dq)[:3, :3], convention)
+        dphi = euler_angles(fk(robot, q + dq)[:3, :3], convention) - euler_angles(
+            fk(robot, q - dq)[:3, :3], convention
+        )
         dphi = (dphi + np.pi) % (2 * np.pi) - np.pi  # unwrap across ±π
         np.testing.assert_allclose(JA[3:, i], dphi / (2 * eps), atol=1e-4 * max(1, np.abs(JA[3:]).max()))
     np.testing.assert_array_equal(JA[:3], jacobian(robot, q)[:3])
@@ -131,8 +147,10 @@ def test_analytic_jacobian_reports_representation_singularity():
     with pytest.raises(RepresentationSingularityError, match="ZYZ"):
         analytic_jacobian(robot, q, "zyz")
     # ZYX pitch = 90°: a planar arm in the base x-y plane never reaches it, a tilted tool does.
-    tilt = Robot.from_dh([dict(joint="revolute", a=0.0, alpha=0.0, d=0.0, theta=0.0)],
-                         tool=np.array([[0, 0, 1, 0], [0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 0, 1.0]]))
+    tilt = Robot.from_dh(
+        [dict(joint="revolute", a=0.0, alpha=0.0, d=0.0, theta=0.0)],
+        tool=np.array([[0, 0, 1, 0], [0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 0, 1.0]]),
+    )
     with pytest.raises(RepresentationSingularityError, match="pitch"):
         analytic_jacobian(tilt, [0.3], "zyx")
 
@@ -146,7 +164,9 @@ def test_trr_course_example():
     np.testing.assert_allclose(J[:3], [[0, 8.157, 5.657], [0, -9.987, -5.657], [1, 0, 0]], atol=5e-4)
     np.testing.assert_allclose(J[:3] @ qd, [17.256, -20.13, 0.500], atol=5e-3)
     # The course's inverse: J⁻¹ = [[0, 0, 1], [−0.5464, −0.5464, 0], [0.9647, 0.7879, 0]].
-    np.testing.assert_allclose(np.linalg.inv(J[:3]), [[0, 0, 1], [-0.5464, -0.5464, 0], [0.9647, 0.7879, 0]], atol=5e-4)
+    np.testing.assert_allclose(
+        np.linalg.inv(J[:3]), [[0, 0, 1], [-0.5464, -0.5464, 0], [0.9647, 0.7879, 0]], atol=5e-4
+    )
 
 
 @given(q1=st.floats(-3, 3), q2=st.floats(-3, 3))
@@ -187,8 +207,10 @@ def test_dh_frames_match_textbook_products():
     """Link frames of a DH robot are base · A1 ⋯ Ak with A from the textbook formulas."""
     from kinematics.transforms import rot_x, rot_z, trans
 
-    rows = [dict(joint="revolute", a=0.3, alpha=0.5, d=0.2, theta=0.1),
-            dict(joint="prismatic", a=0.1, alpha=-1.0, d=0.4, theta=0.7)]
+    rows = [
+        dict(joint="revolute", a=0.3, alpha=0.5, d=0.2, theta=0.1),
+        dict(joint="prismatic", a=0.1, alpha=-1.0, d=0.4, theta=0.7),
+    ]
     q = np.array([0.8, 0.25])
     for convention in ("standard", "modified"):
         robot = Robot.from_dh(rows, convention)

@@ -51,7 +51,9 @@ def test_bad_dh_rows(rows, message):
 
 
 def test_bad_convention():
-    with pytest.raises(RobotDefinitionError, match="convention must be 'standard' or 'modified', got 'craig'"):
+    with pytest.raises(
+        RobotDefinitionError, match="convention must be 'standard' or 'modified', got 'craig'"
+    ):
         Robot.from_dh([ROW], convention="craig")
 
 
@@ -107,8 +109,10 @@ LINK = '<link name="{}"/>'
 
 
 def joint(name, parent, child, kind="revolute", extra=""):
-    return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
-            f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>{extra}</joint>')
+    return (
+        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+        f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>{extra}</joint>'
+    )
 
 
 def urdf(*parts):
@@ -118,25 +122,71 @@ def urdf(*parts):
 @pytest.mark.parametrize(
     ("text", "kwargs", "message"),
     [
-        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "a", "c")),
-         {}, r"the tree below 'a' has 2 leaves \(b, c\); choose one as tip_link"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")), {"tip_link": "hand"},
-         "unknown tip_link 'hand'; links: a, b"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")), {"base_link": "world"},
-         "unknown base_link 'world'"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="floating")), {},
-         "joint 'j1' is floating"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="planar")), {},
-         "joint 'j1' is planar"),
-        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "c", "b")),
-         {}, "not a tree"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="fixed")), {}, "no moving joint"),
-        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "b", "c")),
-         {"base_link": "c", "tip_link": "a"}, "tip_link 'a' is not below base_link 'c'"),
+        (
+            urdf(
+                LINK.format("a"),
+                LINK.format("b"),
+                LINK.format("c"),
+                joint("j1", "a", "b"),
+                joint("j2", "a", "c"),
+            ),
+            {},
+            r"the tree below 'a' has 2 leaves \(b, c\); choose one as tip_link",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")),
+            {"tip_link": "hand"},
+            "unknown tip_link 'hand'; links: a, b",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")),
+            {"base_link": "world"},
+            "unknown base_link 'world'",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="floating")),
+            {},
+            "joint 'j1' is floating",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="planar")),
+            {},
+            "joint 'j1' is planar",
+        ),
+        (
+            urdf(
+                LINK.format("a"),
+                LINK.format("b"),
+                LINK.format("c"),
+                joint("j1", "a", "b"),
+                joint("j2", "c", "b"),
+            ),
+            {},
+            "not a tree",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="fixed")),
+            {},
+            "no moving joint",
+        ),
+        (
+            urdf(
+                LINK.format("a"),
+                LINK.format("b"),
+                LINK.format("c"),
+                joint("j1", "a", "b"),
+                joint("j2", "b", "c"),
+            ),
+            {"base_link": "c", "tip_link": "a"},
+            "tip_link 'a' is not below base_link 'c'",
+        ),
         ("<robot name='r'><link name='a'>", {}, "cannot parse URDF"),
         ('<!DOCTYPE r [<!ENTITY x "y">]><robot name="r"/>', {}, "must not contain a DOCTYPE"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", extra='<mimic joint="nope"/>')), {},
-         "mimics 'nope', which is not an actuated joint"),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", extra='<mimic joint="nope"/>')),
+            {},
+            "mimics 'nope', which is not an actuated joint",
+        ),
     ],
 )
 def test_bad_urdf(text, kwargs, message):
@@ -153,7 +203,9 @@ def test_urdf_chain_without_meshes(tmp_path):
     """A URDF with mesh references that do not exist still loads (only the tree is needed)."""
     text = urdf(
         '<link name="base"><visual><geometry><mesh filename="package://missing/base.stl"/></geometry></visual></link>',
-        LINK.format("l1"), LINK.format("l2"), LINK.format("tip"),
+        LINK.format("l1"),
+        LINK.format("l2"),
+        LINK.format("tip"),
         joint("shoulder", "base", "l1"),
         '<joint name="slide" type="prismatic"><parent link="l1"/><child link="l2"/><origin xyz="0.5 0 0" rpy="0 1.5707963267948966 0"/>'
         '<axis xyz="1 0 0"/><limit lower="0" upper="0.3" effort="1" velocity="1"/></joint>',

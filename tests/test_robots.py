@@ -342,9 +342,7 @@ def test_named_configuration_is_within_limits(name, conf):
     assert np.all(c.q >= r.qlim[0] - 1e-12) and np.all(c.q <= r.qlim[1] + 1e-12)
 
 
-@pytest.mark.parametrize(
-    "name, conf", list(all_configurations())
-)
+@pytest.mark.parametrize("name, conf", list(all_configurations()))
 def test_task_jacobian_rank_drops_exactly_where_tagged(name, conf):
     r, c = configuration(name, conf)
     rows = task_rows(r)
@@ -358,9 +356,7 @@ def test_task_jacobian_rank_drops_exactly_where_tagged(name, conf):
         assert s[full - 1] / s[0] > 1e-2, "regular, but close to a singularity"
 
 
-@pytest.mark.parametrize(
-    "name, conf", list(all_configurations())
-)
+@pytest.mark.parametrize("name, conf", list(all_configurations()))
 def test_kinematics_assess_agrees_with_the_tags(name, conf):
     r, c = configuration(name, conf)
     assert assess(r, c.q).status == ("singular" if c.singular else "regular")

@@ -21,13 +21,13 @@ from kinematics import Robot
 from ..actions import ChooseRobot, SetOption
 from ..snapshot import Snapshot
 from ..state import LabState, Options
-from ..viser_adapter import run_javascript
+from ..viser_adapter import run_javascript, set_page_title
 from .common import Dispatch, bind, sync_value
 from .joints import JointsPanel, configurations_html
 from .matrix import MatrixPanel
 from .motion import ForcePanel, ForwardPanel, InversePanel
 from .readouts import measures_html, status_html
-from .style import BASE_CSS, page_js, status_css
+from .style import BASE_CSS, PAGE_TITLE, page_js, status_css
 
 __all__ = ["PanelView", "PANEL_WIDTH"]
 
@@ -76,6 +76,7 @@ class PanelView:
         gui.main_panel.set_width(PANEL_WIDTH)
         gui.add_html(BASE_CSS + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
+        set_page_title(client, PAGE_TITLE)
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
         bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
         self.status = gui.add_html("", order=2)

@@ -92,15 +92,6 @@ def slider_css(uuid: str, joint: int) -> str:
 
 PAGE_JS = """
 (() => {
-  const TITLE = %(title)s;
-  document.title = TITLE;
-  if (!window.__jacobianLabTitle) {
-    window.__jacobianLabTitle = new MutationObserver(() => {
-      if (document.title !== TITLE) document.title = TITLE;
-    });
-    const head = document.querySelector("title") || document.head;
-    window.__jacobianLabTitle.observe(head, { childList: true, subtree: true, characterData: true });
-  }
   // The joints (top) get more of the right-hand column than the views of J (bottom), once.
   let tries = 0;
   const split = setInterval(() => {
@@ -162,7 +153,5 @@ PAGE_JS = """
 
 
 def page_js() -> str:
-    """The page script with the title filled in."""
-    import json
-
-    return PAGE_JS % {"title": json.dumps(PAGE_TITLE)}
+    """The page script (split of the right-hand column, slider keys, closing the enlarged J)."""
+    return PAGE_JS

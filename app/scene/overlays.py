@@ -146,7 +146,8 @@ class Overlays:
             f"{root}/lost_rotation",
             points=np.zeros((1, 2, 3), np.float32),
             colors=LOST_RGB,
-            line_width=4.0,
+            thickness=4.0,
+            thickness_units="screen",
             visible=False,
         )
         self.lost_labels = {
