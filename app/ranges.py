@@ -150,13 +150,17 @@ def wrench_ranges(robot: Robot) -> tuple[Range, ...]:
     ) * 3
 
 
-def snap_joint(robot: Robot, i: int, value: float) -> float:
-    """``value`` [rad | m] of joint ``i`` moved onto a named configuration's value when within reach.
+def snap_joint(robot: Robot, i: int, value: float, previous: float) -> float:
+    """``value`` [rad | m] of joint ``i`` moved onto a named configuration's value when it arrives near one.
 
-    Within :data:`SNAP_DEGREES` (revolute) or :data:`SNAP_METRES` (prismatic) of home or of a named
-    configuration's value, the slider lands exactly on it, so a student can land on a singularity.
+    Coming from farther than :data:`SNAP_DEGREES` (revolute) or :data:`SNAP_METRES` (prismatic) away
+    from home's or a named configuration's value, and landing within it, the joint lands exactly on it,
+    so a student can put the arm exactly on a singularity. Leaving it (``previous`` already near it) is
+    never held back: fine steps away from a named value are kept.
     """
     tol = math.radians(SNAP_DEGREES) if robot.joints[i].kind == "revolute" else SNAP_METRES
     candidates = [float(robot.home[i]), *(float(c.q[i]) for c in robot.configurations)]
     best = min(candidates, key=lambda c: abs(c - value))
-    return best if abs(best - value) <= tol else float(value)
+    if abs(best - value) <= tol and abs(best - previous) > tol:
+        return best
+    return float(value)

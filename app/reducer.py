@@ -90,7 +90,7 @@ def reduce(state: LabState, action: Action) -> LabState:
         case SetJoint(index=i, value=value):
             i = _index(i, n, "joint")
             x = joint_ranges(robot)[i].clamp_si(_finite(value, f"joint {robot.joints[i].name}"))
-            q = _with(state.q, i, snap_joint(robot, i, x))
+            q = _with(state.q, i, snap_joint(robot, i, x, float(state.q[i])))
             return state.replace(q=q, configuration=named_configuration_at(state, q), stopped="")
         case SetConfiguration(q=values, name=name):
             q = np.array([_finite(v, "joint value") for v in values]) if len(values) == n else None

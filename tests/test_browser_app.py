@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from app.server import Lab
+from app.viser_adapter import handle_uuid
 
 CHROMIUM = "/usr/bin/chromium"
 ARGS = [
@@ -58,7 +59,7 @@ def _image(png: bytes) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
 
 
-def _wait(predicate, timeout: float = 15.0) -> None:
+def _wait(predicate, timeout: float = 30.0) -> None:
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         if predicate():
@@ -67,7 +68,29 @@ def _wait(predicate, timeout: float = 15.0) -> None:
     raise AssertionError("condition not reached in time")
 
 
-def test_page_loads_and_a_keyboard_slider_changes_readouts_and_scene(tmp_path):
+def _canvas(page) -> np.ndarray:
+    return _image(page.locator("canvas").first.screenshot())
+
+
+def _steady_canvas(page, timeout: float = 30.0) -> np.ndarray:
+    """The 3-D view once two consecutive frames agree (rendering has caught up)."""
+    end = time.monotonic() + timeout
+    last = _canvas(page)
+    while time.monotonic() < end:
+        now = _canvas(page)
+        if (np.abs(now - last).max(axis=-1) > 30).mean() < 0.0005:
+            return now
+        last = now
+    raise AssertionError("the 3-D view never settled")
+
+
+def _modal_open(page) -> bool:
+    return page.locator(".mantine-Modal-content .jl-big").count() > 0
+
+
+def test_app_in_chromium_at_1280x720(tmp_path):
+    """Layout, keyboard sliders, the view changing, a singular configuration, and the enlarged J closing
+    with Escape, its × and a click outside."""
     sync_playwright = _require_browser()
     out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -80,46 +103,68 @@ def test_page_loads_and_a_keyboard_slider_changes_readouts_and_scene(tmp_path):
                 page = browser.new_page(viewport=VIEWPORT)
                 page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
                 page.goto(lab.url)
-                page.wait_for_selector("[role=slider]", timeout=30_000)
+                page.wait_for_selector("[role=slider]", timeout=120_000)
                 session = lab.session()
                 _wait(lambda: session.snapshot is not None and page.locator(".jl-matrix").count() > 0)
+                _wait(lambda: page.title() == "Jacobian Lab")
                 for button in page.query_selector_all(".mantine-Notification-closeButton"):
                     button.click()
-                status_before = page.locator(".jl-status").first.inner_text()
-                assert "regular" in status_before
-                matrix_before = page.locator(".jl-matrix").first.inner_text()
-                time.sleep(0.5)  # let the first frames render
-                canvas_before = _image(page.locator("canvas").first.screenshot())
 
-                # Move the shoulder slider from the keyboard.
+                # The 3-D view is the largest thing on screen, and joints and J are both in sight.
+                box = page.locator("canvas").first.bounding_box()
+                share = box["width"] * box["height"] / (VIEWPORT["width"] * VIEWPORT["height"])
+                assert share >= 0.55, f"the 3-D view has {share:.0%} of the window"
+                last_slider = page.locator("[role=slider]").nth(session.state.robot.dof - 1).bounding_box()
+                assert last_slider["y"] + last_slider["height"] <= VIEWPORT["height"]
+                matrix = page.locator(".jl-matrix").first.bounding_box()
+                assert matrix["y"] < VIEWPORT["height"] - 100, "the numeric J is out of sight"
+                assert "regular" in page.locator(".jl-status").first.inner_text()
+
+                # Arrow keys on a slider move the joint (1° a press; Shift: 0.1°), never the camera.
+                canvas_before = _steady_canvas(page)
+                matrix_before = page.locator(".jl-matrix").first.inner_text()
                 slider = session.panel.joints.sliders[1]
                 q_before = float(session.state.q[1])
                 camera_before = session.client.camera.position.copy()
-                thumb = page.locator(f'[id="{slider._impl.uuid}"] [role=slider]')
-                if thumb.count() == 0:
-                    thumb = page.locator(f'[id="{slider._impl.uuid}"]')
+                thumb = page.locator(f'[id="{handle_uuid(slider)}"] [role=slider]')
                 thumb.first.focus()
-                for _ in range(20):
+                for _ in range(8):
                     page.keyboard.press("ArrowRight")
-                _wait(lambda: session.state.q[1] > q_before + math.radians(5))
+                _wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.0), abs=1e-6))
+                page.keyboard.press("Shift+ArrowRight")
+                _wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.1), abs=1e-6))
                 _wait(lambda: page.locator(".jl-matrix").first.inner_text() != matrix_before)
-                time.sleep(0.5)
-                canvas_after = _image(page.locator("canvas").first.screenshot())
-                # The arm moved, not the camera (arrow keys on a slider must not orbit the view).
+                canvas_after = _steady_canvas(page)
                 np.testing.assert_allclose(session.client.camera.position, camera_before, atol=1e-6)
                 changed = np.abs(canvas_after - canvas_before).max(axis=-1) > 30
                 assert changed.mean() > 0.002, f"the 3-D view barely changed ({changed.mean():.4%} of pixels)"
 
                 # A singular configuration reads out in words and as ∞.
-                page.get_by_role("button", name="wrist singular").click()
+                page.get_by_label("Configuration", exact=True).first.click()
+                page.get_by_role("option", name="wrist singular (singular)", exact=True).click()
                 _wait(lambda: "singular: wrist" in page.locator(".jl-status").first.inner_text())
                 assert "∞" in page.locator(".jl-status").first.inner_text()
                 body = page.locator("body").inner_text()
                 assert "NaN" not in body and "nan" not in body.split()
-                time.sleep(0.5)
+                _steady_canvas(page)
                 shot = out_dir / "app_browser.png"
                 page.screenshot(path=str(shot))
                 print(f"screenshot: {shot}")
+
+                # The enlarged J: live, and it closes with Escape, with its ×, and with a click outside.
+                enlarge = page.get_by_role("button", name="Enlarge J (Esc closes)")
+                for close in ("Escape", "x", "outside"):
+                    enlarge.click()
+                    _wait(lambda: _modal_open(page))
+                    assert session.panel.matrix.enlarged
+                    if close == "Escape":
+                        page.keyboard.press("Escape")
+                    elif close == "x":
+                        page.locator(".jl-close-x").click()
+                    else:
+                        page.mouse.click(8, VIEWPORT["height"] - 8)
+                    _wait(lambda: not _modal_open(page))
+                    _wait(lambda: not session.panel.matrix.enlarged)
             finally:
                 browser.close()
     finally:

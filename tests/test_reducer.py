@@ -65,13 +65,18 @@ def test_a_typed_value_beyond_the_slider_is_clamped_in_the_maths(state):
 
 
 def test_joint_snaps_onto_a_named_configuration(state, puma):
-    """Within the snapping tolerance of a named value the joint lands on it exactly (and the name follows)."""
+    """Arriving within the snapping tolerance of a named value the joint lands on it exactly (the name
+    follows); fine steps away from it are kept."""
     near = math.radians(SNAP_DEGREES * 0.6)
     new = reduce(state, SetJoint(4, near))  # wrist_singular is home with q5 = 0
     assert new.q[4] == 0.0
     assert new.configuration == "wrist_singular"
     far = reduce(state, SetJoint(4, math.radians(SNAP_DEGREES * 2)))
     assert far.q[4] == pytest.approx(math.radians(SNAP_DEGREES * 2)) and far.configuration == ""
+    leaving = reduce(new, SetJoint(4, math.radians(0.1)))  # a fine step off the singularity
+    assert leaving.q[4] == pytest.approx(math.radians(0.1)) and leaving.configuration == ""
+    back = reduce(leaving, SetJoint(4, 0.0))
+    assert back.configuration == "wrist_singular"
 
 
 def test_go_to_and_set_configuration(state, puma):

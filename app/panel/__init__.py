@@ -21,13 +21,13 @@ from kinematics import Robot
 from ..actions import ChooseRobot, SetOption
 from ..snapshot import Snapshot
 from ..state import LabState, Options
-from ..viser_adapter import run_javascript, set_page_title
+from ..viser_adapter import handle_uuid, run_javascript, set_page_title
 from .common import Dispatch, bind, sync_value
 from .joints import JointsPanel, configurations_html
 from .matrix import MatrixPanel
 from .motion import ForcePanel, ForwardPanel, InversePanel
 from .readouts import measures_html, status_html
-from .style import BASE_CSS, PAGE_TITLE, page_js, status_css
+from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 
 __all__ = ["PanelView", "PANEL_WIDTH"]
 
@@ -69,6 +69,7 @@ class PanelView:
         self, client: viser.ClientHandle, dispatch: Dispatch, robot_names: list[str], state: LabState
     ):
         self.gui = gui = client.gui
+        self.client = client
         self.dispatch = dispatch
         gui.configure_theme(control_width="large", show_share_button=False, brand_color=(59, 91, 219))
         gui.set_panel_label("Jacobian Lab")
@@ -126,6 +127,9 @@ class PanelView:
             self.force = ForcePanel(self.gui, self.dispatch, robot, order=100)
         with self.tab_view:
             self.about = self.gui.add_html(configurations_html(robot), order=200)
+        sliders = [*self.joints.sliders, *self.forward.sliders, *self.inverse.sliders.values()]
+        sliders += [*self.force.sliders.values(), self.inverse.damping, self.scale]
+        run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
 
     def remove_robot(self) -> None:
         for part in (self.joints, self.forward, self.inverse, self.force, self.matrix, self.about):

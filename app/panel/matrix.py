@@ -97,7 +97,10 @@ class MatrixPanel:
         J, rows, frame, status = self._last_args
         self._last = status + matrix_html(J, self.robot, rows, frame, big=True)
         symbolic = f'<div class="jl jl-big">{self._symbolic}</div>' if self._symbolic else ""
-        return '<button class="jl-close-x" title="Close (Esc)">×</button>' + self._last + symbolic
+        close = (
+            '<div class="jl-close-row"><button class="jl-close-x" title="Close (Esc)">× close</button></div>'
+        )
+        return close + self._last + symbolic
 
     def show_symbolic(self, mathml: str | None, note: str) -> None:
         """Show the symbolic J(q) (``None``: only the note), here and in the enlarged view."""

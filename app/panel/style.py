@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from ..palette import STATUS_TEXT, joint_hex, joint_text_hex
 
-__all__ = ["BASE_CSS", "slider_css", "PAGE_JS", "PAGE_TITLE"]
+__all__ = ["BASE_CSS", "slider_css", "PAGE_JS", "PAGE_TITLE", "steps_js"]
 
 PAGE_TITLE = "Jacobian Lab"
 
@@ -58,8 +58,9 @@ BASE_CSS = """
 .jl-conf { margin: 2px 0 0 0; padding-left: 1.1em; font-size: 12.5px; color: #3d434b; }
 .jl-conf li { margin: 1px 0; }
 .jl-conf b { color: #1f2328; }
-.jl-close-x { position: absolute; top: 6px; right: 10px; border: 0; background: transparent; font-size: 30px;
-  line-height: 1; cursor: pointer; color: #3d434b; }
+.jl-close-row { display: flex; justify-content: flex-end; margin: -8px 0 4px 0; }
+.jl-close-x { border: 1px solid #c4c8ce; border-radius: 6px; background: #f4f5f7; font-size: 18px;
+  line-height: 1.2; padding: 2px 10px; cursor: pointer; color: #1f2328; }
 /* Slider labels and numbers readable from the back row. */
 .mantine-Slider-root { min-height: 1.9em; }
 label { font-size: 13px !important; }
@@ -119,19 +120,31 @@ PAGE_JS = """
     }
     return false;
   };
-  // Arrow keys on a focused slider: move it (10 fine steps; with Shift one fine step), never the camera.
+  // Arrow keys on a focused slider move it by ten fine steps (Shift: one), never the camera. The
+  // value is typed into the slider's own number box, as a user would.
+  const STEPS = { ArrowRight: 1, ArrowUp: 1, ArrowLeft: -1, ArrowDown: -1 };
   document.body.addEventListener("keydown", (event) => {
     const target = event.target;
     if (event.key === "Escape" && modalClose()) { event.stopPropagation(); return; }
-    if (!event.key.startsWith("Arrow") || !(target instanceof Element)) return;
+    if (!(event.key in STEPS) || !(target instanceof Element) || !event.isTrusted) return;
     const thumb = target.closest('[role="slider"]');
-    if (!thumb) return;
-    if (!event.isTrusted || event.shiftKey) return;  // one fine step: the slider's own handler
+    const root = thumb && thumb.closest("[id]");
+    const fine = root && (window.__jacobianLabSteps || {})[root.id];
+    const input = root && root.parentElement && root.parentElement.querySelector("input.mantine-NumberInput-input");
+    if (!fine || !input) return;  // not one of ours: the slider's own keys
     event.preventDefault();
     event.stopPropagation();
-    for (let i = 0; i < 10; i++) {
-      thumb.dispatchEvent(new KeyboardEvent("keydown", { key: event.key, bubbles: true, cancelable: true }));
-    }
+    const now = parseFloat(thumb.getAttribute("aria-valuenow"));
+    const lo = parseFloat(thumb.getAttribute("aria-valuemin"));
+    const hi = parseFloat(thumb.getAttribute("aria-valuemax"));
+    const moved = now + STEPS[event.key] * fine * (event.shiftKey ? 1 : 10);
+    const value = Math.min(hi, Math.max(lo, Math.round(moved / fine) * fine));
+    const decimals = Math.max(0, -Math.floor(Math.log10(fine) + 1e-9));
+    const setter = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set;
+    setter.call(input, value.toFixed(decimals));
+    input.dispatchEvent(new Event("input", { bubbles: true }));
+    thumb.focus();
+    setTimeout(() => thumb.focus(), 0);  // keep the keys on the slider
   }, true);
   document.body.addEventListener("keydown", (event) => {
     if (event.key.startsWith("Arrow") && event.target instanceof Element && event.target.closest('[role="slider"]')) {
@@ -155,3 +168,12 @@ PAGE_JS = """
 def page_js() -> str:
     """The page script (split of the right-hand column, slider keys, closing the enlarged J)."""
     return PAGE_JS
+
+
+def steps_js(steps: dict[str, float]) -> str:
+    """A page script registering the fine step of each slider (by DOM id) for the arrow keys."""
+    import json
+
+    return (
+        f"window.__jacobianLabSteps = Object.assign(window.__jacobianLabSteps || {{}}, {json.dumps(steps)});"
+    )
