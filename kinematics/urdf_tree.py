@@ -2,12 +2,14 @@
 
 Without a ``tip_link`` the chain ends at a link named like an arm's end (in
 this order of preference: ``tool0``, ``*_tcp``, ``flange``, ``ee_link``,
-``*hand*``, case-insensitive) with moving joints above it; else at the leaf
-with the most moving joints above it. Gripper jaws never extend an arm by
-default: a joint whose name or child link says finger/jaw/knuckle/claw/thumb,
-or a mimic pair whose two joints sit on sibling branches, ends a default chain
-just above it. Without a ``base_link`` the chain starts at the root, or just
-below the last floating or planar joint above the tip.
+``*hand*``, case-insensitive; the uppermost such link of a branch) with moving
+joints above it; else at the leaf with the most moving joints above it.
+Gripper jaws never extend an arm by default: a moving joint whose name or
+child link says finger, jaw, knuckle, claw, thumb, index, middle, ring, pinky
+or gripper (but not a wrist yaw, roll or pitch), or a mimic pair whose two
+joints sit on sibling branches, ends a default chain just above it. Without a
+``base_link`` the chain starts at the root, or just below the last floating or
+planar joint above the tip.
 """
 
 from __future__ import annotations
@@ -27,7 +29,11 @@ _PREFERRED = (
     ("a link named ee_link", re.compile(r"(.*_)?ee_link")),
     ("a link named *hand*", re.compile(r".*hand.*")),
 )
-_JAW = re.compile(r"finger|jaw|knuckle|claw|thumb", re.IGNORECASE)
+_JAW = re.compile(
+    r"finger|jaw|knuckle|claw|thumb|(^|_)(index|middle|ring|pinky|little)(_|\d|$)", re.IGNORECASE
+)
+_GRIPPER = re.compile(r"gripper", re.IGNORECASE)  # a moving "gripper" joint is the jaw drive...
+_WRIST = re.compile(r"yaw|roll|pitch|wrist", re.IGNORECASE)  # ...unless it is a wrist axis
 
 
 @dataclass(frozen=True)
@@ -104,7 +110,7 @@ class Tree:
         return out
 
     def _jaw_joints(self) -> set[str]:
-        jaws = {j.name for j in self.doc.joints if j.moving and (_JAW.search(j.name) or _JAW.search(j.child))}
+        jaws = {j.name for j in self.doc.joints if j.moving and _jaw_like(j)}
         for j in self.doc.joints:
             leader = self.by_name.get(j.mimic[0]) if j.mimic else None
             if leader is not None and j.moving and leader.moving:
@@ -150,8 +156,17 @@ class Tree:
         for link in self._depth_first(start):
             b, path = self._serial(self.path_to(link, start), base)
             if any(j.moving for j in path) and all(j.type not in ("floating", "planar") for j in path):
-                out.append((b, link, path))
+                if self._buildable(path):
+                    out.append((b, link, path))
         return out
+
+    def _buildable(self, path: list[UrdfJoint]) -> bool:
+        """False when a mimic joint on ``path`` follows a missing joint or a cycle."""
+        try:
+            self.actuated(path)
+        except UrdfError:
+            return False
+        return True
 
     def choose(self, base_link: str | None = None, tip_link: str | None = None) -> ChainChoice:
         """The chain from ``base_link`` to ``tip_link``; either may be ``None`` (see the module text)."""
@@ -168,6 +183,10 @@ class Tree:
         candidates = self._candidates(base_link)
         if not candidates:
             below = base_link if base_link is not None else self.root
+            for link in self._depth_first(below):
+                path = self.path_to(link, below)
+                if any(j.moving for j in path):
+                    self.actuated(path)  # raises the mimic error that rules the chain out
             free = [j for j in self.doc.joints if j.type in ("floating", "planar")][:3]
             why = "".join(
                 f"; joint {j.name!r} is {j.type}: only revolute, continuous, prismatic and fixed joints "
@@ -177,7 +196,9 @@ class Tree:
             raise UrdfError(f"no moving joint in any serial chain below link {below!r}{why}")
         clean = [c for c in candidates if not any(j.name in self._jaws for j in c[2])]
         for reason, pattern in _PREFERRED:
-            named = [c for c in clean if pattern.fullmatch(c[1].lower())]
+            matches = {c[1] for c in clean if pattern.fullmatch(c[1].lower())}
+            # The uppermost match of a branch: below "hand" come the fingers, not a better tool frame.
+            named = [c for c in clean if c[1] in matches and not any(j.parent in matches for j in c[2])]
             if named:
                 b, tip, path = min(named, key=lambda c: (-_moving(c[2]), len(c[2]), c[1]))
                 return ChainChoice(b, tip, tuple(path), reason)
@@ -247,6 +268,14 @@ class Tree:
     def _info(self, base: str, tip: str, path: tuple[UrdfJoint, ...] | list[UrdfJoint], default: bool):
         names = tuple(j.name for j in self.actuated(path))
         return ChainInfo(base, tip, names, len(names), default)
+
+
+def _jaw_like(j: UrdfJoint) -> bool:
+    """A joint named like a gripper jaw or finger (its own name or its child link's)."""
+    for text in (j.name, j.child):
+        if _JAW.search(text) or (_GRIPPER.search(text) and not _WRIST.search(text)):
+            return True
+    return False
 
 
 def _moving(path: list[UrdfJoint]) -> int:
