@@ -8,9 +8,10 @@ URDF or next to one of its ancestors, then the ``package_dirs`` given, the
 relative to the URDF's folder (``file://`` URIs and absolute paths too, but
 only when they point inside it).
 
-The result is always inside the URDF's own folder tree or inside the package
-folder found: the candidate is resolved (symbolic links followed, ``..``
-removed) and then checked for containment, so ``/etc/passwd``,
+The result is always a mesh file (``.stl``, ``.dae``, ``.obj``, ...) inside the
+URDF's own folder tree or inside the package folder found: the candidate is
+resolved (symbolic links followed, ``..`` removed) and then checked for
+containment, so ``/etc/passwd``,
 ``file:///etc/passwd``, ``../../x.stl``, ``package://../../etc/x`` and links
 that point outside resolve to ``None``.
 """
@@ -25,9 +26,15 @@ from urllib.parse import unquote, urlsplit
 from .urdf_io import MAX_FILE_BYTES, decode_utf8, read_user_file
 from .urdf_xml import parse_urdf
 
-__all__ = ["resolve_mesh", "mesh_report", "package_roots"]
+__all__ = ["resolve_mesh", "mesh_report", "package_roots", "MESH_SUFFIXES"]
 
 _PACKAGE = "package://"
+MESH_SUFFIXES = frozenset({".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off", ".3mf"})
+"""File types a mesh may have (case-insensitive): nothing else is ever returned."""
+ANCESTOR_LEVELS = 6
+"""How far above the URDF's folder an enclosing folder named like the package is looked for."""
+SIBLING_LEVELS = 3
+"""How far above the URDF's folder a package folder is looked for beside it."""
 
 
 def _inside(path: Path, folder: Path) -> bool:
@@ -43,7 +50,7 @@ def _contained_file(folder: Path, relative: str) -> Path | None:
         candidate = (root / relative).resolve()
     except (OSError, RuntimeError, ValueError):  # RuntimeError: a symlink loop
         return None
-    if not _inside(candidate, root) or candidate == root:
+    if not _inside(candidate, root) or candidate == root or candidate.suffix.lower() not in MESH_SUFFIXES:
         return None
     try:
         return candidate if candidate.is_file() else None
@@ -58,15 +65,22 @@ def _env_dirs(name: str) -> list[Path]:
 def package_roots(
     urdf_path: str | Path, package: str, package_dirs: Sequence[str | Path] = ()
 ) -> Iterator[Path]:
-    """Folders named ``package`` where ``package://package/...`` may live, in search order."""
+    """Folders named ``package`` where ``package://package/...`` may live, in search order.
+
+    The URDF's folder and its ancestors up to :data:`ANCESTOR_LEVELS` above it when named
+    ``package``; a ``package`` folder inside the URDF's folder or inside one of the
+    :data:`SIBLING_LEVELS` folders above it (never inside the filesystem root or the home
+    folder); then ``package_dirs``, ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH``.
+    """
     if not package or package in (".", "..") or any(c in package for c in "/\\\x00"):
         return
     here = Path(urdf_path).resolve().parent
-    ancestors = [here, *here.parents]
-    for folder in ancestors:
-        if folder.name == package:
+    ancestors = [here, *here.parents][: ANCESTOR_LEVELS + 1]
+    stop = {Path(here.anchor), Path.home().resolve()}
+    for level, folder in enumerate(ancestors):
+        if folder.name == package and folder not in stop:
             yield folder
-        if (folder / package).is_dir():
+        if level <= SIBLING_LEVELS and folder not in stop and (folder / package).is_dir():
             yield folder / package
     spots: Iterable[Path] = [*map(Path, package_dirs), *_env_dirs("ROS_PACKAGE_PATH")]
     for spot in spots:
