@@ -100,6 +100,7 @@ class Tree:
                 f"root {self.root!r} (their joints form a cycle)"
             )
         self._jaws = self._jaw_joints()
+        self._drivable: set[str] = set()  # mimic joints whose driver resolves
 
     def _depth_first(self, start: str) -> list[str]:
         out, stack = [], [start]
@@ -162,10 +163,13 @@ class Tree:
 
     def _buildable(self, path: list[UrdfJoint]) -> bool:
         """False when a mimic joint on ``path`` follows a missing joint or a cycle."""
-        try:
-            self.actuated(path)
-        except UrdfError:
-            return False
+        for j in path:
+            if j.mimic is not None and j.name not in self._drivable:
+                try:
+                    self.driver(j)
+                except UrdfError:
+                    return False
+                self._drivable.add(j.name)
         return True
 
     def choose(self, base_link: str | None = None, tip_link: str | None = None) -> ChainChoice:
@@ -241,10 +245,12 @@ class Tree:
     def actuated(self, path: tuple[UrdfJoint, ...] | list[UrdfJoint]) -> list[UrdfJoint]:
         """The joints that become entries of ``q`` for a chain: each moving joint's driver, in order."""
         out: list[UrdfJoint] = []
+        seen: set[str] = set()
         for j in path:
             if j.moving:
-                d = self.driver(j)[0]
-                if all(d is not k for k in out):
+                d = self.driver(j)[0] if j.mimic is not None else j
+                if d.name not in seen:
+                    seen.add(d.name)
                     out.append(d)
         return out
 

@@ -6,6 +6,7 @@ transforms), central finite differences of that for J, and numbers derived by ha
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 from pathlib import Path
@@ -21,11 +22,16 @@ DATA = Path(__file__).parent / "data" / "urdf"
 logging.getLogger("yourdfpy").setLevel(logging.ERROR)
 
 
-def reference_fk(path: Path, robot: Robot, q: np.ndarray, base: str, tip: str) -> np.ndarray:
-    """T_base_tip from yourdfpy's scene graph (the joint values by name; mimic joints follow)."""
+@functools.cache
+def _yourdfpy(path: Path):
     import yourdfpy
 
-    urdf = yourdfpy.URDF.load(str(path), build_scene_graph=True, load_meshes=False)
+    return yourdfpy.URDF.load(str(path), build_scene_graph=True, load_meshes=False)
+
+
+def reference_fk(path: Path, robot: Robot, q: np.ndarray, base: str, tip: str) -> np.ndarray:
+    """T_base_tip from yourdfpy's scene graph (the joint values by name; mimic joints follow)."""
+    urdf = _yourdfpy(path)
     urdf.update_cfg({name: float(v) for name, v in zip(robot.joint_names, q, strict=True)})
     return urdf.get_transform(frame_to=tip, frame_from=base)
 
