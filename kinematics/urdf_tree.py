@@ -216,8 +216,8 @@ class Tree:
                 tip, path = path[cut].parent, path[:cut]
             if any(j.moving for j in path):
                 ends.append((b, tip, path))
-        if not ends:  # every chain is a gripper: take the longest as it is
-            ends = [c for c in candidates if c[1] in leaves]
+        if not ends:  # every chain is a gripper (or no leaf ends a chain): take the longest as it is
+            ends = [c for c in candidates if c[1] in leaves] or candidates
         rank = {link: i for i, link in enumerate(self.order)}
         b, tip, path = min(ends, key=lambda c: (-_moving(c[2]), rank[c[1]]))
         return ChainChoice(b, tip, tuple(path), "the leaf with the most moving joints above it")

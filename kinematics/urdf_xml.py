@@ -27,6 +27,9 @@ __all__ = ["UrdfDoc", "UrdfJoint", "parse_urdf", "MAX_LINKS", "JOINT_TYPES"]
 MAX_LINKS = 1000
 """Most links (and joints) a URDF may have: real robots have at most a few hundred."""
 
+MAX_MAGNITUDE = 1e6
+"""Largest magnitude of a length [m], angle [rad], axis component or mimic factor in a URDF."""
+
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 _DECLARATION = re.compile(rb"\A\s*(<\?xml[^>]*\?>)?", re.DOTALL)
@@ -127,20 +130,26 @@ def _numbers(el, attr: str, count: int, where: str, default: tuple[float, ...]) 
             raise UrdfError(f"{what}: {tok!r} is not a number") from None
         if not math.isfinite(v):
             raise UrdfError(f"{what}: {tok!r} is not a finite number")
+        if abs(v) > MAX_MAGNITUDE:
+            raise UrdfError(f"{what}: {tok!r} is beyond ±{MAX_MAGNITUDE:g}")
         values.append(v)
     return np.array(values)
 
 
-def _number(el, attr: str, where: str, default: float | None, allow_inf: bool = False) -> float | None:
+def _number(el, attr: str, where: str, default: float | None, limit: bool = False) -> float | None:
+    """A single number; ``limit``: a joint limit, where any magnitude (even ±inf) means what it says."""
     text = el.get(attr)
     if text is None:
         return default
+    what = f'{where}: <{_local(el.tag)} {attr}="{text}">'
     try:
         v = float(text.strip())
     except ValueError:
-        raise UrdfError(f'{where}: <{_local(el.tag)} {attr}="{text}">: not a number') from None
-    if math.isnan(v) or (math.isinf(v) and not allow_inf):
-        raise UrdfError(f'{where}: <{_local(el.tag)} {attr}="{text}">: expected a finite number')
+        raise UrdfError(f"{what}: not a number") from None
+    if math.isnan(v) or (math.isinf(v) and not limit):
+        raise UrdfError(f"{what}: expected a finite number")
+    if abs(v) > MAX_MAGNITUDE and not limit:
+        raise UrdfError(f"{what}: expected a number within ±{MAX_MAGNITUDE:g}")
     return v
 
 
@@ -187,8 +196,8 @@ def _joint(el) -> UrdfJoint:
     lower = upper = None
     lim = _child(el, "limit")
     if lim is not None:
-        lower = _number(lim, "lower", where, 0.0, allow_inf=True)
-        upper = _number(lim, "upper", where, 0.0, allow_inf=True)
+        lower = _number(lim, "lower", where, 0.0, limit=True)
+        upper = _number(lim, "upper", where, 0.0, limit=True)
     mimic = None
     m = _child(el, "mimic")
     if m is not None:

@@ -82,6 +82,18 @@ BAD = [
     (arm().replace('xyz="0.4 0 0"', 'xyz="1e400 0 0"'), r"'1e400' is not a finite number"),
     (arm().replace('xyz="0.4 0 0"', 'xyz="0.4 zero 0"'), r"'zero' is not a number"),
     (
+        arm().replace('xyz="0.4 0 0"', 'xyz="1e308 0 0"'),
+        r"<origin xyz=\"1e308 0 0\">: '1e308' is beyond ±1e\+06",
+    ),
+    (
+        arm().replace('<axis xyz="0 0 1"/>', '<axis xyz="1e308 1e308 0"/>'),
+        r"<axis xyz=.*'1e308' is beyond ±1e\+06",
+    ),
+    (
+        arm(extra='<mimic joint="j0" multiplier="1e300"/>'),
+        r"<mimic multiplier=\"1e300\">: expected a number within ±1e\+06",
+    ),
+    (
         arm().replace('<axis xyz="0 0 1"/>', '<axis xyz="0 0 0"/>'),
         r"joint 'j1' .*<axis xyz>: the axis .* has zero length",
     ),
@@ -164,16 +176,19 @@ def test_bad_urdf_message(text, message):
 
 
 def test_a_mimic_multiplier_that_overflows_when_chained():
-    text = (
-        '<robot name="c"><link name="a"/><link name="b"/><link name="c"/><link name="d"/>'
-        '<joint name="j0" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>'
-        '<joint name="j1" type="revolute"><parent link="b"/><child link="c"/><axis xyz="0 0 1"/>'
-        '<mimic joint="j0" multiplier="1e300"/></joint>'
-        '<joint name="j2" type="revolute"><parent link="c"/><child link="d"/><origin xyz="1 0 0"/><axis xyz="0 0 1"/>'
-        '<mimic joint="j1" multiplier="1e300"/></joint></robot>'
+    """60 mimic joints each following the previous one ×1e6: j52's factor 1e312 is the first beyond 1.8e308."""
+    n = 60
+    links = "".join(f'<link name="l{i}"/>' for i in range(n + 2))
+    joints = (
+        '<joint name="j0" type="revolute"><parent link="l0"/><child link="l1"/><axis xyz="0 0 1"/></joint>'
     )
-    with pytest.raises(UrdfError, match=r"joint 'j2': its mimic multiplier and offset overflow"):
-        robot_from_urdf_string(text, tip_link="d")
+    joints += "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/><axis xyz="0 0 1"/>'
+        f'<mimic joint="j{i - 1}" multiplier="1e6"/></joint>'
+        for i in range(1, n + 1)
+    )
+    with pytest.raises(UrdfError, match=r"joint 'j52': its mimic multiplier and offset overflow \(inf"):
+        robot_from_urdf_string(f'<robot name="c">{links}{joints}</robot>', tip_link=f"l{n + 1}")
 
 
 def test_links_beyond_the_cap_are_refused_at_once():
