@@ -29,7 +29,7 @@ from .model import Robot
 from .transforms import matrix_to_rpy, rot_z, trans
 from .urdf_build import build_robot, with_home
 from .urdf_io import MAX_FILE_BYTES, decode_utf8, read_user_file
-from .urdf_mesh import mesh_report, resolve_mesh
+from .urdf_mesh import mesh_filename_handler, mesh_report, resolve_mesh
 from .urdf_tree import ChainInfo, Tree
 from .urdf_xml import MAX_LINKS, parse_urdf
 
@@ -37,6 +37,7 @@ __all__ = [
     "ChainInfo",
     "MAX_LINKS",
     "chains",
+    "mesh_filename_handler",
     "mesh_report",
     "resolve_mesh",
     "robot_from_urdf",

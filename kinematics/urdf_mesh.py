@@ -19,14 +19,14 @@ that point outside resolve to ``None``.
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
 from .urdf_io import MAX_FILE_BYTES, decode_utf8, read_user_file
 from .urdf_xml import parse_urdf
 
-__all__ = ["resolve_mesh", "mesh_report", "package_roots", "MESH_SUFFIXES"]
+__all__ = ["resolve_mesh", "mesh_report", "mesh_filename_handler", "package_roots", "MESH_SUFFIXES"]
 
 _PACKAGE = "package://"
 MESH_SUFFIXES = frozenset({".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off", ".3mf"})
@@ -151,3 +151,19 @@ def mesh_report(
         else:
             resolved[uri] = found
     return resolved, unresolved
+
+
+def mesh_filename_handler(
+    urdf_path: str | Path, package_dirs: Sequence[str | Path] | None = None
+) -> Callable[[str], str]:
+    """A ``filename_handler`` for ``yourdfpy.URDF.load``: :func:`resolve_mesh`, or ``""`` when unresolved.
+
+    yourdfpy skips a mesh whose handled name is not a file, so an unresolved or hostile name
+    loads nothing (and the app can list it from :func:`mesh_report`).
+    """
+
+    def handler(fname: str) -> str:
+        found = resolve_mesh(urdf_path, fname, package_dirs)
+        return "" if found is None else str(found)
+
+    return handler

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from kinematics.urdf import mesh_report, resolve_mesh
+from kinematics.urdf import mesh_filename_handler, mesh_report, resolve_mesh
 
 DATA = Path(__file__).parent / "data" / "urdf" / "mesh_arm"
 ARM = DATA / "urdf" / "arm.urdf"
@@ -148,3 +148,21 @@ def test_a_package_folder_beside_the_urdf(tmp_path):
         resolve_mesh(urdf, "package://my_pkg/meshes/m.stl")
         == (tmp_path / "robot" / "my_pkg" / "meshes" / "m.stl").resolve()
     )
+
+
+def test_yourdfpy_with_our_handler_loads_only_the_resolved_meshes():
+    import yourdfpy
+
+    urdf = yourdfpy.URDF.load(
+        str(ARM), build_scene_graph=True, load_meshes=True, filename_handler=mesh_filename_handler(ARM)
+    )
+    assert len(urdf.scene.geometry) == 2  # link.stl via package://, hand.stl beside the URDF
+    hostile = yourdfpy.URDF.load(
+        str(HOSTILE),
+        build_scene_graph=True,
+        load_meshes=True,
+        filename_handler=mesh_filename_handler(HOSTILE),
+    )
+    assert len(hostile.scene.geometry) == 0
+    handler = mesh_filename_handler(ARM)
+    assert handler(fname="/etc/passwd") == "" and handler(fname="meshes_local/hand.stl").endswith("hand.stl")
