@@ -16,6 +16,7 @@ import pytest
 
 import robots
 from kinematics import Robot, fk, jacobian
+from kinematics.errors import UrdfError
 from kinematics.urdf import chains, robot_from_urdf, robot_from_urdf_string
 
 DATA = Path(__file__).parent / "data" / "urdf"
@@ -199,3 +200,54 @@ def test_a_home_clipped_into_limits_that_exclude_zero():
     assert s[-1] / s[0] > 1e-3
     s0 = np.linalg.svd(jacobian(robot, [0.5, -0.001])[:2], compute_uv=False)
     assert s0[-1] / s0[0] < 1e-3
+
+
+# ------------------------------------------------------------------ which tip by default
+def _tree(*leaves: str, extra: str = "") -> str:
+    """base → j1 → a → j2 → b, then one revolute joint from b to each leaf (3 moving joints each)."""
+    links = "".join(f'<link name="{n}"/>' for n in ("base", "a", "b", *leaves))
+    joints = (
+        '<joint name="j1" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/></joint>'
+        '<joint name="j2" type="revolute"><parent link="a"/><child link="b"/><origin xyz="1 0 0"/><axis xyz="0 1 0"/></joint>'
+    )
+    joints += "".join(
+        f'<joint name="to_{n}" type="revolute"><parent link="b"/><child link="{n}"/><origin xyz="0 0 {i + 1}"/>'
+        f'<axis xyz="1 0 0"/></joint>'
+        for i, n in enumerate(leaves)
+    )
+    return f'<robot name="t">{links}{joints}{extra}</robot>'
+
+
+@pytest.mark.parametrize(
+    ("leaves", "tip"),
+    [
+        (("zeta", "TOOL0", "panda_hand", "arm_tcp"), "TOOL0"),
+        (("zeta", "flange", "panda_hand", "arm_tcp"), "arm_tcp"),
+        (("zeta", "ee_link", "panda_hand", "flange"), "flange"),
+        (("zeta", "left_hand", "ee_link"), "ee_link"),
+        (("zeta", "left_hand", "alpha"), "left_hand"),
+        (("zeta", "alpha"), "zeta"),  # no name: equal joint counts, the first leaf in file order
+        (("finger_left", "omega"), "omega"),  # a finger never ends the arm
+    ],
+)
+def test_default_tip_preference(leaves, tip):
+    robot = robot_from_urdf_string(_tree(*leaves))
+    assert f"to link '{tip}'" in robot.description
+    assert robot.dof == 3
+
+
+def test_a_floating_root_joint_moves_the_default_base_below_it():
+    extra = '<link name="world"/><joint name="float" type="floating"><parent link="world"/><child link="base"/></joint>'
+    robot = robot_from_urdf_string(_tree("tool0", extra=extra))
+    assert "from link 'base' to link 'tool0'" in robot.description and robot.dof == 3
+    with pytest.raises(UrdfError, match="joint 'float' is floating: only revolute"):
+        robot_from_urdf_string(_tree("tool0", extra=extra), base_link="world")
+
+
+def test_a_leaf_with_more_moving_joints_wins_without_names():
+    text = _tree("short", "long_base").replace("</robot>", "") + (
+        '<link name="long_end"/><joint name="j9" type="prismatic"><parent link="long_base"/>'
+        '<child link="long_end"/><axis xyz="0 0 1"/><limit lower="0" upper="1"/></joint></robot>'
+    )
+    robot = robot_from_urdf_string(text)
+    assert robot.joint_names == ("j1", "j2", "to_long_base", "j9")
