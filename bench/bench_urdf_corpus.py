@@ -110,6 +110,7 @@ def check_file(path: Path, configs: int, rng: np.random.Generator) -> dict:
     from kinematics.urdf import chains
 
     row = {"file": path.name, "chains": 0, "loaded": 0, "refused": Counter(), "fk": 0.0, "J": 0.0}
+    row |= {"six": 0, "singular_home": 0}
     try:
         infos = chains(path)
     except JacobianLabError as exc:
@@ -130,6 +131,9 @@ def check_file(path: Path, configs: int, rng: np.random.Generator) -> dict:
             row["refused"][str(exc)[:90]] += 1
             continue
         row["loaded"] += 1
+        if robot.dof >= 6:
+            row["six"] += 1
+            row["singular_home"] += int(singular_start(robot))
         for q in random_q(robot, rng, configs):
             T = yourdfpy_fk(urdf, robot, q, info.base_link, info.tip_link)
             row["fk"] = max(row["fk"], float(np.abs(fk(robot, q) - T).max()))
@@ -142,15 +146,24 @@ def check_file(path: Path, configs: int, rng: np.random.Generator) -> dict:
     return row
 
 
+def singular_start(robot) -> bool:
+    """True when the robot's start configuration has σmin/σmax ≤ 1e-3 over its task rows."""
+    from kinematics.analysis import singular_values, task_rows
+
+    s = singular_values(jacobian(robot, robot.home), task_rows(robot))
+    return not s[-1] > 1e-3 * s[0]
+
+
 def default_only(files: list[Path]) -> None:
-    opened, reasons = 0, Counter()
+    opened, reasons, singular = 0, Counter(), 0
     for path in files:
         try:
-            robot_from_urdf(path)
+            robot = robot_from_urdf(path)
             opened += 1
+            singular += int(singular_start(robot))
         except Exception as exc:  # the old code raises more than its own errors
             reasons[f"{type(exc).__name__}: {str(exc)[:70]}"] += 1
-    print(f"{opened} of {len(files)} files open with no tip")
+    print(f"{opened} of {len(files)} files open with no tip; {singular} of them at a singular start pose")
     for reason, n in reasons.most_common():
         print(f"  {n:3d}  {reason}")
 
@@ -187,7 +200,9 @@ def main() -> None:
         f"\n{len(rows)} files, {opened} open with no tip; {n_chains} chains, {n_loaded} loaded, "
         f"{n_chains - n_loaded} refused; worst fk error {max(r['fk'] for r in rows):.1e}, "
         f"worst J error {max(r['J'] for r in rows):.1e} ({args.configs} configurations per chain, "
-        f"{time.perf_counter() - start:.0f} s)"
+        f"{time.perf_counter() - start:.0f} s)\n"
+        f"chains with 6 or more joints: {sum(r['six'] for r in rows)}, starting at a singular pose "
+        f"(σmin/σmax ≤ 1e-3 over the task rows): {sum(r['singular_home'] for r in rows)}"
     )
 
 

@@ -36,6 +36,7 @@ UNLIMITED = 1e15
 """A URDF limit of this magnitude or more (±1e16 is a common sentinel) means "unlimited"."""
 _NUDGES = (0.05, 0.1, 0.2, 0.35, 0.5, 0.8)  # [rad] or [m]: sizes of the offsets tried, in order
 _DIRECTIONS = 12
+_SPREAD = 256
 
 
 def _qlim(j: UrdfJoint) -> tuple[float, float] | None:
@@ -100,7 +101,8 @@ def regular_home(robot: Robot) -> tuple[np.ndarray, float]:
 
     Zeros clipped into the limits when that is regular; else the first of a fixed
     sequence of nudges (growing sizes along fixed pseudo-random directions, clipped
-    into the limits) that is; else the best of them.
+    into the limits) that is; else the first regular one of fixed pseudo-random
+    configurations spread over the limits; else the best of all these.
     """
     lim = robot.qlim
     lo, hi = lim
@@ -108,12 +110,18 @@ def regular_home(robot: Robot) -> tuple[np.ndarray, float]:
     r0 = float(_ratio(robot, q0[None])[0])
     if r0 > HOME_MIN_RATIO:
         return q0, r0
-    directions = np.random.default_rng(20261201).normal(size=(_DIRECTIONS, robot.dof))
+    rng = np.random.default_rng(20261201)
+    directions = rng.normal(size=(_DIRECTIONS, robot.dof))
     directions /= np.linalg.norm(directions, axis=1, keepdims=True)
     Q = np.concatenate([q0 + s * directions for s in _NUDGES])
     Q = np.clip(Q, lo, hi)
     r = _ratio(robot, Q)
     good = np.flatnonzero(r > HOME_MIN_RATIO)
+    if not good.size:  # last resort: spread over the limits (±π or ±0.5 m where unlimited)
+        wide = np.where(np.array(robot.joint_types) == "revolute", np.pi, 0.5)
+        spread = rng.uniform(np.maximum(lo, -wide), np.minimum(hi, wide), size=(_SPREAD, robot.dof))
+        Q, r = np.concatenate([Q, spread]), np.concatenate([r, _ratio(robot, spread)])
+        good = np.flatnonzero(r > HOME_MIN_RATIO)
     k = int(good[0]) if good.size else int(np.argmax(r))
     if r[k] <= r0:
         return q0, r0

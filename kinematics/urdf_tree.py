@@ -94,7 +94,8 @@ class Tree:
         self.root = roots[0]
         self.order = self._depth_first(self.root)
         if len(self.order) != len(doc.links):
-            lost = [link for link in doc.links if link not in set(self.order)]
+            reached = set(self.order)
+            lost = [link for link in doc.links if link not in reached]
             raise UrdfError(
                 f"URDF is not a tree: links {', '.join(map(repr, lost[:10]))} are not connected to the "
                 f"root {self.root!r} (their joints form a cycle)"
@@ -278,10 +279,10 @@ class Tree:
 
 def _jaw_like(j: UrdfJoint) -> bool:
     """A joint named like a gripper jaw or finger (its own name or its child link's)."""
-    for text in (j.name, j.child):
-        if _JAW.search(text) or (_GRIPPER.search(text) and not _WRIST.search(text)):
-            return True
-    return False
+    texts = (j.name, j.child)
+    if any(_JAW.search(t) for t in texts):
+        return True
+    return any(_GRIPPER.search(t) for t in texts) and not any(_WRIST.search(t) for t in texts)
 
 
 def _moving(path: list[UrdfJoint]) -> int:
