@@ -6,6 +6,7 @@ Robots are immutable, so one loaded robot is shared by every client.
 from __future__ import annotations
 
 import threading
+from collections.abc import Sequence
 from pathlib import Path
 
 import robots
@@ -25,27 +26,33 @@ class RobotCatalog:
     Args:
         files: Extra robot files (``.urdf`` or ``.toml``); each is listed under its file stem
             (with a suffix if that name is taken).
+        base_link, tip_link: The chain taken from each URDF in ``files`` (default: the URDF
+            reader's choice, see :mod:`kinematics.urdf`).
     """
 
     def __init__(
-        self, files: list[str | Path] = (), base_link: str | None = None, tip_link: str | None = None
+        self, files: Sequence[str | Path] = (), base_link: str | None = None, tip_link: str | None = None
     ) -> None:
-        self.base_link = base_link
-        self.tip_link = tip_link
         self._files: dict[str, Path] = {}
+        self._chains: dict[str, tuple[str | None, str | None]] = {}
         self._cache: dict[str, Robot] = {}
         self._lock = threading.Lock()
         for f in files:
-            self.add_file(f)
+            self.add_file(f, base_link, tip_link)
 
-    def add_file(self, path: str | Path) -> str:
-        """List the robot file ``path`` (an upload, a DH table saved by an editor); returns its name."""
+    def add_file(self, path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> str:
+        """List the robot file ``path`` (an upload, a DH table saved by an editor); returns its name.
+
+        ``base_link``/``tip_link`` choose the chain of a URDF (ignored for a ``.toml`` robot file).
+        """
         path = Path(path)
+        urdf = path.suffix.lower() == ".urdf"
         with self._lock:
             name = path.stem
             while name in robots.names() or name in self._files:
                 name += " (file)"
             self._files[name] = path
+            self._chains[name] = (base_link, tip_link) if urdf else (None, None)
         return name
 
     def names(self) -> list[str]:
@@ -70,7 +77,8 @@ class RobotCatalog:
             if name in self._cache:
                 return self._cache[name]
         if name in self._files:
-            robot = _load_file(self._files[name], self.base_link, self.tip_link)
+            base_link, tip_link = self._chains[name]
+            robot = robots.load_file(self._files[name], base_link, tip_link)
         elif name in robots.names():
             robot = robots.load(name)
         else:
@@ -78,10 +86,3 @@ class RobotCatalog:
         with self._lock:
             self._cache[name] = robot
         return robot
-
-
-def _load_file(path: Path, base_link: str | None, tip_link: str | None) -> Robot:
-    """A robot file, with the URDF chain chosen by ``base_link`` / ``tip_link`` when given."""
-    if base_link is None and tip_link is None:
-        return robots.load_file(path)
-    return robots.load_file(path, base_link=base_link, tip_link=tip_link)

@@ -1,19 +1,36 @@
-"""Jacobian Lab command line: ``jacobian-lab serve`` and ``jacobian-lab export``.
+"""Jacobian Lab command line: ``jacobian-lab serve``, ``jacobian-lab robots`` and ``jacobian-lab export``.
 
 Examples::
 
     jacobian-lab serve                      # default robot on http://127.0.0.1:8080
     jacobian-lab serve --robot panda --port 8081
-    jacobian-lab serve --urdf my_arm.urdf
+    jacobian-lab serve --urdf my_arm.urdf --tip tool0
     jacobian-lab export puma560 --format latex -o puma_J.tex
+
+Every mistake on the command line (an unknown robot, a URDF that cannot be read, a link that is
+not in it, a port outside 0..65535, a host name that does not resolve to an address of this
+machine) is reported on stderr at once with exit status 2, before any server starts.
 """
 
 from __future__ import annotations
 
 import argparse
+import socket
 import sys
 
+from .export_command import add_chain_arguments
+
 __all__ = ["main"]
+
+
+def _port(text: str) -> int:
+    try:
+        port = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a port number from 0 to 65535, got {text!r}") from None
+    if not 0 <= port <= 65535:
+        raise argparse.ArgumentTypeError(f"expected a port number from 0 to 65535, got {port}")
+    return port
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -26,21 +43,83 @@ def _build_parser() -> argparse.ArgumentParser:
     which = serve.add_mutually_exclusive_group()
     which.add_argument("--robot", help="library robot to show first (see 'jacobian-lab robots')")
     which.add_argument("--urdf", help="path to a URDF file to show first")
+    add_chain_arguments(serve)
     serve.add_argument("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1)")
-    serve.add_argument("--port", type=int, default=8080, help="port (default 8080; 0 picks a free one)")
+    serve.add_argument("--port", type=_port, default=8080, help="port (default 8080; 0 picks a free one)")
     sub.add_parser("robots", help="list the library robots")
     sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
     return parser
 
 
+def check_host(host: str, port: int = 0) -> None:
+    """Raise ``OSError`` with a plain message unless ``host`` is an address this machine can listen on.
+
+    The name is resolved (``socket.getaddrinfo``) and a socket is bound to its first address on a
+    free port, so a name that does not resolve, or resolves to another machine, fails here at
+    once instead of inside the server.
+    """
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+    except (socket.gaierror, UnicodeError) as exc:
+        raise OSError(f"cannot listen on host {host!r}: the name does not resolve ({exc})") from None
+    family, kind, proto, _, address = infos[0]
+    with socket.socket(family, kind, proto) as s:
+        try:
+            s.bind((address[0], 0, *address[2:]))
+        except OSError as exc:
+            raise OSError(
+                f"cannot listen on host {host!r} ({address[0]}): {exc.strerror or exc}; "
+                "use an address of this machine, e.g. 127.0.0.1 or 0.0.0.0"
+            ) from None
+
+
+def _fail(message: str) -> int:
+    print(f"jacobian-lab: error: {message}", file=sys.stderr)
+    return 2
+
+
+def _serve(args: argparse.Namespace) -> int:
+    import robots
+    from kinematics.errors import JacobianLabError
+
+    if args.robot is None and args.urdf is None and (args.base or args.tip):
+        return _fail("--base and --tip choose a chain of the URDF given with --urdf")
+    try:
+        check_host(args.host)
+    except OSError as exc:
+        return _fail(str(exc))
+    try:  # fail before the server starts (and before viser is imported)
+        if args.urdf or args.robot:
+            robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip)
+        from app.server import serve
+
+        serve(
+            robot=args.robot,
+            urdf=args.urdf,
+            base_link=args.base,
+            tip_link=args.tip,
+            host=args.host,
+            port=args.port,
+            block=True,
+        )
+    except JacobianLabError as exc:
+        return _fail(str(exc))
+    except KeyboardInterrupt:
+        pass
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``jacobian-lab`` console script."""
+    """Entry point of the ``jacobian-lab`` console script; returns the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] == "export":
-        from kinematics.export import main as export_main
+        from .export_command import main as export_main
 
         return export_main(argv[1:])
-    args = _build_parser().parse_args(argv or ["serve"])
+    try:
+        args = _build_parser().parse_args(argv or ["serve"])
+    except SystemExit as exc:  # --help, or a usage error already printed by argparse
+        return exc.code if isinstance(exc.code, int) else 2
     if args.command == "robots":
         import robots
 
@@ -48,18 +127,7 @@ def main(argv: list[str] | None = None) -> int:
             robot = robots.load(name)
             print(f"{name:14s} {robot.dof} joints  {robot.title}")
         return 0
-    from kinematics.errors import JacobianLabError
-
-    try:
-        from app.server import serve
-
-        serve(robot=args.robot, urdf=args.urdf, host=args.host, port=args.port, block=True)
-    except JacobianLabError as exc:
-        print(f"jacobian-lab: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        pass
-    return 0
+    return _serve(args)
 
 
 if __name__ == "__main__":

@@ -1,9 +1,6 @@
-"""Exports of the symbolic Jacobian: LaTeX, MathML, a Python module, JSON; and the ``export`` CLI.
+"""Exports of the symbolic Jacobian: LaTeX, MathML, a Python module, JSON.
 
-``jacobian-lab export ROBOT --format latex|mathml|python|json [--frame base|tool]
-[--symbolic-params] [-o FILE]``, with ROBOT a library name or a path to a robot
-file (.toml) or URDF. Output goes to stdout unless ``-o`` is given; progress is
-shown on stderr for any step that takes more than a second.
+The command line ``jacobian-lab export`` lives in :mod:`app.export_command`.
 
 * ``latex``: a fragment for a report (needs ``amsmath``): J, its columns, det J
   (or det(J Jᵀ)), the singular sets and the legend of the compact notation;
@@ -14,14 +11,9 @@ shown on stderr for any step that takes more than a second.
 
 from __future__ import annotations
 
-import argparse
 import json
-import sys
-import threading
-import time
 from collections.abc import Callable
 from html import escape
-from pathlib import Path
 
 from .errors import JacobianLabError
 from .model import Robot
@@ -30,7 +22,7 @@ from .symbolic.core import DEFAULT_TIMEOUT
 from .symbolic.model import check_frame
 from .symbolic.render import MATH_STYLE, notation_for
 
-__all__ = ["FORMATS", "ExportError", "export", "main"]
+__all__ = ["FORMATS", "ExportError", "export"]
 
 FORMATS = ("latex", "mathml", "python", "json")
 _ROWS = ("vx", "vy", "vz", "wx", "wy", "wz")
@@ -171,105 +163,3 @@ def export(
     if not isinstance(robot, Robot):
         raise ExportError(f"expected a kinematics.Robot, got {type(robot).__name__}")
     return _WRITERS[fmt](robot, check_frame(frame), symbolic_params, timeout, progress)
-
-
-class _StderrProgress:
-    """Shows the current step on stderr, only once the whole job has taken more than ``after`` seconds."""
-
-    def __init__(self, stream=None, after: float = 1.0) -> None:
-        self.stream = stream if stream is not None else sys.stderr
-        self.after = after
-        self.message = "working"
-        self.shown = ""
-        self.lock = threading.Lock()
-        self.stop = threading.Event()
-        self.start = time.perf_counter()
-        self.thread = threading.Thread(target=self._run, daemon=True)
-
-    def __call__(self, message: str) -> None:
-        with self.lock:
-            self.message = message
-
-    def _show(self, final: bool = False) -> None:
-        elapsed = time.perf_counter() - self.start
-        with self.lock:
-            message = "done" if final else self.message
-        if final or message != self.shown:
-            self.stream.write(f"jacobian-lab export: [{elapsed:5.1f} s] {message}\n")
-            self.stream.flush()
-            self.shown = message
-
-    def _run(self) -> None:
-        if self.stop.wait(self.after):
-            return
-        while not self.stop.wait(0.25):
-            self._show()
-
-    def __enter__(self) -> _StderrProgress:
-        self.thread.start()
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.stop.set()
-        self.thread.join()
-        if self.shown:
-            self._show(final=True)
-
-
-def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
-        prog="jacobian-lab export",
-        description="Export a robot's symbolic Jacobian J(q) as LaTeX, MathML, a Python module or JSON.",
-    )
-    p.add_argument("robot", help="library robot name (e.g. puma560) or path to a robot .toml or .urdf file")
-    p.add_argument("--format", "-f", choices=FORMATS, default="latex", help="output format (default: latex)")
-    p.add_argument(
-        "--frame", choices=("base", "tool"), default="base", help="axes of J's rows (default: base)"
-    )
-    p.add_argument(
-        "--symbolic-params",
-        action="store_true",
-        help="keep DH lengths and offsets as symbols (a2, d4, ...) instead of numbers",
-    )
-    p.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
-    p.add_argument(
-        "--timeout",
-        type=float,
-        default=DEFAULT_TIMEOUT,
-        metavar="SECONDS",
-        help=f"simplification time limit (default: {DEFAULT_TIMEOUT:g} s)",
-    )
-    return p
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Run ``jacobian-lab export`` with ``argv`` (default: ``sys.argv[1:]``); returns the exit status."""
-    parser = _parser()
-    try:
-        args = parser.parse_args(argv)
-    except SystemExit as exc:  # -h or a usage error (already printed by argparse)
-        return int(exc.code or 0)
-    import robots  # the library loader; imported here because robots itself imports kinematics
-
-    try:
-        robot = robots.load(args.robot)
-        with _StderrProgress() as progress:
-            text = export(
-                robot, args.format, args.frame, args.symbolic_params, progress, timeout=args.timeout
-            )
-    except JacobianLabError as exc:
-        print(f"jacobian-lab export: error: {exc}", file=sys.stderr)
-        return 1
-    if args.output is None:
-        sys.stdout.write(text)
-        return 0
-    try:
-        Path(args.output).write_text(text, encoding="utf-8")
-    except OSError as exc:
-        print(f"jacobian-lab export: error: cannot write {args.output}: {exc.strerror}", file=sys.stderr)
-        return 1
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

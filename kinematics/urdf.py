@@ -1,16 +1,23 @@
-"""URDF in and out: a serial chain from a URDF file (via yourdfpy), and a URDF from any Robot.
+"""URDF in and out: a serial chain from a URDF file, and a URDF from any Robot.
 
-Reading needs no mesh files: only the kinematic tree is parsed. The chain
-runs from ``base_link`` (default: the root link) to ``tip_link`` (default: the
-single leaf below ``base_link``). Fixed joints are folded into the
+Reading needs no mesh files: only the kinematic tree is parsed
+(:mod:`kinematics.urdf_xml`, lxml on the file's bytes, no entities, no network).
+The chain runs from ``base_link`` to ``tip_link``; either may be left out and a
+sensible one is chosen (:mod:`kinematics.urdf_tree`: a link named ``tool0``,
+``*_tcp``, ``flange``, ``ee_link`` or ``*hand*``, else the leaf with the most
+moving joints, never a gripper jaw). Fixed joints are folded into the
 neighbouring transforms, mimic joints become extra axes driven by the joint
-they follow, and every axis is rotated so that it moves about its local z.
+they follow (a leader on a sibling branch becomes an actuated joint of the
+chain), and every axis is rotated so that it moves about its local z
+(:mod:`kinematics.urdf_build`). The robot is named after ``<robot name>``, its
+``description`` says which chain was taken, and it starts at a ``home`` off
+the singular set. Mesh files are found by :func:`resolve_mesh` and
+:func:`mesh_report` (:mod:`kinematics.urdf_mesh`), never outside the URDF's
+folder tree and its packages.
 """
 
 from __future__ import annotations
 
-import io
-import logging
 import math
 from pathlib import Path
 from xml.sax.saxutils import escape
@@ -18,164 +25,97 @@ from xml.sax.saxutils import escape
 import numpy as np
 
 from .errors import UrdfError
-from .model import Axis, Joint, Robot
-from .transforms import matrix_to_rpy, rot_z, rotation_z_to, trans
+from .model import Robot
+from .transforms import matrix_to_rpy, rot_z, trans
+from .urdf_build import build_robot, with_home
+from .urdf_io import MAX_FILE_BYTES, decode_utf8, read_user_file
+from .urdf_mesh import mesh_filename_handler, mesh_report, resolve_mesh
+from .urdf_tree import ChainInfo, Tree
+from .urdf_xml import MAX_LINKS, parse_urdf
 
-__all__ = ["robot_from_urdf", "robot_from_urdf_string", "to_urdf"]
+__all__ = [
+    "ChainInfo",
+    "MAX_LINKS",
+    "chains",
+    "mesh_filename_handler",
+    "mesh_report",
+    "resolve_mesh",
+    "robot_from_urdf",
+    "robot_from_urdf_string",
+    "to_urdf",
+]
 
-_MOVING = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic"}
-_MAX_BYTES = 20 * 1024 * 1024
+
+def _read(path: str | Path) -> bytes:
+    data = read_user_file(path, "URDF", UrdfError, MAX_FILE_BYTES)
+    return decode_utf8(data, f"URDF {Path(path).name!r}", UrdfError).encode("utf-8")
+
+
+def _as_bytes(text: str | bytes) -> bytes:
+    if isinstance(text, bytes):
+        return decode_utf8(text, "URDF", UrdfError).encode("utf-8")
+    if isinstance(text, str):
+        return text.encode("utf-8", errors="replace")
+    raise UrdfError(f"URDF text: expected str or bytes, got {type(text).__name__}")
 
 
 def robot_from_urdf(path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> Robot:
     """Build a :class:`Robot` from the URDF file at ``path``.
 
     Args:
-        path: A ``.urdf`` file. Mesh files it references need not exist.
-        base_link: Link whose frame is the robot's base frame (default: the root).
-        tip_link: Link whose frame is the tool frame (default: the single leaf).
+        path: A URDF file (UTF-8, at most 20 MB). Mesh files it references need not exist.
+        base_link: Link whose frame is the robot's base frame (default: the root, or the link
+            below the last floating/planar joint above the tip).
+        tip_link: Link whose frame is the tool frame (default: see :mod:`kinematics.urdf_tree`).
 
     Raises:
-        UrdfError: The file is unreadable, not a tree, names an unknown link,
-            has several leaves and no ``tip_link``, or uses floating/planar joints.
+        UrdfError: the file is unreadable (missing, not a regular file, too large, not UTF-8),
+            not well-formed XML (line and column given), not a tree, names an unknown link,
+            has a malformed number (joint and attribute named) or a floating/planar joint
+            on the chain, or has no serial chain with a moving joint.
     """
     p = Path(path)
-    try:
-        size = p.stat().st_size
-    except OSError as exc:
-        raise UrdfError(f"cannot read URDF {str(path)!r}: {exc.strerror or exc}") from None
-    if size > _MAX_BYTES:
-        raise UrdfError(f"URDF {p.name!r} is {size} bytes; the limit is {_MAX_BYTES}")
-    text = p.read_text(encoding="utf-8", errors="replace")
-    robot = robot_from_urdf_string(text, base_link, tip_link, name=p.stem)
-    return _replace(robot, urdf_path=str(p.resolve()))
-
-
-def _replace(robot: Robot, **changes: object) -> Robot:
-    import dataclasses
-
-    return dataclasses.replace(robot, **changes)  # type: ignore[arg-type]
-
-
-def _parse(text: str):
-    import yourdfpy
-
-    if "<!ENTITY" in text or "<!DOCTYPE" in text:
-        raise UrdfError("URDF must not contain a DOCTYPE or ENTITY declarations")
-    logging.getLogger("yourdfpy").setLevel(logging.ERROR)
-    try:
-        return yourdfpy.URDF.load(
-            io.StringIO(text), build_scene_graph=False, load_meshes=False, load_collision_meshes=False
-        )
-    except Exception as exc:  # yourdfpy/lxml raise many types on malformed input
-        raise UrdfError(f"cannot parse URDF: {type(exc).__name__}: {exc}") from None
+    return _robot(_read(p), base_link, tip_link, p.stem, str(p.resolve()), p.name)
 
 
 def robot_from_urdf_string(
-    text: str, base_link: str | None = None, tip_link: str | None = None, name: str = "urdf"
+    text: str | bytes, base_link: str | None = None, tip_link: str | None = None, name: str = "urdf"
 ) -> Robot:
-    """Like :func:`robot_from_urdf`, from the URDF's XML text."""
-    model = _parse(text).robot
-    links = [link.name for link in model.links]
-    if not links:
-        raise UrdfError("URDF has no <link>")
-    by_child: dict[str, object] = {}
-    children: dict[str, list[str]] = {name_: [] for name_ in links}
-    for j in model.joints:
-        for end in (j.parent, j.child):
-            if end not in children:
-                raise UrdfError(f"joint {j.name!r} refers to unknown link {end!r}")
-        if j.child in by_child:
-            raise UrdfError(
-                f"URDF is not a tree: link {j.child!r} is the child of joints "
-                f"{by_child[j.child].name!r} and {j.name!r}"  # type: ignore[attr-defined]
-            )
-        by_child[j.child] = j
-        children[j.parent].append(j.child)
-    roots = [n for n in links if n not in by_child]
-    if len(roots) != 1:
-        raise UrdfError(
-            "URDF is not a tree: expected exactly one root link, found "
-            f"{len(roots)}: {', '.join(roots) or 'none (the joints form a cycle)'}"
-        )
-    base = base_link or roots[0]
-    if base not in children:
-        raise UrdfError(f"unknown base_link {base!r}; links: {', '.join(links)}")
-    if tip_link is None:
-        leaves, stack = [], [base]
-        while stack:
-            link = stack.pop()
-            if children[link]:
-                stack.extend(children[link])
-            else:
-                leaves.append(link)
-        if len(leaves) != 1:
-            raise UrdfError(
-                f"the tree below {base!r} has {len(leaves)} leaves ({', '.join(sorted(leaves))}); "
-                "choose one as tip_link"
-            )
-        tip_link = leaves[0]
-    if tip_link not in children:
-        raise UrdfError(f"unknown tip_link {tip_link!r}; links: {', '.join(links)}")
-    path = []
-    link = tip_link
-    while link != base:
-        if link not in by_child:
-            raise UrdfError(f"tip_link {tip_link!r} is not below base_link {base!r}")
-        j = by_child[link]
-        path.append(j)
-        link = j.parent  # type: ignore[attr-defined]
-    path.reverse()
-    return _chain_from_joints(path, name)
+    """Like :func:`robot_from_urdf`, from the URDF's XML text (``name``: used when ``<robot>`` has none)."""
+    return _robot(_as_bytes(text), base_link, tip_link, name, None, "")
 
 
-def _chain_from_joints(path: list, name: str) -> Robot:
-    for j in path:
-        if j.type in ("floating", "planar"):
-            raise UrdfError(
-                f"joint {j.name!r} is {j.type}: only revolute, continuous, prismatic and fixed joints "
-                "form a serial arm"
-            )
-        if j.type not in _MOVING and j.type != "fixed":
-            raise UrdfError(f"joint {j.name!r} has unknown type {j.type!r}")
-    actuated = [j for j in path if j.type in _MOVING and j.mimic is None]
-    index = {j.name: i for i, j in enumerate(actuated)}
-    joints = []
-    for j in actuated:
-        qlim = None
-        if j.type != "continuous" and j.limit is not None and j.limit.lower is not None:
-            lo, hi = float(j.limit.lower), float(j.limit.upper if j.limit.upper is not None else 0.0)
-            qlim = (lo, hi) if math.isfinite(lo) and math.isfinite(hi) and lo < hi else None
-        joints.append(Joint(j.name, _MOVING[j.type], qlim))
-    axes = []
-    pending = np.eye(4)
-    for j in path:
-        origin = np.eye(4) if j.origin is None else np.asarray(j.origin, dtype=float)
-        if not np.all(np.isfinite(origin)):
-            raise UrdfError(f"joint {j.name!r}: origin has a non-finite number")
-        if j.type == "fixed":
-            pending = pending @ origin
-            continue
-        axis = np.array([1.0, 0, 0] if j.axis is None else j.axis, dtype=float)
-        if not np.all(np.isfinite(axis)) or np.linalg.norm(axis) < 1e-9:
-            raise UrdfError(f"joint {j.name!r}: axis {axis.tolist()} is not a finite non-zero vector")
-        A = np.eye(4)
-        A[:3, :3] = rotation_z_to(axis)
-        if j.mimic is not None:
-            if j.mimic.joint not in index:
-                raise UrdfError(
-                    f"joint {j.name!r} mimics {j.mimic.joint!r}, which is not an actuated joint of the chain"
-                )
-            k = index[j.mimic.joint]
-            mult = 1.0 if j.mimic.multiplier is None else float(j.mimic.multiplier)
-            off = 0.0 if j.mimic.offset is None else float(j.mimic.offset)
-        else:
-            k, mult, off = index[j.name], 1.0, 0.0
-        axes.append(Axis(j.name, _MOVING[j.type], k, mult, off, pending @ origin @ A, A.T.copy()))
-        pending = np.eye(4)
-    if not axes:
-        raise UrdfError("the chain between base_link and tip_link has no moving joint")
-    return Robot(name=name, joints=tuple(joints), axes=tuple(axes), tool=pending)
+def chains(path: str | Path, base_link: str | None = None) -> list[ChainInfo]:
+    """The serial chains of the URDF at ``path``, for a chain picker.
+
+    The default chain (the one :func:`robot_from_urdf` opens without a tip) comes
+    first with ``is_default=True``, then one chain per leaf link (and, for a leaf
+    below a gripper jaw, the chain cut above the jaw), each with a moving joint.
+    """
+    return Tree(parse_urdf(_read(path))).chains(base_link)
+
+
+def _robot(
+    data: bytes, base_link: str | None, tip_link: str | None, stem: str, urdf_path: str | None, file: str
+) -> Robot:
+    doc = parse_urdf(data)
+    tree = Tree(doc)
+    choice = tree.choose(base_link, tip_link)
+    name = doc.name or stem
+    where = f" of {file}" if file else ""
+    description = (
+        f"Chain from link {choice.base_link!r} to link {choice.tip_link!r}{where} ({choice.reason})."
+    )
+    robot = build_robot(
+        tree,
+        choice,
+        name,
+        title=name,
+        description=description,
+        source=f"URDF file {file}" if file else "URDF",
+        urdf_path=urdf_path,
+    )
+    return with_home(robot)
 
 
 def _attr(text: str) -> str:

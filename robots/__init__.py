@@ -16,6 +16,7 @@ import numpy as np
 from kinematics import NamedConfiguration, Robot
 from kinematics.errors import RobotDefinitionError, UnknownRobotError
 from kinematics.transforms import rpy_to_matrix
+from kinematics.urdf_io import decode_utf8, read_user_file
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -26,6 +27,7 @@ __all__ = ["DATA_DIR", "TASKS", "names", "load", "load_file", "info"]
 
 DATA_DIR = Path(__file__).resolve().parent / "data"
 SUFFIXES = (".toml", ".urdf")
+MAX_ROBOT_FILE_BYTES = 1024 * 1024  # a robot file is a table of a few dozen numbers
 TASKS = ("auto", "full", "linear", "angular", "planar")  # the optional task key: kinematics.Robot.task
 
 # key -> type; float means "a finite int or float" (not a bool).
@@ -43,15 +45,30 @@ def names() -> list[str]:
     return sorted(p.stem for p in DATA_DIR.glob("*.toml"))
 
 
-def load(name_or_path: str | Path) -> Robot:
+def load(name_or_path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> Robot:
     """A robot by library name (``"puma560"``), or from a ``.toml`` robot file or a ``.urdf`` file.
+
+    Args:
+        name_or_path: Library name or file path.
+        base_link, tip_link: For a URDF, the ends of the chain (default: see
+            :mod:`kinematics.urdf`); a robot file or library robot has no links to choose.
 
     Raises:
         UnknownRobotError: not a library name (nor a file path); the message lists the names.
         RobotDefinitionError: the file is invalid; the message names the file and the key or row.
     """
     path = _resolve(name_or_path)
-    return _load_library(path.stem) if path.parent == DATA_DIR else load_file(path)
+    if path.parent == DATA_DIR and path.suffix == ".toml":
+        _no_links(path, base_link, tip_link)
+        return _load_library(path.stem)
+    return load_file(path, base_link, tip_link)
+
+
+def _no_links(path: Path, base_link: str | None, tip_link: str | None) -> None:
+    if base_link is not None or tip_link is not None:
+        raise RobotDefinitionError(
+            f"{path.name}: base_link/tip_link choose a chain in a URDF; a robot file (.toml) is one chain"
+        )
 
 
 def info(name_or_path: str | Path) -> dict:
@@ -62,13 +79,14 @@ def info(name_or_path: str | Path) -> dict:
     return {"name": doc["name"], "convention": doc["convention"]} | _meta(doc)
 
 
-def load_file(path: str | Path) -> Robot:
-    """Build a robot from a ``.toml`` robot file or a ``.urdf`` file (the whole chain)."""
+def load_file(path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> Robot:
+    """Build a robot from a ``.toml`` robot file or a ``.urdf`` file (base and tip links: URDF only)."""
     path = Path(path)
     if path.suffix.lower() == ".urdf":
-        return Robot.from_urdf(str(path))
+        return Robot.from_urdf(str(path), base_link=base_link, tip_link=tip_link)
     if path.suffix.lower() != ".toml":
         raise RobotDefinitionError(f"{path.name}: expected a .toml robot file or a .urdf file")
+    _no_links(path, base_link, tip_link)
     doc = _validated(path, _read(path))
     rows, revolute = [], [j["joint"] == "revolute" for j in doc["joints"]]
     for j, rev in zip(doc["joints"], revolute, strict=True):
@@ -103,12 +121,18 @@ def _load_library(name: str) -> Robot:
 
 
 def _read(path: Path) -> dict:
-    if not path.is_file():
+    """The TOML document of the robot file ``path`` (a regular UTF-8 file of at most 1 MB)."""
+    if not path.exists() and not path.is_symlink():
         raise RobotDefinitionError(f"{path}: no such robot file")
+    data = read_user_file(path, "robot file", RobotDefinitionError, MAX_ROBOT_FILE_BYTES)
+    text = decode_utf8(data, f"{path.name}", RobotDefinitionError)
     try:
-        with open(path, "rb") as f:
-            return tomllib.load(f)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
+        raise RobotDefinitionError(f"{path.name}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise RobotDefinitionError(f"{path.name}: not valid TOML: nested too deeply") from None
+    except ValueError as exc:  # an integer of more digits than Python converts
         raise RobotDefinitionError(f"{path.name}: not valid TOML: {exc}") from None
 
 
@@ -118,7 +142,7 @@ def _check_table(table: object, required: dict, optional: dict, where: str) -> N
     missing = [k for k in required if k not in table]
     if missing:
         raise RobotDefinitionError(f"{where}: missing key(s) {', '.join(map(repr, missing))}")
-    unknown = sorted(set(table) - set(required) - set(optional))
+    unknown = sorted(set(table) - set(required) - set(optional), key=repr)
     if unknown:
         bad, allowed = ", ".join(map(repr, unknown)), ", ".join([*required, *optional])
         raise RobotDefinitionError(f"{where}: unknown key(s) {bad}; allowed: {allowed}")
@@ -132,9 +156,21 @@ def _check_table(table: object, required: dict, optional: dict, where: str) -> N
 
 def _number(x: object, where: str) -> None:
     if isinstance(x, bool) or not isinstance(x, (int, float)):
-        raise RobotDefinitionError(f"{where}: expected a number, got {x!r}")
-    if not math.isfinite(x):
-        raise RobotDefinitionError(f"{where}: expected a finite number, got {x}")
+        raise RobotDefinitionError(f"{where}: expected a number, got {_short(x)}")
+    try:
+        finite = math.isfinite(float(x))
+    except OverflowError:  # an integer beyond float range
+        finite = False
+    if not finite:
+        raise RobotDefinitionError(f"{where}: expected a finite number within float range, got {_short(x)}")
+
+
+def _short(x: object) -> str:
+    """``repr(x)`` cut to 60 characters (a 400-digit integer is not a message)."""
+    if isinstance(x, int) and x.bit_length() > 200:
+        return f"an integer of about {int(x.bit_length() * 0.30103)} digits"
+    text = repr(x)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def _one_of(value: str, allowed: tuple[str, ...], where: str) -> None:
