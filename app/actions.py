@@ -28,6 +28,7 @@ __all__ = [
     "ClearWrench",
     "SetOption",
     "ChooseRobot",
+    "ChooseChain",
     "SetRobot",
     "ReplaceState",
     "Play",
@@ -109,12 +110,22 @@ class ChooseRobot:
     name: str
 
 
+@dataclass(frozen=True)
+class ChooseChain:
+    """The user picked the chain of the current URDF that ends at ``tip_link`` (a command: the session
+    loads that chain, then dispatches SetRobot)."""
+
+    tip_link: str
+
+
 @dataclass(frozen=True, eq=False)
 class SetRobot:
-    """Switch to the loaded ``robot`` listed as ``name`` (at its home, display choices kept)."""
+    """Switch to the loaded ``robot`` listed as ``name`` (at its home, display choices kept);
+    ``chain``: the tip link of the URDF chain it is ("" for the default chain or a non-URDF robot)."""
 
     name: str
     robot: Robot
+    chain: str = ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -145,7 +156,7 @@ class RequestDownload:
     label: str
 
 
-COMMANDS = (ChooseRobot, RequestDownload)
+COMMANDS = (ChooseRobot, ChooseChain, RequestDownload)
 """Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
 
 Action = (
@@ -159,6 +170,7 @@ Action = (
     | ClearWrench
     | SetOption
     | ChooseRobot
+    | ChooseChain
     | SetRobot
     | ReplaceState
     | Play

@@ -12,6 +12,8 @@ from pathlib import Path
 import robots
 from kinematics import Robot
 from kinematics.errors import UnknownRobotError
+from kinematics.urdf import ChainInfo, mesh_report
+from kinematics.urdf import chains as urdf_chains
 
 __all__ = ["RobotCatalog", "DEFAULT_ROBOT"]
 
@@ -36,6 +38,7 @@ class RobotCatalog:
         self._files: dict[str, Path] = {}
         self._chains: dict[str, tuple[str | None, str | None]] = {}
         self._cache: dict[str, Robot] = {}
+        self._chain_lists: dict[str, list[ChainInfo]] = {}
         self._lock = threading.Lock()
         for f in files:
             self.add_file(f, base_link, tip_link)
@@ -65,6 +68,45 @@ class RobotCatalog:
             return next(iter(self._files))
         names = robots.names()
         return DEFAULT_ROBOT if DEFAULT_ROBOT in names else names[0]
+
+    def chains(self, name: str) -> list[ChainInfo]:
+        """The serial chains of the URDF listed as ``name`` (default first); ``[]`` for other robots."""
+        path = self._files.get(name)
+        if path is None or path.suffix.lower() != ".urdf":
+            return []
+        with self._lock:
+            if name in self._chain_lists:
+                return self._chain_lists[name]
+        found = urdf_chains(path, self._chains[name][0])
+        with self._lock:
+            self._chain_lists[name] = found
+        return found
+
+    def load_chain(self, name: str, tip_link: str) -> Robot:
+        """The robot of the URDF listed as ``name`` ending at ``tip_link`` (loaded once per chain).
+
+        Raises:
+            UnknownRobotError: ``name`` is not a listed URDF file.
+            UrdfError: ``tip_link`` does not end a chain of it.
+        """
+        if name not in self._files or self._files[name].suffix.lower() != ".urdf":
+            raise UnknownRobotError(f"{name!r} is not a URDF file of this lab: it has no chains to choose")
+        key = f"{name}\x00{tip_link}"
+        with self._lock:
+            if key in self._cache:
+                return self._cache[key]
+        robot = robots.load_file(self._files[name], self._chains[name][0], tip_link)
+        with self._lock:
+            self._cache[key] = robot
+        return robot
+
+    def meshes(self, name: str) -> tuple[int, list[str]]:
+        """(found, not found) mesh files of the URDF listed as ``name``; (0, []) for other robots."""
+        path = self._files.get(name)
+        if path is None or path.suffix.lower() != ".urdf":
+            return 0, []
+        resolved, unresolved = mesh_report(path)
+        return len(resolved), unresolved
 
     def load(self, name: str) -> Robot:
         """The robot listed as ``name`` (loaded once).

@@ -17,6 +17,7 @@ import numpy as np
 
 from .actions import (
     Action,
+    ChooseChain,
     ChooseRobot,
     ClearWrench,
     GoTo,
@@ -124,9 +125,8 @@ def reduce(state: LabState, action: Action) -> LabState:
             return state.replace(wrench=frozen(np.zeros(6)))
         case SetOption(name=name, value=value):
             return state.replace(options=_option(state.options, name, value))
-        case SetRobot(name=name, robot=new):
-            fresh = LabState.initial(name, new, default_options(new, state.options))
-            return fresh
+        case SetRobot(name=name, robot=new, chain=chain):
+            return LabState.initial(name, new, default_options(new, state.options), chain)
         case ReplaceState(state=other):
             return other
         case Play(playing=playing):
@@ -135,7 +135,7 @@ def reduce(state: LabState, action: Action) -> LabState:
             return state.replace(playing=bool(playing), stopped="")
         case Step(dt=dt):
             return _step(state, _finite(dt, "time step"))
-        case ChooseRobot() | RequestDownload():
+        case ChooseRobot() | ChooseChain() | RequestDownload():
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )

@@ -38,6 +38,7 @@ from kinematics.analysis import task_rows
 
 from .actions import (
     Action,
+    ChooseChain,
     ChooseRobot,
     GoTo,
     ReplaceState,
@@ -163,6 +164,12 @@ class ClientSession:
             if action.name == state.robot_name:
                 return state
             return reduce(state, SetRobot(action.name, self.catalog.load(action.name)))
+        if isinstance(action, ChooseChain):
+            default = next((c.tip_link for c in self.catalog.chains(state.robot_name) if c.is_default), "")
+            if action.tip_link == (state.chain or default):
+                return state
+            robot = self.catalog.load_chain(state.robot_name, action.tip_link)
+            return reduce(state, SetRobot(state.robot_name, robot, chain=action.tip_link))
         if isinstance(action, RequestDownload):
             self._download(state, action.label)
             return state
@@ -217,7 +224,14 @@ class ClientSession:
                     if self.scene is not None:
                         self.scene.remove()
                     self.scene = SceneView(self.client, state.robot)
-                    self.panel.build_robot(state.robot, task_rows(state.robot))
+                    name = state.robot_name
+                    self.panel.build_robot(
+                        state.robot,
+                        task_rows(state.robot),
+                        self.catalog.chains(name),
+                        state.chain,
+                        self.catalog.meshes(name),
+                    )
                 self.scene.update(snap, state)
                 self.panel.draw(state, snap)
         finally:

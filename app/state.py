@@ -103,6 +103,7 @@ class LabState:
         playing: The joints move at q̇ in time (a ticker dispatches :class:`~app.actions.Step`).
         time: Time moved so far [s].
         stopped: Why the last motion stopped ("" when it did not), shown to the user.
+        chain: Tip link of the URDF chain shown ("" for the default chain or a non-URDF robot).
     """
 
     robot_name: str
@@ -116,6 +117,7 @@ class LabState:
     playing: bool = False
     time: float = 0.0
     stopped: str = ""
+    chain: str = ""
 
     def __post_init__(self) -> None:
         n = self.robot.dof
@@ -127,7 +129,9 @@ class LabState:
                 raise ValueError(f"LabState.{name} must be finite")
 
     @classmethod
-    def initial(cls, robot_name: str, robot: Robot, options: Options | None = None) -> LabState:
+    def initial(
+        cls, robot_name: str, robot: Robot, options: Options | None = None, chain: str = ""
+    ) -> LabState:
         """A fresh state for ``robot`` at its home configuration, at rest, no force."""
         home = next((c.name for c in robot.configurations if c.name == "home"), "")
         return cls(
@@ -137,6 +141,7 @@ class LabState:
             qd=frozen(np.zeros(robot.dof)),
             options=default_options(robot, options),
             configuration=home,
+            chain=chain,
         )
 
     def replace(self, **changes: object) -> LabState:

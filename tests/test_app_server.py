@@ -441,7 +441,7 @@ def test_urdf_robot_drawn_with_its_meshes_or_generated_geometry(tmp_path, fore, 
     path.write_text(URDF.replace("FORE", fore))
     with running_lab(urdf=str(path)) as (lab, session, _):
         assert session.state.robot_name == "two_link"
-        assert (session.scene.arm._meshes is not None) == meshes
+        assert any(name.startswith("/lab/arm/urdf") for name in scene_props(session)) == meshes
         assert session.panel.robot.options[0] == "two_link" and "puma560" in session.panel.robot.options
         session.panel.joints.sliders[1].value = -30.0
         session.settle()
@@ -467,3 +467,33 @@ def test_an_unknown_robot_is_refused_before_the_server_starts():
 
     with pytest.raises(UnknownRobotError, match="puma560"):
         Lab(robot="no_such_robot", port=0)
+
+
+DATA = __import__("pathlib").Path(__file__).parent / "data" / "urdf"
+
+
+def test_urdf_with_several_chains_offers_a_chain_picker():
+    """A gripper arm opens at its hand (no jaw as a 4th joint); the picker switches to a finger chain."""
+    with running_lab(urdf=str(DATA / "gripper_arm.urdf")) as (lab, session, _):
+        assert session.state.robot.dof == 3
+        chain = session.panel.chain
+        assert chain is not None and len(chain.options) == 3
+        assert "hand" in chain.value and "chain" in session.panel.source.content
+        finger = next(o for o in chain.options if "left_finger" in o)
+        chain.value = finger
+        session.settle()
+        assert session.state.robot.dof == 4 and session.state.chain == "left_finger"
+        assert session.panel.chain is not None and session.panel.chain.value == finger
+        assert "left_finger" in session.panel.source.content
+        assert session.errors == 0
+        assert_all_finite(session)
+
+
+def test_hostile_mesh_paths_are_listed_not_read():
+    """Mesh names that point outside the URDF's folders are never opened: the panel lists them as not found."""
+    with running_lab(urdf=str(DATA / "mesh_arm" / "urdf" / "hostile.urdf")) as (lab, session, _):
+        content = session.panel.source.content
+        assert "mesh files not found" in content and "/etc/passwd" in content
+        # Generated geometry: no mesh node, nothing read from outside.
+        assert not any(name.startswith("/lab/arm/urdf") for name in scene_props(session))
+        assert session.errors == 0

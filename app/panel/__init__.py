@@ -14,11 +14,14 @@ screen.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import viser
 
 from kinematics import Robot
+from kinematics.urdf import ChainInfo
 
-from ..actions import ChooseRobot, SetOption
+from ..actions import ChooseChain, ChooseRobot, SetOption
 from ..snapshot import Snapshot
 from ..state import LabState, Options
 from ..viser_adapter import handle_uuid, run_javascript, set_page_title
@@ -26,7 +29,7 @@ from .common import Dispatch, bind, sync_value
 from .joints import JointsPanel, configurations_html
 from .matrix import MatrixPanel
 from .motion import ForcePanel, ForwardPanel, InversePanel
-from .readouts import measures_html, status_html
+from .readouts import measures_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 
 __all__ = ["PanelView", "PANEL_WIDTH"]
@@ -80,6 +83,8 @@ class PanelView:
         set_page_title(client, PAGE_TITLE)
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
         bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
+        self.chain: viser.GuiDropdownHandle | None = None
+        self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
@@ -112,9 +117,39 @@ class PanelView:
         self.matrix: MatrixPanel | None = None
         self.about: viser.GuiHtmlHandle | None = None
 
-    def build_robot(self, robot: Robot, rows: tuple[int, ...]) -> None:
-        """(Re)build the robot-dependent parts."""
+    def build_robot(
+        self,
+        robot: Robot,
+        rows: tuple[int, ...],
+        chains: Sequence[ChainInfo] = (),
+        chain: str = "",
+        meshes: tuple[int, list[str]] = (0, []),
+    ) -> None:
+        """(Re)build the robot-dependent parts.
+
+        Args:
+            robot: The robot.
+            rows: Its task rows.
+            chains: The serial chains of its URDF file (a picker is shown when there are several).
+            chain: Tip link of the chain shown ("" for the default one).
+            meshes: (found, not found) mesh files of its URDF.
+        """
         self.remove_robot()
+        shown = next((c for c in chains if c.tip_link == chain), None) or next(
+            (c for c in chains if c.is_default), None
+        )
+        if len(chains) > 1:
+            labels = {_chain_label(c): c.tip_link for c in chains}
+            self.chain = self.gui.add_dropdown(
+                "Chain",
+                tuple(labels),
+                initial_value=_chain_label(shown) if shown else next(iter(labels)),
+                order=1.2,
+                hint="The serial chain of the URDF shown: from its base link to a tip link.",
+            )
+            bind(self.chain, self.dispatch, lambda v: ChooseChain(labels[str(v)]) if v in labels else None)
+        self.source.content = source_html(robot, shown, meshes)
+        self.source.visible = bool(robot.urdf_path)
         self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3)
         with self.tab_matrix:
             self.gui.add_html('<div class="jl-views-marker"></div>', order=0)
@@ -132,6 +167,9 @@ class PanelView:
         run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
 
     def remove_robot(self) -> None:
+        if self.chain is not None:
+            self.chain.remove()
+            self.chain = None
         for part in (self.joints, self.forward, self.inverse, self.force, self.matrix, self.about):
             if part is not None:
                 part.remove()
@@ -160,3 +198,7 @@ class PanelView:
         for key, box in self.toggles.items():
             sync_value(box, getattr(options, key))
         sync_value(self.scale, float(options.scale))
+
+
+def _chain_label(chain: ChainInfo) -> str:
+    return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"

@@ -14,7 +14,7 @@ from ..palette import status_hex
 from ..snapshot import Snapshot
 from ..state import LabState
 
-__all__ = ["status_html", "measures_html", "ROW_NAMES", "row_label", "task_name", "lost_text"]
+__all__ = ["status_html", "measures_html", "source_html", "ROW_NAMES", "row_label", "task_name", "lost_text"]
 
 ROW_NAMES = (
     "v<sub>x</sub>",
@@ -126,3 +126,27 @@ def _plain(html_text: str) -> str:
     import re
 
     return html.unescape(re.sub(r"<[^>]*>", "", html_text))
+
+
+def source_html(robot: Robot, chain: object | None, meshes: tuple[int, list[str]]) -> str:
+    """Where a URDF robot comes from: its file, the chain shown, and any mesh files not found."""
+    if not robot.urdf_path:
+        return ""
+    import os
+
+    parts = [
+        f"<b>{fmt.escape(robot.title or robot.name)}</b> from {fmt.escape(os.path.basename(robot.urdf_path))}"
+    ]
+    if chain is not None:
+        base, tip, dof = chain.base_link, chain.tip_link, chain.dof  # type: ignore[attr-defined]
+        parts.append(f"chain {fmt.escape(base)} → {fmt.escape(tip)}, {dof} joints")
+    found, missing = meshes
+    if missing:
+        shown = ", ".join(fmt.escape(m) for m in missing[:3]) + (" …" if len(missing) > 3 else "")
+        parts.append(
+            f'<span class="jl-warn">{len(missing)} of {found + len(missing)} mesh files not found: {shown}'
+            "</span> (drawn as its DH-style picture)"
+        )
+    elif found:
+        parts.append(f"{found} mesh files")
+    return f'<div class="jl jl-note">{"; ".join(parts)}.</div>'

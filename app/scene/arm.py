@@ -13,13 +13,13 @@ from __future__ import annotations
 import dataclasses
 import logging
 from dataclasses import dataclass
-from functools import partial
 from pathlib import Path
 
 import numpy as np
 import viser
 
 from kinematics import Robot, joint_frames, link_frames
+from kinematics.urdf import mesh_filename_handler
 
 from ..palette import LINK_RGB, STATUS_RGB, joint_color
 from ..snapshot import Snapshot
@@ -277,7 +277,7 @@ def _load_urdf_meshes(target: viser.ClientHandle, robot: Robot, root: str) -> _U
             str(path),
             build_scene_graph=True,
             load_meshes=True,
-            filename_handler=partial(yourdfpy.filename_handler_magic, dir=path.parent),
+            filename_handler=mesh_filename_handler(path),
         )
         wanted = sum(1 for link in urdf.robot.links for v in link.visuals if v.geometry is not None)
         if wanted == 0 or urdf.scene is None or len(urdf.scene.geometry) < wanted:
