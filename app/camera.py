@@ -87,18 +87,19 @@ def needs_framing(view: View, points: np.ndarray) -> bool:
 
 
 def framing(
-    view: View, points: np.ndarray, direction: np.ndarray | None = None
+    view: View, points: np.ndarray, direction: np.ndarray | None = None, pad: float = 0.0
 ) -> tuple[np.ndarray, np.ndarray]:
     """Camera (position, look_at) that sees all ``points`` from ``direction`` (default: the view's own).
 
     The target is the centre of the points' bounding box; the distance fits their bounding
-    sphere in the narrower of the two fields of view, with a 10 % margin.
+    sphere, grown by 10 % and by ``pad`` [m] (what is drawn around the points: link meshes,
+    labels), in the narrower of the two fields of view.
     """
     pts = np.asarray(points, float)
     pts = pts[np.isfinite(pts).all(axis=1)]
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     center = (lo + hi) / 2
-    radius = max(float(np.linalg.norm(pts - center, axis=1).max()), 0.05) * 1.1
+    radius = max(float(np.linalg.norm(pts - center, axis=1).max()), 0.05) * 1.1 + pad
     if direction is None:
         direction = view.position - view.look_at
     direction = np.asarray(direction, float)

@@ -300,7 +300,7 @@ class ClientSession:
             return
         if view is None:  # no camera message yet: assume a 16:9 canvas and viser's default fov
             view = View(np.array([1.3, -1.5, 0.9]), np.zeros(3), np.array([0.0, 0, 1]), 1.3, 1.4)
-        end = framing(view, self.scene.extent, direction)
+        end = framing(view, self.scene.extent, direction, pad=0.18 * self.scene.size)
         if glide:
             self._camera.to((view.position, view.look_at), end)
         else:
@@ -319,7 +319,7 @@ class ClientSession:
         """The canvas changed shape (a panel collapsed, the window resized): keep everything in view."""
         try:
             aspect = float(camera.aspect)
-            if self._aspect and abs(aspect - self._aspect) > 0.05 * self._aspect:
+            if not self._aspect or abs(aspect - self._aspect) > 0.05 * self._aspect:
                 with self.lock:
                     if not self._closed:
                         self._frame_if_needed()

@@ -172,7 +172,9 @@ class ArmView:
             visible=False,
         )
         self.labels = [
-            scene.add_label(f"{root}/label_{j}", _short(name), font_screen_scale=1.0, anchor="bottom-center")
+            scene.add_label(
+                f"{root}/label_{j}", _short(j, name), font_screen_scale=1.0, anchor="bottom-center"
+            )
             for j, name in enumerate(robot.joint_names)
         ]
         self._nodes += [self.grid, self.pedestal, self.cylinders, self.boxes, self.frames, *self.labels]
@@ -228,9 +230,11 @@ class ArmView:
                 node.remove()
 
 
-def _short(name: str) -> str:
-    """Label of a joint in the 3-D view: its first word ("q1 waist" → "q1")."""
-    return name.split()[0] if name.strip() else name
+def _short(j: int, name: str) -> str:
+    """Label of joint ``j`` in the 3-D view: its first word when short ("q1 waist" → "q1"), else "q{j+1}"
+    (like the columns of J), so long URDF names ("panda_joint4") never crowd the view."""
+    words = name.split()
+    return words[0] if words and len(words[0]) <= 6 else f"q{j + 1}"
 
 
 def _nice(x: float) -> float:
