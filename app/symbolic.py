@@ -83,7 +83,8 @@ class WorkerPool:
     was queued or running is run once more there, and ``on_restart(WORKER_RESTARTED)`` is called.
 
     Args:
-        on_restart: Called (in a background thread) with :data:`WORKER_RESTARTED` after a restart.
+        on_restart: Called with :data:`WORKER_RESTARTED` after a restart, in a new thread (so it may
+            take any lock).
     """
 
     def __init__(self, on_restart: Callable[[str], None] | None = None) -> None:
@@ -154,11 +155,14 @@ class WorkerPool:
         log.warning("%s (restart %d)", WORKER_RESTARTED, self.restarts)
         if broken is not None:
             _end_pool(broken)
-        if self._on_restart is not None:
-            try:
-                self._on_restart(WORKER_RESTARTED)
-            except Exception:
-                log.exception("a restart listener failed")
+        if self._on_restart is not None:  # in a thread of its own: the caller may hold any lock
+            threading.Thread(target=self._notify, name="symbolic-restart", daemon=True).start()
+
+    def _notify(self) -> None:
+        try:
+            self._on_restart(WORKER_RESTARTED)  # type: ignore[misc]
+        except Exception:
+            log.exception("a restart listener failed")
 
     def pids(self) -> list[int]:
         """Process ids of the running worker(s) (none before the first computation)."""

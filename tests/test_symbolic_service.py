@@ -66,7 +66,8 @@ def test_a_killed_worker_is_restarted_and_the_next_request_succeeds(service):
     assert second.result(120) == jacobian_mathml(robot, frame="tool", timeout=60.0)
     assert second.restarted and not first.restarted
     assert service.restarts == 1
-    assert notices == [WORKER_RESTARTED] and service.last_notice == WORKER_RESTARTED
+    _poll(lambda: notices == [WORKER_RESTARTED])  # announced from a thread of its own
+    assert service.last_notice == WORKER_RESTARTED
     (new_pid,) = service.worker_pids()
     assert new_pid != pid
 
@@ -84,7 +85,8 @@ def test_a_worker_killed_mid_computation_runs_it_again_once(tmp_path):
         Path(flag).touch()
         new_pid = future.result(60)
         assert new_pid != pid and not _gone(new_pid)
-        assert pool.restarts == 1 and notices == [WORKER_RESTARTED]
+        assert pool.restarts == 1
+        _poll(lambda: notices == [WORKER_RESTARTED])
     finally:
         pool.close()
 
