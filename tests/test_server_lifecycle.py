@@ -90,12 +90,15 @@ class Server:
             )
         self.out: list[str] = []
         assert self.proc.stdout is not None
+        match = None
         for line in self.proc.stdout:  # until the URL is printed (or the process ends)
             self.out.append(line)
             match = re.search(r"open http://127\.0\.0\.1:(\d+)", line)
             if match:
                 break
-        assert match, f"no URL printed: {self.out}; log: {self.log.read_text()[-2000:]}"
+        if not match:
+            self.proc.kill()
+            raise AssertionError(f"no URL printed: {self.out}; log: {self.log.read_text()[-2000:]}")
         self.port = int(match.group(1))
         self.pid = self.proc.pid
         # Keep reading what it prints (a full pipe would block the server).

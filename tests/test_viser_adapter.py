@@ -226,6 +226,21 @@ def test_a_flood_is_dropped_beyond_the_rate_and_then_closed(limited):
     _poll(lambda: len(calls) == limits.accepted - 1)
 
 
+def test_over_the_rate_only_the_latest_value_of_an_input_waits_and_it_arrives(limited):
+    server, limits = limited
+    slider = server.gui.add_slider("q", min=0.0, max=100.0, step=1.0, initial_value=0.0)
+    update = va.message_class("GuiUpdateMessage")
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
+        _poll(lambda: len(server.get_clients()) == 1)
+        for i in range(1, 61):  # 60 changes at once: 19 pass (burst 20 minus the camera), 41 wait
+            ws.send_bytes(_encode(update(va.handle_uuid(slider), {"value": float(i)})))
+        _poll(lambda: slider.value == 60.0)
+        assert limits.closed == 0
+        # The waiting changes of one slider collapse into its latest value: far fewer than 60 pass on.
+        assert limits.accepted < 1 + 20 + 5
+        assert limits.accepted + limits.dropped == 61
+
+
 def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
     server, limits = limited
     slider = server.gui.add_slider("q", min=0.0, max=1.0, step=0.1, initial_value=0.5)
