@@ -106,3 +106,60 @@ class LatestFirstQueue:
         if self._waiting and self.bucket.take():
             return self._waiting.popitem(last=False)[1]
         return None
+
+
+def state_key(message: Any) -> tuple | None:
+    """What a viser client message sets, by its class name: messages with the same key are states
+    (slider value, camera pose, gizmo pose) and only the latest matters; None for events."""
+    kind = type(message).__name__
+    if kind == "GuiUpdateMessage":
+        return (kind, message.uuid, tuple(sorted(message.updates)))
+    if kind == "ViewerCameraMessage":
+        return (kind,)
+    if kind == "TransformControlsUpdateMessage":
+        return (kind, message.name)
+    return None
+
+
+class TabLimiter:
+    """Every limit on one tab's messages: GUI updates (each may cost a redraw) at one rate, other
+    messages at another, and a count of recent drops that decides when to close the tab.
+
+    Args:
+        rate, burst: Steady rate [1/s] and burst of all messages but GUI updates.
+        gui_rate, gui_burst: The same for GUI updates (``GuiUpdateMessage``).
+        close_after: Drops (forgiven at ``rate``) after which :meth:`offer` says ``"close"``.
+        clock: Time source [s].
+    """
+
+    def __init__(
+        self,
+        rate: float,
+        burst: int,
+        gui_rate: float,
+        gui_burst: int,
+        close_after: int,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self.gui = LatestFirstQueue(TokenBucket(gui_rate, gui_burst, clock), capacity=max(gui_burst, 16))
+        self.other = LatestFirstQueue(TokenBucket(rate, burst, clock), capacity=max(burst, 16))
+        self.strikes = LeakyCounter(rate, clock)
+        self.close_after = close_after
+
+    def offer(self, message: Any) -> str:
+        """``"now"`` (pass it on), ``"queued"``, ``"dropped"`` (superseded or refused) or ``"close"``
+        (dropped, and the tab keeps violating: close it)."""
+        key = state_key(message)
+        queue = self.gui if key is not None and key[0] == "GuiUpdateMessage" else self.other
+        verdict = queue.offer(key, message)
+        if verdict in ("now", "queued"):
+            return verdict
+        return "close" if self.strikes.add() >= self.close_after else "dropped"
+
+    def wait_time(self) -> float:
+        """Seconds until a waiting message may go [s] (``inf`` when none waits)."""
+        return min(self.gui.wait_time(), self.other.wait_time())
+
+    def pop_ready(self) -> list[Any]:
+        """The waiting messages the rates allow now (at most one per queue)."""
+        return [m for m in (self.other.pop_ready(), self.gui.pop_ready()) if m is not None]

@@ -31,7 +31,7 @@ from typing import Any, TypeVar
 
 import viser
 
-from .ratelimit import LatestFirstQueue, LeakyCounter, TokenBucket
+from .ratelimit import TabLimiter
 
 __all__ = [
     "TESTED_VISER",
@@ -186,6 +186,8 @@ class MessageLimits:
             messages wait, and a newer state of the same input (slider value, camera) replaces the
             waiting one, so that the last value sent is never lost.
         burst: Messages a connection may send at once above the rate; also the most that may wait.
+        max_gui_updates_per_second, gui_burst: The same for GUI updates, each of which may cost a
+            redraw (a browser sends at most ~20 per second while a slider is dragged).
         close_after_drops: A connection that had this many messages dropped (forgiven at the rate)
             is closed (1008).
         accepted: Messages passed on to viser, over all connections.
@@ -198,6 +200,8 @@ class MessageLimits:
     max_messages_per_second: float = 100.0
     burst: int = 100
     close_after_drops: int = 1000
+    max_gui_updates_per_second: float = 25.0
+    gui_burst: int = 25
     accepted: int = 0
     dropped: int = 0
     malformed: int = 0
@@ -218,6 +222,8 @@ def install_message_limits(
     max_messages_per_second: float = 100.0,
     burst: int = 100,
     close_after_drops: int = 1000,
+    max_gui_updates_per_second: float = 25.0,
+    gui_burst: int = 25,
 ) -> MessageLimits:
     """Limit what a browser tab's messages may cost every viser server in this process.
 
@@ -234,11 +240,11 @@ def install_message_limits(
         The active limits, whose counters the caller may read.
     """
     global _limits
-    if max_message_bytes < 1024 or max_messages_per_second <= 0 or burst < 1 or close_after_drops < 1:
+    numbers = (max_message_bytes, max_messages_per_second, burst, close_after_drops)
+    numbers += (max_gui_updates_per_second, gui_burst)
+    if max_message_bytes < 1024 or min(numbers) <= 0 or min(burst, gui_burst, close_after_drops) < 1:
         raise ValueError(
-            "install_message_limits: expected max_message_bytes >= 1024, max_messages_per_second > 0, "
-            f"burst >= 1, close_after_drops >= 1; got {max_message_bytes}, {max_messages_per_second}, "
-            f"{burst}, {close_after_drops}"
+            f"install_message_limits: expected sizes >= 1024 and rates, bursts >= 1; got {numbers}"
         )
     infra = _private("install_message_limits", "viser.infra._infra", _infra_module)
     consumer = getattr(infra, "_message_consumer", None)
@@ -246,7 +252,7 @@ def install_message_limits(
         raise ViserApiChanged(
             "install_message_limits", "viser.infra._infra._message_consumer(3 args) changed"
         )
-    _limits = MessageLimits(max_message_bytes, max_messages_per_second, burst, close_after_drops)
+    _limits = MessageLimits(*numbers)
     if not _original:
         _original["_message_consumer"] = infra._message_consumer
         _original["websockets"] = infra.websockets
@@ -294,18 +300,6 @@ class _Overlay:
         return getattr(self._real, name)
 
 
-def _state_key(message: Any) -> tuple | None:
-    """What a message sets (messages with the same key are states: only the latest matters), or None."""
-    kind = type(message).__name__
-    if kind == "GuiUpdateMessage":
-        return (kind, message.uuid, tuple(sorted(message.updates)))
-    if kind == "ViewerCameraMessage":
-        return (kind,)
-    if kind == "TransformControlsUpdateMessage":
-        return (kind, message.name)
-    return None
-
-
 async def _guarded_consumer(
     websocket: Any, handle_message: Callable[[Any], None], message_class: type
 ) -> None:
@@ -317,10 +311,11 @@ async def _guarded_consumer(
     protocol = getattr(websocket, "protocol", None)
     if protocol is not None and hasattr(protocol, "max_message_size"):
         protocol.max_message_size = limits.max_message_bytes  # for servers started before the install
-    queue = LatestFirstQueue(TokenBucket(limits.max_messages_per_second, limits.burst), capacity=limits.burst)
-    strikes = LeakyCounter(limits.max_messages_per_second)  # messages not let through, forgiven at the rate
+    rate, burst = limits.max_messages_per_second, limits.burst
+    gui_rate, gui_burst = limits.max_gui_updates_per_second, limits.gui_burst
+    limiter = TabLimiter(rate, burst, gui_rate, gui_burst, limits.close_after_drops)
     wake = asyncio.Event()
-    drain = loop.create_task(_drain(queue, wake, handle_message, limits))
+    drain = loop.create_task(_drain(limiter, wake, handle_message, limits))
     peer = clip(getattr(websocket, "remote_address", "?"), 60)
     import websockets.exceptions as wse
 
@@ -343,15 +338,15 @@ async def _guarded_consumer(
                 limits.count("malformed")
                 log.warning("dropped a message from %s: %s: %s", peer, type(exc).__name__, clip(exc))
                 continue
-            verdict = queue.offer(_state_key(message), message)
+            verdict = limiter.offer(message)
             if verdict == "now":
                 limits.count("accepted")
                 handle_message(message)
             elif verdict == "queued":
                 wake.set()
-            else:  # replaced by this newer state, or refused
+            else:  # superseded by this newer state, or refused
                 limits.count("dropped")
-                if strikes.add() >= limits.close_after_drops:
+                if verdict == "close":
                     limits.count("closed")
                     log.warning(
                         "closed the connection of %s: over %g messages/s",
@@ -363,20 +358,16 @@ async def _guarded_consumer(
         drain.cancel()
 
 
-async def _drain(
-    queue: LatestFirstQueue, wake: asyncio.Event, handle: Callable[[Any], None], limits: MessageLimits
-) -> None:
-    """Pass waiting messages on at the allowed rate."""
+async def _drain(limiter: TabLimiter, wake: asyncio.Event, handle: Callable, limits: MessageLimits) -> None:
+    """Pass waiting messages on at the allowed rates."""
     while True:
-        delay = queue.wait_time()
+        delay = limiter.wait_time()
         if delay == float("inf"):
             wake.clear()
             await wake.wait()
-            continue
-        if delay > 0:
+        elif delay > 0:
             await asyncio.sleep(delay)
-        message = queue.pop_ready()
-        if message is not None:
+        for message in limiter.pop_ready():
             limits.count("accepted")
             handle(message)
 

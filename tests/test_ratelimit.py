@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from app.ratelimit import LatestFirstQueue, LeakyCounter, TokenBucket
+from app.ratelimit import LatestFirstQueue, LeakyCounter, TabLimiter, TokenBucket, state_key
 
 
 class Clock:
@@ -62,3 +62,38 @@ def test_a_message_waits_while_others_wait_even_if_a_token_is_back():
     clock.t += 1.0
     assert queue.offer("b", 3) == "queued"  # order kept: "a" goes first
     assert queue.pop_ready() == 2
+
+
+class GuiUpdateMessage:  # what the limiter reads of viser's messages: the class name and the key fields
+    def __init__(self, uuid: str, value: float) -> None:
+        self.uuid, self.updates = uuid, {"value": value}
+
+
+class ViewerCameraMessage:
+    pass
+
+
+class GuiButtonHoldMessage:
+    pass
+
+
+def test_state_keys_tell_states_from_events():
+    assert state_key(GuiUpdateMessage("s1", 1.0)) == state_key(GuiUpdateMessage("s1", 2.0))
+    assert state_key(GuiUpdateMessage("s1", 1.0)) != state_key(GuiUpdateMessage("s2", 1.0))
+    assert state_key(ViewerCameraMessage()) == ("ViewerCameraMessage",)
+    assert state_key(GuiButtonHoldMessage()) is None
+
+
+def test_tab_limiter_holds_gui_updates_to_their_rate_and_closes_a_flood():
+    clock = Clock()
+    tab = TabLimiter(rate=100.0, burst=10, gui_rate=5.0, gui_burst=2, close_after=50, clock=clock)
+    verdicts = [tab.offer(GuiUpdateMessage("s", float(i))) for i in range(5)]
+    assert verdicts == ["now", "now", "queued", "dropped", "dropped"]
+    # The camera has its own budget: not held up by the slider's.
+    assert [tab.offer(ViewerCameraMessage()) for _ in range(3)] == ["now"] * 3
+    assert tab.wait_time() == pytest.approx(0.2)
+    clock.t += 0.2
+    (latest,) = tab.pop_ready()
+    assert latest.updates == {"value": 4.0}
+    verdicts = [tab.offer(GuiUpdateMessage("s", float(i))) for i in range(100)]
+    assert verdicts[-1] == "close" and "close" not in verdicts[:48]

@@ -160,7 +160,12 @@ def test_scene_handles_and_node_props_read_what_is_sent(connected):
 def limited():
     """Limits installed for one test (small, so that the test is fast), then viser's own handling back."""
     limits = va.install_message_limits(
-        max_message_bytes=8 * 1024, max_messages_per_second=50.0, burst=20, close_after_drops=100
+        max_message_bytes=8 * 1024,
+        max_messages_per_second=200.0,
+        burst=50,
+        close_after_drops=100,
+        max_gui_updates_per_second=50.0,
+        gui_burst=20,
     )
     srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
     try:
@@ -232,7 +237,7 @@ def test_over_the_rate_only_the_latest_value_of_an_input_waits_and_it_arrives(li
     update = va.message_class("GuiUpdateMessage")
     with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
         _poll(lambda: len(server.get_clients()) == 1)
-        for i in range(1, 61):  # 60 changes at once: 19 pass (burst 20 minus the camera), 41 wait
+        for i in range(1, 61):  # 60 changes at once: 20 pass (the GUI burst), the rest wait
             ws.send_bytes(_encode(update(va.handle_uuid(slider), {"value": float(i)})))
         _poll(lambda: slider.value == 60.0)
         assert limits.closed == 0
