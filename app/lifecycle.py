@@ -21,12 +21,20 @@ import logging
 import multiprocessing
 import os
 import signal
+import socket
 import threading
 from collections.abc import Callable
 from multiprocessing.connection import wait as wait_for_handles
 from types import FrameType
 
-__all__ = ["STOP_SIGNALS", "StopSignals", "install_stop_signals", "wait_for_stop", "terminate_children"]
+__all__ = [
+    "STOP_SIGNALS",
+    "StopSignals",
+    "install_stop_signals",
+    "wait_for_stop",
+    "terminate_children",
+    "check_listen_address",
+]
 
 log = logging.getLogger(__name__)
 
@@ -98,6 +106,33 @@ def wait_for_stop(stop: Callable[[], None], timeout: float | None = None) -> str
         signals.restore()
         stop()
     return signals.received
+
+
+def check_listen_address(host: str, port: int) -> None:
+    """Fail at once, in words, for an address the server could never listen on (viser would hang).
+
+    Args:
+        host: Name or address to listen on (``127.0.0.1``, ``0.0.0.0``, ``::``, a host name; ``""``: all).
+        port: TCP port, 0 (a free one) to 65535.
+
+    Raises:
+        ValueError: The port is out of range, or the host does not resolve to an address of this machine.
+    """
+    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ValueError(f"port must be an integer from 0 to 65535 (0: any free port), got {port!r}")
+    try:
+        infos = socket.getaddrinfo(host or None, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+    except (socket.gaierror, UnicodeError) as exc:
+        raise ValueError(f"host {host!r} is not a known name or address ({exc})") from exc
+    errors = []
+    for family, kind, proto, _, address in infos:
+        with socket.socket(family, kind, proto) as probe:
+            try:
+                probe.bind((address[0], 0))  # the address is ours (the port itself is viser's business)
+                return
+            except OSError as exc:
+                errors.append(f"{address[0]}: {exc.strerror or exc}")
+    raise ValueError(f"cannot listen on host {host!r}: {'; '.join(errors)}")
 
 
 def terminate_children(timeout: float = 2.0) -> None:

@@ -17,6 +17,8 @@ import pytest
 from server_process import Server, alive, children, cmdline, poll, session_processes
 from wsclient import ViserWsClient
 
+from app.lifecycle import check_listen_address
+
 ROOT = Path(__file__).resolve().parents[1]
 ROBOT = "planar2"  # its symbolic J takes a second
 
@@ -101,3 +103,27 @@ def test_a_killed_worker_is_replaced_for_the_next_request(tmp_path):
         assert "the symbolic worker stopped and was restarted" in server.log.read_text()
     finally:
         server.cleanup()
+
+
+@pytest.mark.parametrize("host", ["127.0.0.1", "localhost", "0.0.0.0", ""])
+def test_addresses_of_this_machine_are_accepted(host):
+    check_listen_address(host, 0)
+    check_listen_address(host, 65535)
+
+
+@pytest.mark.parametrize(
+    ("host", "port", "message"),
+    [
+        ("127.0.0.1", 99999, "port must be an integer from 0 to 65535 (0: any free port), got 99999"),
+        ("127.0.0.1", -1, "got -1"),
+        ("127.0.0.1", 80.5, "got 80.5"),
+        ("no-such-host.invalid", 0, "host 'no-such-host.invalid' is not a known name or address"),
+        ("192.0.2.1", 0, "cannot listen on host '192.0.2.1': 192.0.2.1: "),  # TEST-NET-1: never ours
+    ],
+)
+def test_impossible_addresses_fail_at_once_in_words(host, port, message):
+    start = time.monotonic()
+    with pytest.raises(ValueError) as info:
+        check_listen_address(host, port)
+    assert message in str(info.value)
+    assert time.monotonic() - start < 5.0
