@@ -128,7 +128,8 @@ class TabLimiter:
     Args:
         rate, burst: Steady rate [1/s] and burst of all messages but GUI updates.
         gui_rate, gui_burst: The same for GUI updates (``GuiUpdateMessage``).
-        close_after: Drops (forgiven at ``rate``) after which :meth:`offer` says ``"close"``.
+        close_after: Drops (forgiven at the lower of the two rates: a browser never has any) after
+            which :meth:`offer` says ``"close"``.
         clock: Time source [s].
     """
 
@@ -143,7 +144,7 @@ class TabLimiter:
     ) -> None:
         self.gui = LatestFirstQueue(TokenBucket(gui_rate, gui_burst, clock), capacity=max(gui_burst, 16))
         self.other = LatestFirstQueue(TokenBucket(rate, burst, clock), capacity=max(burst, 16))
-        self.strikes = LeakyCounter(rate, clock)
+        self.strikes = LeakyCounter(min(rate, gui_rate), clock)
         self.close_after = close_after
 
     def offer(self, message: Any) -> str:

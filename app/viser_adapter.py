@@ -188,8 +188,8 @@ class MessageLimits:
         burst: Messages a connection may send at once above the rate; also the most that may wait.
         max_gui_updates_per_second, gui_burst: The same for GUI updates, each of which may cost a
             redraw (a browser sends at most ~20 per second while a slider is dragged).
-        close_after_drops: A connection that had this many messages dropped (forgiven at the rate)
-            is closed (1008).
+        close_after_drops: A connection that had this many messages dropped (forgiven at the lower
+            rate) is closed (1008).
         accepted: Messages passed on to viser, over all connections.
         dropped: Messages replaced by a newer state while waiting, or refused (too many waiting).
         malformed: Messages that could not be decoded (logged in one bounded line each).
@@ -199,7 +199,7 @@ class MessageLimits:
     max_message_bytes: int = 64 * 1024
     max_messages_per_second: float = 100.0
     burst: int = 100
-    close_after_drops: int = 1000
+    close_after_drops: int = 500
     max_gui_updates_per_second: float = 25.0
     gui_burst: int = 25
     accepted: int = 0
@@ -221,7 +221,7 @@ def install_message_limits(
     max_message_bytes: int = 64 * 1024,
     max_messages_per_second: float = 100.0,
     burst: int = 100,
-    close_after_drops: int = 1000,
+    close_after_drops: int = 500,
     max_gui_updates_per_second: float = 25.0,
     gui_burst: int = 25,
 ) -> MessageLimits:

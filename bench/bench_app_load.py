@@ -10,7 +10,8 @@ the time from sending a change to receiving the first frame after it that carrie
 scene-node messages for that tab (its redrawn scene; a redraw answers every change
 sent before it). Also printed: changes left unanswered at the end, and the server
 process's CPU use over the window (from /proc/PID/stat; the symbolic worker is not
-counted).
+counted) and this client's, with the load average: on a shared machine, a server
+that gets less than the CPU it asks for is slow for reasons of its own.
 
 With ``--hostile`` one more tab sends slider changes as fast as it can for the whole
 window; ``--limits`` installs :func:`app.viser_adapter.install_message_limits` in the
@@ -204,7 +205,7 @@ async def run(
     for tab in clients:
         tab.pending.clear()
         tab.measuring = True
-    cpu0, t0 = cpu_seconds(pid), time.perf_counter()
+    cpu0, t0, own0 = cpu_seconds(pid), time.perf_counter(), time.process_time()
     end = t0 + seconds
     if hostile:
         go.set()
@@ -213,13 +214,15 @@ async def run(
     deadline = time.perf_counter() + 5.0
     while any(t.pending for t in clients) and time.perf_counter() < deadline:
         await asyncio.sleep(0.02)
-    cpu = (cpu_seconds(pid) - cpu0) / (time.perf_counter() - t0) * 100
+    wall = time.perf_counter() - t0
+    cpu, own = (cpu_seconds(pid) - cpu0) / wall * 100, (time.process_time() - own0) / wall * 100
     samples = np.array([s for t in clients for s in t.samples])
     result: dict = {
         "changes": sum(t.sent for t in clients),
         "unanswered": sum(len(t.pending) for t in clients),
         "samples": samples,
         "cpu": cpu,
+        "client_cpu": own,
     }
     if hostile:
         result["flood_sent"], result["flood_closed"] = await asyncio.to_thread(out.get, True, 60)
@@ -243,8 +246,9 @@ def main() -> int:
         parser.error("--seconds must be in [1, 120] and --tabs in [1, 200]")
 
     print(f"robot {args.robot}, {args.seconds:g} s per run, {os.cpu_count()} CPUs; slider → redrawn scene")
-    columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "max ms", "CPU %")
-    header = " ".join(f"{c:>{w}}" for c, w in zip(columns, (5, 8, 8, 10, 8, 8, 8, 6), strict=True))
+    print(f"load average before: {Path('/proc/loadavg').read_text().split()[:3]}")
+    columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "max ms", "CPU %", "client %")
+    header = " ".join(f"{c:>{w}}" for c, w in zip(columns, (5, 8, 8, 10, 8, 8, 8, 6, 8), strict=True))
     print(header + ("   flood (sent, closed)" if args.hostile else ""))
     for n in args.tabs:
         proc, port = start_server(args.robot, args.limits)
@@ -261,7 +265,7 @@ def main() -> int:
         mx = s.max() if len(s) else np.nan
         line = (
             f"{n:>5} {('yes' if args.hostile else 'no'):>8} {r['changes']:>8} {r['unanswered']:>10} "
-            f"{p50:>8.1f} {p95:>8.1f} {mx:>8.1f} {r['cpu']:>6.0f}"
+            f"{p50:>8.1f} {p95:>8.1f} {mx:>8.1f} {r['cpu']:>6.0f} {r['client_cpu']:>8.0f}"
         )
         print(
             line

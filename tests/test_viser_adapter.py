@@ -264,3 +264,21 @@ def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
     assert all(len(line) < 700 for line in lines), [len(line) for line in lines]
     assert "could not convert" in lines[0] and "characters]" in lines[0] and "_handle_gui_updates" in lines[0]
     assert "DecodeError" in lines[1]
+
+
+@pytest.mark.browser
+def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
+    from test_browser_app import ARGS, CHROMIUM, _require_browser
+
+    sync_playwright = _require_browser()
+    server.on_client_connect(lambda client: va.set_page_title(client, "Jacobian Lab"))
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+        try:
+            page = browser.new_page(viewport={"width": 800, "height": 600})
+            page.goto(f"http://127.0.0.1:{server.get_port()}")
+            page.wait_for_function("document.title === 'Jacobian Lab'", timeout=30000)
+            page.evaluate("document.title = 'Viser'")  # as a page reset would
+            page.wait_for_function("document.title === 'Jacobian Lab'", timeout=10000)
+        finally:
+            browser.close()
