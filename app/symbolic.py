@@ -54,7 +54,7 @@ WORKER_RESTARTED = "the symbolic worker stopped and was restarted"
 """The notice given to :meth:`SymbolicService.on_restart` listeners when a worker was restarted."""
 
 
-class SymbolicFuture(Future):
+class SymbolicFuture(Future[Any]):
     """A future of a worker computation that is retried once on a new worker if the worker died.
 
     Attributes:
@@ -206,7 +206,7 @@ class SymbolicService:
     def __init__(self, timeout: float = 60.0) -> None:
         self.timeout = timeout
         self._lock = threading.Lock()
-        self._mathml: dict[tuple[str, str], Future[str]] = {}
+        self._mathml: dict[tuple[str, str], SymbolicFuture] = {}
         self._interest: dict[tuple[str, str], int] = {}
         self._listeners: list[Callable[[str], None]] = []
         self.last_notice: str | None = None

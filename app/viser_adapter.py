@@ -240,8 +240,8 @@ def install_message_limits(
         The active limits, whose counters the caller may read.
     """
     global _limits
-    numbers = (max_message_bytes, max_messages_per_second, burst, close_after_drops)
-    numbers += (max_gui_updates_per_second, gui_burst)
+    rates = (max_messages_per_second, burst, close_after_drops, max_gui_updates_per_second, gui_burst)
+    numbers = (max_message_bytes, *rates)
     if max_message_bytes < 1024 or min(numbers) <= 0 or min(burst, gui_burst, close_after_drops) < 1:
         raise ValueError(
             f"install_message_limits: expected sizes >= 1024 and rates, bursts >= 1; got {numbers}"
@@ -301,7 +301,7 @@ class _Overlay:
 
 
 async def _guarded_consumer(
-    websocket: Any, handle_message: Callable[[Any], None], message_class: type
+    websocket: Any, handle_message: Callable[[Any], None], message_class: Any
 ) -> None:
     """viser's ``_message_consumer`` with limits: size, rate (latest state kept), bounded logging."""
     limits = _limits
