@@ -5,7 +5,9 @@ which in a thread would hold the interpreter lock and stall every client's
 sliders. :class:`SymbolicService` therefore runs
 :func:`kinematics.symbolic.jacobian_mathml` and :func:`kinematics.export.export`
 in worker processes (one for the panel's MathML, one for downloads, so a
-download never waits behind a long simplification). MathML is cached per
+download never waits behind a long simplification). A worker that dies is
+restarted and its computations are retried once; a worker whose server is
+gone exits by itself. MathML is cached per
 (robot, frame) — a class of students asking for the Puma's J triggers one
 computation — and a request nobody waits for any more (every client moved
 on to another robot) is cancelled before it starts. The symbolic modules are
@@ -15,14 +17,28 @@ plain note.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import multiprocessing
+import os
 import threading
-from concurrent.futures import Future, ProcessPoolExecutor
+from collections.abc import Callable
+from concurrent.futures import Future, InvalidStateError, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from typing import Any
 
 from kinematics import Robot
 
-__all__ = ["SymbolicService", "SymbolicUnavailable", "EXPORT_FORMATS"]
+from .lifecycle import watch_parent
+
+__all__ = [
+    "SymbolicService",
+    "SymbolicUnavailable",
+    "SymbolicFuture",
+    "WorkerPool",
+    "EXPORT_FORMATS",
+    "WORKER_RESTARTED",
+]
 
 log = logging.getLogger(__name__)
 
@@ -34,29 +50,150 @@ class SymbolicUnavailable(RuntimeError):
     """The symbolic module (or the export module) is not installed in this build."""
 
 
-class _Worker:
-    """One worker process, started on first use with "spawn" (the server's threads make forking unsafe)."""
+WORKER_RESTARTED = "the symbolic worker stopped and was restarted"
+"""The notice given to :meth:`SymbolicService.on_restart` listeners when a worker was restarted."""
+
+
+class SymbolicFuture(Future[Any]):
+    """A future of a worker computation that is retried once on a new worker if the worker died.
+
+    Attributes:
+        restarted: True when this computation's first worker stopped (e.g. was killed) and the
+            computation was run again on a restarted worker.
+    """
 
     def __init__(self) -> None:
+        super().__init__()
+        self.restarted = False
+        self._inner: Future | None = None
+
+    def cancel(self) -> bool:
+        """Cancel unless the computation already runs in a worker (then it is left to finish)."""
+        inner = self._inner
+        if inner is not None and not inner.cancel():
+            return False
+        return super().cancel()
+
+
+class WorkerPool:
+    """One worker process, started on first use with "spawn" (the server's threads make forking unsafe).
+
+    The worker exits by itself when this process is gone (:func:`app.lifecycle.watch_parent`).
+    When it dies (killed, out of memory), the pool starts a new one: each computation that
+    was queued or running is run once more there, and ``on_restart(WORKER_RESTARTED)`` is called.
+
+    Args:
+        on_restart: Called with :data:`WORKER_RESTARTED` after a restart, in a new thread (so it may
+            take any lock).
+    """
+
+    def __init__(self, on_restart: Callable[[str], None] | None = None) -> None:
+        self.restarts = 0
+        self._on_restart = on_restart
         self._pool: ProcessPoolExecutor | None = None
+        self._generation = 0
+        self._closed = False
         self._lock = threading.Lock()
 
-    def submit(self, fn, *args) -> Future:
+    def submit(self, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
+        """``fn(*args)`` in the worker; ``fn`` must be importable by name (a module-level function)."""
+        future = SymbolicFuture()
+        self._run(future, fn, args, retry=True)
+        return future
+
+    def _run(self, future: SymbolicFuture, fn: Callable[..., Any], args: tuple, retry: bool) -> None:
         with self._lock:
+            if self._closed:
+                raise RuntimeError("the symbolic worker pool was closed")
             if self._pool is None:
                 self._pool = ProcessPoolExecutor(
-                    max_workers=1, mp_context=multiprocessing.get_context("spawn")
+                    max_workers=1,
+                    mp_context=multiprocessing.get_context("spawn"),
+                    initializer=watch_parent,
+                    initargs=(os.getpid(),),
                 )
-            return self._pool.submit(fn, *args)
+            generation = self._generation
+            try:
+                inner = self._pool.submit(fn, *args)
+            except BrokenProcessPool as exc:
+                inner = Future()
+                inner.set_exception(exc)
+            future._inner = inner
+        inner.add_done_callback(lambda f: self._settle(future, f, fn, args, retry, generation))
+
+    def _settle(
+        self, future: SymbolicFuture, inner: Future, fn, args: tuple, retry: bool, generation: int
+    ) -> None:
+        if inner.cancelled():
+            future.cancel()
+            return
+        exc = inner.exception()
+        if isinstance(exc, BrokenProcessPool) and retry and not self._closed and not future.done():
+            self._restart(generation)
+            future.restarted = True
+            try:
+                self._run(future, fn, args, retry=False)
+                return
+            except Exception as again:  # closed meanwhile
+                exc = again
+        elif isinstance(exc, BrokenProcessPool) and not retry:
+            exc = SymbolicUnavailable("the symbolic worker stopped twice during this computation")
+        with contextlib.suppress(InvalidStateError):  # cancelled by its last interested client
+            if exc is not None:
+                future.set_exception(exc)
+            else:
+                future.set_result(inner.result())
+
+    def _restart(self, generation: int) -> None:
+        """Drop the broken pool (once per breakage: the first failing future does it)."""
+        with self._lock:
+            if generation != self._generation or self._closed:
+                return
+            self._generation += 1
+            broken, self._pool = self._pool, None
+            self.restarts += 1
+        log.warning("%s (restart %d)", WORKER_RESTARTED, self.restarts)
+        if broken is not None:
+            _end_pool(broken)
+        if self._on_restart is not None:  # in a thread of its own: the caller may hold any lock
+            threading.Thread(target=self._notify, name="symbolic-restart", daemon=True).start()
+
+    def _notify(self) -> None:
+        try:
+            self._on_restart(WORKER_RESTARTED)  # type: ignore[misc]
+        except Exception:
+            log.exception("a restart listener failed")
+
+    def pids(self) -> list[int]:
+        """Process ids of the running worker(s) (none before the first computation)."""
+        with self._lock:
+            pool = self._pool
+        return [p.pid for p in _pool_processes(pool) if p.pid is not None] if pool is not None else []
 
     def close(self) -> None:
+        """End the worker now (a running computation is abandoned) and refuse further work."""
         with self._lock:
+            self._closed = True
             pool, self._pool = self._pool, None
         if pool is not None:
-            # A running simplification would hold up interpreter exit: end the worker now.
-            for process in list((pool._processes or {}).values()):
-                process.terminate()
-            pool.shutdown(wait=False, cancel_futures=True)
+            _end_pool(pool)
+
+
+def _pool_processes(pool: ProcessPoolExecutor) -> list[multiprocessing.process.BaseProcess]:
+    """The worker processes of ``pool`` (the standard library keeps them private, in ``_processes``)."""
+    return list((getattr(pool, "_processes", None) or {}).values())
+
+
+def _end_pool(pool: ProcessPoolExecutor) -> None:
+    """Terminate the workers of ``pool`` (a running simplification would hold up exit) and shut it down."""
+    processes = _pool_processes(pool)
+    for process in processes:
+        process.terminate()
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        process.join(2.0)
+        if process.is_alive():
+            process.kill()
 
 
 class SymbolicService:
@@ -69,18 +206,42 @@ class SymbolicService:
     def __init__(self, timeout: float = 60.0) -> None:
         self.timeout = timeout
         self._lock = threading.Lock()
-        self._mathml: dict[tuple[str, str], Future[str]] = {}
+        self._mathml: dict[tuple[str, str], SymbolicFuture] = {}
         self._interest: dict[tuple[str, str], int] = {}
-        self._panel_worker = _Worker()
-        self._export_worker = _Worker()
+        self._listeners: list[Callable[[str], None]] = []
+        self.last_notice: str | None = None
+        self._panel_worker = WorkerPool(self._restarted)
+        self._export_worker = WorkerPool(self._restarted)
 
-    def mathml(self, robot: Robot, frame: str) -> Future[str]:
+    @property
+    def restarts(self) -> int:
+        """How many times a worker process died and was restarted."""
+        return self._panel_worker.restarts + self._export_worker.restarts
+
+    def on_restart(self, callback: Callable[[str], None]) -> None:
+        """Call ``callback(WORKER_RESTARTED)`` (in a background thread) whenever a worker is restarted."""
+        with self._lock:
+            self._listeners.append(callback)
+
+    def _restarted(self, notice: str) -> None:
+        with self._lock:
+            self.last_notice = notice
+            listeners = list(self._listeners)
+        for callback in listeners:
+            callback(notice)
+
+    def worker_pids(self) -> list[int]:
+        """Process ids of the running worker processes (for diagnostics and tests)."""
+        return self._panel_worker.pids() + self._export_worker.pids()
+
+    def mathml(self, robot: Robot, frame: str) -> SymbolicFuture:
         """A future of the ``<math>`` element of J(q) for ``robot`` in ``frame`` ("base" or "tool").
 
         Call :meth:`release` with the same arguments when no longer interested. The future
         fails with :class:`SymbolicUnavailable` when the symbolic module is missing, or with
         the module's own error; it is cancelled if every interested client released it
-        before it started.
+        before it started. If the worker dies, the computation is run once more on a new
+        worker (``future.restarted`` is then True).
         """
         key = (robot.fingerprint(), frame)
         with self._lock:
@@ -104,7 +265,7 @@ class SymbolicService:
             if future is not None and not future.done() and future.cancel():
                 del self._mathml[key]
 
-    def export(self, robot: Robot, label: str, frame: str) -> Future[tuple[str, bytes]]:
+    def export(self, robot: Robot, label: str, frame: str) -> SymbolicFuture:
         """A future of (file name, content) of J(q) exported as ``label`` ("LaTeX", "Python" or "JSON")."""
         fmt, ext = EXPORT_FORMATS[label]
         name = f"{robot.name or 'robot'}_J_{frame}.{ext}"

@@ -7,7 +7,7 @@ Each function here wraps one private detail of viser (tested with the versions i
 ``viser.ViserServer``) fails with the same message.
 
 Wrapped:
-* :func:`message_class` — a protocol message class (``viser._messages``), for the test client.
+* :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
 * :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
   to one client through ``client._websock_connection``.
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
@@ -25,12 +25,13 @@ import inspect
 import json
 import logging
 import threading
-import time
 import traceback
 from collections.abc import Callable
 from typing import Any, TypeVar
 
 import viser
+
+from .ratelimit import TabLimiter
 
 __all__ = [
     "TESTED_VISER",
@@ -181,20 +182,26 @@ class MessageLimits:
 
     Attributes:
         max_message_bytes: Largest message accepted [bytes]; a larger one closes the connection (1009).
-        max_messages_per_second: Steady rate of messages accepted per connection [1/s].
-        burst: Messages a connection may send at once above the steady rate.
-        close_after_drops: A connection that had this many messages dropped (forgiven at the steady
+        max_messages_per_second: Steady rate of messages passed on per connection [1/s]; above it
+            messages wait, and a newer state of the same input (slider value, camera) replaces the
+            waiting one, so that the last value sent is never lost.
+        burst: Messages a connection may send at once above the rate; also the most that may wait.
+        max_gui_updates_per_second, gui_burst: The same for GUI updates, each of which may cost a
+            redraw (a browser sends at most ~20 per second while a slider is dragged).
+        close_after_drops: A connection that had this many messages dropped (forgiven at the lower
             rate) is closed (1008).
         accepted: Messages passed on to viser, over all connections.
-        dropped: Messages dropped for exceeding the rate, over all connections.
+        dropped: Messages replaced by a newer state while waiting, or refused (too many waiting).
         malformed: Messages that could not be decoded (logged in one bounded line each).
         closed: Connections closed for violating a limit (too large or too many messages).
     """
 
     max_message_bytes: int = 64 * 1024
-    max_messages_per_second: float = 200.0
-    burst: int = 400
-    close_after_drops: int = 400
+    max_messages_per_second: float = 100.0
+    burst: int = 100
+    close_after_drops: int = 500
+    max_gui_updates_per_second: float = 25.0
+    gui_burst: int = 25
     accepted: int = 0
     dropped: int = 0
     malformed: int = 0
@@ -212,42 +219,40 @@ _original: dict[str, Any] = {}
 
 def install_message_limits(
     max_message_bytes: int = 64 * 1024,
-    max_messages_per_second: float = 200.0,
-    burst: int = 400,
-    close_after_drops: int = 400,
+    max_messages_per_second: float = 100.0,
+    burst: int = 100,
+    close_after_drops: int = 500,
+    max_gui_updates_per_second: float = 25.0,
+    gui_burst: int = 25,
 ) -> MessageLimits:
     """Limit what a browser tab's messages may cost every viser server in this process.
 
     Call before creating the ``viser.ViserServer`` (the size limit is then enforced by the
-    websocket layer before a byte of a large message is buffered; servers already running
-    get it per connection, from their next connection on). Calling again replaces the limits.
-    Our GUI messages are a few hundred bytes; viser's own large client messages (file uploads,
-    ``get_render`` images) need a larger ``max_message_bytes``.
+    websocket layer before a large message is buffered; servers already running get it from
+    their next connection on). Calling again replaces the limits. A browser sends at most ~20
+    GUI updates/s per input and a camera pose per frame; its messages are a few hundred bytes
+    (file uploads and ``get_render`` images, unused here, would need a larger size).
 
-    Errors in viser's handling of a message (e.g. a slider value that is not a number) are
-    logged in one line of at most ~200 characters of the message's text, with their place.
+    Errors in viser's handling of a message (e.g. a slider value that is not a number) are logged
+    in one line with at most ~200 characters of the message's text.
 
     Returns:
         The active limits, whose counters the caller may read.
     """
     global _limits
-    if max_message_bytes < 1024 or max_messages_per_second <= 0 or burst < 1 or close_after_drops < 1:
+    rates = (max_messages_per_second, burst, close_after_drops, max_gui_updates_per_second, gui_burst)
+    numbers = (max_message_bytes, *rates)
+    if max_message_bytes < 1024 or min(numbers) <= 0 or min(burst, gui_burst, close_after_drops) < 1:
         raise ValueError(
-            "install_message_limits: expected max_message_bytes >= 1024, max_messages_per_second > 0, "
-            f"burst >= 1, close_after_drops >= 1; got {max_message_bytes}, {max_messages_per_second}, "
-            f"{burst}, {close_after_drops}"
+            f"install_message_limits: expected sizes >= 1024 and rates, bursts >= 1; got {numbers}"
         )
     infra = _private("install_message_limits", "viser.infra._infra", _infra_module)
     consumer = getattr(infra, "_message_consumer", None)
-    if (
-        not callable(consumer)
-        or len(inspect.signature(consumer).parameters) != 3
-        or not hasattr(infra, "websockets")
-    ):
+    if not (callable(consumer) and len(inspect.signature(consumer).parameters) == 3 and infra.websockets):
         raise ViserApiChanged(
-            "install_message_limits", "viser.infra._infra._message_consumer(3 args) / .websockets not found"
+            "install_message_limits", "viser.infra._infra._message_consumer(3 args) changed"
         )
-    _limits = MessageLimits(max_message_bytes, max_messages_per_second, burst, close_after_drops)
+    _limits = MessageLimits(*numbers)
     if not _original:
         _original["_message_consumer"] = infra._message_consumer
         _original["websockets"] = infra.websockets
@@ -295,96 +300,83 @@ class _Overlay:
         return getattr(self._real, name)
 
 
-class _TokenBucket:
-    """``burst`` tokens, refilled at ``rate`` per second; each message takes one."""
-
-    def __init__(self, rate: float, burst: int) -> None:
-        self.rate, self.burst = rate, float(burst)
-        self.tokens, self.stamp = float(burst), time.monotonic()
-
-    def take(self) -> bool:
-        now = time.monotonic()
-        self.tokens = min(self.burst, self.tokens + (now - self.stamp) * self.rate)
-        self.stamp = now
-        if self.tokens >= 1.0:
-            self.tokens -= 1.0
-            return True
-        return False
-
-
-class _LeakyCounter:
-    """A count that leaks away at ``rate`` per second."""
-
-    def __init__(self, rate: float) -> None:
-        self.rate, self.level, self.stamp = rate, 0.0, time.monotonic()
-
-    def add(self) -> float:
-        now = time.monotonic()
-        self.level = max(0.0, self.level - (now - self.stamp) * self.rate) + 1.0
-        self.stamp = now
-        return self.level
-
-
 async def _guarded_consumer(
-    websocket: Any, handle_message: Callable[[Any], None], message_class: type
+    websocket: Any, handle_message: Callable[[Any], None], message_class: Any
 ) -> None:
-    """viser's ``_message_consumer`` with limits: size, rate, bounded logging of bad messages."""
+    """viser's ``_message_consumer`` with limits: size, rate (latest state kept), bounded logging."""
     limits = _limits
     if limits is None:  # uninstalled while a server runs: behave as viser does
-        await _original_consumer()(websocket, handle_message, message_class)
-        return
-    _bound_loop_logging(asyncio.get_running_loop())
+        return await _infra_module()._message_consumer(websocket, handle_message, message_class)
+    loop = _bound_loop_logging(asyncio.get_running_loop())
     protocol = getattr(websocket, "protocol", None)
     if protocol is not None and hasattr(protocol, "max_message_size"):
         protocol.max_message_size = limits.max_message_bytes  # for servers started before the install
-    bucket = _TokenBucket(limits.max_messages_per_second, limits.burst)
-    strikes = _LeakyCounter(limits.max_messages_per_second)  # drops, forgiven at the steady rate
+    rate, burst = limits.max_messages_per_second, limits.burst
+    gui_rate, gui_burst = limits.max_gui_updates_per_second, limits.gui_burst
+    limiter = TabLimiter(rate, burst, gui_rate, gui_burst, limits.close_after_drops)
+    wake = asyncio.Event()
+    drain = loop.create_task(_drain(limiter, wake, handle_message, limits))
     peer = clip(getattr(websocket, "remote_address", "?"), 60)
     import websockets.exceptions as wse
 
+    try:
+        while True:
+            try:
+                raw = await websocket.recv()
+            except wse.ConnectionClosedError as exc:
+                if exc.sent is not None and exc.sent.code == 1009:
+                    limits.count("closed")
+                    log.warning(
+                        "closed the connection of %s: a message over %d bytes", peer, limits.max_message_bytes
+                    )
+                raise
+            try:
+                if not isinstance(raw, bytes):
+                    raise TypeError(f"a text frame of {len(raw)} characters")
+                message = message_class.deserialize(raw)
+            except Exception as exc:  # a hostile or broken client must not end the server's loop
+                limits.count("malformed")
+                log.warning("dropped a message from %s: %s: %s", peer, type(exc).__name__, clip(exc))
+                continue
+            verdict = limiter.offer(message)
+            if verdict == "now":
+                limits.count("accepted")
+                handle_message(message)
+            elif verdict == "queued":
+                wake.set()
+            else:  # superseded by this newer state, or refused
+                limits.count("dropped")
+                if verdict == "close":
+                    limits.count("closed")
+                    log.warning(
+                        "closed the connection of %s: over %g messages/s",
+                        peer,
+                        limits.max_messages_per_second,
+                    )
+                    await websocket.close(1008, "too many messages")
+    finally:
+        drain.cancel()
+
+
+async def _drain(limiter: TabLimiter, wake: asyncio.Event, handle: Callable, limits: MessageLimits) -> None:
+    """Pass waiting messages on at the allowed rates."""
     while True:
-        try:
-            raw = await websocket.recv()
-        except wse.ConnectionClosedError as exc:
-            if exc.sent is not None and exc.sent.code == 1009:
-                limits.count("closed")
-                log.warning(
-                    "closed the connection of %s: a message over %d bytes", peer, limits.max_message_bytes
-                )
-            raise
-        if not bucket.take():
-            limits.count("dropped")
-            if strikes.add() >= limits.close_after_drops:
-                limits.count("closed")
-                log.warning(
-                    "closed the connection of %s: over %g messages per second",
-                    peer,
-                    limits.max_messages_per_second,
-                )
-                await websocket.close(1008, "too many messages")
-            continue
-        if not isinstance(raw, bytes) or len(raw) > limits.max_message_bytes:
-            limits.count("malformed")
-            log.warning("dropped a message from %s: %s", peer, clip(f"{type(raw).__name__} of {len(raw)}"))
-            continue
-        try:
-            message = message_class.deserialize(raw)
-        except Exception as exc:  # a hostile or broken client must not end the server's loop
-            limits.count("malformed")
-            log.warning("dropped a message from %s: %s: %s", peer, type(exc).__name__, clip(exc))
-            continue
-        limits.count("accepted")
-        handle_message(message)
+        delay = limiter.wait_time()
+        if delay == float("inf"):
+            wake.clear()
+            await wake.wait()
+        elif delay > 0:
+            await asyncio.sleep(delay)
+        for message in limiter.pop_ready():
+            limits.count("accepted")
+            handle(message)
 
 
-def _original_consumer() -> Callable[..., Any]:
-    return _original.get("_message_consumer") or _infra_module()._message_consumer
-
-
-def _bound_loop_logging(loop: asyncio.AbstractEventLoop) -> None:
+def _bound_loop_logging(loop: asyncio.AbstractEventLoop) -> asyncio.AbstractEventLoop:
     """Make the loop log an unhandled task error in one bounded line (viser's float cast quotes the value)."""
     if loop.get_exception_handler() is not _bounded_exception_handler:
         loop.set_exception_handler(_bounded_exception_handler)
+    return loop
 
 
 def _bounded_exception_handler(loop: asyncio.AbstractEventLoop, context: dict[str, Any]) -> None:

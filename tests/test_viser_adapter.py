@@ -160,7 +160,12 @@ def test_scene_handles_and_node_props_read_what_is_sent(connected):
 def limited():
     """Limits installed for one test (small, so that the test is fast), then viser's own handling back."""
     limits = va.install_message_limits(
-        max_message_bytes=8 * 1024, max_messages_per_second=50.0, burst=20, close_after_drops=100
+        max_message_bytes=8 * 1024,
+        max_messages_per_second=200.0,
+        burst=50,
+        close_after_drops=100,
+        max_gui_updates_per_second=50.0,
+        gui_burst=20,
     )
     srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
     try:
@@ -226,6 +231,21 @@ def test_a_flood_is_dropped_beyond_the_rate_and_then_closed(limited):
     _poll(lambda: len(calls) == limits.accepted - 1)
 
 
+def test_over_the_rate_only_the_latest_value_of_an_input_waits_and_it_arrives(limited):
+    server, limits = limited
+    slider = server.gui.add_slider("q", min=0.0, max=100.0, step=1.0, initial_value=0.0)
+    update = va.message_class("GuiUpdateMessage")
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
+        _poll(lambda: len(server.get_clients()) == 1)
+        for i in range(1, 61):  # 60 changes at once: 20 pass (the GUI burst), the rest wait
+            ws.send_bytes(_encode(update(va.handle_uuid(slider), {"value": float(i)})))
+        _poll(lambda: slider.value == 60.0)
+        assert limits.closed == 0
+        # The waiting changes of one slider collapse into its latest value: far fewer than 60 pass on.
+        assert limits.accepted < 1 + 20 + 5
+        assert limits.accepted + limits.dropped == 61
+
+
 def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
     server, limits = limited
     slider = server.gui.add_slider("q", min=0.0, max=1.0, step=0.1, initial_value=0.5)
@@ -244,3 +264,21 @@ def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
     assert all(len(line) < 700 for line in lines), [len(line) for line in lines]
     assert "could not convert" in lines[0] and "characters]" in lines[0] and "_handle_gui_updates" in lines[0]
     assert "DecodeError" in lines[1]
+
+
+@pytest.mark.browser
+def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
+    from test_browser_app import ARGS, CHROMIUM, _require_browser
+
+    sync_playwright = _require_browser()
+    server.on_client_connect(lambda client: va.set_page_title(client, "Jacobian Lab"))
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+        try:
+            page = browser.new_page(viewport={"width": 800, "height": 600})
+            page.goto(f"http://127.0.0.1:{server.get_port()}")
+            page.wait_for_function("document.title === 'Jacobian Lab'", timeout=30000)
+            page.evaluate("document.title = 'Viser'")  # as a page reset would
+            page.wait_for_function("document.title === 'Jacobian Lab'", timeout=10000)
+        finally:
+            browser.close()

@@ -1,0 +1,166 @@
+"""Rate limits for one browser tab's messages: a token bucket, and a queue that keeps only the latest state.
+
+Used by :func:`app.viser_adapter.install_message_limits`. Pure bookkeeping (no viser,
+no asyncio), so it is tested on its own with a fake clock.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import OrderedDict
+from collections.abc import Callable, Hashable
+from typing import Any
+
+__all__ = ["TokenBucket", "LeakyCounter", "LatestFirstQueue"]
+
+
+class TokenBucket:
+    """``burst`` tokens, refilled at ``rate`` per second; each message takes one.
+
+    Args:
+        rate: Steady rate [1/s].
+        burst: Capacity (also the initial number of tokens).
+        clock: Time source [s] (``time.monotonic`` by default).
+    """
+
+    def __init__(self, rate: float, burst: int, clock: Callable[[], float] = time.monotonic) -> None:
+        self.rate, self.burst, self.clock = rate, float(burst), clock
+        self.tokens, self.stamp = float(burst), clock()
+
+    def _refill(self) -> None:
+        now = self.clock()
+        self.tokens = min(self.burst, self.tokens + (now - self.stamp) * self.rate)
+        self.stamp = now
+
+    def take(self) -> bool:
+        """Take one token if there is one."""
+        self._refill()
+        if self.tokens >= 1.0:
+            self.tokens -= 1.0
+            return True
+        return False
+
+    def wait_time(self) -> float:
+        """Seconds until a token is available (0 if one is) [s]."""
+        self._refill()
+        return max(0.0, (1.0 - self.tokens) / self.rate)
+
+
+class LeakyCounter:
+    """A count that leaks away at ``rate`` per second (how many recent violations)."""
+
+    def __init__(self, rate: float, clock: Callable[[], float] = time.monotonic) -> None:
+        self.rate, self.clock, self.level, self.stamp = rate, clock, 0.0, clock()
+
+    def add(self) -> float:
+        """Count one; return the level after it."""
+        now = self.clock()
+        self.level = max(0.0, self.level - (now - self.stamp) * self.rate) + 1.0
+        self.stamp = now
+        return self.level
+
+
+class LatestFirstQueue:
+    """Messages over a rate wait here; a newer message with the same key replaces the waiting one.
+
+    Slider values, camera poses and gizmo poses are states: only the latest matters, so a
+    flood of them costs one computation per key at the steady rate, and the last value sent
+    is never lost. Messages without a key (clicks, file parts) wait in order, up to ``capacity``.
+
+    Args:
+        bucket: The rate messages are let through at.
+        capacity: Most messages waiting; more are refused.
+    """
+
+    def __init__(self, bucket: TokenBucket, capacity: int) -> None:
+        self.bucket = bucket
+        self.capacity = capacity
+        self._waiting: OrderedDict[Hashable, Any] = OrderedDict()
+        self._serial = 0
+
+    def __len__(self) -> int:
+        return len(self._waiting)
+
+    def offer(self, key: Hashable | None, message: Any) -> str:
+        """Offer ``message``: ``"now"`` (pass it on at once), ``"queued"``, ``"replaced"`` (it replaced
+        a waiting message with the same key) or ``"refused"`` (the queue is full)."""
+        if not self._waiting and self.bucket.take():
+            return "now"
+        if key is not None and key in self._waiting:
+            self._waiting[key] = message  # keeps its place in line
+            return "replaced"
+        if len(self._waiting) >= self.capacity:
+            return "refused"
+        if key is None:
+            self._serial += 1
+            key = ("unkeyed", self._serial)
+        self._waiting[key] = message
+        return "queued"
+
+    def wait_time(self) -> float:
+        """Seconds until the next waiting message may go [s] (``inf`` when none waits)."""
+        return self.bucket.wait_time() if self._waiting else float("inf")
+
+    def pop_ready(self) -> Any | None:
+        """The oldest waiting message if the rate allows it now, else ``None``."""
+        if self._waiting and self.bucket.take():
+            return self._waiting.popitem(last=False)[1]
+        return None
+
+
+def state_key(message: Any) -> tuple | None:
+    """What a viser client message sets, by its class name: messages with the same key are states
+    (slider value, camera pose, gizmo pose) and only the latest matters; None for events."""
+    kind = type(message).__name__
+    if kind == "GuiUpdateMessage":
+        return (kind, message.uuid, tuple(sorted(message.updates)))
+    if kind == "ViewerCameraMessage":
+        return (kind,)
+    if kind == "TransformControlsUpdateMessage":
+        return (kind, message.name)
+    return None
+
+
+class TabLimiter:
+    """Every limit on one tab's messages: GUI updates (each may cost a redraw) at one rate, other
+    messages at another, and a count of recent drops that decides when to close the tab.
+
+    Args:
+        rate, burst: Steady rate [1/s] and burst of all messages but GUI updates.
+        gui_rate, gui_burst: The same for GUI updates (``GuiUpdateMessage``).
+        close_after: Drops (forgiven at the lower of the two rates: a browser never has any) after
+            which :meth:`offer` says ``"close"``.
+        clock: Time source [s].
+    """
+
+    def __init__(
+        self,
+        rate: float,
+        burst: int,
+        gui_rate: float,
+        gui_burst: int,
+        close_after: int,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self.gui = LatestFirstQueue(TokenBucket(gui_rate, gui_burst, clock), capacity=max(gui_burst, 16))
+        self.other = LatestFirstQueue(TokenBucket(rate, burst, clock), capacity=max(burst, 16))
+        self.strikes = LeakyCounter(min(rate, gui_rate), clock)
+        self.close_after = close_after
+
+    def offer(self, message: Any) -> str:
+        """``"now"`` (pass it on), ``"queued"``, ``"dropped"`` (superseded or refused) or ``"close"``
+        (dropped, and the tab keeps violating: close it)."""
+        key = state_key(message)
+        queue = self.gui if key is not None and key[0] == "GuiUpdateMessage" else self.other
+        verdict = queue.offer(key, message)
+        if verdict in ("now", "queued"):
+            return verdict
+        return "close" if self.strikes.add() >= self.close_after else "dropped"
+
+    def wait_time(self) -> float:
+        """Seconds until a waiting message may go [s] (``inf`` when none waits)."""
+        return min(self.gui.wait_time(), self.other.wait_time())
+
+    def pop_ready(self) -> list[Any]:
+        """The waiting messages the rates allow now (at most one per queue)."""
+        return [m for m in (self.other.pop_ready(), self.gui.pop_ready()) if m is not None]

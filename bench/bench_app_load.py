@@ -1,0 +1,278 @@
+"""A classroom of tabs: slider change → redrawn scene latency with N tabs exploring at once.
+
+Starts the app (``app.server.serve``, the Panda) in a process of its own for every
+run, then connects N tabs from this process over viser's websocket protocol (no
+rendering), each as a browser does: a camera message first, then it waits for its
+joint sliders and its first drawing. After all tabs are drawn and ``--warmup`` seconds
+of unmeasured exploring, every tab moves its ``q2`` slider every ~200 ms (uniform
+jitter ±50 ms) for ``--seconds``. A sample is
+the time from sending a change to receiving the first frame after it that carries
+scene-node messages for that tab (its redrawn scene; a redraw answers every change
+sent before it). Also printed: changes left unanswered at the end, and the server
+process's CPU use over the window (from /proc/PID/stat; the symbolic worker is not
+counted) and this client's, with the load average: on a shared machine, a server
+that gets less than the CPU it asks for is slow for reasons of its own.
+
+With ``--hostile`` one more tab sends slider changes as fast as it can for the whole
+window; ``--limits`` installs :func:`app.viser_adapter.install_message_limits` in the
+server first (a no-op once the app installs it itself).
+
+Usage::
+
+    python bench/bench_app_load.py                       # 10, 30, 60 tabs, 20 s each
+    python bench/bench_app_load.py --tabs 60 --seconds 10 --hostile --limits
+
+Target (issue 7): 60 tabs, p95 < 50 ms on a 2-core machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import multiprocessing
+import os
+import random
+import re
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import msgspec.msgpack
+import numpy as np
+import viser
+import websockets
+import zstandard
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from app.viser_adapter import message_class  # noqa: E402
+
+CLK_TCK = os.sysconf("SC_CLK_TCK")
+
+
+def start_server(robot: str, limits: bool) -> tuple[subprocess.Popen, int]:
+    """The app in its own process; its port."""
+    pre = "from app.viser_adapter import install_message_limits; install_message_limits(); " if limits else ""
+    code = pre + f"from app.server import serve; serve(robot={robot!r}, host='127.0.0.1', port=0, block=True)"
+    root = Path(__file__).resolve().parents[1]
+    env = dict(os.environ, PYTHONUNBUFFERED="1", PYTHONPATH=str(root))
+    proc = subprocess.Popen(
+        [sys.executable, "-u", "-c", code],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        env=env,
+    )
+    assert proc.stdout is not None
+    for line in proc.stdout:
+        match = re.search(r"open http://127\.0\.0\.1:(\d+)", line)
+        if match:
+            return proc, int(match.group(1))
+    proc.kill()
+    raise RuntimeError("the server did not start")
+
+
+def cpu_seconds(pid: int) -> float:
+    """User + system CPU time of process ``pid`` so far [s]."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / CLK_TCK
+
+
+def decode(frame: bytes) -> list[dict]:
+    """The messages of one server frame (binary buffers left out: only types and names are needed)."""
+    raw_size = int.from_bytes(frame[:8], "little")
+    size = int.from_bytes(frame[8:16], "little")
+    inner = zstandard.ZstdDecompressor().decompress(frame[16 : 16 + size], max_output_size=raw_size)
+    return msgspec.msgpack.decode(inner)["messages"]
+
+
+def encode(message) -> bytes:
+    return msgspec.msgpack.encode(message.as_serializable_dict())
+
+
+CAMERA = encode(
+    message_class("ViewerCameraMessage")(
+        (1.0, 0.0, 0.0, 0.0), (2.0, -2.0, 1.5), 1.0, 0.01, 100.0, 600, 800, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)
+    )
+)
+UPDATE = message_class("GuiUpdateMessage")
+
+
+@dataclass
+class Tab:
+    """One simulated browser tab."""
+
+    ws: object = None
+    slider: str | None = None
+    drawn: asyncio.Event = field(default_factory=asyncio.Event)
+    pending: list[float] = field(default_factory=list)
+    samples: list[float] = field(default_factory=list)
+    sent: int = 0
+    closed: bool = False
+    measuring: bool = False
+
+    async def connect(self, url: str) -> None:
+        self.ws = await websockets.connect(
+            url,
+            subprotocols=[f"viser-v{viser.__version__}"],
+            max_size=None,
+            compression=None,
+            open_timeout=60,
+        )
+        await self.ws.send(CAMERA)
+        asyncio.get_running_loop().create_task(self.receive())
+
+    async def receive(self) -> None:
+        try:
+            async for frame in self.ws:
+                now = time.perf_counter()
+                scene = False
+                for m in decode(frame):
+                    if m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith("q2 "):
+                        self.slider = m["uuid"]
+                    scene = scene or str(m.get("name", "")).startswith("/")
+                if scene:
+                    self.drawn.set()
+                    if self.measuring:
+                        self.samples += [(now - t) * 1e3 for t in self.pending]
+                    self.pending.clear()
+        except websockets.ConnectionClosed:
+            pass
+        self.closed = True
+
+    async def change(self, value: float) -> None:
+        self.pending.append(time.perf_counter())
+        self.sent += 1
+        await self.ws.send(encode(UPDATE(self.slider, {"value": value})))
+
+
+async def explore(tab: Tab, end: float, rng: random.Random) -> None:
+    """Move q2 every ~200 ms (±50 ms) until ``end``, like a student dragging it."""
+    i = rng.randrange(60)
+    while time.perf_counter() < end and not tab.closed:
+        await tab.change(float(-30 + i % 60))
+        i += 1
+        await asyncio.sleep(rng.uniform(0.15, 0.25))
+
+
+async def flood(url: str, seconds: float, out: multiprocessing.Queue, go) -> tuple[int, bool]:
+    """One tab sending slider changes as fast as it can for ``seconds`` from ``go`` on; (sent, closed)."""
+    tab = Tab()
+    await tab.connect(url)
+    await asyncio.wait_for(tab.drawn.wait(), 120)
+    out.put("ready")
+    await asyncio.to_thread(go.wait, 300)
+    end = time.perf_counter() + seconds
+    i = 0
+    while time.perf_counter() < end and not tab.closed:
+        try:
+            await tab.change(float(-30 + i % 60))
+        except websockets.ConnectionClosed:
+            break
+        i += 1
+        if i % 50 == 0:
+            await asyncio.sleep(0)
+    closed = tab.closed
+    await tab.ws.close()
+    return tab.sent, closed
+
+
+def flood_process(url: str, seconds: float, out: multiprocessing.Queue, go) -> None:
+    """The hostile tab, in a process of its own (so that it does not slow the measuring client)."""
+    out.put(asyncio.run(flood(url, seconds, out, go)))
+
+
+async def run(
+    tabs: int, seconds: float, hostile: bool, port: int, pid: int, seed: int, warmup: float
+) -> dict:
+    url = f"ws://127.0.0.1:{port}"
+    rng = random.Random(seed)
+    clients = [Tab() for _ in range(tabs)]
+    if hostile:  # connects while the others do
+        ctx = multiprocessing.get_context("spawn")
+        out, go = ctx.Queue(), ctx.Event()
+        flooder = ctx.Process(target=flood_process, args=(url, seconds, out, go))
+        flooder.start()
+    for tab in clients:  # one after another, as a class arriving
+        await tab.connect(url)
+        await asyncio.wait_for(tab.drawn.wait(), 120)
+    # Warm up (unmeasured): the first changes also meet one-off work (the symbolic J arriving).
+    await asyncio.gather(*(explore(tab, time.perf_counter() + warmup, rng) for tab in clients))
+    await asyncio.sleep(0.3)
+    if hostile:
+        assert await asyncio.to_thread(out.get, True, 120) == "ready"
+    for tab in clients:
+        tab.pending.clear()
+        tab.measuring = True
+    cpu0, t0, own0 = cpu_seconds(pid), time.perf_counter(), time.process_time()
+    end = t0 + seconds
+    if hostile:
+        go.set()
+    await asyncio.gather(*(explore(tab, end, rng) for tab in clients))
+    # Give late answers up to 5 s to arrive.
+    deadline = time.perf_counter() + 5.0
+    while any(t.pending for t in clients) and time.perf_counter() < deadline:
+        await asyncio.sleep(0.02)
+    wall = time.perf_counter() - t0
+    cpu, own = (cpu_seconds(pid) - cpu0) / wall * 100, (time.process_time() - own0) / wall * 100
+    samples = np.array([s for t in clients for s in t.samples])
+    result: dict = {
+        "changes": sum(t.sent for t in clients),
+        "unanswered": sum(len(t.pending) for t in clients),
+        "samples": samples,
+        "cpu": cpu,
+        "client_cpu": own,
+    }
+    if hostile:
+        result["flood_sent"], result["flood_closed"] = await asyncio.to_thread(out.get, True, 60)
+        flooder.join(10)
+    for tab in clients:
+        await tab.ws.close()
+    return result
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--tabs", type=int, nargs="+", default=[10, 30, 60])
+    parser.add_argument("--seconds", type=float, default=20.0, help="measuring window per run [s]")
+    parser.add_argument("--robot", default="panda")
+    parser.add_argument("--hostile", action="store_true", help="add one tab flooding slider changes")
+    parser.add_argument("--limits", action="store_true", help="install the message limits in the server")
+    parser.add_argument("--warmup", type=float, default=3.0, help="unmeasured exploring first [s]")
+    parser.add_argument("--seed", type=int, default=1)
+    args = parser.parse_args()
+    if not 1 <= args.seconds <= 120 or not all(1 <= n <= 200 for n in args.tabs):
+        parser.error("--seconds must be in [1, 120] and --tabs in [1, 200]")
+
+    print(f"robot {args.robot}, {args.seconds:g} s per run, {os.cpu_count()} CPUs; slider → redrawn scene")
+    print(f"load average before: {Path('/proc/loadavg').read_text().split()[:3]}")
+    columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "max ms", "CPU %", "client %")
+    header = " ".join(f"{c:>{w}}" for c, w in zip(columns, (5, 8, 8, 10, 8, 8, 8, 6, 8), strict=True))
+    print(header + ("   flood (sent, closed)" if args.hostile else ""))
+    for n in args.tabs:
+        proc, port = start_server(args.robot, args.limits)
+        try:
+            r = asyncio.run(run(n, args.seconds, args.hostile, port, proc.pid, args.seed, args.warmup))
+        finally:
+            proc.terminate()
+            try:
+                proc.wait(15)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+        s = r["samples"]
+        p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)
+        mx = s.max() if len(s) else np.nan
+        line = (
+            f"{n:>5} {('yes' if args.hostile else 'no'):>8} {r['changes']:>8} {r['unanswered']:>10} "
+            f"{p50:>8.1f} {p95:>8.1f} {mx:>8.1f} {r['cpu']:>6.0f} {r['client_cpu']:>8.0f}"
+        )
+        print(
+            line
+            + (f"   {r['flood_sent']}, {'closed' if r['flood_closed'] else 'open'}" if args.hostile else "")
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,116 @@
+"""The app in a subprocess of its own session, and /proc scans of its processes (Linux), for tests."""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def proc_stat(pid: int) -> list[str] | None:
+    """Fields of /proc/PID/stat after the command name (state, ppid, pgrp, session, ...), or None."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (FileNotFoundError, ProcessLookupError):
+        return None
+
+
+def alive(pid: int) -> bool:
+    fields = proc_stat(pid)
+    return fields is not None and fields[0] not in ("Z", "X")
+
+
+def session_processes(sid: int) -> list[int]:
+    """Live processes of session ``sid`` (the server and every descendant, even re-parented ones)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            fields = proc_stat(int(entry.name))
+            if fields is not None and fields[0] not in ("Z", "X") and int(fields[3]) == sid:
+                found.append(int(entry.name))
+    return found
+
+
+def children(pid: int) -> list[int]:
+    """Live direct children of ``pid``."""
+    return [
+        p
+        for p in session_processes(os.getsid(pid))
+        if p != pid and (proc_stat(p) or ["", "0"])[1] == str(pid)
+    ]
+
+
+def poll(predicate, timeout: float = 30.0, what: str = "condition"):
+    end = time.monotonic() + timeout
+    while True:
+        value = predicate()
+        if value:
+            return value
+        if time.monotonic() > end:
+            raise AssertionError(f"{what} not reached within {timeout} s")
+        time.sleep(0.02)
+
+
+def cmdline(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
+    except FileNotFoundError:
+        return ""
+
+
+class Server:
+    """The app in a subprocess of its own session, with its log in a file."""
+
+    def __init__(self, tmp_path: Path, code: str) -> None:
+        self.log = tmp_path / "server.log"
+        with open(self.log, "wb") as log:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-u", "-c", code],
+                stdout=subprocess.PIPE,
+                stderr=log,
+                text=True,
+                cwd=ROOT,
+                env=dict(os.environ, PYTHONPATH=str(ROOT)),
+                start_new_session=True,
+            )
+        self.out: list[str] = []
+        assert self.proc.stdout is not None
+        match = None
+        for line in self.proc.stdout:  # until the URL is printed (or the process ends)
+            self.out.append(line)
+            match = re.search(r"open http://127\.0\.0\.1:(\d+)", line)
+            if match:
+                break
+        if not match:
+            self.proc.kill()
+            raise AssertionError(f"no URL printed: {self.out}; log: {self.log.read_text()[-2000:]}")
+        self.port = int(match.group(1))
+        self.pid = self.proc.pid
+        # Keep reading what it prints (a full pipe would block the server).
+        threading.Thread(target=lambda: self.out.extend(self.proc.stdout), daemon=True).start()
+
+    def url(self) -> str:
+        return f"ws://127.0.0.1:{self.port}"
+
+    def workers(self) -> list[int]:
+        return [p for p in children(self.pid) if "spawn_main" in cmdline(p)]
+
+    def cleanup(self) -> None:
+        for pid in session_processes(self.pid):
+            os.kill(pid, signal.SIGKILL)
+        self.proc.wait(10)
+
+
+def rss_bytes(pid: int, field: str = "VmRSS") -> int:
+    """Resident memory of process ``pid`` [bytes]: now (``VmRSS``) or its peak so far (``VmHWM``)."""
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith(field + ":"):
+            return int(line.split()[1]) * 1024
+    raise ValueError(f"no {field} for process {pid}")
