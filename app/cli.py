@@ -15,7 +15,6 @@ machine) is reported on stderr at once with exit status 2, before any server sta
 from __future__ import annotations
 
 import argparse
-import socket
 import sys
 
 from .export_command import add_chain_arguments
@@ -51,28 +50,6 @@ def _build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def check_host(host: str, port: int = 0) -> None:
-    """Raise ``OSError`` with a plain message unless ``host`` is an address this machine can listen on.
-
-    The name is resolved (``socket.getaddrinfo``) and a socket is bound to its first address on a
-    free port, so a name that does not resolve, or resolves to another machine, fails here at
-    once instead of inside the server.
-    """
-    try:
-        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
-    except (socket.gaierror, UnicodeError) as exc:
-        raise OSError(f"cannot listen on host {host!r}: the name does not resolve ({exc})") from None
-    family, kind, proto, _, address = infos[0]
-    with socket.socket(family, kind, proto) as s:
-        try:
-            s.bind((address[0], 0, *address[2:]))
-        except OSError as exc:
-            raise OSError(
-                f"cannot listen on host {host!r} ({address[0]}): {exc.strerror or exc}; "
-                "use an address of this machine, e.g. 127.0.0.1 or 0.0.0.0"
-            ) from None
-
-
 def _fail(message: str) -> int:
     print(f"jacobian-lab: error: {message}", file=sys.stderr)
     return 2
@@ -84,9 +61,11 @@ def _serve(args: argparse.Namespace) -> int:
 
     if args.robot is None and args.urdf is None and (args.base or args.tip):
         return _fail("--base and --tip choose a chain of the URDF given with --urdf")
+    from app.lifecycle import check_listen_address
+
     try:
-        check_host(args.host)
-    except OSError as exc:
+        check_listen_address(args.host, args.port)
+    except ValueError as exc:
         return _fail(str(exc))
     try:  # fail before the server starts (and before viser is imported)
         if args.urdf or args.robot:

@@ -21,8 +21,10 @@ import viser
 
 from .catalog import RobotCatalog
 from .hub import Hub
+from .lifecycle import check_listen_address, wait_for_stop
 from .session import ClientSession
 from .symbolic import SymbolicService
+from .viser_adapter import install_fast_prop_casts, install_message_limits
 
 __all__ = ["serve", "Lab"]
 
@@ -60,7 +62,11 @@ class Lab:
         self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link)
         self.default_robot = robot or self.catalog.default()
         self.catalog.load(self.default_robot)  # fail before starting the server
+        check_listen_address(host, port)  # a clear error now, instead of a server that never listens
+        install_message_limits()  # what one websocket message and one tab may cost
+        install_fast_prop_casts()
         self.symbolic = SymbolicService()
+        self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
         self.server = viser.ViserServer(host=host, port=port, verbose=False)
         self.server.scene.set_up_direction("+z")
@@ -101,7 +107,8 @@ class Lab:
                 pass
             return
         with self._lock:
-            gone = client.client_id in self._gone
+            # Closed while its session was being built: viser may already have dropped it.
+            gone = client.client_id in self._gone or client.client_id not in self.server.get_clients()
             self._gone.discard(client.client_id)
             if not gone:
                 self.sessions[client.client_id] = session
@@ -116,6 +123,13 @@ class Lab:
         if session is not None:
             self.hub.leave(client.client_id)
             session.close()
+
+    def _symbolic_restarted(self, notice: str) -> None:
+        """Tell every tab that the symbolic worker stopped and was restarted (its request is retried)."""
+        with self._lock:
+            sessions = list(self.sessions.values())
+        for session in sessions:
+            session.notify("Symbolic worker restarted", notice)
 
     def session(self, timeout: float = 10.0) -> ClientSession:
         """The most recent client's session, waiting up to ``timeout`` seconds for one (for tests)."""
@@ -176,11 +190,5 @@ def serve(
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if not block:
         return lab
-    try:
-        while True:
-            time.sleep(3600)
-    except KeyboardInterrupt:
-        pass
-    finally:
-        lab.stop()
+    wait_for_stop(lab.stop)  # Ctrl-C, SIGTERM or SIGHUP: stop the server and its worker, once
     return lab

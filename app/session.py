@@ -54,7 +54,7 @@ from .reducer import reduce
 from .scene import SceneView
 from .snapshot import Snapshot, compute
 from .state import LabState
-from .symbolic import SymbolicService, SymbolicUnavailable
+from .symbolic import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable
 from .ticker import Ticker
 
 __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
@@ -258,6 +258,13 @@ class ClientSession:
             except Exception:
                 log.exception("a subscriber of client %s failed", self.client.client_id)
 
+    def notify(self, title: str, body: str) -> None:
+        """Show this tab a short notice (e.g. the symbolic worker was restarted)."""
+        if self._closed:
+            return
+        with contextlib.suppress(Exception):
+            self.client.add_notification(title, body[:300], color="yellow", auto_close_seconds=8.0)
+
     def report_error(self, exc: BaseException) -> None:
         """Log ``exc`` and tell this tab, in words, that its last action failed."""
         self.errors += 1
@@ -354,6 +361,8 @@ class ClientSession:
                     return
                 try:
                     mathml, note = future.result(), f"J(q) in {frame} axes, from kinematics.symbolic."
+                    if getattr(future, "restarted", False):
+                        note += f" ({WORKER_RESTARTED}: this result was computed again.)"
                 except SymbolicUnavailable as exc:
                     mathml, note = None, str(exc)
                 except Exception as exc:

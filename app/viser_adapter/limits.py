@@ -1,178 +1,22 @@
-"""The one module that touches viser's private API; everything else in ``app/`` uses viser's public API.
-
-Each function here wraps one private detail of viser (tested with the versions in
-:data:`TESTED_VISER`). When an upgrade moves that detail, the function raises
-:class:`ViserApiChanged` naming itself and the installed viser version, and
-``tests/test_viser_adapter.py`` (which runs each function against a real
-``viser.ViserServer``) fails with the same message.
-
-Wrapped:
-* :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
-* :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
-  to one client through ``client._websock_connection``.
-* :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
-  internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
-* :func:`install_message_limits` — what one websocket message and one tab may cost:
-  replaces ``viser.infra._infra._message_consumer`` (looked up by viser's connection
-  handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``.
-"""
+"""viser's private API, part 2: what one websocket message and one tab may cost (see the package)."""
 
 from __future__ import annotations
 
 import asyncio
 import dataclasses
 import inspect
-import json
 import logging
 import threading
 import traceback
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any
 
-import viser
+from ..ratelimit import TabLimiter
+from .core import ViserApiChanged, _private, clip
 
-from .ratelimit import TabLimiter
+__all__ = ["MessageLimits", "install_message_limits", "uninstall_message_limits"]
 
-__all__ = [
-    "TESTED_VISER",
-    "ViserApiChanged",
-    "message_class",
-    "run_javascript",
-    "set_page_title",
-    "handle_uuid",
-    "is_removed",
-    "scene_handles",
-    "node_props",
-    "MessageLimits",
-    "install_message_limits",
-    "uninstall_message_limits",
-    "clip",
-]
-
-log = logging.getLogger(__name__)
-
-TESTED_VISER = ">=1.1.1,<1.2"
-"""The viser versions this module was tested with (the same range as the pin in pyproject.toml)."""
-
-T = TypeVar("T")
-
-
-class ViserApiChanged(RuntimeError):
-    """A private detail of viser that :mod:`app.viser_adapter` relies on is gone or changed.
-
-    The message names the adapter function, what it looked for, and the installed viser version.
-    """
-
-    def __init__(self, function: str, detail: str) -> None:
-        super().__init__(
-            f"app.viser_adapter.{function}: {detail} — viser {viser.__version__} is installed, the "
-            f"adapter was tested with viser{TESTED_VISER}; update app/viser_adapter.py for this version"
-        )
-
-
-def _private(function: str, what: str, get: Callable[[], T]) -> T:
-    """``get()``, turning the errors of a moved attribute into :class:`ViserApiChanged`."""
-    try:
-        return get()
-    except (AttributeError, ImportError, KeyError, TypeError) as exc:
-        raise ViserApiChanged(function, f"{what} ({type(exc).__name__}: {exc})") from exc
-
-
-def clip(text: object, limit: int = 200) -> str:
-    """``str(text)`` cut to at most ``limit`` characters (with a note of the full length) for a log line."""
-    s = str(text)
-    if len(s) <= limit:
-        return s
-    return f"{s[: limit - 40]}… [{len(s)} characters]"
-
-
-# --------------------------------------------------------------------------- messages and handles
-def message_class(name: str) -> type:
-    """The viser protocol message class called ``name`` (e.g. ``"GuiUpdateMessage"``).
-
-    Raises:
-        ViserApiChanged: viser has no such message class.
-    """
-
-    def get() -> type:
-        from viser import _messages
-
-        cls = getattr(_messages, name)
-        if not (isinstance(cls, type) and issubclass(cls, _messages.Message)):
-            raise TypeError(f"{name} is not a message class")
-        return cls
-
-    return _private("message_class", f"viser._messages.{name}", get)
-
-
-def run_javascript(client: viser.ClientHandle, source: str) -> None:
-    """Run the JavaScript ``source`` in this client's page (viser's ``RunJavascriptMessage``).
-
-    The page runs it once when the message arrives; nothing is kept for later tabs.
-
-    Raises:
-        ViserApiChanged: the message class or the client's connection moved.
-    """
-    cls = message_class("RunJavascriptMessage")
-    connection = _private("run_javascript", "client._websock_connection", lambda: client._websock_connection)
-    _private("run_javascript", "queue_message", lambda: connection.queue_message(cls(source=source)))
-
-
-_TITLE_SCRIPT = """(() => {
-  window.__jacobianLabTitle = %s;
-  const apply = () => {
-    if (document.title !== window.__jacobianLabTitle) document.title = window.__jacobianLabTitle;
-  };
-  apply();
-  if (!window.__jacobianLabTitleObserver) {
-    window.__jacobianLabTitleObserver = new MutationObserver(apply);
-    const options = {subtree: true, childList: true, characterData: true};
-    window.__jacobianLabTitleObserver.observe(document.head, options);
-  }
-})();"""
-
-
-def set_page_title(client: viser.ClientHandle, title: str) -> None:
-    """Title this client's browser tab ``title`` (viser's says "Viser"), kept if the page resets it.
-
-    ``title`` is passed as a JSON string literal, never as code.
-    """
-    run_javascript(client, _TITLE_SCRIPT % json.dumps(str(title)))
-
-
-def handle_uuid(handle: Any) -> str:
-    """The id of a GUI handle: its element's DOM ``id`` in the page (e.g. for per-slider CSS)."""
-    uuid = _private("handle_uuid", "handle._impl.uuid", lambda: handle._impl.uuid)
-    if not isinstance(uuid, str):
-        raise ViserApiChanged("handle_uuid", f"handle._impl.uuid is a {type(uuid).__name__}, not a str")
-    return uuid
-
-
-def is_removed(handle: Any) -> bool:
-    """Whether a GUI or scene handle was removed (its callbacks may still see late events)."""
-    removed = _private("is_removed", "handle._impl.removed", lambda: handle._impl.removed)
-    if not isinstance(removed, bool):
-        raise ViserApiChanged("is_removed", f"handle._impl.removed is a {type(removed).__name__}, not a bool")
-    return removed
-
-
-def scene_handles(scene_api: Any) -> dict[str, Any]:
-    """A copy of the scene's node table: node name (e.g. ``"/lab/arm"``) → handle, of ``server.scene`` or
-    ``client.scene``."""
-    table = _private(
-        "scene_handles", "SceneApi._handle_from_node_name", lambda: scene_api._handle_from_node_name
-    )
-    return dict(table)
-
-
-def node_props(handle: Any) -> dict[str, Any]:
-    """The props the scene node ``handle`` sends to the browser, with ``position``, ``wxyz``, ``visible``."""
-
-    def get() -> dict[str, Any]:
-        impl = handle._impl
-        return {**vars(impl.props), "position": impl.position, "wxyz": impl.wxyz, "visible": impl.visible}
-
-    return _private("node_props", "handle._impl.props / position / wxyz / visible", get)
+log = logging.getLogger("app.viser_adapter")
 
 
 # --------------------------------------------------------------------------- message limits
@@ -389,61 +233,3 @@ def _bounded_exception_handler(loop: asyncio.AbstractEventLoop, context: dict[st
         )
     text = f"{type(exc).__name__}: {clip(exc)}" if exc is not None else ""
     log.error("%s: %s%s", clip(context.get("message", "error in the event loop"), 80), text, clip(where, 300))
-
-
-# --------------------------------------------------------------------------- faster prop assignment
-_FAST_CAST_INSTALLED = False
-
-
-def install_fast_prop_casts() -> None:
-    """Make every handle prop assignment cheaper, with the same result.
-
-    viser 1.1's ``AssignablePropsBase._cast_value_recursive`` builds four ``numpy.typing``
-    aliases (``npt.NDArray[np.float32]``, ...) on every assignment to compare the prop's type
-    hint with them: about a third of the cost of moving a scene node. This builds them once.
-    Idempotent.
-
-    Raises:
-        ViserApiChanged: the method moved.
-    """
-    global _FAST_CAST_INSTALLED
-    if _FAST_CAST_INSTALLED:
-        return
-    import numpy as np
-    import numpy.typing as npt
-
-    props_api = _private(
-        "install_fast_prop_casts",
-        "viser._assignable_props_api.AssignablePropsBase._cast_value_recursive",
-        lambda: __import__("viser._assignable_props_api", fromlist=["AssignablePropsBase"]),
-    )
-    base = props_api.AssignablePropsBase
-    if not callable(getattr(base, "_cast_value_recursive", None)):
-        raise ViserApiChanged("install_fast_prop_casts", "AssignablePropsBase._cast_value_recursive is gone")
-    f16, f32, f64, u8 = (npt.NDArray[t] for t in (np.float16, np.float32, np.float64, np.uint8))
-    colors_to_uint8 = props_api.colors_to_uint8
-
-    def cast(self: Any, hint: Any, value: Any, prop_name: str) -> Any:
-        if hint == f32:
-            return np.asarray(value).astype(np.float32)
-        if hint == f64:
-            return np.asarray(value).astype(np.float64)
-        if hint == f16:
-            return np.asarray(value).astype(np.float16)
-        if hint == u8 and "color" in prop_name:
-            return colors_to_uint8(value)
-        if isinstance(value, np.ndarray):
-            return value
-        if (
-            isinstance(value, tuple)
-            and getattr(hint, "__origin__", None) is tuple
-            and len(getattr(hint, "__args__", ())) == 2
-            and hint.__args__[1] is ...
-        ):
-            element = hint.__args__[0]
-            return tuple(cast(self, element, item, prop_name) for item in value)
-        return value
-
-    base._jl_original_cast = base._cast_value_recursive
-    base._cast_value_recursive = cast
-    _FAST_CAST_INSTALLED = True

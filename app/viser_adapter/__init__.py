@@ -1,0 +1,55 @@
+"""The one module that touches viser's private API; everything else in ``app/`` uses viser's public API.
+
+Each function here wraps one private detail of viser (tested with the versions in
+:data:`TESTED_VISER`). When an upgrade moves that detail, the function raises
+:class:`ViserApiChanged` naming itself and the installed viser version, and
+``tests/test_viser_adapter.py`` (which runs each function against a real
+``viser.ViserServer``) fails with the same message.
+
+Wrapped:
+* :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
+* :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
+  to one client through ``client._websock_connection``.
+* :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
+  internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
+* :func:`install_message_limits` — what one websocket message and one tab may cost:
+  replaces ``viser.infra._infra._message_consumer`` (looked up by viser's connection
+  handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``.
+* :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
+  type aliases built once.
+
+A package of three modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`), so each stays short;
+nothing outside this package touches viser's private API.
+"""
+
+from .core import (
+    TESTED_VISER,
+    ViserApiChanged,
+    clip,
+    handle_uuid,
+    is_removed,
+    message_class,
+    node_props,
+    run_javascript,
+    scene_handles,
+    set_page_title,
+)
+from .limits import MessageLimits, install_message_limits, uninstall_message_limits
+from .props import install_fast_prop_casts
+
+__all__ = [
+    "TESTED_VISER",
+    "ViserApiChanged",
+    "message_class",
+    "run_javascript",
+    "set_page_title",
+    "handle_uuid",
+    "is_removed",
+    "scene_handles",
+    "node_props",
+    "MessageLimits",
+    "install_message_limits",
+    "uninstall_message_limits",
+    "install_fast_prop_casts",
+    "clip",
+]

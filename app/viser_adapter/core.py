@@ -1,0 +1,148 @@
+"""viser's private API, part 1: protocol messages, page scripts, handle internals (see the package)."""
+
+from __future__ import annotations
+
+import json
+import logging
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import viser
+
+__all__ = [
+    "TESTED_VISER",
+    "ViserApiChanged",
+    "message_class",
+    "run_javascript",
+    "set_page_title",
+    "handle_uuid",
+    "is_removed",
+    "scene_handles",
+    "node_props",
+    "clip",
+]
+
+log = logging.getLogger(__name__)
+
+TESTED_VISER = ">=1.1.1,<1.2"
+"""The viser versions this module was tested with (the same range as the pin in pyproject.toml)."""
+
+T = TypeVar("T")
+
+
+class ViserApiChanged(RuntimeError):
+    """A private detail of viser that :mod:`app.viser_adapter` relies on is gone or changed.
+
+    The message names the adapter function, what it looked for, and the installed viser version.
+    """
+
+    def __init__(self, function: str, detail: str) -> None:
+        super().__init__(
+            f"app.viser_adapter.{function}: {detail} — viser {viser.__version__} is installed, the "
+            f"adapter was tested with viser{TESTED_VISER}; update app/viser_adapter/ for this version"
+        )
+
+
+def _private(function: str, what: str, get: Callable[[], T]) -> T:
+    """``get()``, turning the errors of a moved attribute into :class:`ViserApiChanged`."""
+    try:
+        return get()
+    except (AttributeError, ImportError, KeyError, TypeError) as exc:
+        raise ViserApiChanged(function, f"{what} ({type(exc).__name__}: {exc})") from exc
+
+
+def clip(text: object, limit: int = 200) -> str:
+    """``str(text)`` cut to at most ``limit`` characters (with a note of the full length) for a log line."""
+    s = str(text)
+    if len(s) <= limit:
+        return s
+    return f"{s[: limit - 40]}… [{len(s)} characters]"
+
+
+# --------------------------------------------------------------------------- messages and handles
+def message_class(name: str) -> type:
+    """The viser protocol message class called ``name`` (e.g. ``"GuiUpdateMessage"``).
+
+    Raises:
+        ViserApiChanged: viser has no such message class.
+    """
+
+    def get() -> type:
+        from viser import _messages
+
+        cls = getattr(_messages, name)
+        if not (isinstance(cls, type) and issubclass(cls, _messages.Message)):
+            raise TypeError(f"{name} is not a message class")
+        return cls
+
+    return _private("message_class", f"viser._messages.{name}", get)
+
+
+def run_javascript(client: viser.ClientHandle, source: str) -> None:
+    """Run the JavaScript ``source`` in this client's page (viser's ``RunJavascriptMessage``).
+
+    The page runs it once when the message arrives; nothing is kept for later tabs.
+
+    Raises:
+        ViserApiChanged: the message class or the client's connection moved.
+    """
+    cls = message_class("RunJavascriptMessage")
+    connection = _private("run_javascript", "client._websock_connection", lambda: client._websock_connection)
+    _private("run_javascript", "queue_message", lambda: connection.queue_message(cls(source=source)))
+
+
+_TITLE_SCRIPT = """(() => {
+  window.__jacobianLabTitle = %s;
+  const apply = () => {
+    if (document.title !== window.__jacobianLabTitle) document.title = window.__jacobianLabTitle;
+  };
+  apply();
+  if (!window.__jacobianLabTitleObserver) {
+    window.__jacobianLabTitleObserver = new MutationObserver(apply);
+    const options = {subtree: true, childList: true, characterData: true};
+    window.__jacobianLabTitleObserver.observe(document.head, options);
+  }
+})();"""
+
+
+def set_page_title(client: viser.ClientHandle, title: str) -> None:
+    """Title this client's browser tab ``title`` (viser's says "Viser"), kept if the page resets it.
+
+    ``title`` is passed as a JSON string literal, never as code.
+    """
+    run_javascript(client, _TITLE_SCRIPT % json.dumps(str(title)))
+
+
+def handle_uuid(handle: Any) -> str:
+    """The id of a GUI handle: its element's DOM ``id`` in the page (e.g. for per-slider CSS)."""
+    uuid = _private("handle_uuid", "handle._impl.uuid", lambda: handle._impl.uuid)
+    if not isinstance(uuid, str):
+        raise ViserApiChanged("handle_uuid", f"handle._impl.uuid is a {type(uuid).__name__}, not a str")
+    return uuid
+
+
+def is_removed(handle: Any) -> bool:
+    """Whether a GUI or scene handle was removed (its callbacks may still see late events)."""
+    removed = _private("is_removed", "handle._impl.removed", lambda: handle._impl.removed)
+    if not isinstance(removed, bool):
+        raise ViserApiChanged("is_removed", f"handle._impl.removed is a {type(removed).__name__}, not a bool")
+    return removed
+
+
+def scene_handles(scene_api: Any) -> dict[str, Any]:
+    """A copy of the scene's node table: node name (e.g. ``"/lab/arm"``) → handle, of ``server.scene`` or
+    ``client.scene``."""
+    table = _private(
+        "scene_handles", "SceneApi._handle_from_node_name", lambda: scene_api._handle_from_node_name
+    )
+    return dict(table)
+
+
+def node_props(handle: Any) -> dict[str, Any]:
+    """The props the scene node ``handle`` sends to the browser, with ``position``, ``wxyz``, ``visible``."""
+
+    def get() -> dict[str, Any]:
+        impl = handle._impl
+        return {**vars(impl.props), "position": impl.position, "wxyz": impl.wxyz, "visible": impl.visible}
+
+    return _private("node_props", "handle._impl.props / position / wxyz / visible", get)
