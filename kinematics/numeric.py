@@ -8,52 +8,182 @@ processed in cache-sized chunks.
 
 from __future__ import annotations
 
-from typing import Literal
+import math
+import weakref
+from dataclasses import dataclass
+from typing import Literal, cast
 
 import numpy as np
 
-from .errors import ConfigurationError
+from .errors import ConfigurationError, OptionError, RobotDefinitionError
 from .model import Robot
+from .validation import MAX_ANGLE, MAX_LENGTH, show
 
-__all__ = ["fk", "joint_frames", "link_frames", "jacobian", "jacobian_dot", "as_configuration"]
+__all__ = [
+    "fk",
+    "joint_frames",
+    "link_frames",
+    "chain_frames",
+    "jacobian",
+    "jacobian_dot",
+    "as_configuration",
+    "check_frame",
+    "Frame",
+    "FRAMES",
+]
 
 Frame = Literal["base", "tool"]
+FRAMES: tuple[Frame, ...] = ("base", "tool")
 _CHUNK = 2048  # configurations per chunk in batched kernels (keeps working arrays in cache)
+_TWO_PI = 2.0 * math.pi
 
 
-def as_configuration(robot: Robot, q: object) -> np.ndarray:
+def check_frame(frame: object) -> Frame:
+    """``frame`` if it is one of :data:`FRAMES`, else an OptionError listing them."""
+    if isinstance(frame, str) and frame in FRAMES:
+        return cast(Frame, frame)
+    raise OptionError(f"frame must be one of 'base', 'tool' (the frame of J's rows), got {show(frame)}")
+
+
+@dataclass(frozen=True, eq=False)
+class _Kernel:
+    """Arrays precomputed once per robot for the numeric kernels (see :func:`_kernel`).
+
+    ``fixed`` is :meth:`Robot.fixed_transforms`: T_base_tool = fixed[0] · M_1 · fixed[1] ⋯ M_m · fixed[m].
+    """
+
+    fixed: np.ndarray  # (m+1, 4, 4)
+    index: np.ndarray  # (m,) int
+    multiplier: np.ndarray  # (m,)
+    offset: np.ndarray  # (m,)
+    revolute: np.ndarray  # (m,) float 1.0/0.0
+    prismatic: np.ndarray  # (m,) float
+    simple: bool  # one axis per joint, in order, multiplier 1
+    selection: np.ndarray  # (m, n): column k of J = Σ_axes selection[axis, k] · contribution
+    all_revolute: bool
+    prismatic_index: np.ndarray  # (p,) indices of prismatic axes
+    rz_cos: np.ndarray  # (m, 4, 4): Rz(θ) F_k = cos θ · rz_cos + sin θ · rz_sin + rz_const
+    rz_sin: np.ndarray
+    rz_const: np.ndarray
+    tz_lin: np.ndarray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
+    bound: np.ndarray  # (n,) largest accepted |q| per joint: MAX_ANGLE [rad] or MAX_LENGTH [m]
+
+    @staticmethod
+    def build(robot: Robot) -> _Kernel:
+        m, n = len(robot.axes), robot.dof
+        fixed = robot.fixed_transforms()
+        index = np.array([ax.joint_index for ax in robot.axes], dtype=int)
+        mult = np.array([ax.multiplier for ax in robot.axes])
+        rev = np.array([1.0 if ax.kind == "revolute" else 0.0 for ax in robot.axes])
+        sel = np.zeros((m, n))
+        sel[np.arange(m), index] = mult
+        simple = m == n and bool(np.all(index == np.arange(n))) and bool(np.all(mult == 1.0))
+        offset = np.array([ax.offset for ax in robot.axes])
+        pri_idx = np.flatnonzero(rev == 0.0)
+        F = fixed[1:]
+        Dc, Ds, E, Dz = np.diag([1.0, 1, 0, 0]), np.zeros((4, 4)), np.diag([0.0, 0, 1, 1]), np.zeros((4, 4))
+        Ds[0, 1], Ds[1, 0], Dz[2, 3] = -1.0, 1.0, 1.0
+        parts = [Dc @ F, Ds @ F, E @ F, Dz @ F]
+        bound = np.array([MAX_ANGLE if j.kind == "revolute" else MAX_LENGTH for j in robot.joints])
+        for a in (fixed, index, mult, offset, rev, sel, pri_idx, *parts, bound):
+            a.flags.writeable = False
+        return _Kernel(
+            fixed, index, mult, offset, rev, 1.0 - rev, simple, sel, len(pri_idx) == 0, pri_idx, *parts, bound
+        )
+
+
+_KERNELS: weakref.WeakKeyDictionary[Robot, _Kernel] = weakref.WeakKeyDictionary()
+
+
+def _kernel(robot: Robot) -> _Kernel:
+    """The precomputed arrays of ``robot``, built on first use and kept while the robot lives.
+
+    The robot is immutable, so they never go stale; the cache holds the robot weakly.
+    """
+    try:
+        return _KERNELS[robot]
+    except KeyError:
+        if not isinstance(robot, Robot):
+            raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}") from None
+        kernel = _KERNELS[robot] = _Kernel.build(robot)
+        return kernel
+    except TypeError:  # not hashable or not weak-referenceable: certainly not a Robot
+        raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}") from None
+
+
+_KINDS = {
+    "b": "bools",
+    "c": "complex numbers",
+    "U": "strings",
+    "S": "bytes",
+    "O": "Python objects",
+    "V": "records",
+}
+
+
+def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
     """Return ``q`` as a float array of shape (n,) or (N, n), or raise ConfigurationError.
+
+    Accepted: ints and floats (lists, tuples, NumPy arrays of any int or float type). Refused,
+    each with a message naming the problem: strings, bytes, bools, complex numbers, object
+    arrays (``None``, integers beyond float range, mixed types), ragged lists, the wrong shape,
+    NaN, ±inf, and values beyond what the model accepts (|q| ≤ 1e18 rad for a revolute joint,
+    where angles are only meaningful modulo 2π; |q| ≤ 1e15 m for a prismatic one).
 
     Args:
         robot: The robot (defines n = ``robot.dof``).
         q: Joint values [rad] for revolute, [m] for prismatic joints.
+        what: Name used in messages (``"qd"`` for joint rates).
     """
+    bound = _kernel(robot).bound
     try:
-        a = np.asarray(q, dtype=float)
-    except (TypeError, ValueError):
-        raise ConfigurationError(f"q must be numeric, got {q!r}") from None
+        a = np.asarray(q)
+    except (TypeError, ValueError, OverflowError):
+        raise ConfigurationError(f"{what} must be an array of numbers, got {show(q)}") from None
+    if a.dtype.kind not in "iuf":
+        raise ConfigurationError(
+            f"{what} must hold ints or floats, got {_KINDS.get(a.dtype.kind, str(a.dtype))}: {show(q)}"
+        )
+    a = a.astype(float, copy=False)
     if a.ndim not in (1, 2) or a.shape[-1] != robot.dof:
         raise ConfigurationError(
-            f"q has shape {a.shape}; robot {robot.name!r} expects ({robot.dof},) or (N, {robot.dof})"
+            f"{what} has shape {a.shape}; robot {robot.name!r} expects ({robot.dof},) or (N, {robot.dof})"
         )
-    if not np.isfinite(a).all():
-        raise ConfigurationError("q contains NaN or infinity; every joint value must be finite")
+    if not (np.abs(a) <= bound).all():
+        raise ConfigurationError(_bad_value(robot, a, bound, what))
     return a
+
+
+def _bad_value(robot: Robot, a: np.ndarray, bound: np.ndarray, what: str) -> str:
+    """The message for the first value of ``a`` that is not finite or is out of range."""
+    bad = ~(np.abs(a) <= bound)
+    i = int(np.argwhere(bad)[0][-1])
+    v = float(a[..., i][bad[..., i]][0])
+    joint = robot.joints[i]
+    if not math.isfinite(v):
+        return (
+            f"{what} contains NaN or infinity (joint {joint.name!r}: {v}); every joint value must be finite"
+        )
+    unit = "rad" if joint.kind == "revolute" else "m"
+    expected = f"expected |value| ≤ {bound[i]:g} {unit}"
+    return f"{what}: joint {joint.name!r} value {v:g} {unit} is out of range; {expected}"
 
 
 # --------------------------------------------------------------------- single
 def _chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Joint frames T_base_joint (m, 4, 4) (before each axis moves) and T_base_tool."""
-    c = robot._compiled  # type: ignore[attr-defined]
+    c = _kernel(robot)
     qa = q if c.simple else q[c.index] * c.multiplier
     qa = qa + c.offset
     # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
-    # moved-and-fixed transform of every axis comes from a few whole-stack operations.
+    # moved-and-fixed transform of every axis comes from a few whole-stack operations. Angles are
+    # reduced modulo 2π first: cos(θ − π/2) is sin θ only while θ − π/2 is exact, which fails for
+    # |θ| beyond about 1e15 (the rotation would stop being orthonormal).
     if c.all_revolute:
-        cs = np.cos(qa - _SIN_SHIFT)  # row 0: cos, row 1: sin
+        cs = np.cos(np.remainder(qa, _TWO_PI) - _SIN_SHIFT)  # row 0: cos, row 1: sin
         P = cs[0, :, None, None] * c.rz_cos + cs[1, :, None, None] * c.rz_sin + c.rz_const
     else:
-        cs = np.cos(qa * c.revolute - _SIN_SHIFT)
+        cs = np.cos(np.remainder(qa * c.revolute, _TWO_PI) - _SIN_SHIFT)
         P = cs[0, :, None, None] * c.rz_cos + cs[1, :, None, None] * c.rz_sin + c.rz_const
         P += (qa * c.prismatic)[:, None, None] * c.tz_lin
     # Prefix products A_0 · A_1 ⋯ A_k by a parallel scan: log2(m + 1) stacked matmuls.
@@ -76,7 +206,7 @@ _SKEW = _SKEW.reshape(3, 9)
 
 def _axis_jacobian(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Per-axis Jacobian columns (6, m) from the joint frames W and the tool pose T."""
-    c = robot._compiled  # type: ignore[attr-defined]
+    c = _kernel(robot)
     m = len(W)
     z = W[:, :3, 2]
     r = T[:3, 3] - W[:, :3, 3]
@@ -92,7 +222,7 @@ def _axis_jacobian(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
 
 
 def _jacobian_from_frames(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
-    c = robot._compiled  # type: ignore[attr-defined]
+    c = _kernel(robot)
     J = _axis_jacobian(robot, W, T)
     return J if c.simple else J @ c.selection
 
@@ -122,15 +252,17 @@ def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray | float:
 def _apply_fixed(cols: list, p, F: np.ndarray) -> tuple[list, object]:
     """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N)."""
     new_cols = [_lin([(F[k, j], cols[k]) for k in range(3)]) for j in range(3)]
-    new_p = _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)]) if not np.isscalar(p) else (
-        _lin([(F[k, 3], cols[k]) for k in range(3)]) + p
+    new_p = (
+        _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)])
+        if not np.isscalar(p)
+        else (_lin([(F[k, 3], cols[k]) for k in range(3)]) + p)
     )
     return new_cols, new_p
 
 
 def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool):
     """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
-    c = robot._compiled  # type: ignore[attr-defined]
+    c = _kernel(robot)
     N = q.shape[0]
     m = len(c.offset)
     qa = (q if c.simple else q[:, c.index] * c.multiplier) + c.offset  # (N, m)
@@ -141,8 +273,9 @@ def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool):
     p = F0[:3, 3, None] * ones
     zs, ps = [], []
     qa_t = qa.T  # (m, N)
-    cosv = np.cos(qa_t)
-    sinv = np.sin(qa_t)
+    angle = np.remainder(qa_t, _TWO_PI)  # the same reduction as the single kernel (results agree)
+    cosv = np.cos(angle)
+    sinv = np.sin(angle)
     for k in range(m):
         zs.append(cols[2])
         ps.append(p)
@@ -220,10 +353,21 @@ def joint_frames(robot: Robot, q: object) -> np.ndarray:
     its origin lies on the axis. For a DH robot in the standard convention,
     frame k has the origin and z axis of the course's frame k-1 (z_{k-1}).
     """
-    q = as_configuration(robot, q)
-    if q.ndim != 1:
-        raise ConfigurationError("joint_frames takes one configuration of shape (n,)")
-    return _chain_single(robot, q)[0]
+    return chain_frames(robot, q)[0]
+
+
+def chain_frames(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray]:
+    """The joint frames ``T_base_joint`` (m, 4, 4) and the tool pose ``T_base_tool`` (4, 4) at once.
+
+    One evaluation of the chain for one configuration (n,): what :func:`joint_frames` and
+    :func:`fk` return.
+    """
+    qc = as_configuration(robot, q)
+    if qc.ndim != 1:
+        raise ConfigurationError(
+            f"one configuration of shape ({robot.dof},) is expected here, got {qc.shape}"
+        )
+    return _chain_single(robot, qc)
 
 
 def link_frames(robot: Robot, q: object) -> np.ndarray:
@@ -233,7 +377,9 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
     """
     q = as_configuration(robot, q)
     if q.ndim != 1:
-        raise ConfigurationError("link_frames takes one configuration of shape (n,)")
+        raise ConfigurationError(
+            f"link_frames takes one configuration of shape ({robot.dof},), got {q.shape}"
+        )
     W, T = _chain_single(robot, q)
     out = np.empty((len(robot.axes) + 2, 4, 4))
     out[0] = robot.base
@@ -241,6 +387,7 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
         qa = ax.multiplier * q[ax.joint_index] + ax.offset
         M = np.eye(4)
         if ax.kind == "revolute":
+            qa = np.remainder(qa, _TWO_PI)  # the same reduction as the kernels
             cq, sq = np.cos(qa), np.sin(qa)
             M[:2, :2] = [[cq, -sq], [sq, cq]]
         else:
@@ -271,8 +418,7 @@ def jacobian(robot: Robot, q: object, frame: Frame = "base") -> np.ndarray:
         >>> bool(np.allclose(jacobian(r, [0.0, 0.0])[:2], [[0.0, 0.0], [2.0, 1.0]]))
         True
     """
-    if frame not in ("base", "tool"):
-        raise ValueError(f"frame must be 'base' or 'tool', got {frame!r}")
+    frame = check_frame(frame)
     q = as_configuration(robot, q)
     if q.ndim == 1:
         W, T = _chain_single(robot, q)
@@ -302,13 +448,13 @@ def jacobian_dot(robot: Robot, q: object, qd: object, frame: Frame = "base") -> 
         frame: Only ``"base"`` is supported (the derivative of a rotated
             Jacobian mixes in Ṙ; use the base frame and rotate results).
     """
-    if frame != "base":
-        raise ValueError("jacobian_dot is defined for frame='base' only")
+    if check_frame(frame) != "base":
+        raise OptionError("jacobian_dot is defined for frame='base' only (rotate the result for tool axes)")
     q = as_configuration(robot, q)
-    qd = as_configuration(robot, qd)
+    qd = as_configuration(robot, qd, "qd")
     if q.ndim != 1 or qd.ndim != 1:
         raise ConfigurationError("jacobian_dot takes one configuration q (n,) and rates qd (n,)")
-    c = robot._compiled  # type: ignore[attr-defined]
+    c = _kernel(robot)
     W, T = _chain_single(robot, q)
     A = _axis_jacobian(robot, W, T)  # (6, m)
     z, p = W[:, :3, 2], W[:, :3, 3]

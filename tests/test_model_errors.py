@@ -10,6 +10,7 @@ import pytest
 from kinematics import (
     ConfigurationError,
     JacobianLabError,
+    OptionError,
     Robot,
     RobotDefinitionError,
     UrdfError,
@@ -33,7 +34,7 @@ def with_(**changes):
         ([], "empty"),
         ("not rows", "sequence of mappings"),
         ([ROW, {k: v for k, v in ROW.items() if k != "alpha"}], r"DH row 2: missing key\(s\) 'alpha'"),
-        ([with_(joint="spherical")], "DH row 1: 'joint' must be 'revolute' or 'prismatic', got 'spherical'"),
+        ([with_(joint="spherical")], "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 'spherical'"),
         ([with_(a=float("nan"))], "DH row 1, key 'a': expected a finite number, got nan"),
         ([with_(d=math.inf)], "DH row 1, key 'd': expected a finite number"),
         ([with_(theta="90")], "DH row 1, key 'theta': expected a number, got '90'"),
@@ -51,7 +52,7 @@ def test_bad_dh_rows(rows, message):
 
 
 def test_bad_convention():
-    with pytest.raises(RobotDefinitionError, match="convention must be 'standard' or 'modified', got 'craig'"):
+    with pytest.raises(RobotDefinitionError, match="DH convention: expected one of 'standard', 'modified', got 'craig'"):
         Robot.from_dh([ROW], convention="craig")
 
 
@@ -82,7 +83,7 @@ def test_bad_base_is_named():
         ([0.0, 0.0, 0.0], r"q has shape \(3,\); robot 'two' expects \(2,\) or \(N, 2\)"),
         ([[[0.0, 0.0]]], r"q has shape \(1, 1, 2\)"),
         ([0.0, float("nan")], "q contains NaN or infinity"),
-        (["a", "b"], "q must be numeric"),
+        (["a", "b"], "q must hold ints or floats, got strings"),
     ],
 )
 def test_bad_configuration(q, message):
@@ -99,7 +100,7 @@ def test_errors_are_value_errors():
 
 
 def test_bad_frame_argument():
-    with pytest.raises(ValueError, match="frame must be 'base' or 'tool', got 'world'"):
+    with pytest.raises(OptionError, match="frame must be one of 'base', 'tool' .*, got 'world'"):
         jacobian(Robot.from_dh([ROW]), [0.0], frame="world")
 
 
