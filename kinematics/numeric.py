@@ -35,7 +35,7 @@ __all__ = [
 Frame = Literal["base", "tool"]
 FRAMES: tuple[Frame, ...] = ("base", "tool")
 _CHUNK = 2048  # configurations per chunk in batched kernels (keeps working arrays in cache)
-_TWO_PI = 2.0 * math.pi
+_FAST_BOUND_SQ = min(MAX_ANGLE, MAX_LENGTH) ** 2
 
 
 def check_frame(frame: object) -> Frame:
@@ -149,7 +149,9 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
         raise ConfigurationError(
             f"{what} has shape {a.shape}; robot {robot.name!r} expects ({robot.dof},) or (N, {robot.dof})"
         )
-    if not (np.abs(a) <= bound).all():
+    flat = a.ravel()
+    # Fast path: Σ q² ≤ min(bound)² implies every |q| is within its bound (NaN and ±inf fail it).
+    if not np.dot(flat, flat) <= _FAST_BOUND_SQ and not (np.abs(a) <= bound).all():
         raise ConfigurationError(_bad_value(robot, a, bound, what))
     return a
 
@@ -176,15 +178,12 @@ def _chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     qa = q if c.simple else q[c.index] * c.multiplier
     qa = qa + c.offset
     # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
-    # moved-and-fixed transform of every axis comes from a few whole-stack operations. Angles are
-    # reduced modulo 2π first: cos(θ − π/2) is sin θ only while θ − π/2 is exact, which fails for
-    # |θ| beyond about 1e15 (the rotation would stop being orthonormal).
-    if c.all_revolute:
-        cs = np.cos(np.remainder(qa, _TWO_PI) - _SIN_SHIFT)  # row 0: cos, row 1: sin
-        P = cs[0, :, None, None] * c.rz_cos + cs[1, :, None, None] * c.rz_sin + c.rz_const
-    else:
-        cs = np.cos(np.remainder(qa * c.revolute, _TWO_PI) - _SIN_SHIFT)
-        P = cs[0, :, None, None] * c.rz_cos + cs[1, :, None, None] * c.rz_sin + c.rz_const
+    # moved-and-fixed transform of every axis comes from a few whole-stack operations. Sine and
+    # cosine come from the same argument (libm reduces it modulo 2π exactly), so the rotation stays
+    # orthonormal for any |θ|; cos(θ − π/2) would not be sin θ once θ − π/2 rounds (|θ| ≳ 1e15).
+    th = qa if c.all_revolute else qa * c.revolute
+    P = np.cos(th)[:, None, None] * c.rz_cos + np.sin(th)[:, None, None] * c.rz_sin + c.rz_const
+    if not c.all_revolute:
         P += (qa * c.prismatic)[:, None, None] * c.tz_lin
     # Prefix products A_0 · A_1 ⋯ A_k by a parallel scan: log2(m + 1) stacked matmuls.
     A = np.concatenate((c.fixed[:1], P))
@@ -195,7 +194,6 @@ def _chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return A[:-1], A[-1]
 
 
-_SIN_SHIFT = np.array([[0.0], [np.pi / 2]])
 # Levi-Civita tensor as a (3, 9) map: (z @ _SKEW).reshape(3, 3) is the cross-product matrix [z]x.
 _SKEW = np.zeros((3, 3, 3))
 for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
@@ -273,9 +271,8 @@ def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool):
     p = F0[:3, 3, None] * ones
     zs, ps = [], []
     qa_t = qa.T  # (m, N)
-    angle = np.remainder(qa_t, _TWO_PI)  # the same reduction as the single kernel (results agree)
-    cosv = np.cos(angle)
-    sinv = np.sin(angle)
+    cosv = np.cos(qa_t)
+    sinv = np.sin(qa_t)
     for k in range(m):
         zs.append(cols[2])
         ps.append(p)
@@ -387,7 +384,6 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
         qa = ax.multiplier * q[ax.joint_index] + ax.offset
         M = np.eye(4)
         if ax.kind == "revolute":
-            qa = np.remainder(qa, _TWO_PI)  # the same reduction as the kernels
             cq, sq = np.cos(qa), np.sin(qa)
             M[:2, :2] = [[cq, -sq], [sq, cq]]
         else:
