@@ -75,9 +75,9 @@ def as_jacobian(J: object, what: str = "J") -> np.ndarray:
 
 def check_rtol(rtol: object) -> float:
     """``rtol`` as a float in [0, 1), or OptionError."""
-    if not (is_number(rtol) and 0.0 <= rtol < 1.0):  # type: ignore[operator]  # a number here
+    if not (is_number(rtol) and 0.0 <= rtol < 1.0):
         raise OptionError(f"rtol must be a number in [0, 1), got {show(rtol)}")
-    return float(rtol)  # type: ignore[arg-type]  # a number here
+    return float(rtol)
 
 
 def _rows(part: object) -> tuple[int, ...]:

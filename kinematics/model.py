@@ -307,9 +307,9 @@ class Robot:
             base=np.eye(4) if base is None else base,
             tool=np.eye(4) if tool is None else tool,
             dh=dh,
-            convention=conv,  # type: ignore[arg-type]  # checked against CONVENTIONS above
+            convention=conv,
             planar=planar,
-            task=task,  # type: ignore[arg-type]  # checked against TASKS in __post_init__
+            task=check_choice(task, TASKS, f"robot {name!r}, task"),
             title=title,
             description=description,
             source=source,

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import weakref
 from dataclasses import dataclass
-from typing import Literal, cast
+from typing import Literal, overload
 
 import numpy as np
 
@@ -41,7 +41,7 @@ _FAST_BOUND_SQ = min(MAX_ANGLE, MAX_LENGTH) ** 2
 def check_frame(frame: object) -> Frame:
     """``frame`` if it is one of :data:`FRAMES`, else an OptionError listing them."""
     if isinstance(frame, str) and frame in FRAMES:
-        return cast(Frame, frame)
+        return frame
     raise OptionError(f"frame must be one of 'base', 'tool' (the frame of J's rows), got {show(frame)}")
 
 
@@ -68,6 +68,11 @@ class _Kernel:
     tz_lin: np.ndarray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
     bound: np.ndarray  # (n,) largest accepted |q| per joint: MAX_ANGLE [rad] or MAX_LENGTH [m]
 
+    def __post_init__(self) -> None:
+        for value in vars(self).values():
+            if isinstance(value, np.ndarray):
+                value.flags.writeable = False
+
     @staticmethod
     def build(robot: Robot) -> _Kernel:
         m, n = len(robot.axes), robot.dof
@@ -83,12 +88,23 @@ class _Kernel:
         F = fixed[1:]
         Dc, Ds, E, Dz = np.diag([1.0, 1, 0, 0]), np.zeros((4, 4)), np.diag([0.0, 0, 1, 1]), np.zeros((4, 4))
         Ds[0, 1], Ds[1, 0], Dz[2, 3] = -1.0, 1.0, 1.0
-        parts = [Dc @ F, Ds @ F, E @ F, Dz @ F]
         bound = np.array([MAX_ANGLE if j.kind == "revolute" else MAX_LENGTH for j in robot.joints])
-        for a in (fixed, index, mult, offset, rev, sel, pri_idx, *parts, bound):
-            a.flags.writeable = False
         return _Kernel(
-            fixed, index, mult, offset, rev, 1.0 - rev, simple, sel, len(pri_idx) == 0, pri_idx, *parts, bound
+            fixed=fixed,
+            index=index,
+            multiplier=mult,
+            offset=offset,
+            revolute=rev,
+            prismatic=1.0 - rev,
+            simple=simple,
+            selection=sel,
+            all_revolute=len(pri_idx) == 0,
+            prismatic_index=pri_idx,
+            rz_cos=Dc @ F,
+            rz_sin=Ds @ F,
+            rz_const=E @ F,
+            tz_lin=Dz @ F,
+            bound=bound,
         )
 
 
@@ -179,8 +195,9 @@ def _chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     qa = qa + c.offset
     # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
     # moved-and-fixed transform of every axis comes from a few whole-stack operations. Sine and
-    # cosine come from the same argument (libm reduces it modulo 2π exactly), so the rotation stays
-    # orthonormal for any |θ|; cos(θ − π/2) would not be sin θ once θ − π/2 rounds (|θ| ≳ 1e15).
+    # cosine come from the same argument, which NumPy reduces modulo 2π accurately (tested against
+    # an exact reduction), so the rotation stays orthonormal for any |θ|; forming sin θ as
+    # cos(θ − π/2) would not, once θ − π/2 rounds (‖RᵀR − I‖ reached 1.5 at |θ| ~ 1e16).
     th = qa if c.all_revolute else qa * c.revolute
     P = np.cos(th)[:, None, None] * c.rz_cos + np.sin(th)[:, None, None] * c.rz_sin + c.rz_const
     if not c.all_revolute:
@@ -194,12 +211,16 @@ def _chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return A[:-1], A[-1]
 
 
-# Levi-Civita tensor as a (3, 9) map: (z @ _SKEW).reshape(3, 3) is the cross-product matrix [z]x.
-_SKEW = np.zeros((3, 3, 3))
-for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-    _SKEW[_k, _i, _j] = -1.0
-    _SKEW[_k, _j, _i] = 1.0
-_SKEW = _SKEW.reshape(3, 9)
+def _levi_civita_map() -> np.ndarray:
+    """The Levi-Civita tensor as a (3, 9) map: (z @ map).reshape(3, 3) is the cross-product matrix [z]×."""
+    eps = np.zeros((3, 3, 3))
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        eps[k, i, j] = -1.0
+        eps[k, j, i] = 1.0
+    return eps.reshape(3, 9)
+
+
+_SKEW = _levi_civita_map()
 
 
 def _axis_jacobian(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
@@ -226,11 +247,11 @@ def _jacobian_from_frames(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndar
 
 
 # -------------------------------------------------------------------- batched
-def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray | float:
+def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray:
     """Σ coefficient · array, skipping zero coefficients and multiplications by ±1.
 
     Returns the input array itself (no copy) for a single unit term: arrays
-    are never modified in place, so sharing is safe.
+    are never modified in place, so sharing is safe. Zeros if every coefficient is zero.
     """
     out = None
     for coef, arr in terms:
@@ -244,21 +265,17 @@ def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray | float:
             out = out - arr
         else:
             out = out + coef * arr
-    return 0.0 if out is None else out
+    return np.zeros_like(terms[0][1]) if out is None else out
 
 
-def _apply_fixed(cols: list, p, F: np.ndarray) -> tuple[list, object]:
-    """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N)."""
+def _apply_fixed(cols: list[np.ndarray], p: np.ndarray, F: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
+    """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N) and p (3, N)."""
     new_cols = [_lin([(F[k, j], cols[k]) for k in range(3)]) for j in range(3)]
-    new_p = (
-        _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)])
-        if not np.isscalar(p)
-        else (_lin([(F[k, 3], cols[k]) for k in range(3)]) + p)
-    )
+    new_p = _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)])
     return new_cols, new_p
 
 
-def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool):
+def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
     """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
     c = _kernel(robot)
     N = q.shape[0]
@@ -269,7 +286,8 @@ def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool):
     # Rotation columns (3, N) and position (3, N) of the running frame.
     cols = [F0[:3, j, None] * ones for j in range(3)]
     p = F0[:3, 3, None] * ones
-    zs, ps = [], []
+    zs: list[np.ndarray] = []
+    ps: list[np.ndarray] = []
     qa_t = qa.T  # (m, N)
     cosv = np.cos(qa_t)
     sinv = np.sin(qa_t)
@@ -307,14 +325,19 @@ def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool):
     return T, J
 
 
-def _batched(robot: Robot, q: np.ndarray, want_jacobian: bool):
+@overload
+def _batched(robot: Robot, q: np.ndarray, want_jacobian: Literal[True]) -> tuple[np.ndarray, np.ndarray]: ...
+@overload
+def _batched(robot: Robot, q: np.ndarray, want_jacobian: Literal[False]) -> tuple[np.ndarray, None]: ...
+def _batched(robot: Robot, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
+    """T (N, 4, 4) and, if asked, J (N, 6, n) for a batch, chunk by chunk."""
     N = q.shape[0]
     T = np.empty((N, 4, 4))
     J = np.empty((N, 6, robot.dof)) if want_jacobian else None
     for s in range(0, N, _CHUNK):
         Tc, Jc = _chain_batch(robot, q[s : s + _CHUNK], want_jacobian)
         T[s : s + _CHUNK] = Tc
-        if want_jacobian:
+        if J is not None and Jc is not None:
             J[s : s + _CHUNK] = Jc
     return T, J
 

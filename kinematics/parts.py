@@ -13,7 +13,7 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Literal
+from typing import Literal, TypeVar
 
 import numpy as np
 
@@ -46,6 +46,7 @@ __all__ = [
     "value_bound",
 ]
 
+_S = TypeVar("_S", bound=str)
 JointType = Literal["revolute", "prismatic"]
 Convention = Literal["standard", "modified"]
 Task = Literal["auto", "full", "linear", "angular", "planar"]
@@ -54,11 +55,12 @@ CONVENTIONS: tuple[Convention, ...] = ("standard", "modified")
 TASKS: tuple[Task, ...] = ("auto", "full", "linear", "angular", "planar")
 
 
-def check_choice(value: object, allowed: Sequence[str], where: str) -> str:
+def check_choice(value: object, allowed: Sequence[_S], where: str) -> _S:
     """``value`` if it is one of ``allowed``, else a RobotDefinitionError listing them (and the
     closest one, for a typo)."""
-    if isinstance(value, str) and value in allowed:
-        return value
+    for choice in allowed:
+        if isinstance(value, str) and value == choice:
+            return choice
     hint = difflib.get_close_matches(value, allowed, n=1) if isinstance(value, str) else []
     maybe = f" (did you mean {hint[0]!r}?)" if hint else ""
     raise RobotDefinitionError(

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Mapping, Sequence
+from typing import TypeGuard
 
 import numpy as np
 
@@ -61,8 +62,11 @@ def show(x: object, limit: int = 40) -> str:
     return text if len(text) <= limit else f"{text[: limit - 1]}…"
 
 
-def is_number(x: object) -> bool:
-    """True for a real number (int, float, NumPy int or float, Fraction), False for bools and all else."""
+def is_number(x: object) -> TypeGuard[float]:
+    """True for a real number (int, float, NumPy int or float, Fraction), False for bools and all else.
+
+    (Typed as a guard for ``float``: every such number compares and converts like one.)
+    """
     return isinstance(x, numbers.Real) and not isinstance(x, (bool, np.bool_))
 
 
@@ -84,7 +88,7 @@ def real_number(x: object, where: str) -> float:
     if not is_number(x):
         raise RobotDefinitionError(f"{where}: expected a number, got {_describe(x)}")
     try:
-        v = float(x)  # type: ignore[arg-type]  # a numbers.Real converts to float
+        v = float(x)
     except (OverflowError, ValueError, TypeError):
         raise RobotDefinitionError(
             f"{where}: expected a finite number, got {show(x)}, beyond the range of a float (±1.8e308)"
@@ -109,7 +113,7 @@ def _limit_value(x: object, where: str) -> float:
     if not is_number(x):
         raise RobotDefinitionError(f"{where}: expected a number, got {_describe(x)}")
     try:
-        v = float(x)  # type: ignore[arg-type]  # a numbers.Real converts to float
+        v = float(x)
     except OverflowError:
         v = math.inf if x > 0 else -math.inf
     except (ValueError, TypeError):
@@ -154,6 +158,6 @@ def joint_limits(qlim: object, where: str) -> tuple[float, float] | None:
 
 def frozen_array(a: object, dtype: type = float) -> np.ndarray:
     """A read-only copy of ``a`` as an array of ``dtype``."""
-    out = np.array(a, dtype=dtype)
+    out: np.ndarray = np.array(a, dtype=dtype)
     out.flags.writeable = False
     return out
