@@ -204,7 +204,9 @@ class Robot:
             if c.name == "home":
                 return c.q
         lim = self.qlim
-        mid = np.where(np.isfinite(lim).all(axis=0), lim.mean(axis=0), 0.0)
+        limited = np.isfinite(lim).all(axis=0)
+        mid = np.zeros(self.dof)
+        mid[limited] = lim[:, limited].mean(axis=0)
         return frozen_array(mid)
 
     def fixed_transforms(self) -> np.ndarray:

@@ -3,19 +3,18 @@
 Every function takes an immutable :class:`~kinematics.model.Robot` and a
 configuration ``q``: shape (n,) for one configuration or (N, n) for a batch.
 Batches are vectorised over N (no Python loop over configurations) and are
-processed in cache-sized chunks.
+processed in cache-sized chunks (the kernels are in :mod:`kinematics.kernel`).
 """
 
 from __future__ import annotations
 
 import math
-import weakref
-from dataclasses import dataclass
-from typing import Literal, overload
+from typing import Literal
 
 import numpy as np
 
-from .errors import ConfigurationError, OptionError, RobotDefinitionError
+from .errors import ConfigurationError, OptionError
+from .kernel import axis_jacobian, batched_fk, batched_jacobian, chain_single, jacobian_from_frames, kernel
 from .model import Robot
 from .validation import MAX_ANGLE, MAX_LENGTH, show
 
@@ -34,7 +33,6 @@ __all__ = [
 
 Frame = Literal["base", "tool"]
 FRAMES: tuple[Frame, ...] = ("base", "tool")
-_CHUNK = 2048  # configurations per chunk in batched kernels (keeps working arrays in cache)
 _FAST_BOUND_SQ = min(MAX_ANGLE, MAX_LENGTH) ** 2
 
 
@@ -43,88 +41,6 @@ def check_frame(frame: object) -> Frame:
     if isinstance(frame, str) and frame in FRAMES:
         return frame
     raise OptionError(f"frame must be one of 'base', 'tool' (the frame of J's rows), got {show(frame)}")
-
-
-@dataclass(frozen=True, eq=False)
-class _Kernel:
-    """Arrays precomputed once per robot for the numeric kernels (see :func:`_kernel`).
-
-    ``fixed`` is :meth:`Robot.fixed_transforms`: T_base_tool = fixed[0] · M_1 · fixed[1] ⋯ M_m · fixed[m].
-    """
-
-    fixed: np.ndarray  # (m+1, 4, 4)
-    index: np.ndarray  # (m,) int
-    multiplier: np.ndarray  # (m,)
-    offset: np.ndarray  # (m,)
-    revolute: np.ndarray  # (m,) float 1.0/0.0
-    prismatic: np.ndarray  # (m,) float
-    simple: bool  # one axis per joint, in order, multiplier 1
-    selection: np.ndarray  # (m, n): column k of J = Σ_axes selection[axis, k] · contribution
-    all_revolute: bool
-    prismatic_index: np.ndarray  # (p,) indices of prismatic axes
-    rz_cos: np.ndarray  # (m, 4, 4): Rz(θ) F_k = cos θ · rz_cos + sin θ · rz_sin + rz_const
-    rz_sin: np.ndarray
-    rz_const: np.ndarray
-    tz_lin: np.ndarray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
-    bound: np.ndarray  # (n,) largest accepted |q| per joint: MAX_ANGLE [rad] or MAX_LENGTH [m]
-
-    def __post_init__(self) -> None:
-        for value in vars(self).values():
-            if isinstance(value, np.ndarray):
-                value.flags.writeable = False
-
-    @staticmethod
-    def build(robot: Robot) -> _Kernel:
-        m, n = len(robot.axes), robot.dof
-        fixed = robot.fixed_transforms()
-        index = np.array([ax.joint_index for ax in robot.axes], dtype=int)
-        mult = np.array([ax.multiplier for ax in robot.axes])
-        rev = np.array([1.0 if ax.kind == "revolute" else 0.0 for ax in robot.axes])
-        sel = np.zeros((m, n))
-        sel[np.arange(m), index] = mult
-        simple = m == n and bool(np.all(index == np.arange(n))) and bool(np.all(mult == 1.0))
-        offset = np.array([ax.offset for ax in robot.axes])
-        pri_idx = np.flatnonzero(rev == 0.0)
-        F = fixed[1:]
-        Dc, Ds, E, Dz = np.diag([1.0, 1, 0, 0]), np.zeros((4, 4)), np.diag([0.0, 0, 1, 1]), np.zeros((4, 4))
-        Ds[0, 1], Ds[1, 0], Dz[2, 3] = -1.0, 1.0, 1.0
-        bound = np.array([MAX_ANGLE if j.kind == "revolute" else MAX_LENGTH for j in robot.joints])
-        return _Kernel(
-            fixed=fixed,
-            index=index,
-            multiplier=mult,
-            offset=offset,
-            revolute=rev,
-            prismatic=1.0 - rev,
-            simple=simple,
-            selection=sel,
-            all_revolute=len(pri_idx) == 0,
-            prismatic_index=pri_idx,
-            rz_cos=Dc @ F,
-            rz_sin=Ds @ F,
-            rz_const=E @ F,
-            tz_lin=Dz @ F,
-            bound=bound,
-        )
-
-
-_KERNELS: weakref.WeakKeyDictionary[Robot, _Kernel] = weakref.WeakKeyDictionary()
-
-
-def _kernel(robot: Robot) -> _Kernel:
-    """The precomputed arrays of ``robot``, built on first use and kept while the robot lives.
-
-    The robot is immutable, so they never go stale; the cache holds the robot weakly.
-    """
-    try:
-        return _KERNELS[robot]
-    except KeyError:
-        if not isinstance(robot, Robot):
-            raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}") from None
-        kernel = _KERNELS[robot] = _Kernel.build(robot)
-        return kernel
-    except TypeError:  # not hashable or not weak-referenceable: certainly not a Robot
-        raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}") from None
 
 
 _KINDS = {
@@ -151,7 +67,7 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
         q: Joint values [rad] for revolute, [m] for prismatic joints.
         what: Name used in messages (``"qd"`` for joint rates).
     """
-    bound = _kernel(robot).bound
+    bound = kernel(robot).bound
     try:
         a = np.asarray(q)
     except (TypeError, ValueError, OverflowError):
@@ -187,161 +103,6 @@ def _bad_value(robot: Robot, a: np.ndarray, bound: np.ndarray, what: str) -> str
     return f"{what}: joint {joint.name!r} value {v:g} {unit} is out of range; {expected}"
 
 
-# --------------------------------------------------------------------- single
-def _chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Joint frames T_base_joint (m, 4, 4) (before each axis moves) and T_base_tool."""
-    c = _kernel(robot)
-    qa = q if c.simple else q[c.index] * c.multiplier
-    qa = qa + c.offset
-    # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
-    # moved-and-fixed transform of every axis comes from a few whole-stack operations. Sine and
-    # cosine come from the same argument, which NumPy reduces modulo 2π accurately (tested against
-    # an exact reduction), so the rotation stays orthonormal for any |θ|; forming sin θ as
-    # cos(θ − π/2) would not, once θ − π/2 rounds (‖RᵀR − I‖ reached 1.5 at |θ| ~ 1e16).
-    th = qa if c.all_revolute else qa * c.revolute
-    P = np.cos(th)[:, None, None] * c.rz_cos + np.sin(th)[:, None, None] * c.rz_sin + c.rz_const
-    if not c.all_revolute:
-        P += (qa * c.prismatic)[:, None, None] * c.tz_lin
-    # Prefix products A_0 · A_1 ⋯ A_k by a parallel scan: log2(m + 1) stacked matmuls.
-    A = np.concatenate((c.fixed[:1], P))
-    step = 1
-    while step < len(A):
-        A[step:] = np.matmul(A[:-step], A[step:])
-        step *= 2
-    return A[:-1], A[-1]
-
-
-def _levi_civita_map() -> np.ndarray:
-    """The Levi-Civita tensor as a (3, 9) map: (z @ map).reshape(3, 3) is the cross-product matrix [z]×."""
-    eps = np.zeros((3, 3, 3))
-    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-        eps[k, i, j] = -1.0
-        eps[k, j, i] = 1.0
-    return eps.reshape(3, 9)
-
-
-_SKEW = _levi_civita_map()
-
-
-def _axis_jacobian(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
-    """Per-axis Jacobian columns (6, m) from the joint frames W and the tool pose T."""
-    c = _kernel(robot)
-    m = len(W)
-    z = W[:, :3, 2]
-    r = T[:3, 3] - W[:, :3, 3]
-    J = np.empty((6, m))
-    # z × r for every axis at once: [z]x r as one batched matrix-vector product.
-    np.matmul((z @ _SKEW).reshape(m, 3, 3), r[:, :, None], out=J[:3].T[:, :, None])
-    J[3:] = z.T
-    if not c.all_revolute:
-        pri = c.prismatic_index
-        J[:3, pri] = z[pri].T
-        J[3:, pri] = 0.0
-    return J
-
-
-def _jacobian_from_frames(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
-    c = _kernel(robot)
-    J = _axis_jacobian(robot, W, T)
-    return J if c.simple else J @ c.selection
-
-
-# -------------------------------------------------------------------- batched
-def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray:
-    """Σ coefficient · array, skipping zero coefficients and multiplications by ±1.
-
-    Returns the input array itself (no copy) for a single unit term: arrays
-    are never modified in place, so sharing is safe. Zeros if every coefficient is zero.
-    """
-    out = None
-    for coef, arr in terms:
-        if abs(coef) < 1e-15:
-            continue
-        if out is None:
-            out = arr if coef == 1.0 else -arr if coef == -1.0 else coef * arr
-        elif coef == 1.0:
-            out = out + arr
-        elif coef == -1.0:
-            out = out - arr
-        else:
-            out = out + coef * arr
-    return np.zeros_like(terms[0][1]) if out is None else out
-
-
-def _apply_fixed(cols: list[np.ndarray], p: np.ndarray, F: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
-    """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N) and p (3, N)."""
-    new_cols = [_lin([(F[k, j], cols[k]) for k in range(3)]) for j in range(3)]
-    new_p = _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)])
-    return new_cols, new_p
-
-
-def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
-    """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
-    c = _kernel(robot)
-    N = q.shape[0]
-    m = len(c.offset)
-    qa = (q if c.simple else q[:, c.index] * c.multiplier) + c.offset  # (N, m)
-    F0 = c.fixed[0]
-    ones = np.ones((3, N))
-    # Rotation columns (3, N) and position (3, N) of the running frame.
-    cols = [F0[:3, j, None] * ones for j in range(3)]
-    p = F0[:3, 3, None] * ones
-    zs: list[np.ndarray] = []
-    ps: list[np.ndarray] = []
-    qa_t = qa.T  # (m, N)
-    cosv = np.cos(qa_t)
-    sinv = np.sin(qa_t)
-    for k in range(m):
-        zs.append(cols[2])
-        ps.append(p)
-        if c.revolute[k]:
-            ck, sk = cosv[k], sinv[k]
-            c0, c1 = cols[0], cols[1]
-            cols = [ck * c0 + sk * c1, ck * c1 - sk * c0, cols[2]]
-        else:
-            p = p + qa_t[k] * cols[2]
-        cols, p = _apply_fixed(cols, p, c.fixed[k + 1])
-    T = np.zeros((N, 4, 4))
-    T[:, :3, 0] = cols[0].T
-    T[:, :3, 1] = cols[1].T
-    T[:, :3, 2] = cols[2].T
-    T[:, :3, 3] = p.T
-    T[:, 3, 3] = 1.0
-    if not want_jacobian:
-        return T, None
-    Z = np.stack(zs)  # (m, 3, N)
-    R = p[None] - np.stack(ps)  # (m, 3, N)
-    Jc = np.empty((6, m, N))
-    rev = c.revolute[:, None]
-    pri = c.prismatic[:, None]
-    Jc[0] = (Z[:, 1] * R[:, 2] - Z[:, 2] * R[:, 1]) * rev + Z[:, 0] * pri
-    Jc[1] = (Z[:, 2] * R[:, 0] - Z[:, 0] * R[:, 2]) * rev + Z[:, 1] * pri
-    Jc[2] = (Z[:, 0] * R[:, 1] - Z[:, 1] * R[:, 0]) * rev + Z[:, 2] * pri
-    Jc[3:] = Z.transpose(1, 0, 2) * rev
-    if c.simple:
-        J = Jc.transpose(2, 0, 1)
-    else:
-        J = np.einsum("imN,mn->Nin", Jc, c.selection)
-    return T, J
-
-
-@overload
-def _batched(robot: Robot, q: np.ndarray, want_jacobian: Literal[True]) -> tuple[np.ndarray, np.ndarray]: ...
-@overload
-def _batched(robot: Robot, q: np.ndarray, want_jacobian: Literal[False]) -> tuple[np.ndarray, None]: ...
-def _batched(robot: Robot, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
-    """T (N, 4, 4) and, if asked, J (N, 6, n) for a batch, chunk by chunk."""
-    N = q.shape[0]
-    T = np.empty((N, 4, 4))
-    J = np.empty((N, 6, robot.dof)) if want_jacobian else None
-    for s in range(0, N, _CHUNK):
-        Tc, Jc = _chain_batch(robot, q[s : s + _CHUNK], want_jacobian)
-        T[s : s + _CHUNK] = Tc
-        if J is not None and Jc is not None:
-            J[s : s + _CHUNK] = Jc
-    return T, J
-
-
 # --------------------------------------------------------------------- public
 def fk(robot: Robot, q: object) -> np.ndarray:
     """Forward kinematics: the tool pose in the base frame.
@@ -362,8 +123,8 @@ def fk(robot: Robot, q: object) -> np.ndarray:
     """
     q = as_configuration(robot, q)
     if q.ndim == 1:
-        return _chain_single(robot, q)[1]
-    return _batched(robot, q, want_jacobian=False)[0]
+        return chain_single(robot, q)[1]
+    return batched_fk(robot, q)
 
 
 def joint_frames(robot: Robot, q: object) -> np.ndarray:
@@ -387,7 +148,7 @@ def chain_frames(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray]:
         raise ConfigurationError(
             f"one configuration of shape ({robot.dof},) is expected here, got {qc.shape}"
         )
-    return _chain_single(robot, qc)
+    return chain_single(robot, qc)
 
 
 def link_frames(robot: Robot, q: object) -> np.ndarray:
@@ -400,7 +161,7 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
         raise ConfigurationError(
             f"link_frames takes one configuration of shape ({robot.dof},), got {q.shape}"
         )
-    W, T = _chain_single(robot, q)
+    W, T = chain_single(robot, q)
     out = np.empty((len(robot.axes) + 2, 4, 4))
     out[0] = robot.base
     for k, ax in enumerate(robot.axes):
@@ -440,13 +201,13 @@ def jacobian(robot: Robot, q: object, frame: Frame = "base") -> np.ndarray:
     frame = check_frame(frame)
     q = as_configuration(robot, q)
     if q.ndim == 1:
-        W, T = _chain_single(robot, q)
-        J = _jacobian_from_frames(robot, W, T)
+        W, T = chain_single(robot, q)
+        J = jacobian_from_frames(robot, W, T)
         if frame == "tool":
             Rt = T[:3, :3].T
             J = np.vstack([Rt @ J[:3], Rt @ J[3:]])
         return J
-    T, J = _batched(robot, q, want_jacobian=True)
+    T, J = batched_jacobian(robot, q)
     if frame == "tool":
         Rt = T[:, :3, :3].transpose(0, 2, 1)
         J = np.concatenate([Rt @ J[:, :3], Rt @ J[:, 3:]], axis=1)
@@ -473,9 +234,9 @@ def jacobian_dot(robot: Robot, q: object, qd: object, frame: Frame = "base") -> 
     qd = as_configuration(robot, qd, "qd")
     if q.ndim != 1 or qd.ndim != 1:
         raise ConfigurationError("jacobian_dot takes one configuration q (n,) and rates qd (n,)")
-    c = _kernel(robot)
-    W, T = _chain_single(robot, q)
-    A = _axis_jacobian(robot, W, T)  # (6, m)
+    c = kernel(robot)
+    W, T = chain_single(robot, q)
+    A = axis_jacobian(robot, W, T)  # (6, m)
     z, p = W[:, :3, 2], W[:, :3, 3]
     rate = c.multiplier * qd[c.index]  # rate of every axis
     rz = (rate * c.revolute)[:, None] * z
