@@ -33,7 +33,8 @@ __all__ = [
 
 Frame = Literal["base", "tool"]
 FRAMES: tuple[Frame, ...] = ("base", "tool")
-_FAST_BOUND_SQ = min(MAX_ANGLE, MAX_LENGTH) ** 2
+_FAST_BOUND = min(MAX_ANGLE, MAX_LENGTH)
+_MAX_ABS = np.maximum.reduce
 
 
 def check_frame(frame: object) -> Frame:
@@ -81,9 +82,9 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
         raise ConfigurationError(
             f"{what} has shape {a.shape}; robot {robot.name!r} expects ({robot.dof},) or (N, {robot.dof})"
         )
-    flat = a.ravel()
-    # Fast path: Σ q² ≤ min(bound)² implies every |q| is within its bound (NaN and ±inf fail it).
-    if not np.dot(flat, flat) <= _FAST_BOUND_SQ and not (np.abs(a) <= bound).all():
+    # Fast path: max |q| ≤ min(bound) puts every value within its bound (NaN and ±inf fail it;
+    # np.maximum propagates NaN). Only values beyond it are checked joint by joint.
+    if not _MAX_ABS(np.abs(a), axis=None, initial=0.0) <= _FAST_BOUND and not (np.abs(a) <= bound).all():
         raise ConfigurationError(_bad_value(robot, a, bound, what))
     return a
 
