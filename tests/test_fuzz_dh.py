@@ -38,10 +38,53 @@ MAX_BYTES_PER_CASE = 20 * 1024 * 1024
 
 KEYS = ["joint", "a", "alpha", "d", "theta", "qlim", "name"]
 ODD_KEYS = ["alfa", "A", "length", "", " a", 1, None, (1, 2), b"a", 2.5]
-NUMBERS = [0, 1, -1, 0.5, -0.25, 3, 1e-300, 1e3, 1e14, 9.99e14, 1e15, 2e15, 1e16, 1e18, 1e19, 1e300,
-           -1e300, 10**20, 10**400, -(10**400), Fraction(1, 3), np.float32(0.5), np.int64(2), np.float64(-2.0)]
-HOSTILE = [math.nan, math.inf, -math.inf, "1", "1e400", "nan", "", b"1", True, False, np.bool_(True), None,
-           1 + 2j, [1.0], {}, (0.1, 0.2), object(), np.array([1.0]), np.nan]
+NUMBERS = [
+    0,
+    1,
+    -1,
+    0.5,
+    -0.25,
+    3,
+    1e-300,
+    1e3,
+    1e14,
+    9.99e14,
+    1e15,
+    2e15,
+    1e16,
+    1e18,
+    1e19,
+    1e300,
+    -1e300,
+    10**20,
+    10**400,
+    -(10**400),
+    Fraction(1, 3),
+    np.float32(0.5),
+    np.int64(2),
+    np.float64(-2.0),
+]
+HOSTILE = [
+    math.nan,
+    math.inf,
+    -math.inf,
+    "1",
+    "1e400",
+    "nan",
+    "",
+    b"1",
+    True,
+    False,
+    np.bool_(True),
+    None,
+    1 + 2j,
+    [1.0],
+    {},
+    (0.1, 0.2),
+    object(),
+    np.array([1.0]),
+    np.nan,
+]
 KINDS = ["revolute", "prismatic", "revolute", "prismatic", "revolut", "Prismatic", "", 3, None, ["revolute"]]
 FRAMES = ["base", "tool", "base", "world", "", None, 0, "TOOL"]
 
@@ -113,7 +156,9 @@ def table(rng: random.Random) -> tuple[object, dict]:
     if rng.random() < 0.04:
         rows = rng.choice([[], "rows", {"joint": "revolute"}, 5, None, (r for r in range(2))])
     kwargs = {
-        "convention": sometimes(rng, rng.choice(["standard", "modified"]), ["craig", "Standard", "", None, 1]),
+        "convention": sometimes(
+            rng, rng.choice(["standard", "modified"]), ["craig", "Standard", "", None, 1]
+        ),
         "base": transform(rng),
         "tool": transform(rng),
         "planar": sometimes(rng, rng.choice([False, True]), ["yes", 1, None]),
@@ -193,13 +238,27 @@ def test_generated_dh_tables_give_sound_robots_or_project_errors(traced):
 def configuration(rng: random.Random, n: int) -> object:
     r = rng.random()
     if r < 0.35:
-        return [rng.choice([rng.uniform(-4, 4), rng.uniform(-4, 4), 1e16, -3e17, 1e14, 9e14]) for _ in range(n)]
+        return [
+            rng.choice([rng.uniform(-4, 4), rng.uniform(-4, 4), 1e16, -3e17, 1e14, 9e14]) for _ in range(n)
+        ]
     if r < 0.5:
         return [[rng.uniform(-4, 4) for _ in range(n)] for _ in range(rng.randint(0, 3))]
     if r < 0.8:
         return [value(rng) for _ in range(n)]
-    return rng.choice([[0.0] * (n + 1), [[0.0] * n, [0.0]], "0" * n, None, 1.0, {"q": 1}, b"\x00" * n,
-                       np.zeros((2, 2, n)), np.zeros(n, dtype=complex), np.zeros(n, dtype=object)])
+    return rng.choice(
+        [
+            [0.0] * (n + 1),
+            [[0.0] * n, [0.0]],
+            "0" * n,
+            None,
+            1.0,
+            {"q": 1},
+            b"\x00" * n,
+            np.zeros((2, 2, n)),
+            np.zeros(n, dtype=complex),
+            np.zeros(n, dtype=object),
+        ]
+    )
 
 
 def test_generated_configurations_give_finite_results_or_project_errors(traced):
@@ -221,5 +280,7 @@ def test_generated_configurations_give_finite_results_or_project_errors(traced):
                 assert np.isfinite(report.lost_twist).all() and np.isfinite(report.null_motion).all()
                 assert np.isfinite(jacobian_dot(robot, q, qd)).all()
 
-        outcomes[run_case(case, f"configuration {i}: robot={robot.name}, q={q!r}, qd={qd!r}, frame={frame!r}")] += 1
+        outcomes[
+            run_case(case, f"configuration {i}: robot={robot.name}, q={q!r}, qd={qd!r}, frame={frame!r}")
+        ] += 1
     assert outcomes["ok"] > N_CONFIGURATIONS // 10 and outcomes["refused"] > N_CONFIGURATIONS // 5, outcomes

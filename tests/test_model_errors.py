@@ -8,9 +8,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-import robots
 from kinematics import (
-    Axis,
     ConfigurationError,
     JacobianLabError,
     Joint,
@@ -39,7 +37,10 @@ def with_(**changes):
         ([], "empty"),
         ("not rows", "sequence of mappings"),
         ([ROW, {k: v for k, v in ROW.items() if k != "alpha"}], r"DH row 2: missing key\(s\) 'alpha'"),
-        ([with_(joint="spherical")], "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 'spherical'"),
+        (
+            [with_(joint="spherical")],
+            "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 'spherical'",
+        ),
         ([with_(a=float("nan"))], "DH row 1, key 'a': expected a finite number, got nan"),
         ([with_(d=math.inf)], "DH row 1, key 'd': expected a finite number"),
         ([with_(theta="90")], "DH row 1, key 'theta': expected a number, got '90'"),
@@ -57,7 +58,9 @@ def test_bad_dh_rows(rows, message):
 
 
 def test_bad_convention():
-    with pytest.raises(RobotDefinitionError, match="DH convention: expected one of 'standard', 'modified', got 'craig'"):
+    with pytest.raises(
+        RobotDefinitionError, match="DH convention: expected one of 'standard', 'modified', got 'craig'"
+    ):
         Robot.from_dh([ROW], convention="craig")
 
 
@@ -112,7 +115,10 @@ def test_bad_frame_argument():
 @pytest.mark.parametrize(
     ("row_changes", "message"),
     [
-        ({"a": 10**400}, r"DH row 1, key 'a': expected a finite number, got 1000.*beyond the range of a float"),
+        (
+            {"a": 10**400},
+            r"DH row 1, key 'a': expected a finite number, got 1000.*beyond the range of a float",
+        ),
         ({"d": "1e400"}, r"DH row 1, key 'd': expected a number, got '1e400' \(a string\)"),
         ({"alpha": b"0"}, r"DH row 1, key 'alpha': expected a number, got b'0' \(a bytes value\)"),
         ({"theta": np.bool_(True)}, r"DH row 1, key 'theta': expected a number, got np.True_ \(a bool\)"),
@@ -120,15 +126,24 @@ def test_bad_frame_argument():
         ({"a": 1 + 0j}, r"DH row 1, key 'a': expected a number, got \(1\+0j\) \(a complex\)"),
         ({"theta": -math.inf}, "DH row 1, key 'theta': expected a finite number, got -inf"),
         ({"a": 2e15}, r"DH row 1, key 'a': 2e\+15 m is out of range; expected \|value\| ≤ 1e\+15 m"),
-        ({"alpha": 1e19}, r"DH row 1, key 'alpha': 1e\+19 rad is out of range; expected \|value\| ≤ 1e\+18 rad"),
+        (
+            {"alpha": 1e19},
+            r"DH row 1, key 'alpha': 1e\+19 rad is out of range; expected \|value\| ≤ 1e\+18 rad",
+        ),
         ({"alfa": 0.0}, r"DH row 1: unknown key\(s\) 'alfa' \(did you mean 'alpha'\?\); allowed: joint, a"),
         ({1: 0.0}, "DH row 1: keys must be strings, got 1; expected joint, a, alpha, d, theta"),
-        ({"joint": "revolut"}, "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 'revolut' "
-                               r"\(did you mean 'revolute'\?\)"),
+        (
+            {"joint": "revolut"},
+            "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 'revolut' "
+            r"\(did you mean 'revolute'\?\)",
+        ),
         ({"joint": 1}, "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 1$"),
         ({"name": 5}, "DH row 1, key 'name': expected a string, got 5"),
         ({"qlim": (float("nan"), 1.0)}, "DH row 1, key 'qlim': expected a number, got NaN"),
-        ({"qlim": (math.inf, math.inf)}, "DH row 1, key 'qlim': lower limit inf must be below upper limit inf"),
+        (
+            {"qlim": (math.inf, math.inf)},
+            "DH row 1, key 'qlim': lower limit inf must be below upper limit inf",
+        ),
         ({"qlim": "ab"}, r"DH row 1, key 'qlim': expected \(lower, upper\), got 'ab'"),
         ({"qlim": (0, "1")}, r"DH row 1, key 'qlim': expected a number, got '1' \(a string\)"),
     ],
@@ -156,14 +171,21 @@ def test_exact_numbers_of_any_numeric_type_are_accepted():
     [
         ({"convention": 3}, "DH convention: expected one of 'standard', 'modified', got 3"),
         ({"convention": "modifed"}, r"got 'modifed' \(did you mean 'modified'\?\)"),
-        ({"task": "position"}, "robot '', task: expected one of 'auto', 'full', 'linear', 'angular', 'planar'"),
+        (
+            {"task": "position"},
+            "robot '', task: expected one of 'auto', 'full', 'linear', 'angular', 'planar'",
+        ),
         ({"planar": "yes"}, "robot '', planar: expected true or false, got 'yes'"),
         ({"name": 7}, "robot name: expected a string, got 7"),
-        ({"base": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 2e15], [0, 0, 0, 1]]},
-         r"base: translation \[0.0, 0.0, 2000000000000000.0\] m is out of range"),
+        (
+            {"base": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 2e15], [0, 0, 0, 1]]},
+            r"base: translation \[0.0, 0.0, 2000000000000000.0\] m is out of range",
+        ),
         ({"tool": np.eye(4, dtype=bool)}, "tool: expected a 4×4 numeric matrix of ints or floats, got bools"),
-        ({"tool": [[1, 0, 0, 10**400], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
-         "tool: expected a 4×4 numeric matrix of ints or floats, got objects"),
+        (
+            {"tool": [[1, 0, 0, 10**400], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
+            "tool: expected a 4×4 numeric matrix of ints or floats, got objects",
+        ),
     ],
 )
 def test_bad_robot_options(kwargs, message):
@@ -177,7 +199,10 @@ def test_bad_robot_options(kwargs, message):
         ([0.0, math.nan], r"configuration 'c', q\[1\]: expected a finite number, got nan"),
         ([0.0, "1"], r"configuration 'c', q\[1\]: expected a number, got '1' \(a string\)"),
         ([0.0], r"configuration 'c' has 1 values, expected 2 \(one per joint\)"),
-        ([0.0, 2e15], r"configuration 'c', joint 'slide': 2e\+15 m is out of range; expected \|q\| ≤ 1e\+15 m"),
+        (
+            [0.0, 2e15],
+            r"configuration 'c', joint 'slide': 2e\+15 m is out of range; expected \|q\| ≤ 1e\+15 m",
+        ),
         ("00", "configuration 'c': q must be a sequence of numbers, got '00'"),
     ],
 )
@@ -197,8 +222,10 @@ LINK = '<link name="{}"/>'
 
 
 def joint(name, parent, child, kind="revolute", extra=""):
-    return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
-            f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>{extra}</joint>')
+    return (
+        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+        f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>{extra}</joint>'
+    )
 
 
 def urdf(*parts):
@@ -208,25 +235,71 @@ def urdf(*parts):
 @pytest.mark.parametrize(
     ("text", "kwargs", "message"),
     [
-        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "a", "c")),
-         {}, r"the tree below 'a' has 2 leaves \(b, c\); choose one as tip_link"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")), {"tip_link": "hand"},
-         "unknown tip_link 'hand'; links: a, b"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")), {"base_link": "world"},
-         "unknown base_link 'world'"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="floating")), {},
-         "joint 'j1' is floating"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="planar")), {},
-         "joint 'j1' is planar"),
-        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "c", "b")),
-         {}, "not a tree"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="fixed")), {}, "no moving joint"),
-        (urdf(LINK.format("a"), LINK.format("b"), LINK.format("c"), joint("j1", "a", "b"), joint("j2", "b", "c")),
-         {"base_link": "c", "tip_link": "a"}, "tip_link 'a' is not below base_link 'c'"),
+        (
+            urdf(
+                LINK.format("a"),
+                LINK.format("b"),
+                LINK.format("c"),
+                joint("j1", "a", "b"),
+                joint("j2", "a", "c"),
+            ),
+            {},
+            r"the tree below 'a' has 2 leaves \(b, c\); choose one as tip_link",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")),
+            {"tip_link": "hand"},
+            "unknown tip_link 'hand'; links: a, b",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")),
+            {"base_link": "world"},
+            "unknown base_link 'world'",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="floating")),
+            {},
+            "joint 'j1' is floating",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="planar")),
+            {},
+            "joint 'j1' is planar",
+        ),
+        (
+            urdf(
+                LINK.format("a"),
+                LINK.format("b"),
+                LINK.format("c"),
+                joint("j1", "a", "b"),
+                joint("j2", "c", "b"),
+            ),
+            {},
+            "not a tree",
+        ),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", kind="fixed")),
+            {},
+            "no moving joint",
+        ),
+        (
+            urdf(
+                LINK.format("a"),
+                LINK.format("b"),
+                LINK.format("c"),
+                joint("j1", "a", "b"),
+                joint("j2", "b", "c"),
+            ),
+            {"base_link": "c", "tip_link": "a"},
+            "tip_link 'a' is not below base_link 'c'",
+        ),
         ("<robot name='r'><link name='a'>", {}, "cannot parse URDF"),
         ('<!DOCTYPE r [<!ENTITY x "y">]><robot name="r"/>', {}, "must not contain a DOCTYPE"),
-        (urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", extra='<mimic joint="nope"/>')), {},
-         "mimics 'nope', which is not an actuated joint"),
+        (
+            urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b", extra='<mimic joint="nope"/>')),
+            {},
+            "mimics 'nope', which is not an actuated joint",
+        ),
     ],
 )
 def test_bad_urdf(text, kwargs, message):
@@ -243,7 +316,9 @@ def test_urdf_chain_without_meshes(tmp_path):
     """A URDF with mesh references that do not exist still loads (only the tree is needed)."""
     text = urdf(
         '<link name="base"><visual><geometry><mesh filename="package://missing/base.stl"/></geometry></visual></link>',
-        LINK.format("l1"), LINK.format("l2"), LINK.format("tip"),
+        LINK.format("l1"),
+        LINK.format("l2"),
+        LINK.format("tip"),
         joint("shoulder", "base", "l1"),
         '<joint name="slide" type="prismatic"><parent link="l1"/><child link="l2"/><origin xyz="0.5 0 0" rpy="0 1.5707963267948966 0"/>'
         '<axis xyz="1 0 0"/><limit lower="0" upper="0.3" effort="1" velocity="1"/></joint>',
@@ -283,86 +358,11 @@ def test_huge_limits_mean_unlimited_in_every_loader(qlim, expected):
 
 
 def test_urdf_sentinel_limits_mean_unlimited():
-    text = urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b").replace('lower="-1" upper="1"', 'lower="-1e16" upper="1e16"'))
+    text = urdf(
+        LINK.format("a"),
+        LINK.format("b"),
+        joint("j1", "a", "b").replace('lower="-1" upper="1"', 'lower="-1e16" upper="1e16"'),
+    )
     robot = robot_from_urdf_string(text)
     assert robot.joints[0].qlim is None
     assert np.all(np.isinf(robot.qlim)) and robot.home.tolist() == [0.0]
-
-
-@pytest.mark.parametrize(
-    ("changes", "message"),
-    [
-        ({"multiplier": math.nan}, "axis 'j', multiplier: expected a finite number, got nan"),
-        ({"multiplier": 1e7}, r"axis 'j', multiplier: 1e\+07  is out of range; expected \|value\| ≤ 1e\+06"),
-        ({"offset": 2e15, "kind": "prismatic"}, r"axis 'j', offset: 2e\+15 m is out of range"),
-        ({"kind": "revolve"}, "axis 'j', kind: expected one of 'revolute', 'prismatic', got 'revolve'"),
-        ({"joint_index": True}, "axis 'j', joint_index: expected an int, got True"),
-        ({"T_parent_joint": np.diag([1.0, 1.0, -1.0, 1.0])}, "axis 'j', T_parent_joint: the upper-left 3×3 block is not a rotation"),
-        ({"T_joint_child": np.full((4, 4), np.nan)}, "axis 'j', T_joint_child: contains a non-finite number"),
-        ({"corners": ((0.0, math.inf, 0.0),)}, "axis 'j', corners: expected a finite number, got inf"),
-    ],
-)
-def test_bad_axis(changes, message):
-    fields = dict(name="j", kind="revolute", joint_index=0, multiplier=1.0, offset=0.0,
-                  T_parent_joint=np.eye(4), T_joint_child=np.eye(4))
-    with pytest.raises(RobotDefinitionError, match=message):
-        Axis(**{**fields, **changes})
-
-
-def test_chain_checks():
-    ax = Axis("j", "revolute", 0, 1.0, 0.0, np.eye(4), np.eye(4))
-    with pytest.raises(RobotDefinitionError, match="robot 'r': joint\\(s\\) 'idle' drive no axis"):
-        Robot("r", (Joint("j", "revolute"), Joint("idle", "revolute")), (ax,))
-    with pytest.raises(RobotDefinitionError, match="robot 'r', axes\\[0\\]: expected a Axis, got 'j'"):
-        Robot("r", (Joint("j", "revolute"),), ("j",))  # type: ignore[arg-type]
-    with pytest.raises(RobotDefinitionError, match="joint name: expected a non-empty string"):
-        Joint("", "revolute")
-    with pytest.raises(RobotDefinitionError, match="the chain has 1001 moving axes; at most 1000"):
-        Robot.from_dh([ROW] * 1001)
-
-
-def test_model_arrays_are_read_only():
-    robot = Robot.from_dh([ROW], configurations=[NamedConfiguration("home", [0.5])], param_names={"a1": "l1"})
-    for array in (robot.base, robot.tool, robot.axes[0].T_joint_child, robot.home):
-        with pytest.raises(ValueError, match="read-only"):
-            array[0] = 1.0
-    with pytest.raises(TypeError):
-        robot.param_names["a1"] = "L1"  # type: ignore[index]
-
-
-@pytest.mark.parametrize(
-    ("names", "message"),
-    [
-        ({"a_1": "l1"}, "param_names: key 'a_1' is not a parameter name; expected a\\{k\\}"),
-        ({"a1": "l 1"}, "param_names, 'a1': expected a letter then up to 15 letters or digits"),
-        ({"a1": "q2"}, "param_names, 'a1': .*not a joint symbol q1"),
-        ({"a1": "pi"}, "param_names, 'a1': .*nor pi, E, I"),
-        ({"a1": "d2"}, "param_names, 'a1': 'd2' is itself a default parameter name"),
-        ({"a1": "L", "a2": "L"}, "param_names, 'a2': the name 'L' is given twice"),
-        ({"a1": 'l"""'}, "param_names, 'a1': expected a letter"),
-        (["a1"], "param_names: expected a mapping of parameter names"),
-    ],
-)
-def test_bad_param_names(names, message):
-    with pytest.raises(RobotDefinitionError, match=message):
-        Robot.from_dh([ROW, ROW], name="two", param_names=names)
-
-
-def test_robot_file_symbols_table(tmp_path):
-    base = ('name = "arm"\ntitle = ""\ndescription = ""\nsource = ""\nconvention = "standard"\n{symbols}\n'
-            '[[joints]]\njoint = "revolute"\na = 1.0\nalpha = 0.0\nd = 0.0\ntheta = 0.0\n')
-    path = tmp_path / "arm.toml"
-    path.write_text(base.format(symbols='[symbols]\na1 = "L"\n'))
-    assert dict(robots.load_file(path).param_names) == {"a1": "L"}
-    path.write_text(base.format(symbols="[symbols]\na1 = 3\n"))
-    with pytest.raises(RobotDefinitionError, match="arm.toml, \\[symbols\\] key 'a1': expected a string, got 3"):
-        robots.load_file(path)
-    path.write_text(base.format(symbols='[symbols]\na1 = "q1"\n'))
-    with pytest.raises(RobotDefinitionError, match="^arm.toml: robot 'arm', param_names, 'a1'"):
-        robots.load_file(path)
-
-
-def test_library_course_names_come_from_the_robot_files():
-    assert dict(robots.load("trr").param_names) == {"a1": "l1", "a2": "l2", "a3": "l3"}
-    assert dict(robots.load("elbow3r").param_names) == {"a1": "L1", "a2": "L2", "xt": "L3"}
-    assert dict(robots.load("puma560").param_names) == {}
