@@ -10,9 +10,8 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from types import MappingProxyType
 from typing import Literal, TypeVar
 
 import numpy as np
@@ -44,6 +43,7 @@ __all__ = [
     "check_choice",
     "param_names",
     "value_bound",
+    "FrozenNames",
 ]
 
 _S = TypeVar("_S", bound=str)
@@ -205,6 +205,27 @@ _PARAM_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]{0,15}")
 _RESERVED = re.compile(r"q[0-9]+|pi|E|I|oo|nan|zoo")
 
 
+class FrozenNames(Mapping[str, str]):
+    """A read-only, picklable mapping of names (robots travel to the symbolic worker process)."""
+
+    __slots__ = ("_items",)
+
+    def __init__(self, items: Mapping[str, str]) -> None:
+        self._items = dict(items)
+
+    def __getitem__(self, key: str) -> str:
+        return self._items[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __repr__(self) -> str:
+        return f"FrozenNames({self._items!r})"
+
+
 def param_names(value: object, name: str) -> Mapping[str, str]:
     """Checked, read-only course names of the symbolic parameters (see ``Robot.param_names``)."""
     where = f"robot {name!r}, param_names"
@@ -227,4 +248,4 @@ def param_names(value: object, name: str) -> Mapping[str, str]:
         if new in out.values():
             raise RobotDefinitionError(f"{where}, {key!r}: the name {new!r} is given twice")
         out[key] = new
-    return MappingProxyType(out)
+    return FrozenNames(out)

@@ -5,6 +5,7 @@ used by the symbolic model)."""
 from __future__ import annotations
 
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -121,3 +122,12 @@ def test_symbolic_model_uses_the_robot_names_not_the_library_name():
     a1, a2 = sp.symbols("a1 a2", real=True)
     J = symbolic.jacobian(plain, symbolic_params=True, use_cache=False)
     assert sp.simplify(J[1, 1] - a2 * sp.cos(q1 + q2)) == 0 and J[1, 0].has(a1)
+
+
+def test_robots_survive_pickling_for_the_worker_process():
+    """The symbolic worker receives robots by pickle: every field, course names included, survives."""
+    robot = robots.load("elbow3r")
+    again = pickle.loads(pickle.dumps(robot))
+    assert dict(again.param_names) == {"a1": "L1", "a2": "L2", "xt": "L3"}
+    assert again.fingerprint() == robot.fingerprint()
+    np.testing.assert_array_equal(again.configuration("home"), robot.configuration("home"))
