@@ -10,6 +10,7 @@ The functions here take already-checked input (``q`` from
 
 from __future__ import annotations
 
+import functools
 import weakref
 from dataclasses import dataclass
 
@@ -95,28 +96,40 @@ class Kernel:
         )
 
 
-_KERNELS: weakref.WeakKeyDictionary[Robot, Kernel] = weakref.WeakKeyDictionary()
+# id(robot) -> (weak reference to the robot, its kernel). Faster to query than a
+# WeakKeyDictionary (this sits on every call); the reference's callback drops the entry when the
+# robot is collected, before its id can be reused, and the identity check guards the rest.
+_KERNELS: dict[int, tuple[weakref.ref[Robot], Kernel]] = {}
 
 
 def kernel(robot: Robot) -> Kernel:
     """The precomputed arrays of ``robot``, built on first use and kept while the robot lives.
 
     The robot is immutable, so they never go stale; the cache holds the robot weakly.
+
+    Raises:
+        RobotDefinitionError: ``robot`` is not a :class:`~kinematics.model.Robot`.
     """
-    try:
-        return _KERNELS[robot]
-    except KeyError:
-        if not isinstance(robot, Robot):
-            raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}") from None
-        kernel = _KERNELS[robot] = Kernel.build(robot)
-        return kernel
-    except TypeError:  # not hashable or not weak-referenceable: certainly not a Robot
-        raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}") from None
+    entry = _KERNELS.get(id(robot))
+    if entry is not None and entry[0]() is robot:
+        return entry[1]
+    if not isinstance(robot, Robot):
+        raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}")
+    built = Kernel.build(robot)
+    key = id(robot)
+    _KERNELS[key] = (weakref.ref(robot, functools.partial(_forget, key)), built)
+    return built
 
 
-def chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _forget(key: int, ref: weakref.ref[Robot]) -> None:
+    """Drop the kernel of a collected robot (unless the entry was replaced meanwhile)."""
+    entry = _KERNELS.get(key)
+    if entry is not None and entry[0] is ref:
+        del _KERNELS[key]
+
+
+def chain_single(c: Kernel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Joint frames T_base_joint (m, 4, 4) (before each axis moves) and T_base_tool."""
-    c = kernel(robot)
     qa = q if c.simple else q[c.index] * c.multiplier
     qa = qa + c.offset
     # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
@@ -149,9 +162,8 @@ def _levi_civita_map() -> np.ndarray:
 _SKEW = _levi_civita_map()
 
 
-def axis_jacobian(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
+def axis_jacobian(c: Kernel, W: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Per-axis Jacobian columns (6, m) from the joint frames W and the tool pose T."""
-    c = kernel(robot)
     m = len(W)
     z = W[:, :3, 2]
     r = T[:3, 3] - W[:, :3, 3]
@@ -166,10 +178,9 @@ def axis_jacobian(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
     return J
 
 
-def jacobian_from_frames(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
+def jacobian_from_frames(c: Kernel, W: np.ndarray, T: np.ndarray) -> np.ndarray:
     """The geometric Jacobian (6, n) from the joint frames W and the tool pose T (mimic axes summed)."""
-    c = kernel(robot)
-    J = axis_jacobian(robot, W, T)
+    J = axis_jacobian(c, W, T)
     return J if c.simple else J @ c.selection
 
 
@@ -201,9 +212,8 @@ def _apply_fixed(cols: list[np.ndarray], p: np.ndarray, F: np.ndarray) -> tuple[
     return new_cols, new_p
 
 
-def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
+def _chain_batch(c: Kernel, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
     """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
-    c = kernel(robot)
     N = q.shape[0]
     m = len(c.offset)
     qa = (q if c.simple else q[:, c.index] * c.multiplier) + c.offset  # (N, m)
@@ -251,21 +261,21 @@ def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool) -> tuple[np.n
     return T, J
 
 
-def batched_fk(robot: Robot, q: np.ndarray) -> np.ndarray:
+def batched_fk(c: Kernel, q: np.ndarray) -> np.ndarray:
     """T_base_tool (N, 4, 4) for a batch q (N, n), chunk by chunk."""
     T = np.empty((q.shape[0], 4, 4))
     for s in range(0, q.shape[0], _CHUNK):
-        T[s : s + _CHUNK] = _chain_batch(robot, q[s : s + _CHUNK], want_jacobian=False)[0]
+        T[s : s + _CHUNK] = _chain_batch(c, q[s : s + _CHUNK], want_jacobian=False)[0]
     return T
 
 
-def batched_jacobian(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def batched_jacobian(c: Kernel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """T_base_tool (N, 4, 4) and the base-frame J (N, 6, n) for a batch q (N, n), chunk by chunk."""
     N = q.shape[0]
     T = np.empty((N, 4, 4))
-    J = np.empty((N, 6, robot.dof))
+    J = np.empty((N, 6, c.selection.shape[1]))
     for s in range(0, N, _CHUNK):
-        Tc, Jc = _chain_batch(robot, q[s : s + _CHUNK], want_jacobian=True)
+        Tc, Jc = _chain_batch(c, q[s : s + _CHUNK], want_jacobian=True)
         T[s : s + _CHUNK] = Tc
         if Jc is not None:
             J[s : s + _CHUNK] = Jc

@@ -14,7 +14,15 @@ from typing import Literal
 import numpy as np
 
 from .errors import ConfigurationError, OptionError
-from .kernel import axis_jacobian, batched_fk, batched_jacobian, chain_single, jacobian_from_frames, kernel
+from .kernel import (
+    Kernel,
+    axis_jacobian,
+    batched_fk,
+    batched_jacobian,
+    chain_single,
+    jacobian_from_frames,
+    kernel,
+)
 from .model import Robot
 from .validation import MAX_ANGLE, MAX_LENGTH, show
 
@@ -68,7 +76,12 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
         q: Joint values [rad] for revolute, [m] for prismatic joints.
         what: Name used in messages (``"qd"`` for joint rates).
     """
-    bound = kernel(robot).bound
+    return _configuration(robot, kernel(robot), q, what)
+
+
+def _configuration(robot: Robot, c: Kernel, q: object, what: str = "q") -> np.ndarray:
+    """:func:`as_configuration` with the robot's kernel already at hand."""
+    bound = c.bound
     try:
         a = np.asarray(q)
     except (TypeError, ValueError, OverflowError):
@@ -84,7 +97,8 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
         )
     # Fast path: max |q| ≤ min(bound) puts every value within its bound (NaN and ±inf fail it;
     # np.maximum propagates NaN). Only values beyond it are checked joint by joint.
-    if not _MAX_ABS(np.abs(a), axis=None, initial=0.0) <= _FAST_BOUND and not (np.abs(a) <= bound).all():
+    flat = a if a.ndim == 1 else a.ravel()
+    if flat.size and not _MAX_ABS(np.abs(flat)) <= _FAST_BOUND and not (np.abs(a) <= bound).all():
         raise ConfigurationError(_bad_value(robot, a, bound, what))
     return a
 
@@ -122,10 +136,11 @@ def fk(robot: Robot, q: object) -> np.ndarray:
         >>> bool(np.allclose(fk(r, [0.0, np.pi / 2])[:3, 3], [1.0, 1.0, 0.0]))
         True
     """
-    q = as_configuration(robot, q)
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
     if q.ndim == 1:
-        return chain_single(robot, q)[1]
-    return batched_fk(robot, q)
+        return chain_single(c, q)[1]
+    return batched_fk(c, q)
 
 
 def joint_frames(robot: Robot, q: object) -> np.ndarray:
@@ -144,12 +159,13 @@ def chain_frames(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray]:
     One evaluation of the chain for one configuration (n,): what :func:`joint_frames` and
     :func:`fk` return.
     """
-    qc = as_configuration(robot, q)
+    c = kernel(robot)
+    qc = _configuration(robot, c, q)
     if qc.ndim != 1:
         raise ConfigurationError(
             f"one configuration of shape ({robot.dof},) is expected here, got {qc.shape}"
         )
-    return chain_single(robot, qc)
+    return chain_single(c, qc)
 
 
 def link_frames(robot: Robot, q: object) -> np.ndarray:
@@ -157,12 +173,13 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
 
     For a DH robot these are the DH frames 0 … n of its convention, then the tool frame.
     """
-    q = as_configuration(robot, q)
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
     if q.ndim != 1:
         raise ConfigurationError(
             f"link_frames takes one configuration of shape ({robot.dof},), got {q.shape}"
         )
-    W, T = chain_single(robot, q)
+    W, T = chain_single(c, q)
     out = np.empty((len(robot.axes) + 2, 4, 4))
     out[0] = robot.base
     for k, ax in enumerate(robot.axes):
@@ -200,15 +217,16 @@ def jacobian(robot: Robot, q: object, frame: Frame = "base") -> np.ndarray:
         True
     """
     frame = check_frame(frame)
-    q = as_configuration(robot, q)
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
     if q.ndim == 1:
-        W, T = chain_single(robot, q)
-        J = jacobian_from_frames(robot, W, T)
+        W, T = chain_single(c, q)
+        J = jacobian_from_frames(c, W, T)
         if frame == "tool":
             Rt = T[:3, :3].T
             J = np.vstack([Rt @ J[:3], Rt @ J[3:]])
         return J
-    T, J = batched_jacobian(robot, q)
+    T, J = batched_jacobian(c, q)
     if frame == "tool":
         Rt = T[:, :3, :3].transpose(0, 2, 1)
         J = np.concatenate([Rt @ J[:, :3], Rt @ J[:, 3:]], axis=1)
@@ -231,13 +249,13 @@ def jacobian_dot(robot: Robot, q: object, qd: object, frame: Frame = "base") -> 
     """
     if check_frame(frame) != "base":
         raise OptionError("jacobian_dot is defined for frame='base' only (rotate the result for tool axes)")
-    q = as_configuration(robot, q)
-    qd = as_configuration(robot, qd, "qd")
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
+    qd = _configuration(robot, c, qd, "qd")
     if q.ndim != 1 or qd.ndim != 1:
         raise ConfigurationError("jacobian_dot takes one configuration q (n,) and rates qd (n,)")
-    c = kernel(robot)
-    W, T = chain_single(robot, q)
-    A = axis_jacobian(robot, W, T)  # (6, m)
+    W, T = chain_single(c, q)
+    A = axis_jacobian(c, W, T)  # (6, m)
     z, p = W[:, :3, 2], W[:, :3, 3]
     rate = c.multiplier * qd[c.index]  # rate of every axis
     rz = (rate * c.revolute)[:, None] * z
