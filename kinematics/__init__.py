@@ -14,7 +14,12 @@ Conventions, kept everywhere in this project:
 * **Shapes.** One configuration ``q`` has shape (n,), a batch (N, n); results
   follow: (4, 4) / (N, 4, 4) transforms, (6, n) / (N, 6, n) Jacobians.
 * **Limits** bound sliders and sampling, never the maths: :func:`fk` and
-  :func:`jacobian` accept any finite ``q``.
+  :func:`jacobian` accept any finite ``q`` (up to 1e18 rad and 1e15 m; angles are reduced
+  modulo 2π, so transforms stay rigid). A limit of magnitude ≥ 1e15 (a URDF's ±1e16, ±inf)
+  means "unlimited" (:attr:`Joint.qlim` is then ``None``).
+* **Errors.** Every bad input raises a :class:`JacobianLabError` (a ``ValueError``) whose
+  message names the row, key, joint, attribute or argument and what was expected; see
+  :mod:`kinematics.errors`.
 * **The model is immutable.** A :class:`Robot` never changes; the current
   configuration lives with the caller, and kinematics are functions of
   ``(robot, q)``.
@@ -42,8 +47,10 @@ from .analysis import (
 )
 from .analytic import analytic_jacobian, euler_angles, euler_rate_matrix
 from .errors import (
+    ArrayError,
     ConfigurationError,
     JacobianLabError,
+    OptionError,
     RepresentationSingularityError,
     RobotDefinitionError,
     UnknownRobotError,
@@ -51,7 +58,7 @@ from .errors import (
 )
 from .inverse import dls, nullspace_projector, pinv, solve_rates
 from .model import Axis, DHRow, Joint, NamedConfiguration, Robot
-from .numeric import as_configuration, fk, jacobian, jacobian_dot, joint_frames, link_frames
+from .numeric import as_configuration, chain_frames, fk, jacobian, jacobian_dot, joint_frames, link_frames
 from .singularity import SingularityReport, assess
 from .urdf import to_urdf
 
@@ -66,6 +73,7 @@ __all__ = [
     "jacobian_dot",
     "joint_frames",
     "link_frames",
+    "chain_frames",
     "as_configuration",
     "analytic_jacobian",
     "euler_angles",
@@ -94,6 +102,8 @@ __all__ = [
     "UnknownRobotError",
     "UrdfError",
     "ConfigurationError",
+    "OptionError",
+    "ArrayError",
     "RepresentationSingularityError",
 ]
 

@@ -17,12 +17,15 @@ zero over the full Jacobian; measure its task rows instead.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
+from .errors import ArrayError, OptionError
 from .model import Robot
+from .validation import is_number, show
 
 __all__ = [
     "Part",
@@ -39,6 +42,8 @@ __all__ = [
     "velocity_ellipsoid",
     "force_ellipsoid",
     "DEFAULT_RTOL",
+    "as_jacobian",
+    "check_rtol",
 ]
 
 Part = Literal["full", "linear", "angular", "planar"]
@@ -52,17 +57,54 @@ DEFAULT_RTOL = 1e-9
 """Relative tolerance: σ ≤ DEFAULT_RTOL · max(σmax, 1) counts as zero (rank, singularity)."""
 
 
-def select_rows(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray:
-    """Rows of ``J`` (…, 6, n) named by ``part`` (a :data:`PART_ROWS` key or explicit row indices)."""
-    J = np.asarray(J, dtype=float)
-    if J.ndim < 2 or J.shape[-2] != 6:
-        raise ValueError(f"J should have shape (6, n) or (N, 6, n), got {J.shape}")
+def as_jacobian(J: object, what: str = "J") -> np.ndarray:
+    """``J`` as a float array of shape (6, n) or (N, 6, n) with finite entries, or ArrayError."""
+    try:
+        A = np.asarray(J)
+    except (TypeError, ValueError, OverflowError):
+        raise ArrayError(f"{what} must be an array of numbers, got {show(J)}") from None
+    if A.dtype.kind not in "iuf":
+        raise ArrayError(f"{what} must hold ints or floats, got dtype {A.dtype}")
+    A = A.astype(float, copy=False)
+    if A.ndim not in (2, 3) or A.shape[-2] != 6:
+        raise ArrayError(f"{what} should have shape (6, n) or (N, 6, n), got {A.shape}")
+    if not np.isfinite(A).all():
+        raise ArrayError(f"{what} contains NaN or infinity")
+    return A
+
+
+def check_rtol(rtol: object) -> float:
+    """``rtol`` as a float in [0, 1), or OptionError."""
+    if not (is_number(rtol) and 0.0 <= rtol < 1.0):
+        raise OptionError(f"rtol must be a number in [0, 1), got {show(rtol)}")
+    return float(rtol)
+
+
+def _rows(part: object) -> tuple[int, ...]:
     if isinstance(part, str):
         if part not in PART_ROWS:
-            raise ValueError(f"part must be one of {', '.join(PART_ROWS)}, got {part!r}")
-        rows = PART_ROWS[part]
-    else:
-        rows = tuple(part)
+            raise OptionError(f"part must be one of {', '.join(map(repr, PART_ROWS))}, got {show(part)}")
+        return PART_ROWS[part]
+    if not isinstance(part, (Sequence, np.ndarray)) or isinstance(part, bytes):
+        raise OptionError(
+            f"part must be one of {', '.join(map(repr, PART_ROWS))} or row indices, got {show(part)}"
+        )
+    rows = tuple(part)
+    ok = all(isinstance(r, (int, np.integer)) and not isinstance(r, bool) and 0 <= r < 6 for r in rows)
+    if not rows or not ok or len(set(rows)) != len(rows):
+        raise OptionError(f"rows of J must be distinct indices 0…5 (0-2 v, 3-5 ω), got {show(part)}")
+    return tuple(int(r) for r in rows)
+
+
+def select_rows(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray:
+    """Rows of ``J`` (…, 6, n) named by ``part`` (a :data:`PART_ROWS` key or explicit row indices).
+
+    Raises:
+        ArrayError: ``J`` is not (6, n) or (N, 6, n), or not finite.
+        OptionError: ``part`` is neither a part name nor distinct row indices 0…5.
+    """
+    J = as_jacobian(J)
+    rows = _rows(part)
     if rows == PART_ROWS["full"]:
         return J
     return J[..., list(rows), :]
@@ -92,7 +134,7 @@ def singular_values(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.
 
 
 def _zero_tol(sigma: np.ndarray, rtol: float) -> np.ndarray:
-    return rtol * np.maximum(sigma[..., :1], 1.0)
+    return check_rtol(rtol) * np.maximum(sigma[..., :1], 1.0)
 
 
 def manipulability(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray | float:
@@ -154,7 +196,7 @@ def null_space(
     """
     Js = select_rows(J, part)
     if Js.ndim != 2:
-        raise ValueError("null_space takes one Jacobian (6, n), not a batch")
+        raise ArrayError(f"null_space takes one Jacobian (6, n), not a batch {Js.shape}")
     _, s, Vt = np.linalg.svd(Js)
     r = int(np.sum(s > _zero_tol(s, rtol)))
     return Vt[r:].T.copy()
@@ -186,8 +228,10 @@ class Ellipsoid:
 
 def _three_row_svd(J: np.ndarray, part: Part | tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
     Js = select_rows(J, part)
-    if Js.ndim != 2 or Js.shape[0] != 3:
-        raise ValueError(f"ellipsoids need three task rows (part 'linear' or 'angular'), got {Js.shape}")
+    if Js.ndim != 2:
+        raise ArrayError(f"an ellipsoid is drawn for one Jacobian (6, n), not a batch {Js.shape}")
+    if Js.shape[0] != 3:
+        raise OptionError(f"ellipsoids need three rows of J (part 'linear' or 'angular'), got {show(part)}")
     U, s, _ = np.linalg.svd(Js)  # U is 3×3 even when n < 3
     sigma = np.zeros(3)
     sigma[: len(s)] = s
@@ -217,7 +261,7 @@ def force_ellipsoid(
     structure holds any force along it. Cap with :meth:`Ellipsoid.capped` to draw.
     """
     U, sigma = _three_row_svd(J, part)
-    tol = rtol * max(sigma[0], 1.0)
+    tol = check_rtol(rtol) * max(sigma[0], 1.0)
     with np.errstate(divide="ignore"):
         radii = np.where(sigma > tol, 1.0 / np.where(sigma > tol, sigma, 1.0), np.inf)
     return Ellipsoid(U, radii)

@@ -18,13 +18,14 @@ Conventions (angles in the order of the rotations in the name):
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Literal, cast
 
 import numpy as np
 
-from .errors import RepresentationSingularityError
+from .errors import ArrayError, ConfigurationError, OptionError, RepresentationSingularityError
 from .model import Robot
 from .numeric import as_configuration, fk, jacobian
+from .validation import show
 
 __all__ = ["EulerConvention", "euler_angles", "euler_rate_matrix", "analytic_jacobian", "EULER_TOL"]
 
@@ -33,9 +34,24 @@ EULER_TOL = 1e-6
 """|det B(φ)| below this is a representation singularity."""
 
 
-def _check(convention: str) -> None:
-    if convention not in ("zyx", "zyz"):
-        raise ValueError(f"Euler convention must be 'zyx' or 'zyz', got {convention!r}")
+def _check(convention: object) -> EulerConvention:
+    if isinstance(convention, str) and convention in ("zyx", "zyz"):
+        return cast(EulerConvention, convention)
+    raise OptionError(f"Euler convention must be one of 'zyx', 'zyz', got {show(convention)}")
+
+
+def _finite_array(x: object, shapes: tuple[tuple[int, ...], ...], what: str) -> np.ndarray:
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError, OverflowError):
+        raise ArrayError(f"{what} must be an array of numbers, got {show(x)}") from None
+    if a.dtype.kind not in "iuf" or a.shape not in shapes:
+        expected = " or ".join(str(s) for s in shapes)
+        raise ArrayError(f"{what} must be numbers of shape {expected}, got {show(x)}")
+    a = a.astype(float, copy=False)
+    if not np.isfinite(a).all():
+        raise ArrayError(f"{what} contains NaN or infinity")
+    return a
 
 
 def euler_angles(R: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
@@ -46,7 +62,7 @@ def euler_angles(R: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarr
     (all of it is put in the first).
     """
     _check(convention)
-    R = np.asarray(R, dtype=float)[:3, :3]
+    R = _finite_array(R, ((3, 3), (4, 4)), "R")[:3, :3]
     if convention == "zyx":
         cb = math.hypot(R[0, 0], R[1, 0])
         pitch = math.atan2(-R[2, 0], cb)
@@ -67,7 +83,7 @@ def euler_rate_matrix(angles: np.ndarray, convention: EulerConvention = "zyx") -
     by the ones before it: ZYX: z, Rz(α) y, Rz(α) Ry(β) x.
     """
     _check(convention)
-    a, b, _ = (float(v) for v in angles)
+    a, b, _ = (float(v) for v in _finite_array(angles, ((3,),), "angles"))
     ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
     if convention == "zyx":
         return np.array([[0.0, -sa, ca * cb], [0.0, ca, sa * cb], [1.0, 0.0, -sb]])
@@ -83,9 +99,10 @@ def analytic_jacobian(
         RepresentationSingularityError: B(φ) is singular at the tool's orientation
             (|det B| < ``tol``): ZYX at pitch = ±90°, ZYZ at θ = 0 or π.
     """
+    convention = _check(convention)
     q = as_configuration(robot, q)
     if q.ndim != 1:
-        raise ValueError("analytic_jacobian takes one configuration (n,)")
+        raise ConfigurationError(f"analytic_jacobian takes one configuration ({robot.dof},), got {q.shape}")
     phi = euler_angles(fk(robot, q)[:3, :3], convention)
     B = euler_rate_matrix(phi, convention)
     det = float(np.linalg.det(B))

@@ -15,6 +15,8 @@ __all__ = [
     "UnknownRobotError",
     "UrdfError",
     "ConfigurationError",
+    "OptionError",
+    "ArrayError",
     "RepresentationSingularityError",
 ]
 
@@ -36,7 +38,18 @@ class UrdfError(RobotDefinitionError):
 
 
 class ConfigurationError(JacobianLabError):
-    """A joint configuration has the wrong shape or holds non-finite values."""
+    """A joint configuration (or joint rates) has the wrong shape, is not numeric, or holds a value
+    that is not finite or beyond the range the model accepts."""
+
+
+class OptionError(JacobianLabError):
+    """An option argument (a frame, a part or rows of J, an Euler convention, a damping or a
+    tolerance) is not one of its allowed values; the message lists them."""
+
+
+class ArrayError(JacobianLabError):
+    """An array argument other than ``q`` (a Jacobian ``J``, a task velocity ``v``) has the wrong
+    shape or holds non-finite values; the message names the argument and the expected shape."""
 
 
 class RepresentationSingularityError(JacobianLabError):

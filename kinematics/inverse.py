@@ -8,11 +8,31 @@ the null-space projector ``N = I − J⁺ J``.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from .analysis import DEFAULT_RTOL
+from .analysis import DEFAULT_RTOL, check_rtol
+from .errors import ArrayError, OptionError
+from .validation import is_number, show
 
 __all__ = ["pinv", "dls", "nullspace_projector", "solve_rates"]
+
+
+def _matrix(J: object, what: str = "J") -> np.ndarray:
+    """``J`` as a finite float array of shape (m, n) or (N, m, n), or ArrayError."""
+    try:
+        A = np.asarray(J)
+    except (TypeError, ValueError, OverflowError):
+        raise ArrayError(f"{what} must be an array of numbers, got {show(J)}") from None
+    if A.dtype.kind not in "iuf":
+        raise ArrayError(f"{what} must hold ints or floats, got dtype {A.dtype}")
+    if A.ndim not in (2, 3) or 0 in A.shape:
+        raise ArrayError(f"{what} should have shape (m, n) or (N, m, n), got {A.shape}")
+    A = A.astype(float, copy=False)
+    if not np.isfinite(A).all():
+        raise ArrayError(f"{what} contains NaN or infinity")
+    return A
 
 
 def pinv(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
@@ -21,9 +41,9 @@ def pinv(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
     Equals J⁻¹ for a square regular J; gives the minimum-norm least-squares
     solution q̇ = J⁺ v otherwise. Works on batches (N, m, n).
     """
-    J = np.asarray(J, dtype=float)
+    J = _matrix(J)
     U, s, Vt = np.linalg.svd(J, full_matrices=False)
-    tol = rtol * np.maximum(s[..., :1], 1.0)
+    tol = check_rtol(rtol) * np.maximum(s[..., :1], 1.0)
     with np.errstate(divide="ignore"):
         s_inv = np.where(s > tol, 1.0 / np.where(s > tol, s, 1.0), 0.0)
     return np.swapaxes(Vt, -1, -2) @ (s_inv[..., :, None] * np.swapaxes(U, -1, -2))
@@ -35,9 +55,9 @@ def dls(J: np.ndarray, damping: float = 0.05) -> np.ndarray:
     Each singular value σ maps to σ / (σ² + λ²) ≤ 1 / (2λ): joint rates stay
     bounded at a singularity. λ = 0 gives the pseudo-inverse of a full-row-rank J.
     """
-    if not damping >= 0:
-        raise ValueError(f"damping must be ≥ 0, got {damping}")
-    J = np.asarray(J, dtype=float)
+    if not (is_number(damping) and 0 <= damping < math.inf):
+        raise OptionError(f"damping must be a finite number ≥ 0, got {show(damping)}")
+    J = _matrix(J)
     U, s, Vt = np.linalg.svd(J, full_matrices=False)
     with np.errstate(divide="ignore", invalid="ignore"):
         f = np.where(s**2 + damping**2 > 0, s / (s**2 + damping**2), 0.0)
@@ -50,16 +70,28 @@ def nullspace_projector(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray
     ``q̇ = J⁺ v + N q̇₀`` reaches the task velocity v while following q̇₀ as
     closely as the task allows (self-motion of a redundant arm).
     """
-    J = np.asarray(J, dtype=float)
+    J = _matrix(J)
     n = J.shape[-1]
     return np.eye(n) - pinv(J, rtol) @ J
 
 
 def solve_rates(J: np.ndarray, v: np.ndarray, damping: float = 0.0) -> np.ndarray:
     """Joint rates for a desired task velocity: J⁺ v (``damping`` = 0) or the DLS solution."""
-    J = np.asarray(J, dtype=float)
-    v = np.asarray(v, dtype=float)
-    if v.shape[-1] != J.shape[-2]:
-        raise ValueError(f"v has {v.shape[-1]} components, J has {J.shape[-2]} rows")
+    J = _matrix(J)
+    v = _vector(v, J)
     inv = pinv(J) if damping == 0 else dls(J, damping)
     return inv @ v
+
+
+def _vector(v: object, J: np.ndarray) -> np.ndarray:
+    """``v`` as a finite float array with one component per row of ``J``, or ArrayError."""
+    try:
+        a = np.asarray(v)
+    except (TypeError, ValueError, OverflowError):
+        raise ArrayError(f"v must be an array of numbers, got {show(v)}") from None
+    if a.dtype.kind not in "iuf" or a.ndim == 0 or a.shape[-1] != J.shape[-2]:
+        raise ArrayError(f"v must hold {J.shape[-2]} numbers (one per row of J), got {show(v)}")
+    a = a.astype(float, copy=False)
+    if not np.isfinite(a).all():
+        raise ArrayError("v contains NaN or infinity")
+    return a

@@ -15,109 +15,38 @@ convention, for a URDF robot the child link's frame.
 
 The model holds no state: the current configuration lives in the caller (the
 app), and kinematics are free functions of ``(robot, q)`` in
-:mod:`kinematics.numeric`.
+:mod:`kinematics.numeric`. Its parts (:class:`Joint`, :class:`Axis`, :class:`DHRow`,
+:class:`NamedConfiguration`) live in :mod:`kinematics.parts`, DH tables are read by
+:mod:`kinematics.dh`.
 """
 
 from __future__ import annotations
 
 import hashlib
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
 
 import numpy as np
 
 from .errors import RobotDefinitionError
-from .transforms import check_rigid_transform, rot_x, rot_z, trans
+from .parts import (
+    CONVENTIONS,
+    TASKS,
+    Axis,
+    Convention,
+    DHRow,
+    Joint,
+    JointType,
+    NamedConfiguration,
+    Task,
+    check_choice,
+    param_names,
+    value_bound,
+)
+from .transforms import check_rigid_transform
+from .validation import MAX_AXES, frozen_array, show
 
-__all__ = ["Robot", "Joint", "Axis", "DHRow", "NamedConfiguration", "JointType"]
-
-JointType = Literal["revolute", "prismatic"]
-_JOINT_TYPES = ("revolute", "prismatic")
-_DH_KEYS = ("joint", "a", "alpha", "d", "theta")
-
-
-def _frozen_array(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, dtype=float)
-    a.flags.writeable = False
-    return a
-
-
-@dataclass(frozen=True)
-class Joint:
-    """An actuated joint: one entry of ``q``.
-
-    Attributes:
-        name: Display name, unique within the robot.
-        kind: ``"revolute"`` (q in [rad]) or ``"prismatic"`` (q in [m]).
-        qlim: (lower, upper) limits, or ``None`` if unlimited (continuous).
-            Limits bound sliders and sampling only, never the maths.
-    """
-
-    name: str
-    kind: JointType
-    qlim: tuple[float, float] | None = None
-
-
-@dataclass(frozen=True, eq=False)
-class Axis:
-    """One moving axis of the chain, always about/along its joint frame's z.
-
-    Attributes:
-        name: Name of the joint this axis comes from (URDF joint name, DH row name).
-        kind: ``"revolute"`` or ``"prismatic"``.
-        joint_index: Index into ``q`` of the joint that drives this axis.
-        multiplier: Axis value = multiplier · q[joint_index] + offset.
-        offset: See ``multiplier`` ([rad] or [m]).
-        T_parent_joint: 4×4 transform from the previous link frame to this joint frame.
-        T_joint_child: 4×4 transform from the moved joint frame to this axis' link frame.
-        corners: Points [m] in the moved joint frame through which the drawn link
-            passes on its way to the link frame origin (the DH "d then a" corner).
-    """
-
-    name: str
-    kind: JointType
-    joint_index: int
-    multiplier: float
-    offset: float
-    T_parent_joint: np.ndarray
-    T_joint_child: np.ndarray
-    corners: tuple[tuple[float, float, float], ...] = ()
-
-
-@dataclass(frozen=True)
-class DHRow:
-    """One row of a DH table, in [m] and [rad], as given by the user."""
-
-    joint: JointType
-    a: float
-    alpha: float
-    d: float
-    theta: float
-    qlim: tuple[float, float] | None = None
-    name: str = ""
-
-
-@dataclass(frozen=True, eq=False)
-class NamedConfiguration:
-    """A configuration worth visiting (home, a singular pose, ...).
-
-    Attributes:
-        name: Short identifier (``"home"``, ``"wrist_singular"``).
-        q: Joint values [rad] / [m], shape (n,).
-        description: One sentence for the GUI.
-        singular: Kind of singularity ("wrist", "elbow", "shoulder", "boundary", ...)
-            or "" for a regular configuration.
-    """
-
-    name: str
-    q: np.ndarray
-    description: str = ""
-    singular: str = ""
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "q", _frozen_array(self.q))
+__all__ = ["Robot", "Joint", "Axis", "DHRow", "NamedConfiguration", "JointType", "Convention", "Task"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -127,7 +56,8 @@ class Robot:
     Attributes:
         name: Identifier (library name or file stem).
         joints: The actuated joints, in chain order (``len == dof``).
-        axes: The moving axes, in chain order (more than ``dof`` with mimic joints).
+        axes: The moving axes, in chain order (more than ``dof`` with mimic joints; at most
+            :data:`~kinematics.validation.MAX_AXES`).
         base: 4×4 transform from the robot's base frame to the first link frame (frame 0).
         tool: 4×4 transform from the last link frame to the tool frame.
         dh: The DH table the robot was built from, or ``None``.
@@ -139,7 +69,17 @@ class Robot:
             ``"full"``, ``"linear"``, ``"angular"``, ``"planar"`` (a spherical wrist
             alone has the task ``"angular"``).
         title, description, source: Human-readable metadata (source = citation).
-        configurations: Named configurations worth visiting.
+        configurations: Named configurations worth visiting (names unique).
+        urdf_path: The URDF file the robot was read from, or ``None``.
+        param_names: Course names of the symbolic DH parameters, default name → course name
+            (``{"a1": "l1"}``; read-only, empty by default). Keys are the default names of
+            :mod:`kinematics.symbolic` (``a{k}``, ``alpha{k}``, ``d{i}``, ``theta{i}``, ``d{i}0``,
+            ``theta{i}0``, ``xt``, ``yt``, ``zt``, ``xb``, ``yb``, ``zb``); values are a letter then
+            up to 15 letters or digits, distinct, and neither a joint symbol ``q1…`` nor another
+            default name.
+
+    Every attribute is checked on construction (RobotDefinitionError naming it); arrays are
+    stored read-only.
     """
 
     name: str
@@ -148,37 +88,79 @@ class Robot:
     base: np.ndarray = field(default_factory=lambda: np.eye(4))
     tool: np.ndarray = field(default_factory=lambda: np.eye(4))
     dh: tuple[DHRow, ...] | None = None
-    convention: Literal["standard", "modified"] | None = None
+    convention: Convention | None = None
     planar: bool = False
-    task: Literal["auto", "full", "linear", "angular", "planar"] = "auto"
+    task: Task = "auto"
     title: str = ""
     description: str = ""
     source: str = ""
     configurations: tuple[NamedConfiguration, ...] = ()
     urdf_path: str | None = None
+    param_names: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "base", _frozen_array(check_rigid_transform(self.base, "base")))
-        object.__setattr__(self, "tool", _frozen_array(check_rigid_transform(self.tool, "tool")))
-        if self.task not in ("auto", "full", "linear", "angular", "planar"):
-            raise RobotDefinitionError(
-                f"robot {self.name!r}: task must be auto, full, linear, angular or planar, got {self.task!r}"
-            )
+        if not isinstance(self.name, str):
+            raise RobotDefinitionError(f"robot name: expected a string, got {show(self.name)}")
+        who = f"robot {self.name!r}"
+        for key in ("title", "description", "source"):
+            if not isinstance(getattr(self, key), str):
+                raise RobotDefinitionError(f"{who}, {key}: expected a string, got {show(getattr(self, key))}")
+        if self.urdf_path is not None and not isinstance(self.urdf_path, str):
+            raise RobotDefinitionError(f"{who}, urdf_path: expected a string or None")
+        set_ = object.__setattr__
+        set_(self, "base", frozen_array(check_rigid_transform(self.base, "base")))
+        set_(self, "tool", frozen_array(check_rigid_transform(self.tool, "tool")))
+        check_choice(self.task, TASKS, f"{who}, task")
+        if self.convention is not None:
+            check_choice(self.convention, CONVENTIONS, f"{who}, convention")
+        if not isinstance(self.planar, (bool, np.bool_)):
+            raise RobotDefinitionError(f"{who}, planar: expected true or false, got {show(self.planar)}")
+        set_(self, "planar", bool(self.planar))
+        set_(self, "joints", _parts(self.joints, Joint, f"{who}, joints"))
+        set_(self, "axes", _parts(self.axes, Axis, f"{who}, axes"))
+        set_(
+            self, "configurations", _parts(self.configurations, NamedConfiguration, f"{who}, configurations")
+        )
+        if self.dh is not None:
+            set_(self, "dh", _parts(self.dh, DHRow, f"{who}, dh"))
+        set_(self, "param_names", param_names(self.param_names, self.name))
+        self._check_chain(who)
+
+    def _check_chain(self, who: str) -> None:
         if not self.joints:
-            raise RobotDefinitionError(f"robot {self.name!r}: the chain has no moving joint")
+            raise RobotDefinitionError(f"{who}: the chain has no moving joint")
+        if len(self.axes) > MAX_AXES:
+            raise RobotDefinitionError(
+                f"{who}: the chain has {len(self.axes)} moving axes; at most {MAX_AXES} are supported"
+            )
         names = [j.name for j in self.joints]
         if len(set(names)) != len(names):
-            raise RobotDefinitionError(f"robot {self.name!r}: joint names are not unique: {names}")
+            raise RobotDefinitionError(f"{who}: joint names are not unique: {names}")
+        driven: set[int] = set()
         for k, ax in enumerate(self.axes):
             if not 0 <= ax.joint_index < len(self.joints):
                 raise RobotDefinitionError(f"axis {k} ({ax.name}): joint_index out of range")
+            driven.add(ax.joint_index)
+        idle = [self.joints[i].name for i in range(len(self.joints)) if i not in driven]
+        if idle:
+            raise RobotDefinitionError(f"{who}: joint(s) {', '.join(map(repr, idle))} drive no axis")
+        seen: set[str] = set()
         for c in self.configurations:
+            where = f"{who}: configuration {c.name!r}"
+            if c.name in seen:
+                raise RobotDefinitionError(f"{where} is named twice")
+            seen.add(c.name)
             if c.q.shape != (len(self.joints),):
                 raise RobotDefinitionError(
-                    f"robot {self.name!r}: configuration {c.name!r} has {c.q.size} values, "
-                    f"expected {len(self.joints)} (one per joint)"
+                    f"{where} has {c.q.size} values, expected {len(self.joints)} (one per joint)"
                 )
-        object.__setattr__(self, "_compiled", _Compiled.build(self))
+            for j, v in zip(self.joints, c.q, strict=True):
+                bound, unit = value_bound(j.kind)
+                if abs(v) > bound:
+                    raise RobotDefinitionError(
+                        f"{where}, joint {j.name!r}: {v:g} {unit} is out of range; "
+                        f"expected |q| ≤ {bound:g} {unit}"
+                    )
 
     # ------------------------------------------------------------------ queries
     @property
@@ -211,7 +193,7 @@ class Robot:
                 return c.q
         available = ", ".join(c.name for c in self.configurations) or "none"
         raise RobotDefinitionError(
-            f"robot {self.name!r} has no configuration {name!r}; available: {available}"
+            f"robot {self.name!r} has no configuration {show(name)}; available: {available}"
         )
 
     @property
@@ -221,8 +203,26 @@ class Robot:
             if c.name == "home":
                 return c.q
         lim = self.qlim
-        mid = np.where(np.isfinite(lim).all(axis=0), lim.mean(axis=0), 0.0)
-        return _frozen_array(mid)
+        limited = np.isfinite(lim).all(axis=0)
+        mid = np.zeros(self.dof)
+        mid[limited] = lim[:, limited].mean(axis=0)
+        return frozen_array(mid)
+
+    def fixed_transforms(self) -> np.ndarray:
+        """The constant transforms between the moving axes, shape (m + 1, 4, 4), m = ``len(axes)``.
+
+        ``F[0] = base · T_parent_joint[0]``, ``F[k] = T_joint_child[k-1] · T_parent_joint[k]``
+        and ``F[m] = T_joint_child[m-1] · tool``, so that
+        ``T_base_tool = F[0] · M_1(q) · F[1] ⋯ M_m(q) · F[m]``.
+        """
+        m = len(self.axes)
+        F = np.empty((m + 1, 4, 4))
+        prev = self.base
+        for k, ax in enumerate(self.axes):
+            F[k] = prev @ ax.T_parent_joint
+            prev = ax.T_joint_child
+        F[m] = prev @ self.tool
+        return F
 
     def fingerprint(self) -> str:
         """A hex digest of the kinematic content (used as a cache key).
@@ -261,6 +261,7 @@ class Robot:
         planar: bool = False,
         task: str = "auto",
         configurations: Sequence[NamedConfiguration] = (),
+        param_names: Mapping[str, str] | None = None,
     ) -> Robot:
         """Build a robot from a Denavit–Hartenberg table.
 
@@ -269,64 +270,44 @@ class Robot:
                 ``"prismatic"``), ``a`` [m], ``alpha`` [rad], ``d`` [m], ``theta`` [rad],
                 optional ``qlim`` (lower, upper) and ``name``. For a revolute joint
                 θ = q + ``theta`` and ``d`` is constant; for a prismatic joint
-                d = q + ``d`` and ``theta`` is constant.
+                d = q + ``d`` and ``theta`` is constant. See :func:`kinematics.dh.parse_dh_table`
+                for what is checked.
             convention: ``"standard"``: A = Rz(θ) Tz(d) Tx(a) Rx(α);
                 ``"modified"`` (Craig): A = Rx(α) Tx(a) Rz(θ) Tz(d).
             base, tool: 4×4 rigid transforms; T_base_tool = base · A1 ⋯ An · tool.
             name: Robot identifier.
+            title, description, source, planar, task, configurations, param_names: See
+                the attributes of :class:`Robot`.
+
+        Raises:
+            RobotDefinitionError: The message names the row and key (``DH row 2, key 'a'``),
+                or the attribute, and what was expected.
 
         Example:
             >>> r = Robot.from_dh([dict(joint="revolute", a=1.0, alpha=0, d=0, theta=0)] * 2)
             >>> r.dof
             2
         """
-        if convention not in ("standard", "modified"):
-            raise RobotDefinitionError(f"DH convention must be 'standard' or 'modified', got {convention!r}")
-        if isinstance(rows, (str, bytes, Mapping)) or not isinstance(rows, Sequence):
-            raise RobotDefinitionError("DH rows: expected a sequence of mappings, one per joint")
-        if len(rows) == 0:
-            raise RobotDefinitionError("DH table is empty: expected at least one row")
-        dh = tuple(_parse_dh_row(i, row) for i, row in enumerate(rows))
-        joints, axes = [], []
-        for i, r in enumerate(dh):
-            name_i = r.name or f"q{i + 1}"
-            joints.append(Joint(name_i, r.joint, r.qlim))
-            revolute = r.joint == "revolute"
-            if convention == "standard":
-                T_pj = np.eye(4) if revolute else rot_z(r.theta)
-                if revolute:
-                    T_jc = trans(z=r.d) @ trans(x=r.a) @ rot_x(r.alpha)
-                    corners = ((0.0, 0.0, r.d),) if r.d != 0 and r.a != 0 else ()
-                else:
-                    T_jc = trans(x=r.a) @ rot_x(r.alpha)
-                    # The slide ends at the moved joint origin; the link then runs along x by a.
-                    corners = ((0.0, 0.0, 0.0),) if r.a != 0 else ()
-            else:
-                T_pj = rot_x(r.alpha) @ trans(x=r.a)
-                if revolute:
-                    T_jc = trans(z=r.d)
-                else:
-                    T_pj = T_pj @ rot_z(r.theta)
-                    T_jc = np.eye(4)
-                corners = ()
-            offset = r.theta if revolute else r.d
-            axes.append(
-                Axis(name_i, r.joint, i, 1.0, offset, _frozen_array(T_pj), _frozen_array(T_jc), corners)
-            )
+        from .dh import dh_chain, parse_dh_table
+
+        conv = check_choice(convention, CONVENTIONS, "DH convention")
+        dh = parse_dh_table(rows)
+        joints, axes = dh_chain(dh, conv)
         return cls(
             name=name,
-            joints=tuple(joints),
-            axes=tuple(axes),
+            joints=joints,
+            axes=axes,
             base=np.eye(4) if base is None else base,
             tool=np.eye(4) if tool is None else tool,
             dh=dh,
-            convention=convention,  # type: ignore[arg-type]
+            convention=conv,
             planar=planar,
-            task=task,  # type: ignore[arg-type]
+            task=check_choice(task, TASKS, f"robot {name!r}, task"),
             title=title,
             description=description,
             source=source,
             configurations=tuple(configurations),
+            param_names={} if param_names is None else param_names,
         )
 
     @classmethod
@@ -337,97 +318,11 @@ class Robot:
         return robot_from_urdf(path, base_link=base_link, tip_link=tip_link)
 
 
-def _parse_dh_row(i: int, row: Mapping[str, object]) -> DHRow:
-    where = f"DH row {i + 1}"
-    if not isinstance(row, Mapping):
-        raise RobotDefinitionError(f"{where}: expected a mapping with keys {', '.join(_DH_KEYS)}")
-    missing = [k for k in _DH_KEYS if k not in row]
-    if missing:
-        raise RobotDefinitionError(f"{where}: missing key(s) {', '.join(map(repr, missing))}")
-    unknown = sorted(set(row) - set(_DH_KEYS) - {"qlim", "name"})
-    if unknown:
-        raise RobotDefinitionError(
-            f"{where}: unknown key(s) {', '.join(map(repr, unknown))}; "
-            f"allowed: {', '.join(_DH_KEYS)}, qlim, name"
-        )
-    kind = row["joint"]
-    if kind not in _JOINT_TYPES:
-        raise RobotDefinitionError(f"{where}: 'joint' must be 'revolute' or 'prismatic', got {kind!r}")
-    vals = {k: _finite(row[k], f"{where}, key {k!r}") for k in ("a", "alpha", "d", "theta")}
-    qlim = row.get("qlim")
-    if qlim is not None:
-        qlim = _parse_qlim(qlim, f"{where}, key 'qlim'")
-    name = row.get("name", "")
-    if not isinstance(name, str):
-        raise RobotDefinitionError(f"{where}, key 'name': expected a string, got {name!r}")
-    return DHRow(kind, vals["a"], vals["alpha"], vals["d"], vals["theta"], qlim, name)  # type: ignore[arg-type]
-
-
-def _finite(x: object, where: str) -> float:
-    if isinstance(x, bool) or not isinstance(x, (int, float, np.integer, np.floating)):
-        raise RobotDefinitionError(f"{where}: expected a number, got {x!r}")
-    v = float(x)
-    if not math.isfinite(v):
-        raise RobotDefinitionError(f"{where}: expected a finite number, got {v}")
-    return v
-
-
-def _parse_qlim(qlim: object, where: str) -> tuple[float, float]:
-    if isinstance(qlim, (str, bytes)) or not isinstance(qlim, (Sequence, np.ndarray)) or len(qlim) != 2:
-        raise RobotDefinitionError(f"{where}: expected (lower, upper), got {qlim!r}")
-    lo, hi = (_finite(v, where) for v in qlim)
-    if not lo < hi:
-        raise RobotDefinitionError(f"{where}: lower limit {lo} must be below upper limit {hi}")
-    return (lo, hi)
-
-
-@dataclass(frozen=True, eq=False)
-class _Compiled:
-    """Arrays precomputed once per robot for the numeric kernels.
-
-    ``fixed[k]`` is the constant transform between the moved frame of axis k-1
-    and the joint frame of axis k (``fixed[0]`` includes ``base``, ``fixed[m]``
-    ends with ``tool``), so T_base_tool = fixed[0] · M_1 · fixed[1] ⋯ M_m · fixed[m].
-    """
-
-    fixed: np.ndarray  # (m+1, 4, 4)
-    index: np.ndarray  # (m,) int
-    multiplier: np.ndarray  # (m,)
-    offset: np.ndarray  # (m,)
-    revolute: np.ndarray  # (m,) float 1.0/0.0
-    prismatic: np.ndarray  # (m,) float
-    simple: bool  # one axis per joint, in order, multiplier 1
-    selection: np.ndarray  # (m, n): column k of J = Σ_axes selection[axis, k] · contribution
-    all_revolute: bool
-    prismatic_index: np.ndarray  # (p,) indices of prismatic axes
-    rz_cos: np.ndarray  # (m, 4, 4): Rz(θ) F_k = cos θ · rz_cos + sin θ · rz_sin + rz_const
-    rz_sin: np.ndarray
-    rz_const: np.ndarray
-    tz_lin: np.ndarray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
-
-    @staticmethod
-    def build(robot: Robot) -> _Compiled:
-        m, n = len(robot.axes), robot.dof
-        fixed = np.empty((m + 1, 4, 4))
-        prev = robot.base
-        for k, ax in enumerate(robot.axes):
-            fixed[k] = prev @ ax.T_parent_joint
-            prev = ax.T_joint_child
-        fixed[m] = prev @ robot.tool
-        index = np.array([ax.joint_index for ax in robot.axes], dtype=int)
-        mult = np.array([ax.multiplier for ax in robot.axes])
-        rev = np.array([1.0 if ax.kind == "revolute" else 0.0 for ax in robot.axes])
-        sel = np.zeros((m, n))
-        sel[np.arange(m), index] = mult
-        simple = m == n and bool(np.all(index == np.arange(n))) and bool(np.all(mult == 1.0))
-        offset = np.array([ax.offset for ax in robot.axes])
-        pri_idx = np.flatnonzero(rev == 0.0)
-        F = fixed[1:]
-        Dc, Ds, E, Dz = np.diag([1.0, 1, 0, 0]), np.zeros((4, 4)), np.diag([0.0, 0, 1, 1]), np.zeros((4, 4))
-        Ds[0, 1], Ds[1, 0], Dz[2, 3] = -1.0, 1.0, 1.0
-        parts = [Dc @ F, Ds @ F, E @ F, Dz @ F]
-        for a in (fixed, index, mult, offset, rev, sel, pri_idx, *parts):
-            a.flags.writeable = False
-        return _Compiled(
-            fixed, index, mult, offset, rev, 1.0 - rev, simple, sel, len(pri_idx) == 0, pri_idx, *parts
-        )
+def _parts(items: object, kind: type, where: str) -> tuple:
+    """``items`` as a tuple whose elements are all ``kind`` instances."""
+    if isinstance(items, (str, bytes, Mapping)) or not isinstance(items, (Sequence, np.ndarray)):
+        raise RobotDefinitionError(f"{where}: expected a sequence of {kind.__name__}, got {show(items)}")
+    for i, item in enumerate(items):
+        if not isinstance(item, kind):
+            raise RobotDefinitionError(f"{where}[{i}]: expected a {kind.__name__}, got {show(item)}")
+    return tuple(items)

@@ -3,190 +3,119 @@
 Every function takes an immutable :class:`~kinematics.model.Robot` and a
 configuration ``q``: shape (n,) for one configuration or (N, n) for a batch.
 Batches are vectorised over N (no Python loop over configurations) and are
-processed in cache-sized chunks.
+processed in cache-sized chunks (the kernels are in :mod:`kinematics.kernel`).
 """
 
 from __future__ import annotations
 
+import math
 from typing import Literal
 
 import numpy as np
 
-from .errors import ConfigurationError
+from .errors import ConfigurationError, OptionError
+from .kernel import (
+    Kernel,
+    axis_jacobian,
+    batched_fk,
+    batched_jacobian,
+    chain_single,
+    jacobian_from_frames,
+    kernel,
+)
 from .model import Robot
+from .validation import MAX_ANGLE, MAX_LENGTH, show
 
-__all__ = ["fk", "joint_frames", "link_frames", "jacobian", "jacobian_dot", "as_configuration"]
+__all__ = [
+    "fk",
+    "joint_frames",
+    "link_frames",
+    "chain_frames",
+    "jacobian",
+    "jacobian_dot",
+    "as_configuration",
+    "check_frame",
+    "Frame",
+    "FRAMES",
+]
 
 Frame = Literal["base", "tool"]
-_CHUNK = 2048  # configurations per chunk in batched kernels (keeps working arrays in cache)
+FRAMES: tuple[Frame, ...] = ("base", "tool")
+_FAST_BOUND = min(MAX_ANGLE, MAX_LENGTH)
+_MAX_ABS = np.maximum.reduce
 
 
-def as_configuration(robot: Robot, q: object) -> np.ndarray:
+def check_frame(frame: object) -> Frame:
+    """``frame`` if it is one of :data:`FRAMES`, else an OptionError listing them."""
+    if isinstance(frame, str) and frame in FRAMES:
+        return frame
+    raise OptionError(f"frame must be one of 'base', 'tool' (the frame of J's rows), got {show(frame)}")
+
+
+_KINDS = {
+    "b": "bools",
+    "c": "complex numbers",
+    "U": "strings",
+    "S": "bytes",
+    "O": "Python objects",
+    "V": "records",
+}
+
+
+def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
     """Return ``q`` as a float array of shape (n,) or (N, n), or raise ConfigurationError.
+
+    Accepted: ints and floats (lists, tuples, NumPy arrays of any int or float type). Refused,
+    each with a message naming the problem: strings, bytes, bools, complex numbers, object
+    arrays (``None``, integers beyond float range, mixed types), ragged lists, the wrong shape,
+    NaN, ±inf, and values beyond what the model accepts (|q| ≤ 1e18 rad for a revolute joint,
+    where angles are only meaningful modulo 2π; |q| ≤ 1e15 m for a prismatic one).
 
     Args:
         robot: The robot (defines n = ``robot.dof``).
         q: Joint values [rad] for revolute, [m] for prismatic joints.
+        what: Name used in messages (``"qd"`` for joint rates).
     """
+    return _configuration(robot, kernel(robot), q, what)
+
+
+def _configuration(robot: Robot, c: Kernel, q: object, what: str = "q") -> np.ndarray:
+    """:func:`as_configuration` with the robot's kernel already at hand."""
+    bound = c.bound
     try:
-        a = np.asarray(q, dtype=float)
-    except (TypeError, ValueError):
-        raise ConfigurationError(f"q must be numeric, got {q!r}") from None
+        a = np.asarray(q)
+    except (TypeError, ValueError, OverflowError):
+        raise ConfigurationError(f"{what} must be an array of numbers, got {show(q)}") from None
+    if a.dtype.kind not in "iuf":
+        raise ConfigurationError(
+            f"{what} must hold ints or floats, got {_KINDS.get(a.dtype.kind, str(a.dtype))}: {show(q)}"
+        )
+    a = a.astype(float, copy=False)
     if a.ndim not in (1, 2) or a.shape[-1] != robot.dof:
         raise ConfigurationError(
-            f"q has shape {a.shape}; robot {robot.name!r} expects ({robot.dof},) or (N, {robot.dof})"
+            f"{what} has shape {a.shape}; robot {robot.name!r} expects ({robot.dof},) or (N, {robot.dof})"
         )
-    if not np.isfinite(a).all():
-        raise ConfigurationError("q contains NaN or infinity; every joint value must be finite")
+    # Fast path: max |q| ≤ min(bound) puts every value within its bound (NaN and ±inf fail it;
+    # np.maximum propagates NaN). Only values beyond it are checked joint by joint.
+    flat = a if a.ndim == 1 else a.ravel()
+    if flat.size and not _MAX_ABS(np.abs(flat)) <= _FAST_BOUND and not (np.abs(a) <= bound).all():
+        raise ConfigurationError(_bad_value(robot, a, bound, what))
     return a
 
 
-# --------------------------------------------------------------------- single
-def _chain_single(robot: Robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Joint frames T_base_joint (m, 4, 4) (before each axis moves) and T_base_tool."""
-    c = robot._compiled  # type: ignore[attr-defined]
-    qa = q if c.simple else q[c.index] * c.multiplier
-    qa = qa + c.offset
-    # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
-    # moved-and-fixed transform of every axis comes from a few whole-stack operations.
-    if c.all_revolute:
-        cs = np.cos(qa - _SIN_SHIFT)  # row 0: cos, row 1: sin
-        P = cs[0, :, None, None] * c.rz_cos + cs[1, :, None, None] * c.rz_sin + c.rz_const
-    else:
-        cs = np.cos(qa * c.revolute - _SIN_SHIFT)
-        P = cs[0, :, None, None] * c.rz_cos + cs[1, :, None, None] * c.rz_sin + c.rz_const
-        P += (qa * c.prismatic)[:, None, None] * c.tz_lin
-    # Prefix products A_0 · A_1 ⋯ A_k by a parallel scan: log2(m + 1) stacked matmuls.
-    A = np.concatenate((c.fixed[:1], P))
-    step = 1
-    while step < len(A):
-        A[step:] = np.matmul(A[:-step], A[step:])
-        step *= 2
-    return A[:-1], A[-1]
-
-
-_SIN_SHIFT = np.array([[0.0], [np.pi / 2]])
-# Levi-Civita tensor as a (3, 9) map: (z @ _SKEW).reshape(3, 3) is the cross-product matrix [z]x.
-_SKEW = np.zeros((3, 3, 3))
-for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-    _SKEW[_k, _i, _j] = -1.0
-    _SKEW[_k, _j, _i] = 1.0
-_SKEW = _SKEW.reshape(3, 9)
-
-
-def _axis_jacobian(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
-    """Per-axis Jacobian columns (6, m) from the joint frames W and the tool pose T."""
-    c = robot._compiled  # type: ignore[attr-defined]
-    m = len(W)
-    z = W[:, :3, 2]
-    r = T[:3, 3] - W[:, :3, 3]
-    J = np.empty((6, m))
-    # z × r for every axis at once: [z]x r as one batched matrix-vector product.
-    np.matmul((z @ _SKEW).reshape(m, 3, 3), r[:, :, None], out=J[:3].T[:, :, None])
-    J[3:] = z.T
-    if not c.all_revolute:
-        pri = c.prismatic_index
-        J[:3, pri] = z[pri].T
-        J[3:, pri] = 0.0
-    return J
-
-
-def _jacobian_from_frames(robot: Robot, W: np.ndarray, T: np.ndarray) -> np.ndarray:
-    c = robot._compiled  # type: ignore[attr-defined]
-    J = _axis_jacobian(robot, W, T)
-    return J if c.simple else J @ c.selection
-
-
-# -------------------------------------------------------------------- batched
-def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray | float:
-    """Σ coefficient · array, skipping zero coefficients and multiplications by ±1.
-
-    Returns the input array itself (no copy) for a single unit term: arrays
-    are never modified in place, so sharing is safe.
-    """
-    out = None
-    for coef, arr in terms:
-        if abs(coef) < 1e-15:
-            continue
-        if out is None:
-            out = arr if coef == 1.0 else -arr if coef == -1.0 else coef * arr
-        elif coef == 1.0:
-            out = out + arr
-        elif coef == -1.0:
-            out = out - arr
-        else:
-            out = out + coef * arr
-    return 0.0 if out is None else out
-
-
-def _apply_fixed(cols: list, p, F: np.ndarray) -> tuple[list, object]:
-    """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N)."""
-    new_cols = [_lin([(F[k, j], cols[k]) for k in range(3)]) for j in range(3)]
-    new_p = _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)]) if not np.isscalar(p) else (
-        _lin([(F[k, 3], cols[k]) for k in range(3)]) + p
-    )
-    return new_cols, new_p
-
-
-def _chain_batch(robot: Robot, q: np.ndarray, want_jacobian: bool):
-    """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
-    c = robot._compiled  # type: ignore[attr-defined]
-    N = q.shape[0]
-    m = len(c.offset)
-    qa = (q if c.simple else q[:, c.index] * c.multiplier) + c.offset  # (N, m)
-    F0 = c.fixed[0]
-    ones = np.ones((3, N))
-    # Rotation columns (3, N) and position (3, N) of the running frame.
-    cols = [F0[:3, j, None] * ones for j in range(3)]
-    p = F0[:3, 3, None] * ones
-    zs, ps = [], []
-    qa_t = qa.T  # (m, N)
-    cosv = np.cos(qa_t)
-    sinv = np.sin(qa_t)
-    for k in range(m):
-        zs.append(cols[2])
-        ps.append(p)
-        if c.revolute[k]:
-            ck, sk = cosv[k], sinv[k]
-            c0, c1 = cols[0], cols[1]
-            cols = [ck * c0 + sk * c1, ck * c1 - sk * c0, cols[2]]
-        else:
-            p = p + qa_t[k] * cols[2]
-        cols, p = _apply_fixed(cols, p, c.fixed[k + 1])
-    T = np.zeros((N, 4, 4))
-    T[:, :3, 0] = cols[0].T
-    T[:, :3, 1] = cols[1].T
-    T[:, :3, 2] = cols[2].T
-    T[:, :3, 3] = p.T
-    T[:, 3, 3] = 1.0
-    if not want_jacobian:
-        return T, None
-    Z = np.stack(zs)  # (m, 3, N)
-    R = p[None] - np.stack(ps)  # (m, 3, N)
-    Jc = np.empty((6, m, N))
-    rev = c.revolute[:, None]
-    pri = c.prismatic[:, None]
-    Jc[0] = (Z[:, 1] * R[:, 2] - Z[:, 2] * R[:, 1]) * rev + Z[:, 0] * pri
-    Jc[1] = (Z[:, 2] * R[:, 0] - Z[:, 0] * R[:, 2]) * rev + Z[:, 1] * pri
-    Jc[2] = (Z[:, 0] * R[:, 1] - Z[:, 1] * R[:, 0]) * rev + Z[:, 2] * pri
-    Jc[3:] = Z.transpose(1, 0, 2) * rev
-    if c.simple:
-        J = Jc.transpose(2, 0, 1)
-    else:
-        J = np.einsum("imN,mn->Nin", Jc, c.selection)
-    return T, J
-
-
-def _batched(robot: Robot, q: np.ndarray, want_jacobian: bool):
-    N = q.shape[0]
-    T = np.empty((N, 4, 4))
-    J = np.empty((N, 6, robot.dof)) if want_jacobian else None
-    for s in range(0, N, _CHUNK):
-        Tc, Jc = _chain_batch(robot, q[s : s + _CHUNK], want_jacobian)
-        T[s : s + _CHUNK] = Tc
-        if want_jacobian:
-            J[s : s + _CHUNK] = Jc
-    return T, J
+def _bad_value(robot: Robot, a: np.ndarray, bound: np.ndarray, what: str) -> str:
+    """The message for the first value of ``a`` that is not finite or is out of range."""
+    bad = ~(np.abs(a) <= bound)
+    i = int(np.argwhere(bad)[0][-1])
+    v = float(a[..., i][bad[..., i]][0])
+    joint = robot.joints[i]
+    if not math.isfinite(v):
+        return (
+            f"{what} contains NaN or infinity (joint {joint.name!r}: {v}); every joint value must be finite"
+        )
+    unit = "rad" if joint.kind == "revolute" else "m"
+    expected = f"expected |value| ≤ {bound[i]:g} {unit}"
+    return f"{what}: joint {joint.name!r} value {v:g} {unit} is out of range; {expected}"
 
 
 # --------------------------------------------------------------------- public
@@ -207,10 +136,11 @@ def fk(robot: Robot, q: object) -> np.ndarray:
         >>> bool(np.allclose(fk(r, [0.0, np.pi / 2])[:3, 3], [1.0, 1.0, 0.0]))
         True
     """
-    q = as_configuration(robot, q)
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
     if q.ndim == 1:
-        return _chain_single(robot, q)[1]
-    return _batched(robot, q, want_jacobian=False)[0]
+        return chain_single(c, q)[1]
+    return batched_fk(c, q)
 
 
 def joint_frames(robot: Robot, q: object) -> np.ndarray:
@@ -220,10 +150,22 @@ def joint_frames(robot: Robot, q: object) -> np.ndarray:
     its origin lies on the axis. For a DH robot in the standard convention,
     frame k has the origin and z axis of the course's frame k-1 (z_{k-1}).
     """
-    q = as_configuration(robot, q)
-    if q.ndim != 1:
-        raise ConfigurationError("joint_frames takes one configuration of shape (n,)")
-    return _chain_single(robot, q)[0]
+    return chain_frames(robot, q)[0]
+
+
+def chain_frames(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray]:
+    """The joint frames ``T_base_joint`` (m, 4, 4) and the tool pose ``T_base_tool`` (4, 4) at once.
+
+    One evaluation of the chain for one configuration (n,): what :func:`joint_frames` and
+    :func:`fk` return.
+    """
+    c = kernel(robot)
+    qc = _configuration(robot, c, q)
+    if qc.ndim != 1:
+        raise ConfigurationError(
+            f"one configuration of shape ({robot.dof},) is expected here, got {qc.shape}"
+        )
+    return chain_single(c, qc)
 
 
 def link_frames(robot: Robot, q: object) -> np.ndarray:
@@ -231,10 +173,13 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
 
     For a DH robot these are the DH frames 0 … n of its convention, then the tool frame.
     """
-    q = as_configuration(robot, q)
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
     if q.ndim != 1:
-        raise ConfigurationError("link_frames takes one configuration of shape (n,)")
-    W, T = _chain_single(robot, q)
+        raise ConfigurationError(
+            f"link_frames takes one configuration of shape ({robot.dof},), got {q.shape}"
+        )
+    W, T = chain_single(c, q)
     out = np.empty((len(robot.axes) + 2, 4, 4))
     out[0] = robot.base
     for k, ax in enumerate(robot.axes):
@@ -271,17 +216,17 @@ def jacobian(robot: Robot, q: object, frame: Frame = "base") -> np.ndarray:
         >>> bool(np.allclose(jacobian(r, [0.0, 0.0])[:2], [[0.0, 0.0], [2.0, 1.0]]))
         True
     """
-    if frame not in ("base", "tool"):
-        raise ValueError(f"frame must be 'base' or 'tool', got {frame!r}")
-    q = as_configuration(robot, q)
+    frame = check_frame(frame)
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
     if q.ndim == 1:
-        W, T = _chain_single(robot, q)
-        J = _jacobian_from_frames(robot, W, T)
+        W, T = chain_single(c, q)
+        J = jacobian_from_frames(c, W, T)
         if frame == "tool":
             Rt = T[:3, :3].T
             J = np.vstack([Rt @ J[:3], Rt @ J[3:]])
         return J
-    T, J = _batched(robot, q, want_jacobian=True)
+    T, J = batched_jacobian(c, q)
     if frame == "tool":
         Rt = T[:, :3, :3].transpose(0, 2, 1)
         J = np.concatenate([Rt @ J[:, :3], Rt @ J[:, 3:]], axis=1)
@@ -302,15 +247,15 @@ def jacobian_dot(robot: Robot, q: object, qd: object, frame: Frame = "base") -> 
         frame: Only ``"base"`` is supported (the derivative of a rotated
             Jacobian mixes in Ṙ; use the base frame and rotate results).
     """
-    if frame != "base":
-        raise ValueError("jacobian_dot is defined for frame='base' only")
-    q = as_configuration(robot, q)
-    qd = as_configuration(robot, qd)
+    if check_frame(frame) != "base":
+        raise OptionError("jacobian_dot is defined for frame='base' only (rotate the result for tool axes)")
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
+    qd = _configuration(robot, c, qd, "qd")
     if q.ndim != 1 or qd.ndim != 1:
         raise ConfigurationError("jacobian_dot takes one configuration q (n,) and rates qd (n,)")
-    c = robot._compiled  # type: ignore[attr-defined]
-    W, T = _chain_single(robot, q)
-    A = _axis_jacobian(robot, W, T)  # (6, m)
+    W, T = chain_single(c, q)
+    A = axis_jacobian(c, W, T)  # (6, m)
     z, p = W[:, :3, 2], W[:, :3, 3]
     rate = c.multiplier * qd[c.index]  # rate of every axis
     rz = (rate * c.revolute)[:, None] * z

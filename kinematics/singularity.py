@@ -24,9 +24,11 @@ from typing import Literal
 
 import numpy as np
 
-from .analysis import DEFAULT_RTOL, PART_ROWS, task_rows
+from .analysis import DEFAULT_RTOL, PART_ROWS, as_jacobian, check_rtol, task_rows
+from .errors import ArrayError, ConfigurationError, OptionError
 from .model import Robot
-from .numeric import _chain_single, as_configuration, jacobian
+from .numeric import as_configuration, chain_frames, jacobian
+from .validation import is_number, show
 
 __all__ = ["SingularityReport", "assess", "NEAR_CONDITION"]
 
@@ -90,8 +92,17 @@ def assess(
         rtol: Relative tolerance for a zero singular value.
     """
     q = as_configuration(robot, q)
+    if q.ndim != 1:
+        raise ConfigurationError(f"assess takes one configuration ({robot.dof},), got {q.shape}")
+    rtol = check_rtol(rtol)
+    if not (is_number(near_condition) and near_condition > 1):
+        raise OptionError(f"near_condition must be a number > 1, got {show(near_condition)}")
     if J is None:
         J = jacobian(robot, q)
+    else:
+        J = as_jacobian(J)
+        if J.shape != (6, robot.dof):
+            raise ArrayError(f"J should have shape (6, {robot.dof}) for robot {robot.name!r}, got {J.shape}")
     rows = list(task_rows(robot))
     Js = J[rows]
     U, s, Vt = np.linalg.svd(Js)
@@ -118,14 +129,6 @@ NEAR_KIND_TOL = 0.1
 """... and below this, the kind a near-singular configuration is close to."""
 
 
-def _ratio(A: np.ndarray) -> float:
-    """σmin / σmax over the min(rows, columns) singular values of A: 1 well spread, 0 degenerate."""
-    if A.size == 0:
-        return 0.0
-    s = np.linalg.svd(A, compute_uv=False)
-    return float(s[-1] / s[0]) if s[0] > 0 else 0.0
-
-
 def _kinds(robot: Robot, q: np.ndarray, rows: list[int], tol: float) -> tuple[str, ...]:
     """Kinds of singularity from normalised geometric measures (each in [0, 1], 0 = degenerate).
 
@@ -138,9 +141,9 @@ def _kinds(robot: Robot, q: np.ndarray, rows: list[int], tol: float) -> tuple[st
       motion the others already give: the wrist point is in the plane of
       axes 1 and 2).
     """
-    W, T = _chain_single(robot, q)
-    c = robot._compiled  # type: ignore[attr-defined]
-    revolute = [k for k in range(len(W)) if c.revolute[k]]
+    W, T = chain_frames(robot, q)
+    is_revolute = [ax.kind == "revolute" for ax in robot.axes]
+    revolute = [k for k in range(len(W)) if is_revolute[k]]
     z, p = W[:, :3, 2], W[:, :3, 3]
     kinds = []
     orientation_task = any(r in PART_ROWS["angular"] for r in rows)
@@ -169,7 +172,7 @@ def _kinds(robot: Robot, q: np.ndarray, rows: list[int], tol: float) -> tuple[st
     def columns(axes: list[int], point: np.ndarray) -> np.ndarray:
         Jp = np.empty((3, len(axes)))
         for j, k in enumerate(axes):
-            Jp[:, j] = np.cross(z[k], point - p[k]) if c.revolute[k] else z[k]
+            Jp[:, j] = np.cross(z[k], point - p[k]) if is_revolute[k] else z[k]
         return Jp[:2] if robot.planar else Jp
 
     def rank(A: np.ndarray) -> int:

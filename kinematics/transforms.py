@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from .errors import RobotDefinitionError
+from .validation import MAX_LENGTH
 
 __all__ = [
     "rot_x",
@@ -84,11 +85,24 @@ def rotation_z_to(axis: np.ndarray) -> np.ndarray:
 
 
 def check_rigid_transform(T: object, what: str, tol: float = 1e-6) -> np.ndarray:
-    """Return ``T`` as a float 4×4 array, or raise naming ``what`` and the defect."""
+    """Return ``T`` as a float 4×4 rigid transform, or raise naming ``what`` and the defect.
+
+    Checks: numbers only (no strings, bools or objects), shape (4, 4), finite, last row
+    [0, 0, 0, 1], an orthonormal upper-left block with det +1 (to ``tol``) and a translation
+    within :data:`~kinematics.validation.MAX_LENGTH`.
+
+    Raises:
+        RobotDefinitionError: The message starts with ``what``.
+    """
     try:
-        A = np.array(T, dtype=float)
-    except (TypeError, ValueError) as exc:
+        raw = np.asarray(T)
+    except (TypeError, ValueError, OverflowError) as exc:
         raise RobotDefinitionError(f"{what}: expected a 4×4 numeric matrix ({exc})") from None
+    if raw.dtype.kind not in "iuf":
+        raise RobotDefinitionError(
+            f"{what}: expected a 4×4 numeric matrix of ints or floats, got {_dtype_text(raw.dtype)}"
+        )
+    A = np.array(raw, dtype=float)
     if A.shape != (4, 4):
         raise RobotDefinitionError(f"{what}: expected a 4×4 homogeneous transform, got shape {A.shape}")
     if not np.all(np.isfinite(A)):
@@ -100,8 +114,18 @@ def check_rigid_transform(T: object, what: str, tol: float = 1e-6) -> np.ndarray
         raise RobotDefinitionError(
             f"{what}: the upper-left 3×3 block is not a rotation (orthonormal, det = +1)"
         )
+    if np.abs(A[:3, 3]).max() > MAX_LENGTH:
+        raise RobotDefinitionError(
+            f"{what}: translation {A[:3, 3].tolist()} m is out of range; "
+            f"expected each component within ±{MAX_LENGTH:g} m"
+        )
     A[3] = (0, 0, 0, 1)
     return A
+
+
+def _dtype_text(dtype: np.dtype) -> str:
+    names = {"b": "bools", "U": "strings", "S": "bytes", "c": "complex numbers", "O": "objects"}
+    return names.get(dtype.kind, f"dtype {dtype}")
 
 
 def skew(w: np.ndarray) -> np.ndarray:

@@ -136,7 +136,7 @@ def to_urdf(robot: Robot) -> str:
     transform into a fixed joint ``tool_joint``. Mimic axes are written as
     ``<mimic>``. Joint names are those of the robot.
     """
-    c = robot._compiled  # type: ignore[attr-defined]
+    fixed = robot.fixed_transforms()
     out = ['<?xml version="1.0"?>', f'<robot name="{_attr(robot.name or "robot")}">', '  <link name="base"/>']
     seen: set[int] = set()
     for k in range(len(robot.axes)):
@@ -152,7 +152,7 @@ def to_urdf(robot: Robot) -> str:
                 f"axis {ax.name!r} is the first axis of joint {joint.name!r} but has multiplier "
                 f"{ax.multiplier}: URDF cannot express that"
             )
-        origin = c.fixed[k]
+        origin = fixed[k]
         if not mimic and ax.offset != 0.0:
             # URDF has no joint offset: M(q + o) = M(o) M(q) about the same axis, so fold it in.
             origin = origin @ (rot_z(ax.offset) if kind == "revolute" else trans(z=ax.offset))
@@ -175,7 +175,7 @@ def to_urdf(robot: Robot) -> str:
         '  <joint name="tool_joint" type="fixed">',
         f'    <parent link="link{len(robot.axes)}"/>',
         '    <child link="tool"/>',
-        f"    {_origin_xml(c.fixed[-1])}",
+        f"    {_origin_xml(fixed[-1])}",
         "  </joint>",
         "</robot>",
     ]

@@ -32,7 +32,14 @@ TASKS = ("auto", "full", "linear", "angular", "planar")  # the optional task key
 
 # key -> type; float means "a finite int or float" (not a bool).
 _TOP = {"name": str, "title": str, "description": str, "source": str, "convention": str, "joints": list}
-_TOP_OPTIONAL = {"planar": bool, "task": str, "base": dict, "tool": dict, "configurations": list}
+_TOP_OPTIONAL = {
+    "planar": bool,
+    "task": str,
+    "base": dict,
+    "tool": dict,
+    "configurations": list,
+    "symbols": dict,  # [symbols]: course names of the symbolic parameters, kinematics.Robot.param_names
+}
 _JOINT = {"joint": str, "a": float, "alpha": float, "d": float, "theta": float}
 _JOINT_OPTIONAL = {"name": str, "qlim": list}
 _CONF = {"name": str, "q": list}
@@ -100,10 +107,25 @@ def load_file(path: str | Path, base_link: str | None = None, tip_link: str | No
         text = _text(c.get("description", ""))
         confs.append(NamedConfiguration(c["name"], np.array(q, dtype=float), text, c.get("singular", "")))
     base, tool, meta = _frame(doc, "base"), _frame(doc, "tool"), _meta(doc)
+    names = _symbols(doc, path.name)
     try:
-        return Robot.from_dh(rows, doc["convention"], base, tool, doc["name"], configurations=confs, **meta)
+        return Robot.from_dh(
+            rows, doc["convention"], base, tool, doc["name"], configurations=confs, param_names=names, **meta
+        )
     except RobotDefinitionError as exc:
         raise RobotDefinitionError(f"{path.name}: {exc}") from None
+
+
+def _symbols(doc: dict, file: str) -> dict[str, str]:
+    """The optional ``[symbols]`` table: default parameter name → course name (``a1 = "l1"``).
+
+    Its values must be strings here; :class:`kinematics.Robot` checks the names themselves.
+    """
+    table = doc.get("symbols", {})
+    for key, value in table.items():
+        if not isinstance(value, str):
+            raise RobotDefinitionError(f"{file}, [symbols] key {key!r}: expected a string, got {value!r}")
+    return dict(table)
 
 
 def _resolve(name_or_path: str | Path) -> Path:

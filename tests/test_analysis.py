@@ -12,9 +12,15 @@ from kinematics_helpers import random_q
 
 import robots
 from kinematics import (
+    ArrayError,
+    ConfigurationError,
+    OptionError,
+    analytic_jacobian,
     assess,
     condition_number,
     dls,
+    euler_angles,
+    euler_rate_matrix,
     force_ellipsoid,
     jacobian,
     manipulability,
@@ -24,6 +30,7 @@ from kinematics import (
     rank,
     select_rows,
     singular_values,
+    solve_rates,
     task_rows,
     velocity_ellipsoid,
 )
@@ -174,3 +181,106 @@ def test_puma_singularity_kinds():
     assert assess(robot, q).text() == "singular: wrist"
     q = np.array([0.3, -0.4, 0.5, 0.7, 0.9, 0.2])
     assert assess(robot, q).status == "regular" and assess(robot, q).text() == "regular"
+
+
+# ------------------------------------------------------------ bad arguments are named
+J_PUMA = jacobian(ROBOTS["puma560"], [0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+PARTS = "part must be one of 'full', 'linear', 'angular', 'planar'"
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        (lambda: select_rows(J_PUMA, "position"), OptionError, f"{PARTS}, got 'position'"),
+        (lambda: manipulability(J_PUMA, "Linear"), OptionError, f"{PARTS}, got 'Linear'"),
+        (lambda: singular_values(J_PUMA, 3), OptionError, f"{PARTS} or row indices, got 3"),
+        (
+            lambda: rank(J_PUMA, (0, 6)),
+            OptionError,
+            r"rows of J must be distinct indices 0…5 .*, got \(0, 6\)",
+        ),
+        (lambda: rank(J_PUMA, (1, 1)), OptionError, r"distinct indices 0…5 .*, got \(1, 1\)"),
+        (lambda: rank(J_PUMA, ()), OptionError, r"distinct indices 0…5 .*, got \(\)"),
+        (lambda: rank(J_PUMA, (0, True)), OptionError, r"distinct indices 0…5 .*, got \(0, True\)"),
+        (
+            lambda: condition_number(J_PUMA, "linear", rtol=-1e-9),
+            OptionError,
+            r"rtol must be a number in \[0, 1\), got -1e-09",
+        ),
+        (lambda: rank(J_PUMA, rtol=math.nan), OptionError, r"rtol must be a number in \[0, 1\), got nan"),
+        (
+            lambda: force_ellipsoid(J_PUMA, rtol="0"),
+            OptionError,
+            r"rtol must be a number in \[0, 1\), got '0'",
+        ),
+        (
+            lambda: velocity_ellipsoid(J_PUMA, "full"),
+            OptionError,
+            "ellipsoids need three rows of J .*, got 'full'",
+        ),
+        (
+            lambda: velocity_ellipsoid(np.stack([J_PUMA] * 2)),
+            ArrayError,
+            r"one Jacobian \(6, n\), not a batch",
+        ),
+        (lambda: null_space(np.stack([J_PUMA] * 2)), ArrayError, "null_space takes one Jacobian"),
+        (
+            lambda: singular_values(J_PUMA[:5]),
+            ArrayError,
+            r"J should have shape \(6, n\) or \(N, 6, n\), got \(5, 6\)",
+        ),
+        (
+            lambda: singular_values(np.where(np.eye(6, dtype=bool), np.nan, J_PUMA)),
+            ArrayError,
+            "J contains NaN or infinity",
+        ),
+        (
+            lambda: singular_values(J_PUMA.astype(complex)),
+            ArrayError,
+            "J must hold ints or floats, got dtype complex128",
+        ),
+        (lambda: dls(J_PUMA, -0.1), OptionError, "damping must be a finite number ≥ 0, got -0.1"),
+        (lambda: dls(J_PUMA, math.inf), OptionError, "damping must be a finite number ≥ 0, got inf"),
+        (
+            lambda: solve_rates(J_PUMA, np.ones(6), damping="0.1"),
+            OptionError,
+            "damping must be a finite number ≥ 0, got '0.1'",
+        ),
+        (lambda: solve_rates(J_PUMA, np.ones(3)), ArrayError, r"v must hold 6 numbers \(one per row of J\)"),
+        (lambda: solve_rates(J_PUMA, [1, 2, 3, 4, 5, math.nan]), ArrayError, "v contains NaN or infinity"),
+        (lambda: pinv([[1.0, "a"]]), ArrayError, "J must hold ints or floats, got dtype <U32"),
+        (lambda: pinv(np.ones(3)), ArrayError, r"J should have shape \(m, n\) or \(N, m, n\), got \(3,\)"),
+        (lambda: nullspace_projector(np.full((2, 2), np.inf)), ArrayError, "J contains NaN or infinity"),
+        (
+            lambda: analytic_jacobian(ROBOTS["puma560"], np.zeros(6), "xyz"),
+            OptionError,
+            "Euler convention must be one of 'zyx', 'zyz', got 'xyz'",
+        ),
+        (lambda: euler_angles(np.full((3, 3), np.nan)), ArrayError, "R contains NaN or infinity"),
+        (lambda: euler_angles(np.eye(2)), ArrayError, r"R must be numbers of shape \(3, 3\) or \(4, 4\)"),
+        (lambda: euler_rate_matrix([0.0, 0.0]), ArrayError, r"angles must be numbers of shape \(3,\)"),
+        (
+            lambda: assess(ROBOTS["puma560"], np.zeros(6), J=J_PUMA[:, :5]),
+            ArrayError,
+            r"J should have shape \(6, 6\) for robot 'puma560', got \(6, 5\)",
+        ),
+        (
+            lambda: assess(ROBOTS["puma560"], np.zeros((2, 6))),
+            ConfigurationError,
+            r"assess takes one configuration \(6,\)",
+        ),
+        (
+            lambda: assess(ROBOTS["puma560"], np.zeros(6), near_condition=0.5),
+            OptionError,
+            "near_condition must be a number > 1, got 0.5",
+        ),
+    ],
+)
+def test_bad_arguments_raise_project_errors_naming_them(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
+
+
+def test_rows_given_as_indices_select_those_rows():
+    np.testing.assert_array_equal(select_rows(J_PUMA, (5, 0)), J_PUMA[[5, 0]])
+    np.testing.assert_array_equal(select_rows(J_PUMA, np.array([3, 4, 5])), J_PUMA[3:])

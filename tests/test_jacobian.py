@@ -10,8 +10,11 @@ numbers and closed forms.
 
 from __future__ import annotations
 
+import gc
 import math
+import weakref
 
+import mpmath
 import numpy as np
 import pytest
 from hypothesis import given
@@ -20,6 +23,8 @@ from kinematics_helpers import random_q
 
 import robots
 from kinematics import (
+    ConfigurationError,
+    OptionError,
     RepresentationSingularityError,
     Robot,
     analytic_jacobian,
@@ -30,7 +35,7 @@ from kinematics import (
     joint_frames,
     link_frames,
 )
-from kinematics.transforms import rotation_log
+from kinematics.transforms import rot_z, rotation_log, trans
 from kinematics.urdf import robot_from_urdf_string, to_urdf
 
 NAMES = robots.names()
@@ -252,3 +257,109 @@ def test_mimic_joint_sums_columns():
     np.testing.assert_allclose(jacobian(robot, q)[5, 0], 3.0)
     again = robot_from_urdf_string(to_urdf(robot))
     np.testing.assert_allclose(jacobian(again, q), jacobian(robot, q), atol=1e-12)
+
+
+# ------------------------------------------------------------- huge angles and hostile q
+def exact_reduction(q: np.ndarray) -> np.ndarray:
+    """q modulo 2π computed with 60 significant digits (mpmath), independent of NumPy's reduction."""
+    mpmath.mp.dps = 60
+    return np.array([float(mpmath.fmod(mpmath.mpf(float(v)), 2 * mpmath.pi)) for v in q])
+
+
+@pytest.mark.parametrize("name", ["puma560", "panda", "stanford", "scara"])
+@pytest.mark.parametrize("scale", [1e16, 3.7e17, -1e18])
+def test_fk_stays_rigid_and_exact_at_huge_angles(name, scale):
+    """|q| ~ 1e16: R stays a rotation (it reached ‖RᵀR − I‖ = 1.5 when sin was formed as cos(θ − π/2)),
+    and it is the pose at q mod 2π, reduced exactly: single and batched kernels, J and link frames."""
+    robot = ROBOTS[name]
+    rng = np.random.default_rng(7)
+    revolute = np.array([k == "revolute" for k in robot.joint_types])
+    q = np.where(revolute, scale * rng.uniform(0.5, 1.0, robot.dof), 0.2)
+    q_small = np.where(revolute, exact_reduction(q), q)
+    for T in (fk(robot, q), fk(robot, q[None])[0], link_frames(robot, q)[-1]):
+        R = T[:3, :3]
+        assert np.abs(R.T @ R - np.eye(3)).max() < 1e-12
+        np.testing.assert_allclose(T, fk(robot, q_small), atol=1e-12)
+    np.testing.assert_allclose(jacobian(robot, q), jacobian(robot, q_small), atol=1e-12)
+    np.testing.assert_allclose(jacobian(robot, q[None])[0], jacobian(robot, q_small), atol=1e-12)
+
+
+ARM = Robot.from_dh(
+    [
+        dict(joint="revolute", a=1.0, alpha=0.0, d=0.0, theta=0.0, name="shoulder"),
+        dict(joint="prismatic", a=0.0, alpha=0.0, d=0.0, theta=0.0, name="slide"),
+    ],
+    name="arm",
+)
+
+
+@pytest.mark.parametrize(
+    ("q", "message"),
+    [
+        (["0.1", "0.2"], r"q must hold ints or floats, got strings: \['0.1', '0.2'\]"),
+        ([b"1", b"2"], "q must hold ints or floats, got bytes"),
+        ([0.1 + 1j, 0.2], "q must hold ints or floats, got complex numbers"),
+        (np.array([0.1, 0.2], dtype=object), "q must hold ints or floats, got Python objects"),
+        ([True, False], "q must hold ints or floats, got bools"),
+        ([None, 0.2], "q must hold ints or floats, got Python objects"),
+        ([10**400, 0.2], "q must hold ints or floats, got Python objects"),
+        ([[0.1, 0.2], [0.3]], r"q must be an array of numbers, got \[\[0.1, 0.2\], \[0.3\]\]"),
+        ({"shoulder": 0.1}, "q must hold ints or floats, got Python objects"),
+        ([0.1, 0.2, 0.3], r"q has shape \(3,\); robot 'arm' expects \(2,\) or \(N, 2\)"),
+        (0.1, r"q has shape \(\); robot 'arm' expects"),
+        ([0.1, math.inf], r"q contains NaN or infinity \(joint 'slide': inf\)"),
+        ([[0.0, 0.0], [math.nan, 0.0]], r"q contains NaN or infinity \(joint 'shoulder': nan\)"),
+        ([0.0, 2e15], r"q: joint 'slide' value 2e\+15 m is out of range; expected \|value\| ≤ 1e\+15 m"),
+        (
+            [-2e18, 0.0],
+            r"q: joint 'shoulder' value -2e\+18 rad is out of range; expected \|value\| ≤ 1e\+18 rad",
+        ),
+    ],
+)
+def test_hostile_q_is_refused_with_the_reason(q, message):
+    for fn in (fk, jacobian, link_frames, joint_frames):
+        with pytest.raises(ConfigurationError, match=message):
+            fn(ARM, q)
+    with pytest.raises(ConfigurationError, match=message.replace("q ", "qd ", 1).replace("q:", "qd:", 1)):
+        jacobian_dot(ARM, [0.0, 0.0], q)
+
+
+def test_values_just_inside_the_bounds_are_accepted():
+    q = np.array([1e18, 1e15])
+    T = fk(ARM, q)
+    assert np.isfinite(T).all() and np.isfinite(jacobian(ARM, q)).all()
+    assert T[2, 3] == pytest.approx(1e15)  # the slide moves along z by q2
+    assert fk(ARM, np.zeros((0, 2))).shape == (0, 4, 4)  # an empty batch is a batch
+
+
+@pytest.mark.parametrize("frame", ["world", "Base", "", None, 0, np.array(["base"])])
+def test_unknown_frames_name_the_valid_ones(frame):
+    for call in (
+        lambda: jacobian(ARM, [0.0, 0.0], frame=frame),
+        lambda: jacobian_dot(ARM, [0.0, 0.0], [1.0, 0.0], frame=frame),
+    ):
+        with pytest.raises(OptionError, match="frame must be one of 'base', 'tool'"):
+            call()
+    with pytest.raises(OptionError, match="frame='base' only"):
+        jacobian_dot(ARM, [0.0, 0.0], [1.0, 0.0], frame="tool")
+
+
+def test_fixed_transforms_compose_to_fk():
+    """T_base_tool = F[0] · M_1(q) · F[1] ⋯ M_m(q) · F[m], with M an elementary z move (the model's formula)."""
+    robot = ROBOTS["stanford"]
+    q = random_q(robot, np.random.default_rng(3))
+    F = robot.fixed_transforms()
+    T = F[0]
+    for k, ax in enumerate(robot.axes):
+        v = ax.multiplier * q[ax.joint_index] + ax.offset
+        T = T @ (rot_z(v) if ax.kind == "revolute" else trans(z=v)) @ F[k + 1]
+    np.testing.assert_allclose(T, fk(robot, q), atol=1e-12)
+
+
+def test_computing_with_a_robot_does_not_keep_it_alive():
+    robot = Robot.from_dh([dict(joint="revolute", a=1.0, alpha=0.0, d=0.0, theta=0.0)])
+    jacobian(robot, [0.3]), fk(robot, [[0.3]])
+    ref = weakref.ref(robot)
+    del robot
+    gc.collect()
+    assert ref() is None

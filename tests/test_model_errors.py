@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -10,6 +11,9 @@ import pytest
 from kinematics import (
     ConfigurationError,
     JacobianLabError,
+    Joint,
+    NamedConfiguration,
+    OptionError,
     Robot,
     RobotDefinitionError,
     UrdfError,
@@ -33,7 +37,10 @@ def with_(**changes):
         ([], "empty"),
         ("not rows", "sequence of mappings"),
         ([ROW, {k: v for k, v in ROW.items() if k != "alpha"}], r"DH row 2: missing key\(s\) 'alpha'"),
-        ([with_(joint="spherical")], "DH row 1: 'joint' must be 'revolute' or 'prismatic', got 'spherical'"),
+        (
+            [with_(joint="spherical")],
+            "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 'spherical'",
+        ),
         ([with_(a=float("nan"))], "DH row 1, key 'a': expected a finite number, got nan"),
         ([with_(d=math.inf)], "DH row 1, key 'd': expected a finite number"),
         ([with_(theta="90")], "DH row 1, key 'theta': expected a number, got '90'"),
@@ -52,7 +59,7 @@ def test_bad_dh_rows(rows, message):
 
 def test_bad_convention():
     with pytest.raises(
-        RobotDefinitionError, match="convention must be 'standard' or 'modified', got 'craig'"
+        RobotDefinitionError, match="DH convention: expected one of 'standard', 'modified', got 'craig'"
     ):
         Robot.from_dh([ROW], convention="craig")
 
@@ -84,7 +91,7 @@ def test_bad_base_is_named():
         ([0.0, 0.0, 0.0], r"q has shape \(3,\); robot 'two' expects \(2,\) or \(N, 2\)"),
         ([[[0.0, 0.0]]], r"q has shape \(1, 1, 2\)"),
         ([0.0, float("nan")], "q contains NaN or infinity"),
-        (["a", "b"], "q must be numeric"),
+        (["a", "b"], "q must hold ints or floats, got strings"),
     ],
 )
 def test_bad_configuration(q, message):
@@ -101,8 +108,114 @@ def test_errors_are_value_errors():
 
 
 def test_bad_frame_argument():
-    with pytest.raises(ValueError, match="frame must be 'base' or 'tool', got 'world'"):
+    with pytest.raises(OptionError, match="frame must be one of 'base', 'tool' .*, got 'world'"):
         jacobian(Robot.from_dh([ROW]), [0.0], frame="world")
+
+
+@pytest.mark.parametrize(
+    ("row_changes", "message"),
+    [
+        (
+            {"a": 10**400},
+            r"DH row 1, key 'a': expected a finite number, got 1000.*beyond the range of a float",
+        ),
+        ({"d": "1e400"}, r"DH row 1, key 'd': expected a number, got '1e400' \(a string\)"),
+        ({"alpha": b"0"}, r"DH row 1, key 'alpha': expected a number, got b'0' \(a bytes value\)"),
+        ({"theta": np.bool_(True)}, r"DH row 1, key 'theta': expected a number, got np.True_ \(a bool\)"),
+        ({"a": None}, r"DH row 1, key 'a': expected a number, got None \(a NoneType\)"),
+        ({"a": 1 + 0j}, r"DH row 1, key 'a': expected a number, got \(1\+0j\) \(a complex\)"),
+        ({"theta": -math.inf}, "DH row 1, key 'theta': expected a finite number, got -inf"),
+        ({"a": 2e15}, r"DH row 1, key 'a': 2e\+15 m is out of range; expected \|value\| ≤ 1e\+15 m"),
+        (
+            {"alpha": 1e19},
+            r"DH row 1, key 'alpha': 1e\+19 rad is out of range; expected \|value\| ≤ 1e\+18 rad",
+        ),
+        ({"alfa": 0.0}, r"DH row 1: unknown key\(s\) 'alfa' \(did you mean 'alpha'\?\); allowed: joint, a"),
+        ({1: 0.0}, "DH row 1: keys must be strings, got 1; expected joint, a, alpha, d, theta"),
+        (
+            {"joint": "revolut"},
+            "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 'revolut' "
+            r"\(did you mean 'revolute'\?\)",
+        ),
+        ({"joint": 1}, "DH row 1, key 'joint': expected one of 'revolute', 'prismatic', got 1$"),
+        ({"name": 5}, "DH row 1, key 'name': expected a string, got 5"),
+        ({"qlim": (float("nan"), 1.0)}, "DH row 1, key 'qlim': expected a number, got NaN"),
+        (
+            {"qlim": (math.inf, math.inf)},
+            "DH row 1, key 'qlim': lower limit inf must be below upper limit inf",
+        ),
+        ({"qlim": "ab"}, r"DH row 1, key 'qlim': expected \(lower, upper\), got 'ab'"),
+        ({"qlim": (0, "1")}, r"DH row 1, key 'qlim': expected a number, got '1' \(a string\)"),
+    ],
+)
+def test_bad_dh_values_name_row_key_and_expectation(row_changes, message):
+    row = {**ROW, **row_changes}
+    with pytest.raises(RobotDefinitionError, match=message):
+        Robot.from_dh([row])
+
+
+def test_the_row_number_is_counted_from_one():
+    with pytest.raises(RobotDefinitionError, match="^DH row 3, key 'd': expected a finite number, got nan$"):
+        Robot.from_dh([ROW, ROW, with_(d=math.nan)])
+
+
+def test_exact_numbers_of_any_numeric_type_are_accepted():
+    """ints, Fractions and NumPy numbers are numbers: the tool lands where the DH table says."""
+    rows = [with_(a=Fraction(1, 2)), with_(a=np.int64(2), d=np.float32(0.25))]
+    robot = Robot.from_dh(rows)
+    np.testing.assert_allclose(fk(robot, [0.0, 0.0])[:3, 3], [2.5, 0.0, 0.25], atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"convention": 3}, "DH convention: expected one of 'standard', 'modified', got 3"),
+        ({"convention": "modifed"}, r"got 'modifed' \(did you mean 'modified'\?\)"),
+        (
+            {"task": "position"},
+            "robot '', task: expected one of 'auto', 'full', 'linear', 'angular', 'planar'",
+        ),
+        ({"planar": "yes"}, "robot '', planar: expected true or false, got 'yes'"),
+        ({"name": 7}, "robot name: expected a string, got 7"),
+        (
+            {"base": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 2e15], [0, 0, 0, 1]]},
+            r"base: translation \[0.0, 0.0, 2000000000000000.0\] m is out of range",
+        ),
+        ({"tool": np.eye(4, dtype=bool)}, "tool: expected a 4×4 numeric matrix of ints or floats, got bools"),
+        (
+            {"tool": [[1, 0, 0, 10**400], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]},
+            "tool: expected a 4×4 numeric matrix of ints or floats, got objects",
+        ),
+    ],
+)
+def test_bad_robot_options(kwargs, message):
+    with pytest.raises(RobotDefinitionError, match=message):
+        Robot.from_dh([ROW], **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("q", "message"),
+    [
+        ([0.0, math.nan], r"configuration 'c', q\[1\]: expected a finite number, got nan"),
+        ([0.0, "1"], r"configuration 'c', q\[1\]: expected a number, got '1' \(a string\)"),
+        ([0.0], r"configuration 'c' has 1 values, expected 2 \(one per joint\)"),
+        (
+            [0.0, 2e15],
+            r"configuration 'c', joint 'slide': 2e\+15 m is out of range; expected \|q\| ≤ 1e\+15 m",
+        ),
+        ("00", "configuration 'c': q must be a sequence of numbers, got '00'"),
+    ],
+)
+def test_bad_named_configurations(q, message):
+    rows = [ROW, with_(joint="prismatic", name="slide")]
+    with pytest.raises(RobotDefinitionError, match=message):
+        Robot.from_dh(rows, configurations=[NamedConfiguration("c", q)])
+
+
+def test_configuration_names_are_unique():
+    confs = [NamedConfiguration("home", [0.0]), NamedConfiguration("home", [1.0])]
+    with pytest.raises(RobotDefinitionError, match="configuration 'home' is named twice"):
+        Robot.from_dh([ROW], configurations=confs)
 
 
 LINK = '<link name="{}"/>'
@@ -220,3 +333,36 @@ def test_urdf_chain_without_meshes(tmp_path):
     T = fk(robot, [0.0, 0.2])
     # slide axis x of l2-frame-before-motion = Ry(90°)·x = -z; tool offset z of l2 = Ry(90°)·z = +x.
     np.testing.assert_allclose(T[:3, 3], [0.5 + 0.1, 0.0, -0.2], atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("qlim", "expected"),
+    [
+        ((-1.0, 2.0), (-1.0, 2.0)),
+        ((-1e16, 1e16), None),  # URDF sentinels for "unlimited"
+        ((-1e308, 1e308), None),
+        ((-math.inf, math.inf), None),
+        ((0.0, math.inf), None),  # unlimited on one side: unlimited (sliders need both ends)
+        ((-(10**400), 0.0), None),  # beyond float range is beyond 1e15 too
+        ((-999e12, 999e12), (-999e12, 999e12)),  # just below the sentinel threshold: kept
+        (None, None),
+    ],
+)
+def test_huge_limits_mean_unlimited_in_every_loader(qlim, expected):
+    assert Joint("j", "revolute", qlim).qlim == expected
+    robot = Robot.from_dh([with_(qlim=qlim)])
+    assert robot.joints[0].qlim == expected
+    lo, hi = expected if expected is not None else (-math.inf, math.inf)
+    assert robot.qlim[:, 0].tolist() == [lo, hi]
+    assert robot.home.tolist() == [0.0 if expected is None else (lo + hi) / 2]
+
+
+def test_urdf_sentinel_limits_mean_unlimited():
+    text = urdf(
+        LINK.format("a"),
+        LINK.format("b"),
+        joint("j1", "a", "b").replace('lower="-1" upper="1"', 'lower="-1e16" upper="1e16"'),
+    )
+    robot = robot_from_urdf_string(text)
+    assert robot.joints[0].qlim is None
+    assert np.all(np.isinf(robot.qlim)) and robot.home.tolist() == [0.0]

@@ -32,7 +32,7 @@ from .derivations import (
     jacobian_velocity_propagation,
     jacobian_whitney,
 )
-from .model import PARAM_NAMES, SymbolicError, SymbolicModel, build_model
+from .model import SymbolicError, SymbolicModel, build_model
 from .printing import Notation
 from .render import jacobian_latex, jacobian_mathml, latex_parts, mathml_parts
 from .singular import Determinant, SingularSet, det_rows, determinant, singular_sets
@@ -70,7 +70,6 @@ __all__ = [
     "build_model",
     "SymbolicModel",
     "SymbolicError",
-    "PARAM_NAMES",
     "normal_form",
     "is_zero",
 ]

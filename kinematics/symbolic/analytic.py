@@ -111,8 +111,10 @@ def analytic_jacobian(
         use_cache: Read and write the cache of J.
 
     Example:
-        >>> import robots
-        >>> A = analytic_jacobian(robots.load("planar2"), "zyz", use_cache=False)
+        >>> from kinematics import Robot
+        >>> row = dict(joint="revolute", a=1.0, alpha=0.0, d=0.0, theta=0.0)
+        >>> planar2 = Robot.from_dh([row, row], planar=True)
+        >>> A = analytic_jacobian(planar2, "zyz", use_cache=False)
         >>> A.condition, A.singular_values
         (sin(theta), (0, pi))
     """

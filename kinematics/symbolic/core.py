@@ -152,8 +152,10 @@ def fk(
         use_cache: Read and write the cache.
 
     Example:
-        >>> import robots
-        >>> fk(robots.load("planar2"), use_cache=False)[0, 3]
+        >>> from kinematics import Robot
+        >>> row = dict(joint="revolute", a=1.0, alpha=0.0, d=0.0, theta=0.0)
+        >>> planar2 = Robot.from_dh([row, row], planar=True)
+        >>> fk(planar2, use_cache=False)[0, 3]
         cos(q1) + cos(q1 + q2)
     """
     if not simplify:
@@ -181,8 +183,10 @@ def jacobian(
         use_cache: Read and write the cache.
 
     Example:
-        >>> import robots
-        >>> jacobian(robots.load("planar2"), symbolic_params=True, use_cache=False)[:2, :]
+        >>> from kinematics import Robot
+        >>> row = dict(joint="revolute", a=1.0, alpha=0.0, d=0.0, theta=0.0)
+        >>> planar2 = Robot.from_dh([row, row], planar=True)
+        >>> jacobian(planar2, symbolic_params=True, use_cache=False)[:2, :]
         Matrix([
         [-a1*sin(q1) - a2*sin(q1 + q2), -a2*sin(q1 + q2)],
         [ a1*cos(q1) + a2*cos(q1 + q2),  a2*cos(q1 + q2)]])

@@ -3,8 +3,9 @@
 Every numeric quantity of the model becomes an exact SymPy number
 (:mod:`.exact`: π/2 stays π/2, 0.4318 becomes 2159/5000). With
 ``symbolic_params=True`` the DH lengths and offsets become symbols instead
-(``a2``, ``d4``, … in the usual DH names; ``l1, l2, l3`` for the course's
-robots, see :data:`PARAM_NAMES`), which is how a course writes J.
+(``a2``, ``d4``, … in the usual DH names, or the course's names a robot file gives in
+its ``[symbols]`` table: :attr:`~kinematics.model.Robot.param_names`), which is how a course
+writes J.
 
 Joint variables are the real symbols ``q1 … qn``; their display names
 (θᵢ for a revolute joint, dᵢ for a prismatic one) are kept in
@@ -28,24 +29,10 @@ __all__ = [
     "SymbolicModel",
     "build_model",
     "check_frame",
-    "PARAM_NAMES",
     "FRAMES",
 ]
 
 FRAMES = ("base", "tool")
-
-PARAM_NAMES: dict[str, dict[str, str]] = {
-    "trr": {"a1": "l1", "a2": "l2", "a3": "l3"},
-    "planar3": {"a1": "l1", "a2": "l2", "a3": "l3"},
-    "elbow3r": {"a1": "L1", "a2": "L2", "xt": "L3"},
-}
-"""Course names of the symbolic parameters, per library robot: default name → course name.
-
-Default names are the DH ones (``a{i}``, ``alpha{i}``, ``d{i}``, ``theta{i}``; for the
-modified convention ``a`` and ``alpha`` of row i are Craig's a_{i-1}, α_{i-1}), ``d{i}0`` /
-``theta{i}0`` for the constant offset of a joint variable, and ``xt, yt, zt`` / ``xb, yb, zb``
-for the tool / base translation.
-"""
 
 
 class SymbolicError(JacobianLabError):
@@ -135,7 +122,11 @@ class _Params:
 
     def __init__(self, robot: Robot, enabled: bool) -> None:
         self.enabled = enabled
-        self.rename = PARAM_NAMES.get(robot.name, {})
+        # Course names from the robot (Robot.param_names, checked there). Default names are the DH
+        # ones (a{i}, alpha{i}, d{i}, theta{i}; for the modified convention a and alpha of row i are
+        # Craig's a_{i-1}, alpha_{i-1}), d{i}0 / theta{i}0 for the constant offset of a joint
+        # variable, and xt, yt, zt / xb, yb, zb for the tool / base translation.
+        self.rename = dict(robot.param_names)
         self.values: dict[sp.Symbol, float] = {}
         self.display: dict[sp.Symbol, str] = {}
 

@@ -235,8 +235,10 @@ def determinant(
         progress: Called with short progress messages.
 
     Example:
-        >>> import robots
-        >>> d = determinant(robots.load("planar2"), symbolic_params=True, use_cache=False)
+        >>> from kinematics import Robot
+        >>> row = dict(joint="revolute", a=1.0, alpha=0.0, d=0.0, theta=0.0)
+        >>> planar2 = Robot.from_dh([row, row], planar=True)
+        >>> d = determinant(planar2, symbolic_params=True, use_cache=False)
         >>> d.expr, [s.solutions for s in d.singular_sets]
         (a1*a2*sin(q2), [(0, pi)])
     """

@@ -1,0 +1,282 @@
+"""The numeric kernels behind :mod:`kinematics.numeric`: per-robot precomputed arrays and the
+single and batched chain evaluations.
+
+:func:`kernel` returns a robot's :class:`Kernel` (built on first use, cached while the robot
+lives: the robot is immutable, so it never goes stale, and the cache holds the robot weakly).
+The functions here take already-checked input (``q`` from
+:func:`kinematics.numeric.as_configuration`); use the public functions of
+:mod:`kinematics.numeric` instead.
+"""
+
+from __future__ import annotations
+
+import functools
+import weakref
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import RobotDefinitionError
+from .model import Robot
+from .validation import MAX_ANGLE, MAX_LENGTH, show
+
+__all__ = [
+    "Kernel",
+    "kernel",
+    "chain_single",
+    "axis_jacobian",
+    "jacobian_from_frames",
+    "batched_fk",
+    "batched_jacobian",
+]
+
+_CHUNK = 2048  # configurations per chunk in batched kernels (keeps working arrays in cache)
+
+
+@dataclass(frozen=True, eq=False)
+class Kernel:
+    """Arrays precomputed once per robot for the numeric kernels (see :func:`kernel`).
+
+    ``fixed`` is :meth:`Robot.fixed_transforms`: T_base_tool = fixed[0] · M_1 · fixed[1] ⋯ M_m · fixed[m].
+    """
+
+    fixed: np.ndarray  # (m+1, 4, 4)
+    index: np.ndarray  # (m,) int
+    multiplier: np.ndarray  # (m,)
+    offset: np.ndarray  # (m,)
+    revolute: np.ndarray  # (m,) float 1.0/0.0
+    prismatic: np.ndarray  # (m,) float
+    simple: bool  # one axis per joint, in order, multiplier 1
+    selection: np.ndarray  # (m, n): column k of J = Σ_axes selection[axis, k] · contribution
+    all_revolute: bool
+    prismatic_index: np.ndarray  # (p,) indices of prismatic axes
+    rz_cos: np.ndarray  # (m, 4, 4): Rz(θ) F_k = cos θ · rz_cos + sin θ · rz_sin + rz_const
+    rz_sin: np.ndarray
+    rz_const: np.ndarray
+    tz_lin: np.ndarray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
+    bound: np.ndarray  # (n,) largest accepted |q| per joint: MAX_ANGLE [rad] or MAX_LENGTH [m]
+
+    def __post_init__(self) -> None:
+        for value in vars(self).values():
+            if isinstance(value, np.ndarray):
+                value.flags.writeable = False
+
+    @staticmethod
+    def build(robot: Robot) -> Kernel:
+        m, n = len(robot.axes), robot.dof
+        fixed = robot.fixed_transforms()
+        index = np.array([ax.joint_index for ax in robot.axes], dtype=int)
+        mult = np.array([ax.multiplier for ax in robot.axes])
+        rev = np.array([1.0 if ax.kind == "revolute" else 0.0 for ax in robot.axes])
+        sel = np.zeros((m, n))
+        sel[np.arange(m), index] = mult
+        simple = m == n and bool(np.all(index == np.arange(n))) and bool(np.all(mult == 1.0))
+        offset = np.array([ax.offset for ax in robot.axes])
+        pri_idx = np.flatnonzero(rev == 0.0)
+        F = fixed[1:]
+        Dc, Ds, E, Dz = np.diag([1.0, 1, 0, 0]), np.zeros((4, 4)), np.diag([0.0, 0, 1, 1]), np.zeros((4, 4))
+        Ds[0, 1], Ds[1, 0], Dz[2, 3] = -1.0, 1.0, 1.0
+        bound = np.array([MAX_ANGLE if j.kind == "revolute" else MAX_LENGTH for j in robot.joints])
+        return Kernel(
+            fixed=fixed,
+            index=index,
+            multiplier=mult,
+            offset=offset,
+            revolute=rev,
+            prismatic=1.0 - rev,
+            simple=simple,
+            selection=sel,
+            all_revolute=len(pri_idx) == 0,
+            prismatic_index=pri_idx,
+            rz_cos=Dc @ F,
+            rz_sin=Ds @ F,
+            rz_const=E @ F,
+            tz_lin=Dz @ F,
+            bound=bound,
+        )
+
+
+# id(robot) -> (weak reference to the robot, its kernel). Faster to query than a
+# WeakKeyDictionary (this sits on every call); the reference's callback drops the entry when the
+# robot is collected, before its id can be reused, and the identity check guards the rest.
+_KERNELS: dict[int, tuple[weakref.ref[Robot], Kernel]] = {}
+
+
+def kernel(robot: Robot) -> Kernel:
+    """The precomputed arrays of ``robot``, built on first use and kept while the robot lives.
+
+    The robot is immutable, so they never go stale; the cache holds the robot weakly.
+
+    Raises:
+        RobotDefinitionError: ``robot`` is not a :class:`~kinematics.model.Robot`.
+    """
+    entry = _KERNELS.get(id(robot))
+    if entry is not None and entry[0]() is robot:
+        return entry[1]
+    if not isinstance(robot, Robot):
+        raise RobotDefinitionError(f"expected a kinematics.Robot, got {show(robot)}")
+    built = Kernel.build(robot)
+    key = id(robot)
+    _KERNELS[key] = (weakref.ref(robot, functools.partial(_forget, key)), built)
+    return built
+
+
+def _forget(key: int, ref: weakref.ref[Robot]) -> None:
+    """Drop the kernel of a collected robot (unless the entry was replaced meanwhile)."""
+    entry = _KERNELS.get(key)
+    if entry is not None and entry[0] is ref:
+        del _KERNELS[key]
+
+
+def chain_single(c: Kernel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Joint frames T_base_joint (m, 4, 4) (before each axis moves) and T_base_tool."""
+    qa = q if c.simple else q[c.index] * c.multiplier
+    qa = qa + c.offset
+    # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
+    # moved-and-fixed transform of every axis comes from a few whole-stack operations. Sine and
+    # cosine come from the same argument, which NumPy reduces modulo 2π accurately (tested against
+    # an exact reduction), so the rotation stays orthonormal for any |θ|; forming sin θ as
+    # cos(θ − π/2) would not, once θ − π/2 rounds (‖RᵀR − I‖ reached 1.5 at |θ| ~ 1e16).
+    th = qa if c.all_revolute else qa * c.revolute
+    P = np.cos(th)[:, None, None] * c.rz_cos + np.sin(th)[:, None, None] * c.rz_sin + c.rz_const
+    if not c.all_revolute:
+        P += (qa * c.prismatic)[:, None, None] * c.tz_lin
+    # Prefix products A_0 · A_1 ⋯ A_k by a parallel scan: log2(m + 1) stacked matmuls.
+    A = np.concatenate((c.fixed[:1], P))
+    step = 1
+    while step < len(A):
+        A[step:] = np.matmul(A[:-step], A[step:])
+        step *= 2
+    return A[:-1], A[-1]
+
+
+def _levi_civita_map() -> np.ndarray:
+    """The Levi-Civita tensor as a (3, 9) map: (z @ map).reshape(3, 3) is the cross-product matrix [z]×."""
+    eps = np.zeros((3, 3, 3))
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        eps[k, i, j] = -1.0
+        eps[k, j, i] = 1.0
+    return eps.reshape(3, 9)
+
+
+_SKEW = _levi_civita_map()
+
+
+def axis_jacobian(c: Kernel, W: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Per-axis Jacobian columns (6, m) from the joint frames W and the tool pose T."""
+    m = len(W)
+    z = W[:, :3, 2]
+    r = T[:3, 3] - W[:, :3, 3]
+    J = np.empty((6, m))
+    # z × r for every axis at once: [z]x r as one batched matrix-vector product.
+    np.matmul((z @ _SKEW).reshape(m, 3, 3), r[:, :, None], out=J[:3].T[:, :, None])
+    J[3:] = z.T
+    if not c.all_revolute:
+        pri = c.prismatic_index
+        J[:3, pri] = z[pri].T
+        J[3:, pri] = 0.0
+    return J
+
+
+def jacobian_from_frames(c: Kernel, W: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """The geometric Jacobian (6, n) from the joint frames W and the tool pose T (mimic axes summed)."""
+    J = axis_jacobian(c, W, T)
+    return J if c.simple else J @ c.selection
+
+
+def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray:
+    """Σ coefficient · array, skipping zero coefficients and multiplications by ±1.
+
+    Returns the input array itself (no copy) for a single unit term: arrays
+    are never modified in place, so sharing is safe. Zeros if every coefficient is zero.
+    """
+    out = None
+    for coef, arr in terms:
+        if abs(coef) < 1e-15:
+            continue
+        if out is None:
+            out = arr if coef == 1.0 else -arr if coef == -1.0 else coef * arr
+        elif coef == 1.0:
+            out = out + arr
+        elif coef == -1.0:
+            out = out - arr
+        else:
+            out = out + coef * arr
+    return np.zeros_like(terms[0][1]) if out is None else out
+
+
+def _apply_fixed(cols: list[np.ndarray], p: np.ndarray, F: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
+    """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N) and p (3, N)."""
+    new_cols = [_lin([(F[k, j], cols[k]) for k in range(3)]) for j in range(3)]
+    new_p = _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)])
+    return new_cols, new_p
+
+
+def _chain_batch(c: Kernel, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
+    """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
+    N = q.shape[0]
+    m = len(c.offset)
+    qa = (q if c.simple else q[:, c.index] * c.multiplier) + c.offset  # (N, m)
+    F0 = c.fixed[0]
+    ones = np.ones((3, N))
+    # Rotation columns (3, N) and position (3, N) of the running frame.
+    cols = [F0[:3, j, None] * ones for j in range(3)]
+    p = F0[:3, 3, None] * ones
+    zs: list[np.ndarray] = []
+    ps: list[np.ndarray] = []
+    qa_t = qa.T  # (m, N)
+    cosv = np.cos(qa_t)
+    sinv = np.sin(qa_t)
+    for k in range(m):
+        zs.append(cols[2])
+        ps.append(p)
+        if c.revolute[k]:
+            ck, sk = cosv[k], sinv[k]
+            c0, c1 = cols[0], cols[1]
+            cols = [ck * c0 + sk * c1, ck * c1 - sk * c0, cols[2]]
+        else:
+            p = p + qa_t[k] * cols[2]
+        cols, p = _apply_fixed(cols, p, c.fixed[k + 1])
+    T = np.zeros((N, 4, 4))
+    T[:, :3, 0] = cols[0].T
+    T[:, :3, 1] = cols[1].T
+    T[:, :3, 2] = cols[2].T
+    T[:, :3, 3] = p.T
+    T[:, 3, 3] = 1.0
+    if not want_jacobian:
+        return T, None
+    Z = np.stack(zs)  # (m, 3, N)
+    R = p[None] - np.stack(ps)  # (m, 3, N)
+    Jc = np.empty((6, m, N))
+    rev = c.revolute[:, None]
+    pri = c.prismatic[:, None]
+    Jc[0] = (Z[:, 1] * R[:, 2] - Z[:, 2] * R[:, 1]) * rev + Z[:, 0] * pri
+    Jc[1] = (Z[:, 2] * R[:, 0] - Z[:, 0] * R[:, 2]) * rev + Z[:, 1] * pri
+    Jc[2] = (Z[:, 0] * R[:, 1] - Z[:, 1] * R[:, 0]) * rev + Z[:, 2] * pri
+    Jc[3:] = Z.transpose(1, 0, 2) * rev
+    if c.simple:
+        J = Jc.transpose(2, 0, 1)
+    else:
+        J = np.einsum("imN,mn->Nin", Jc, c.selection)
+    return T, J
+
+
+def batched_fk(c: Kernel, q: np.ndarray) -> np.ndarray:
+    """T_base_tool (N, 4, 4) for a batch q (N, n), chunk by chunk."""
+    T = np.empty((q.shape[0], 4, 4))
+    for s in range(0, q.shape[0], _CHUNK):
+        T[s : s + _CHUNK] = _chain_batch(c, q[s : s + _CHUNK], want_jacobian=False)[0]
+    return T
+
+
+def batched_jacobian(c: Kernel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """T_base_tool (N, 4, 4) and the base-frame J (N, 6, n) for a batch q (N, n), chunk by chunk."""
+    N = q.shape[0]
+    T = np.empty((N, 4, 4))
+    J = np.empty((N, 6, c.selection.shape[1]))
+    for s in range(0, N, _CHUNK):
+        Tc, Jc = _chain_batch(c, q[s : s + _CHUNK], want_jacobian=True)
+        T[s : s + _CHUNK] = Tc
+        if Jc is not None:
+            J[s : s + _CHUNK] = Jc
+    return T, J
