@@ -123,7 +123,7 @@ def check_listen_address(host: str, port: int) -> None:
     try:
         infos = socket.getaddrinfo(host or None, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
     except (socket.gaierror, UnicodeError) as exc:
-        raise ValueError(f"host {host!r} is not a known name or address ({exc})") from exc
+        raise ValueError(f"cannot listen on host {host!r}: the name does not resolve ({exc})") from exc
     errors = []
     for family, kind, proto, _, address in infos:
         with socket.socket(family, kind, proto) as probe:
@@ -131,8 +131,11 @@ def check_listen_address(host: str, port: int) -> None:
                 probe.bind((address[0], 0))  # the address is ours (the port itself is viser's business)
                 return
             except OSError as exc:
-                errors.append(f"{address[0]}: {exc.strerror or exc}")
-    raise ValueError(f"cannot listen on host {host!r}: {'; '.join(errors)}")
+                errors.append(f"({address[0]}): {exc.strerror or exc}")
+    raise ValueError(
+        f"cannot listen on host {host!r} {'; '.join(errors)}; use an address of this machine, "
+        "e.g. 127.0.0.1 or 0.0.0.0"
+    )
 
 
 def terminate_children(timeout: float = 2.0) -> None:

@@ -236,17 +236,6 @@ def urdf(*parts):
     ("text", "kwargs", "message"),
     [
         (
-            urdf(
-                LINK.format("a"),
-                LINK.format("b"),
-                LINK.format("c"),
-                joint("j1", "a", "b"),
-                joint("j2", "a", "c"),
-            ),
-            {},
-            r"the tree below 'a' has 2 leaves \(b, c\); choose one as tip_link",
-        ),
-        (
             urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b")),
             {"tip_link": "hand"},
             "unknown tip_link 'hand'; links: a, b",

@@ -12,18 +12,7 @@ import kinematics
 KINEMATICS = Path(kinematics.__file__).parent
 
 
-MODULES = [
-    pytest.param(
-        p,
-        id=str(p.relative_to(KINEMATICS)),
-        marks=pytest.mark.xfail(
-            strict=True, reason="the export CLI (which loads robots) is moving to app/ on another branch"
-        ),
-    )
-    if p.name == "export.py"
-    else pytest.param(p, id=str(p.relative_to(KINEMATICS)))
-    for p in sorted(KINEMATICS.rglob("*.py"))
-]
+MODULES = [pytest.param(p, id=str(p.relative_to(KINEMATICS))) for p in sorted(KINEMATICS.rglob("*.py"))]
 
 
 @pytest.mark.parametrize("path", MODULES)
