@@ -11,9 +11,12 @@ stops, saying why, at the end of a slider.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
+
+from kinematics import Robot
 
 from .actions import (
     Action,
@@ -72,12 +75,17 @@ def _with(a: np.ndarray, i: int, x: float) -> np.ndarray:
 
 
 def named_configuration_at(state: LabState, q: np.ndarray) -> str:
-    """The name of the robot's named configuration (or "home") equal to ``q``, else ""."""
-    robot = state.robot
-    for c in robot.configurations:
-        if np.allclose(c.q, q, rtol=0.0, atol=1e-12):
-            return c.name
-    return "home" if np.allclose(robot.home, q, rtol=0.0, atol=1e-12) else ""
+    """The name of the robot's named configuration (or "home") equal to ``q`` (within 1e-12), else ""."""
+    names, table = _named_table(state.robot)
+    hit = np.flatnonzero((np.abs(table - q) <= 1e-12).all(axis=1))
+    return names[hit[0]] if hit.size else ""
+
+
+@functools.cache
+def _named_table(robot: Robot) -> tuple[tuple[str, ...], np.ndarray]:
+    """The robot's named configurations and then home, as names and one (k, n) array."""
+    names = (*(c.name for c in robot.configurations), "home")
+    return names, np.array([*(c.q for c in robot.configurations), robot.home], dtype=float)
 
 
 def reduce(state: LabState, action: Action) -> LabState:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import logging
 import multiprocessing
 import socket
+import sys
 import threading
 import time
 from pathlib import Path
@@ -22,6 +23,7 @@ import viser
 from .catalog import RobotCatalog
 from .hub import Hub
 from .lifecycle import check_listen_address, wait_for_stop
+from .renderer import Renderer
 from .session import ClientSession
 from .symbolic import SymbolicService
 from .viser_adapter import install_fast_prop_casts, install_message_limits
@@ -73,6 +75,7 @@ class Lab:
         self.server.initial_camera.position = (1.3, -1.5, 0.9)
         self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
         self.sessions: dict[int, ClientSession] = {}
+        self.renderer = Renderer()
         self.hub = Hub()
         self._gone: set[int] = set()
         self._lock = threading.Lock()
@@ -96,7 +99,9 @@ class Lab:
 
     def _connect(self, client: viser.ClientHandle) -> None:
         try:
-            session = ClientSession(client, self.catalog, self.symbolic, self.default_robot)
+            session = ClientSession(
+                client, self.catalog, self.symbolic, self.default_robot, renderer=self.renderer
+            )
         except Exception as exc:  # this client sees the error; the server and other clients carry on
             log.error("client %s: cannot start a session", client.client_id, exc_info=exc)
             try:
@@ -148,6 +153,7 @@ class Lab:
             self.sessions.clear()
         for session in sessions:
             session.close()
+        self.renderer.close()
         self.server.stop()
         self.symbolic.close()
 
@@ -186,6 +192,9 @@ def serve(
         )
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     logging.getLogger("websockets").setLevel(logging.WARNING)
+    # The renderer and viser's event loop share the interpreter lock: hand it over every 1 ms instead of
+    # 5 ms, so a redraw never holds back the sending of another tab's finished one for long.
+    sys.setswitchinterval(0.001)
     lab = Lab(robot=robot, urdf=urdf, host=host, port=port, base_link=base_link, tip_link=tip_link)
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if not block:

@@ -7,9 +7,10 @@ The flow is one-way::
 
 :meth:`ClientSession.dispatch` is the only way in, for the views, the
 tab's :class:`~app.ticker.Ticker` and the server's :class:`~app.hub.Hub`
-alike. Actions that arrive while a redraw is running are queued and reduced
-together, so a burst of slider messages costs one computation; redraws of
-one tab are at most :data:`MAX_REDRAWS_PER_SECOND`. Two actions are
+alike. It only queues the action: the server's one :class:`~app.renderer.Renderer`
+thread visits tabs in turn and reduces everything a tab queued since its last
+visit before drawing it once, so a burst of slider messages costs one
+computation, and redraws of one tab are at most :data:`MAX_REDRAWS_PER_SECOND`. Two actions are
 *commands* the session carries out itself: loading a robot
 (:class:`~app.actions.ChooseRobot`) and preparing a download.
 
@@ -51,6 +52,7 @@ from .camera import FROM_ABOVE, CameraMove, View, facing, framing, needs_framing
 from .catalog import RobotCatalog
 from .panel import PanelView
 from .reducer import reduce
+from .renderer import Renderer
 from .scene import SceneView
 from .snapshot import Snapshot, compute
 from .state import LabState
@@ -62,7 +64,7 @@ __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 log = logging.getLogger(__name__)
 
 MAX_REDRAWS_PER_SECOND = 40.0
-"""A tab is redrawn at most this often; faster input is coalesced (only the latest values count)."""
+"""A tab is redrawn at most this often; faster input is coalesced (all of it is reduced, drawn once)."""
 _JUMP = 0.35
 """A joint moving more than this [rad | m] in one action is a jump: the camera may re-frame."""
 
@@ -86,6 +88,7 @@ class ClientSession:
         symbolic: SymbolicService,
         robot_name: str,
         ticker: Ticker | None = None,
+        renderer: Renderer | None = None,
     ) -> None:
         self.client = client
         self.catalog = catalog
@@ -95,7 +98,9 @@ class ClientSession:
         self.redraws = 0
         self._queue: list[Action] = []
         self._queue_lock = threading.Lock()
-        self._busy = False
+        self._scheduled = False
+        self._own_renderer = renderer is None
+        self.renderer = renderer if renderer is not None else Renderer()
         self._drawing = threading.local()
         self._closed = False
         self._last_redraw = 0.0
@@ -114,35 +119,33 @@ class ClientSession:
 
     # ------------------------------------------------------------------ the way in
     def dispatch(self, action: Action) -> None:
-        """Apply ``action`` (from a view, the ticker or the hub) and redraw once.
+        """Queue ``action`` (from a view, the ticker or the hub); the renderer reduces and draws it.
 
-        Safe from any thread. Echoes of the session's own redraw (inputs it sets) are ignored.
+        Safe from any thread; returns at once. Echoes of the session's own redraw (inputs it sets)
+        are ignored. :meth:`settle` waits until everything dispatched is on screen.
         """
         if getattr(self._drawing, "active", False) or self._closed:
             return
         with self._queue_lock:
             self._queue.append(action)
-            if self._busy:
-                return  # the thread already draining this tab's queue will take it
-            self._busy = True
-        try:
-            self._drain()
-        except BaseException:
-            with self._queue_lock:
-                self._busy = False
-            raise
+            if self._scheduled:
+                return  # the renderer will take it with the others on its next visit
+            self._scheduled = True
+        self.renderer.schedule(self)
 
-    def _drain(self) -> None:
-        """Reduce queued actions in batches until the queue is empty (then release the tab)."""
-        while True:
-            wait = self._last_redraw + 1.0 / MAX_REDRAWS_PER_SECOND - time.monotonic()
-            if wait > 0 and not self._closed:
-                time.sleep(wait)  # collect the actions of this interval; they are reduced together
-            with self._queue_lock:
-                actions, self._queue = self._queue, []
-                if not actions or self._closed:
-                    self._busy = False
-                    return
+    def next_visit(self) -> float:
+        """When this tab may be redrawn again [monotonic s] (at most MAX_REDRAWS_PER_SECOND)."""
+        return self._last_redraw + 1.0 / MAX_REDRAWS_PER_SECOND
+
+    def visit(self) -> bool:
+        """Reduce every queued action and redraw once (called by the renderer thread).
+
+        Returns:
+            True when actions arrived meanwhile (the renderer visits again).
+        """
+        with self._queue_lock:
+            actions, self._queue = self._queue, []
+        if actions and not self._closed:
             with self.lock:
                 state, jump = self.state, False
                 for action in actions:
@@ -157,6 +160,11 @@ class ClientSession:
                         self._commit(state, rebuild=state.robot is not self.state.robot, jump=jump)
                     except Exception as exc:  # the tab keeps its last good state on screen
                         self.report_error(exc)
+        with self._queue_lock:
+            if self._queue and not self._closed:
+                return True
+            self._scheduled = False
+            return False
 
     def _apply(self, state: LabState, action: Action) -> LabState:
         """Reduce ``action``; carry out the commands (load a robot, prepare a download)."""
@@ -176,10 +184,10 @@ class ClientSession:
         return reduce(state, action)
 
     @property
-    def busy(self) -> bool:
-        """Whether a thread is reducing and drawing this tab's actions right now."""
+    def pending(self) -> bool:
+        """Whether actions of this tab wait for, or are in, the renderer's visit."""
         with self._queue_lock:
-            return self._busy
+            return self._scheduled
 
     @property
     def queued(self) -> int:
@@ -196,7 +204,7 @@ class ClientSession:
         end = time.monotonic() + timeout
         while time.monotonic() < end:
             with self._queue_lock:
-                if not self._busy and not self._queue:
+                if not self._scheduled and not self._queue:
                     return
             time.sleep(0.005)
         raise TimeoutError(f"client {self.client.client_id}: actions still queued after {timeout} s")
@@ -402,6 +410,8 @@ class ClientSession:
         """Forget the tab (it has gone: its handles went with its connection). Stops its ticker."""
         self._closed = True
         self.ticker.close()
+        if self._own_renderer:
+            self.renderer.close()
         self._camera.cancel()
         with self.lock:
             self._release_symbolic()

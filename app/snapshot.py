@@ -51,7 +51,7 @@ class Snapshot:
             singular); a planar arm has no rotational one (``None``).
         velocity, rotational, force: Ellipsoids at the tool point (base axes); the force
             ellipsoid only when it is drawn (``None`` otherwise).
-        lost: The lost direction, ω rows weighed by ``length``.
+        lost: The lost direction, ω rows weighed by ``length`` (``None`` when regular: not shown).
         length: Characteristic length L [m] (the arm's reach) weighing rad/s against m/s.
         twist: J_base q̇ (6,) [m/s; rad/s].
         rates: Joint rates for the desired twist, J⁺ v or damped (n,).
@@ -76,7 +76,7 @@ class Snapshot:
     velocity: Ellipsoid
     rotational: Ellipsoid | None
     force: Ellipsoid | None
-    lost: LostDirection
+    lost: LostDirection | None
     length: float
     twist: np.ndarray
     rates: np.ndarray
@@ -140,7 +140,7 @@ def compute(state: LabState) -> Snapshot:
         velocity=velocity,
         rotational=rotational,
         force=force_ellipsoid(J, "linear") if state.options.force_ellipsoid else None,
-        lost=lost_direction(J, rows, length),
+        lost=lost_direction(J, rows, length) if report.status != "regular" else None,
         length=length,
         twist=J @ state.qd,
         rates=rates,

@@ -10,7 +10,6 @@ message the client received is finally scanned for non-finite numbers and
 from __future__ import annotations
 
 import math
-import threading
 
 import numpy as np
 import pytest
@@ -101,13 +100,11 @@ def test_a_burst_of_actions_is_coalesced_into_few_redraws(session):
     """Actions that arrive while the tab is busy are queued and reduced together: the last value wins."""
     before = session.redraws
     with session.lock:  # hold the tab as a long redraw would
-        first = threading.Thread(target=session.dispatch, args=(SetJoint(0, 0.5),))
-        first.start()
-        wait_until(lambda: session.busy)  # that thread now drains the queue, waiting for the lock
+        session.dispatch(SetJoint(0, 0.5))
+        wait_until(lambda: session.queued == 0)  # the renderer took it and waits for the lock
         for k in range(200):
-            session.dispatch(SetJoint(0, 0.001 * k))  # returns at once: queued
-        assert session.queued == 200
-    first.join(10)
+            session.dispatch(SetJoint(0, 0.001 * k))  # returns at once: queued for the next visit
+        assert session.queued == 200 and session.pending
     session.settle()
     assert session.state.q[0] == pytest.approx(0.199)
     assert session.redraws - before <= 2

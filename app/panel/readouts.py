@@ -46,9 +46,9 @@ def task_name(rows: tuple[int, ...]) -> str:
 
 def lost_text(snap: Snapshot, planar: bool) -> str:
     """What the lost direction is, in words (empty when regular)."""
-    if snap.report.status == "regular":
-        return ""
     lost = snap.lost
+    if lost is None:
+        return ""
     parts = []
     if lost.translation_share >= 0.1:
         parts.append(f"translation {fmt.number(100 * lost.translation_share, 2)} %")

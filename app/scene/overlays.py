@@ -224,9 +224,14 @@ class Overlays:
 
     def _lost(self, snap: Snapshot, p: np.ndarray, unit: float) -> None:
         """The lost direction: an arrow for its translation, an axis with a ring for its rotation."""
-        lost, singular = snap.lost, snap.report.status != "regular"
-        show_v = singular and lost.translation_share >= SHOWN_SHARE
-        show_w = singular and lost.rotation_share >= SHOWN_SHARE and not self.planar
+        lost = snap.lost
+        if lost is None:  # regular: nothing is lost
+            self.lost_v.set(p[None], np.zeros((1, 3)), np.array([LOST_RGB], np.uint8), show=False)
+            for node in (self.lost_w, *self.lost_labels.values()):
+                set_if_changed(node, "visible", False)
+            return
+        show_v = lost.translation_share >= SHOWN_SHARE
+        show_w = lost.rotation_share >= SHOWN_SHARE and not self.planar
         length = 2.0 * unit
         vector = lost.translation * length * np.sqrt(lost.translation_share)
         self.lost_v.set(p[None], vector[None], np.array([LOST_RGB], np.uint8), show=show_v)
