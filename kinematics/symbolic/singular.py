@@ -38,6 +38,7 @@ it can take hours. The library's robots have at most 60; a 6R arm with arbitrary
 offsets, 300 or more."""
 
 
+@cache.register_dataclass
 @dataclass(frozen=True)
 class SingularSet:
     """Configurations where one factor of the determinant vanishes.
@@ -181,8 +182,10 @@ def _compute(
     values = {} if symbolic_params else model.exact_values()
     if progress:
         progress(f"det: expressing rows {rows} of J where they are shortest")
+    gram = len(rows) != robot.dof
+    if deadline.expired():
+        return gram, None, (), ["determinant skipped: time limit reached before it started"]
     M = shortest_rows(model, rows, deadline)
-    gram = M.rows != M.cols
     size = sum(len(sp.Add.make_args(e)) for e in M)
     if size > MAX_DET_TERMS or deadline.expired():
         why = "time limit reached" if size <= MAX_DET_TERMS else f"J has {size} terms in its shortest form"
@@ -193,6 +196,8 @@ def _compute(
         if progress:
             progress("det: determinant and factors")
         det = P.det(Mp)
+        if deadline.expired():
+            return False, None, (), ["determinant not computed: time limit reached while expanding it"]
         notes = [] if len(sp.Add.make_args(det)) <= MAX_FACTOR_TERMS else ["det J too large to factor"]
         return False, _tidy(P.factor(det), values, model.q), (), notes
     if progress:
@@ -204,6 +209,8 @@ def _compute(
     if g == 0:
         return True, (sp.Integer(0), ()), tuple((sp.Integer(0), ()) for _ in minors), []
     common = P.factor(g)
+    if deadline.expired():
+        return True, None, (), [f"time limit of {deadline.seconds:g} s reached while factoring the minors"]
     shown = []  # each minor as (factors common to all) × (its own cofactor, not factored further)
     for _, d in minors:
         if d == 0:
@@ -222,6 +229,7 @@ def determinant(
     timeout: float | None = DEFAULT_TIMEOUT,
     use_cache: bool = True,
     progress: Progress | None = None,
+    deadline: Deadline | None = None,
 ) -> Determinant:
     """Factored det J of the task rows (or det(J Jᵀ) for a redundant arm) and its singular sets.
 
@@ -233,6 +241,7 @@ def determinant(
         timeout: Time budget [s]; past it the result says what was not computed.
         use_cache: Read and write the on-disk cache.
         progress: Called with short progress messages.
+        deadline: A deadline shared with other steps (an export); replaces ``timeout``.
 
     Example:
         >>> import robots
@@ -246,7 +255,7 @@ def determinant(
     hit = cache.load(key) if use_cache else None
     if isinstance(hit, dict):
         return Determinant(**{**hit, "robot": robot.name})
-    deadline = Deadline(timeout)
+    deadline = deadline if deadline is not None else Deadline(timeout)
     gram, factored, minors, notes = _compute(robot, rows, symbolic_params, deadline, progress)
     sets = []
     if factored is not None and factored[0] != 0:
