@@ -23,7 +23,7 @@ from .simplify import simplify_matrix
 from .snap import Snap, snap_summary
 from .trig import AngleShift, Deadline, Progress
 
-__all__ = ["Derivation", "derive", "fk", "jacobian", "joint_symbols", "DEFAULT_TIMEOUT"]
+__all__ = ["Derivation", "derive", "fk", "jacobian", "joint_symbols", "DEFAULT_TIMEOUT", "check_timeout"]
 
 DEFAULT_TIMEOUT = 60.0
 """Default time budget [s] for simplification; past it, entries stay unsimplified (with a note)."""
@@ -80,7 +80,8 @@ class Derivation:
         return max((s.change for s in self.snaps if s.unit == "rad"), default=0.0)
 
 
-def _check_timeout(timeout: object) -> float | None:
+def check_timeout(timeout: object) -> float | None:
+    """``timeout`` as a float [s] or None; raises :class:`SymbolicError` unless positive or None."""
     if timeout is None:
         return None
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not timeout > 0:
@@ -117,7 +118,7 @@ def derive(
         SymbolicError: unknown frame, bad timeout, or symbolic parameters for a non-DH robot.
     """
     frame = check_frame(frame)
-    timeout = _check_timeout(timeout)
+    timeout = check_timeout(timeout)
     deadline = deadline if deadline is not None else Deadline(timeout)
     budget = deadline.seconds if deadline.seconds is None else deadline.remaining()
     model = build_model(robot, symbolic_params)

@@ -14,6 +14,7 @@ Joint variables are the real symbols ``q1 … qn``; their display names
 from __future__ import annotations
 
 import functools
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -21,6 +22,7 @@ import sympy as sp
 
 from ..errors import JacobianLabError
 from ..model import Robot
+from .escape import plain
 from .exact import exact_number, rot_x, rot_z, trans
 from .snap import LENGTH_NOISE, SNAP_TOL, Snap, Snapper, snap_summary
 
@@ -161,7 +163,7 @@ class _Params:
         return self._symbol(name, value, latex)
 
     def _symbol(self, name: str, value: float, latex: str) -> sp.Symbol:
-        if name in self.rename:
+        if re.fullmatch(r"[A-Za-z][A-Za-z0-9]{0,15}", str(self.rename.get(name, ""))):  # never markup
             name = self.rename[name]
             latex = _generic_latex(name)
         sym = sp.Symbol(name, real=True)
@@ -266,14 +268,17 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
         pj, jc, offsets = dh
         values = [q[ax.joint_index] + off for ax, off in zip(robot.axes, offsets, strict=True)]
     else:
-        pj = [P.snap.transform(ax.T_parent_joint, f"joint {ax.name!r}") for ax in robot.axes]
-        jc = [P.snap.transform(ax.T_joint_child, f"joint {ax.name!r} (after the axis)") for ax in robot.axes]
+        pj = [P.snap.transform(ax.T_parent_joint, f"joint {plain(ax.name, 60)!r}") for ax in robot.axes]
+        jc = [
+            P.snap.transform(ax.T_joint_child, f"joint {plain(ax.name, 60)!r} (after the axis)")
+            for ax in robot.axes
+        ]
         values = [
             exact_number(ax.multiplier) * q[ax.joint_index]
             + (
-                P.snap.angle(ax.offset, f"joint {ax.name!r}: offset")
+                P.snap.angle(ax.offset, f"joint {plain(ax.name, 60)!r}: offset")
                 if ax.kind == "revolute"
-                else P.snap.length(ax.offset, f"joint {ax.name!r}: offset")
+                else P.snap.length(ax.offset, f"joint {plain(ax.name, 60)!r}: offset")
             )
             for ax in robot.axes
         ]
