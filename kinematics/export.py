@@ -22,12 +22,14 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+import sympy as sp
+
 from .errors import JacobianLabError
 from .model import Robot
 from .symbolic import build_model, derive, determinant, latex_parts, mathml_parts, python_source
 from .symbolic.core import DEFAULT_TIMEOUT, check_timeout
 from .symbolic.escape import NOTE_CHARS, latex_text, plain, xml_text
-from .symbolic.layout import latex_matrix
+from .symbolic.layout import latex_matrix, too_long
 from .symbolic.model import check_frame
 from .symbolic.render import MATH_STYLE, notation_for
 from .symbolic.trig import Deadline
@@ -40,6 +42,12 @@ _ROWS = ("vx", "vy", "vz", "wx", "wy", "wz")
 
 class ExportError(JacobianLabError):
     """An export request is invalid (unknown format, unwritable output file, ...)."""
+
+
+def _str(expr: object) -> str:
+    """SymPy syntax of an entry; long ones unsorted (sorting their terms costs more than printing)."""
+    long = isinstance(expr, sp.Basic) and too_long(expr)
+    return sp.sstr(expr, order="none") if long else str(expr)
 
 
 def _header_lines(robot: Robot) -> list[str]:
@@ -104,7 +112,10 @@ def _mathml(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline,
 
 def _python(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress) -> str:
     d = derive(robot, frame, symbolic_params=symbolic_params, progress=progress, deadline=deadline)
-    return python_source(d.J, build_model(robot, symbolic_params), frame=frame, notes=d.notes)
+    model = build_model(robot, symbolic_params)
+    return python_source(
+        d.J, model, frame=frame, notes=d.notes, share=not deadline.expired() and not any(map(too_long, d.J))
+    )
 
 
 def _json(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress) -> str:
@@ -127,7 +138,7 @@ def _json(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, p
         ],
         "parameters": {str(s): v for s, v in sorted(d.params.items(), key=lambda kv: str(kv[0]))},
         "shape": list(d.J.shape),
-        "entries": [[str(d.J[i, j]) for j in range(d.J.cols)] for i in range(d.J.rows)],
+        "entries": [[_str(d.J[i, j]) for j in range(d.J.cols)] for i in range(d.J.rows)],
         "simplified": d.complete,
         "snapped": [
             {"where": s.where, "given": s.given, "exact": s.exact, "change": s.change, "unit": s.unit}

@@ -122,8 +122,10 @@ def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray | float:
 def _apply_fixed(cols: list, p, F: np.ndarray) -> tuple[list, object]:
     """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N)."""
     new_cols = [_lin([(F[k, j], cols[k]) for k in range(3)]) for j in range(3)]
-    new_p = _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)]) if not np.isscalar(p) else (
-        _lin([(F[k, 3], cols[k]) for k in range(3)]) + p
+    new_p = (
+        _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)])
+        if not np.isscalar(p)
+        else (_lin([(F[k, 3], cols[k]) for k in range(3)]) + p)
     )
     return new_cols, new_p
 

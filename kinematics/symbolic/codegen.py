@@ -33,7 +33,7 @@ def numeric_function(M: sp.Matrix, model: SymbolicModel) -> Callable[[object], n
 
 
 def _printer() -> NumPyPrinter:
-    return NumPyPrinter({"fully_qualified_modules": True, "allow_unknown_functions": False})
+    return NumPyPrinter({"fully_qualified_modules": True, "allow_unknown_functions": False, "order": "none"})
 
 
 def _safe_params(model: SymbolicModel) -> dict[sp.Symbol, sp.Symbol]:
@@ -58,6 +58,7 @@ def python_source(
     frame: str,
     what: str = "Geometric Jacobian",
     notes: Sequence[str] = (),
+    share: bool = True,
 ) -> str:
     """Source of a self-contained Python module with a NumPy function ``J(q)``.
 
@@ -72,7 +73,9 @@ def python_source(
         model: Its symbolic model.
         frame: ``"base"`` or ``"tool"`` (documented in the module).
         what: First words of the module docstring (our own text).
-        notes: Notes to carry (snapped values, time limits): in ``NOTES`` and as comments.
+        notes: Notes to carry (snapped values, time limits): in ``NOTES``.
+        share: Compute common subexpressions once (``sympy.cse``; slow on huge unsimplified
+            entries, so exports skip it past their deadline).
     """
     robot = model.robot
     n, rows = model.dof, M.rows
@@ -80,7 +83,7 @@ def python_source(
     safe = _safe_params(model)
     M = M.xreplace(safe)
     xs = sp.numbered_symbols("x", exclude=M.free_symbols)
-    reps, (reduced,) = sp.cse([M], symbols=xs, optimizations="basic")
+    reps, (reduced,) = sp.cse([M], symbols=xs, optimizations="basic") if share else ([], [M])
     joints = ", ".join(f"({str(s)!r}, {k!r})" for s, k in zip(model.q, model.joint_kinds, strict=True))
     params = sorted(((safe[s], v) for s, v in model.params.items()), key=lambda kv: str(kv[0]))
     kw = "".join(f", {s}={float(v)!r}" for s, v in params)

@@ -16,7 +16,7 @@ import sympy as sp
 
 from ..model import Robot
 from . import cache
-from .chain import frames
+from .chain import frames, frames_within
 from .derivations import jacobian_whitney
 from .model import SymbolicError, build_model, check_frame
 from .simplify import simplify_matrix
@@ -139,7 +139,9 @@ def derive(
         only_T = [(i, j) for m, i, j in hit["pending"] if m == "T"]
         earlier = float(hit["seconds"])
     else:
-        J_raw, T_raw = jacobian_whitney(robot, frame, symbolic_params), frames(model).tool
+        limit = None if deadline.seconds is None else deadline  # no limit: the cached frames
+        J_raw = jacobian_whitney(robot, frame, symbolic_params, limit)
+        T_raw = frames_within(model, limit)[0].tool
         only_J = only_T = None
         earlier = 0.0
     sJ = simplify_matrix(J_raw, model.q, deadline, progress, "J", shift, only=only_J, values=values)

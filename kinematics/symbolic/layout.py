@@ -3,8 +3,9 @@
 Printing a 7-joint arm's unsimplified J can take longer than deriving it, and a long entry
 makes a matrix wider than any screen. Here every entry is printed on its own, so that
 
-* the deadline is checked between entries, and entries past it, or longer than
-  :data:`MAX_PRINT_TERMS` terms, are shown as ∗ (the Python and JSON exports hold them);
+* the deadline is checked between entries: past it only short entries are typeset, and
+  entries longer than :data:`MAX_PRINT_TERMS` terms never are; the others are shown as ∗
+  (the Python and JSON exports hold them);
 * in MathML, an entry wider than ``width`` (in characters, about 10 px each) is broken
   into lines: a sum after a term (continuation lines start with + or −), a product with a
   long sum inside its parentheses, so that J never needs sideways scrolling in a panel of
@@ -32,6 +33,9 @@ __all__ = [
 
 MAX_PRINT_TERMS = 400
 """Entries with more terms than this (expanded) are not typeset: nobody reads them."""
+
+LATE_NODES = 200
+"""Past the deadline, only entries of at most this many tree nodes are still typeset."""
 
 MATHML_WIDTH = 44
 """Widest line of a MathML entry, in characters (a 600 px panel at the app's font size)."""
@@ -112,10 +116,18 @@ def _entry_mathml(N: Notation, expr: sp.Expr, width: float) -> str:
     return f'<mtable columnalign="left" rowspacing="0.1em">{rows}</mtable>'
 
 
+def _larger_than(expr: sp.Expr, nodes: int) -> bool:
+    """True if the expression tree has more than ``nodes`` nodes (stops counting there)."""
+    for k, _ in enumerate(sp.preorder_traversal(expr)):
+        if k >= nodes:
+            return True
+    return False
+
+
 def too_long(expr: sp.Expr) -> bool:
-    """True for an entry too long to typeset: more than :data:`MAX_PRINT_TERMS` terms, or 8× as many
-    operations."""
-    return len(sp.Add.make_args(expr)) > MAX_PRINT_TERMS or sp.count_ops(expr) > 8 * MAX_PRINT_TERMS
+    """True for an entry too long to typeset: more than :data:`MAX_PRINT_TERMS` terms, or a tree of
+    more than 20× as many nodes."""
+    return len(sp.Add.make_args(expr)) > MAX_PRINT_TERMS or _larger_than(expr, 20 * MAX_PRINT_TERMS)
 
 
 def _entries(M: sp.Matrix, deadline: Deadline | None, show) -> tuple[list[list[str]], list[tuple[int, int]]]:
@@ -124,7 +136,8 @@ def _entries(M: sp.Matrix, deadline: Deadline | None, show) -> tuple[list[list[s
         row = []
         for j in range(M.cols):
             e = M[i, j]
-            if e != 0 and ((deadline is not None and deadline.expired()) or too_long(e)):
+            late = deadline is not None and deadline.expired()
+            if too_long(e) or (late and _larger_than(e, LATE_NODES)):
                 skipped.append((i, j))
                 row.append(None)
             else:

@@ -45,8 +45,8 @@ def _magnitude(term: sp.Expr, q: Sequence[sp.Symbol], values: dict) -> float:
     """Size of one term: |coefficient| with every sin/cos of a joint, every joint value and every
     symbol without a value taken as 1, and parameters at their values."""
     ones = {f: sp.Integer(1) for f in term.atoms(sp.sin, sp.cos) if f.has(*q)}
-    t = term.xreplace(ones).xreplace(values)
-    t = sp.sympify(t).xreplace({s: sp.Integer(1) for s in t.free_symbols})
+    t = sp.sympify(sp.sympify(term).xreplace(ones)).xreplace({k: sp.Float(v) for k, v in values.items()})
+    t = t.xreplace({s: sp.Integer(1) for s in t.free_symbols})
     try:
         return abs(complex(t.evalf(15)))
     except (TypeError, ValueError):
