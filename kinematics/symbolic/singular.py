@@ -134,19 +134,21 @@ def _parse_rows(rows: object) -> tuple[int, ...]:
     return out
 
 
-def det_rows(robot: Robot) -> tuple[int, ...]:
+def det_rows(robot: Robot, deadline: Deadline | None = None) -> tuple[int, ...]:
     """The rows whose determinant describes the robot's singularities.
 
     The task rows (:func:`kinematics.task_rows`) when they are square; else the
     rows of J that are not identically zero when there are exactly n of them
     (SCARA: vx, vy, vz, ωz); else for a planar arm with fewer than 3 joints its
     position rows (2R: vx, vy, as the course writes det J = a₁a₂s₂); else the
-    task rows (det(J Jᵀ) or det(JᵀJ)).
+    task rows (det(J Jᵀ) or det(JᵀJ)). At the ``deadline``, the task rows.
     """
     rows, n = task_rows(robot), robot.dof
-    if len(rows) == n:
+    if len(rows) == n or (deadline is not None and deadline.expired()):
         return rows
-    J = jacobian_whitney(robot)
+    J = jacobian_whitney(robot, deadline=deadline)
+    if deadline is not None and deadline.expired():
+        return rows
     q = build_model(robot).q
     nonzero = tuple(i for i in range(6) if not all(is_zero(e, q) for e in J[i, :]))
     if len(nonzero) == n:
@@ -249,13 +251,13 @@ def determinant(
         >>> d.expr, [s.solutions for s in d.singular_sets]
         (a1*a2*sin(q2), [(0, pi)])
     """
-    rows = det_rows(robot) if rows is None else _parse_rows(rows)
+    deadline = deadline if deadline is not None else Deadline(timeout)
+    rows = det_rows(robot, deadline) if rows is None else _parse_rows(rows)
     display_model = build_model(robot, symbolic_params)
     key = f"det|{display_model.cache_key()}|{rows}"
     hit = cache.load(key) if use_cache else None
     if isinstance(hit, dict):
         return Determinant(**{**hit, "robot": robot.name})
-    deadline = deadline if deadline is not None else Deadline(timeout)
     gram, factored, minors, notes = _compute(robot, rows, symbolic_params, deadline, progress)
     sets = []
     if factored is not None and factored[0] != 0:
