@@ -46,7 +46,7 @@ class Derivation:
             unsimplified at the time limit or shown expanded, negligible terms dropped.
         complete: True if every entry was simplified (none left as derived at the time limit).
         seconds: Time the derivation took when it was computed [s].
-        timeout: Time budget it was computed with [s] (``None``: unlimited).
+        timeout: Time budget of the request it was computed for [s] (``None``: unlimited).
         from_cache: True if this result was read from the cache.
         snaps: The robot's rounded values replaced by exact ones (see :mod:`.snap`).
         pending: ("J" or "T", i, j) of the entries left unsimplified (resumed by a later call
@@ -120,7 +120,7 @@ def derive(
     frame = check_frame(frame)
     timeout = check_timeout(timeout)
     deadline = deadline if deadline is not None else Deadline(timeout)
-    budget = deadline.seconds if deadline.seconds is None else deadline.remaining()
+    budget = deadline.seconds  # the request's whole budget (an export's), not what is left of it
     model = build_model(robot, symbolic_params)
     key = f"derive|{model.cache_key()}|{frame}"
     hit = cache.load(key) if use_cache else None
