@@ -19,7 +19,6 @@ from kinematics.symbolic import jacobian_mathml
 MATHML = "{http://www.w3.org/1998/Math/MathML}"
 
 
-
 def import_source(path, text, name):
     path.write_text(text)
     spec = importlib.util.spec_from_file_location(name, path)

@@ -31,7 +31,7 @@ class CodecError(ValueError):
     """A value outside the whitelist (encoding), or a document that is not one of ours (decoding)."""
 
 
-_FUNCTIONS: dict[str, type] = {
+_FUNCTIONS: dict[str, Any] = {
     "sin": sp.sin,
     "cos": sp.cos,
     "tan": sp.tan,
@@ -40,7 +40,7 @@ _FUNCTIONS: dict[str, type] = {
     "atan": sp.atan,
     "atan2": sp.atan2,
 }
-_OPS: dict[str, type] = {"Add": sp.Add, "Mul": sp.Mul, "Pow": sp.Pow}
+_OPS: dict[str, Any] = {"Add": sp.Add, "Mul": sp.Mul, "Pow": sp.Pow}
 NODES = ("Symbol", "Integer", "Rational", "Float", "pi", *_OPS, *_FUNCTIONS)
 """The SymPy node kinds a cache file may contain."""
 

@@ -123,8 +123,9 @@ def derive(
     budget = deadline.seconds  # the request's whole budget (an export's), not what is left of it
     model = build_model(robot, symbolic_params)
     key = f"derive|{model.cache_key()}|{frame}"
-    hit = cache.load(key) if use_cache else None
-    if isinstance(hit, dict) and (
+    loaded = cache.load(key) if use_cache else None
+    hit: dict | None = loaded if isinstance(loaded, dict) else None
+    if hit is not None and (
         hit["complete"] or (budget is not None and hit["timeout"] is not None and budget <= hit["timeout"])
     ):
         return Derivation(**{**hit, "robot": robot.name, "from_cache": True})
@@ -133,7 +134,9 @@ def derive(
         progress(f"deriving the {frame}-frame Jacobian of {robot.name} ({robot.dof} joints)")
     shift = AngleShift(model.q, model.angle_offsets())
     values = model.numeric_values()
-    if isinstance(hit, dict):  # resume: simplify only what the cached run left
+    only_J: list[tuple[int, int]] | None = None
+    only_T: list[tuple[int, int]] | None = None
+    if hit is not None:  # resume: simplify only what the cached run left
         J_raw, T_raw = hit["J"], hit["T"]
         only_J = [(i, j) for m, i, j in hit["pending"] if m == "J"]
         only_T = [(i, j) for m, i, j in hit["pending"] if m == "T"]
@@ -142,7 +145,6 @@ def derive(
         limit = None if deadline.seconds is None else deadline  # no limit: the cached frames
         J_raw = jacobian_whitney(robot, frame, symbolic_params, limit)
         T_raw = frames_within(model, limit)[0].tool
-        only_J = only_T = None
         earlier = 0.0
     sJ = simplify_matrix(J_raw, model.q, deadline, progress, "J", shift, only=only_J, values=values)
     sT = simplify_matrix(T_raw, model.q, deadline, progress, "T", shift, only=only_T, values=values)

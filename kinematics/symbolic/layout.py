@@ -130,10 +130,12 @@ def too_long(expr: sp.Expr) -> bool:
     return len(sp.Add.make_args(expr)) > MAX_PRINT_TERMS or _larger_than(expr, 20 * MAX_PRINT_TERMS)
 
 
-def _entries(M: sp.Matrix, deadline: Deadline | None, show) -> tuple[list[list[str]], list[tuple[int, int]]]:
+def _entries(
+    M: sp.Matrix, deadline: Deadline | None, show
+) -> tuple[list[list[str | None]], list[tuple[int, int]]]:
     rows, skipped = [], []
     for i in range(M.rows):
-        row = []
+        row: list[str | None] = []
         for j in range(M.cols):
             e = M[i, j]
             late = deadline is not None and deadline.expired()
