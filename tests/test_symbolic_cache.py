@@ -173,3 +173,11 @@ def test_partial_result_is_cached_and_resumed(fresh_cache):
     f = symbolic.numeric_function(done.J, symbolic.build_model(robot))
     q = np.array([0.1, -0.4, 0.7, 0.2, -1.1, 0.5])
     np.testing.assert_allclose(f(q), kinematics.jacobian(robot, q), atol=1e-12)
+
+
+def test_own_app_folder_made_under_umask_002_is_tightened(fresh_cache):
+    app_dir = fresh_cache.parent
+    app_dir.mkdir(parents=True, mode=0o775)
+    os.chmod(app_dir, 0o775)
+    symbolic.derive(robots.load("planar2"))
+    assert stat.S_IMODE(os.stat(app_dir).st_mode) == 0o755 and cache.stats["stored"] == 1

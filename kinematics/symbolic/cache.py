@@ -7,7 +7,8 @@ elementary functions) and of registered result dataclasses; no pickle, no ``eval
 no ``sympify``. The stored key is compared with the request before the value is
 decoded. The folder is created with mode 0o700 and is refused (a warning in the log,
 no disk caching) unless it, and the ``jacobian-lab`` folder above it, are directories
-owned by the current user and not writable by group or others. Files are written
+owned by the current user and not writable by group or others (the ``jacobian-lab`` folder,
+ours, loses group/other write if a umask of 002 gave it). Files are written
 atomically (a temporary file, then ``os.replace``) with mode 0o600, and read only if
 they are regular files owned by the user and at most :data:`MAX_BYTES` long.
 
@@ -97,6 +98,15 @@ def _private_dir(path: Path) -> bool:
     return True
 
 
+def _tighten(path: Path) -> None:
+    """Remove group/other write from our own ``jacobian-lab`` folder (made under a umask of 002)."""
+    with contextlib.suppress(OSError):
+        st = os.lstat(path)
+        mine = not hasattr(os, "getuid") or st.st_uid == os.getuid()
+        if stat.S_ISDIR(st.st_mode) and mine and st.st_mode & 0o022:
+            os.chmod(path, stat.S_IMODE(st.st_mode) & ~0o022)
+
+
 def folder(create: bool = True) -> Path | None:
     """The cache folder if it is safe to use (created private if missing), else ``None``."""
     try:
@@ -106,6 +116,7 @@ def folder(create: bool = True) -> Path | None:
     if create and not root.exists():
         with contextlib.suppress(FileExistsError, OSError):
             os.mkdir(root, 0o700)
+    _tighten(root.parent)
     if not (_private_dir(root.parent) and _private_dir(root)):
         return None
     return root
