@@ -108,3 +108,16 @@ def test_compact_notation_and_legend():
     assert "c_{23}" in text and "s_{1}" in text and "\\sin" not in text.split("where")[0]
     assert "c_{ij} = \\cos (\\theta_{i} + \\theta_{j})" in text
     assert "\\det J = " in text and "wrist singularity" in text
+
+
+@pytest.mark.parametrize("name", ["iiwa14_like", "xarm7_like"])
+def test_real_arm_urdf_latex_typesets(katex, name):
+    """URDF arms with 1.5708-style angles: snapped, short, and the joint-name legend typesets."""
+    robot = kinematics.Robot.from_urdf(str(Path(__file__).resolve().parent / "data" / f"{name}.urdf"))
+    text = ex.export(robot, "latex", timeout=120)
+    formulas = display_formulas(text)
+    assert [e for e in katex(formulas) if e is not None] == []
+    assert len(text) < 40_000 and "% Note: 6 value(s) of the robot file snapped" in text
+    legend = next(f for f in formulas if f.startswith("\\text{where"))
+    escaped = [n.replace("_", "\\_") for n in robot.joint_names]
+    assert all(f"\\text{{: {n}}}" in legend for n in escaped)

@@ -188,25 +188,6 @@ def test_time_limit_falls_back_with_a_note():
     np.testing.assert_allclose(f(q), kinematics.jacobian(robot, q), atol=1e-9)
 
 
-def test_cache_makes_the_second_request_instant(tmp_path, monkeypatch):
-    from kinematics.symbolic import cache
-
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
-    cache.clear_memory()
-    robot = robots.load("stanford")
-    first = symbolic.derive(robot)
-    assert not first.from_cache
-    files = list((tmp_path / "jacobian-lab" / "symbolic").glob("*.pkl"))
-    assert len(files) == 1
-    cache.clear_memory()
-    second = symbolic.derive(robot)  # from disk
-    assert second.from_cache and second.J == first.J
-    files[0].write_bytes(b"not a pickle")
-    cache.clear_memory()
-    third = symbolic.derive(robot)  # corrupt file ignored, recomputed
-    assert not third.from_cache and third.J == first.J
-
-
 def test_bad_inputs_raise_clear_errors():
     robot = robots.load("planar2")
     with pytest.raises(SymbolicError, match="frame must be 'base' or 'tool'"):

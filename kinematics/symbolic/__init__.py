@@ -13,9 +13,13 @@
   :class:`Notation`, :func:`jacobian_latex`, :func:`jacobian_mathml`.
 
 Numeric link parameters stay exact (π/2 stays π/2, 0.4318 becomes 2159/5000
-and prints as 0.4318); ``symbolic_params=True`` keeps the DH lengths and
-offsets as symbols (a2, d4, …; l1, l2, l3 for the course's robots).
-Nothing here imports viser, and nothing parses user text into SymPy.
+and prints as 0.4318); rounded angles of robot files (1.5708, 3.14159) are
+snapped to multiples of π/12 and every output says so (:mod:`.snap`);
+``symbolic_params=True`` keeps the DH lengths and offsets as symbols (a2, d4, …;
+l1, l2, l3 for the course's robots). Every step keeps to one time limit, results
+are cached as JSON that cannot run code (:mod:`.cache`), and names from robot
+files are escaped for every output (:mod:`.escape`). Nothing here imports viser,
+and nothing parses user text into SymPy.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from .model import SymbolicError, SymbolicModel, build_model
 from .printing import Notation
 from .render import jacobian_latex, jacobian_mathml, latex_parts, mathml_parts
 from .singular import Determinant, SingularSet, det_rows, determinant, singular_sets
+from .snap import SNAP_TOL, Snap
 from .trig import is_zero, normal_form
 
 __all__ = [
@@ -72,4 +77,6 @@ __all__ = [
     "SymbolicError",
     "normal_form",
     "is_zero",
+    "Snap",
+    "SNAP_TOL",
 ]

@@ -18,8 +18,9 @@ import sympy as sp
 
 from .exact import rot_z, trans
 from .model import SymbolicModel
+from .trig import Deadline
 
-__all__ = ["Frames", "frames", "relative_frames", "axis_motion", "rigid_inverse", "multiply"]
+__all__ = ["Frames", "frames", "frames_within", "relative_frames", "axis_motion", "rigid_inverse", "multiply"]
 
 
 def axis_motion(kind: str, value: sp.Expr) -> sp.Matrix:
@@ -70,6 +71,27 @@ def _elements(model: SymbolicModel) -> list[sp.Matrix]:
 def frames(model: SymbolicModel) -> Frames:
     """All frames of the chain in the robot's base frame (cached per model)."""
     return relative_frames(model, 0)
+
+
+def frames_within(model: SymbolicModel, deadline: Deadline | None) -> tuple[Frames, bool]:
+    """:func:`frames`, but products are left unexpanded once ``deadline`` has passed.
+
+    Expanding the chain of an arm whose twists are not multiples of π/12 takes seconds per
+    product; unexpanded, the frames are exact and quick to build (and the simplification that
+    follows expands each entry when it has the time). Returns the frames and whether they are
+    fully expanded (then they equal :func:`frames`).
+    """
+    if deadline is None:
+        return frames(model), True
+    E = _elements(model)
+    out, acc, expanded = [], sp.eye(4), True
+    for el in E:
+        expanded = expanded and not deadline.expired()
+        acc = multiply(acc, el) if expanded else acc * el
+        out.append(acc)
+    m = len(model.kinds)
+    F = Frames(tuple(out[1 + 3 * a] for a in range(m)), tuple(out[3 + 3 * a] for a in range(m)), out[-1])
+    return F, expanded
 
 
 @functools.lru_cache(maxsize=256)

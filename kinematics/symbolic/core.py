@@ -16,12 +16,14 @@ import sympy as sp
 
 from ..model import Robot
 from . import cache
-from .chain import frames
+from .chain import frames, frames_within
 from .derivations import jacobian_whitney
 from .model import SymbolicError, build_model, check_frame
-from .trig import AngleShift, Deadline, Progress, simplify_matrix
+from .simplify import simplify_matrix
+from .snap import Snap, snap_summary
+from .trig import AngleShift, Deadline, Progress
 
-__all__ = ["Derivation", "derive", "fk", "jacobian", "joint_symbols", "DEFAULT_TIMEOUT"]
+__all__ = ["Derivation", "derive", "fk", "jacobian", "joint_symbols", "DEFAULT_TIMEOUT", "check_timeout"]
 
 DEFAULT_TIMEOUT = 60.0
 """Default time budget [s] for simplification; past it, entries stay unsimplified (with a note)."""
@@ -40,11 +42,15 @@ class Derivation:
         J: Geometric Jacobian (6×n), rows [v; ω], simplified.
         params: Symbolic parameters → values [m] / [rad] (empty without ``symbolic_params``).
         display: LaTeX display names of the symbols (θᵢ / dᵢ for joints).
-        notes: Human-readable notes (e.g. entries left unsimplified at the time limit).
-        complete: True if every entry was simplified.
+        notes: Human-readable notes: values snapped to exact ones (first, if any), entries left
+            unsimplified at the time limit or shown expanded, negligible terms dropped.
+        complete: True if every entry was simplified (none left as derived at the time limit).
         seconds: Time the derivation took when it was computed [s].
-        timeout: Time budget it was computed with [s] (``None``: unlimited).
+        timeout: Time budget of the request it was computed for [s] (``None``: unlimited).
         from_cache: True if this result was read from the cache.
+        snaps: The robot's rounded values replaced by exact ones (see :mod:`.snap`).
+        pending: ("J" or "T", i, j) of the entries left unsimplified (resumed by a later call
+            with a larger timeout).
     """
 
     robot: str
@@ -60,9 +66,22 @@ class Derivation:
     seconds: float
     timeout: float | None
     from_cache: bool = False
+    snaps: tuple[Snap, ...] = ()
+    pending: tuple[tuple[str, int, int], ...] = ()
+
+    @property
+    def snap_note(self) -> str:
+        """Which values were snapped and the largest change ("" if none)."""
+        return snap_summary(self.snaps)
+
+    @property
+    def largest_snap(self) -> float:
+        """Largest angle change made by snapping [rad] (0 if none)."""
+        return max((s.change for s in self.snaps if s.unit == "rad"), default=0.0)
 
 
-def _check_timeout(timeout: object) -> float | None:
+def check_timeout(timeout: object) -> float | None:
+    """``timeout`` as a float [s] or None; raises :class:`SymbolicError` unless positive or None."""
     if timeout is None:
         return None
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not timeout > 0:
@@ -78,6 +97,7 @@ def derive(
     timeout: float | None = DEFAULT_TIMEOUT,
     use_cache: bool = True,
     progress: Progress | None = None,
+    deadline: Deadline | None = None,
 ) -> Derivation:
     """Derive, simplify and cache J(q) and T_base_tool(q) of ``robot``.
 
@@ -89,45 +109,62 @@ def derive(
         timeout: Simplification budget [s]; past it the remaining entries stay unsimplified
             (exact but long) and :attr:`Derivation.notes` says so. ``None``: no limit.
         use_cache: Read and write the cache (memory and ``kinematics.cache_dir()/symbolic``).
+            An incomplete cached result is returned for a budget no larger than the one it had,
+            and resumed (only its unsimplified entries) for a larger one.
         progress: Called with short progress messages.
+        deadline: A deadline shared with other steps (an export); replaces ``timeout``.
 
     Raises:
         SymbolicError: unknown frame, bad timeout, or symbolic parameters for a non-DH robot.
     """
     frame = check_frame(frame)
-    timeout = _check_timeout(timeout)
+    timeout = check_timeout(timeout)
+    deadline = deadline if deadline is not None else Deadline(timeout)
+    budget = deadline.seconds  # the request's whole budget (an export's), not what is left of it
     model = build_model(robot, symbolic_params)
     key = f"derive|{model.cache_key()}|{frame}"
-    if use_cache:
-        hit = cache.load(key)
-        if isinstance(hit, dict) and (
-            hit["complete"]
-            or (timeout is not None and hit["timeout"] is not None and timeout <= hit["timeout"])
-        ):
-            return Derivation(**{**hit, "robot": robot.name, "from_cache": True})
+    loaded = cache.load(key) if use_cache else None
+    hit: dict | None = loaded if isinstance(loaded, dict) else None
+    if hit is not None and (
+        hit["complete"] or (budget is not None and hit["timeout"] is not None and budget <= hit["timeout"])
+    ):
+        return Derivation(**{**hit, "robot": robot.name, "from_cache": True})
     start = time.perf_counter()
-    deadline = Deadline(timeout)
     if progress is not None:
         progress(f"deriving the {frame}-frame Jacobian of {robot.name} ({robot.dof} joints)")
     shift = AngleShift(model.q, model.angle_offsets())
-    J, notes_J = simplify_matrix(
-        jacobian_whitney(robot, frame, symbolic_params), model.q, deadline, progress, "J", shift
-    )
-    T, notes_T = simplify_matrix(frames(model).tool, model.q, deadline, progress, "T", shift)
-    notes = tuple(notes_J + notes_T)
+    values = model.numeric_values()
+    only_J: list[tuple[int, int]] | None = None
+    only_T: list[tuple[int, int]] | None = None
+    if hit is not None:  # resume: simplify only what the cached run left
+        J_raw, T_raw = hit["J"], hit["T"]
+        only_J = [(i, j) for m, i, j in hit["pending"] if m == "J"]
+        only_T = [(i, j) for m, i, j in hit["pending"] if m == "T"]
+        earlier = float(hit["seconds"])
+    else:
+        limit = None if deadline.seconds is None else deadline  # no limit: the cached frames
+        J_raw = jacobian_whitney(robot, frame, symbolic_params, limit)
+        T_raw = frames_within(model, limit)[0].tool
+        earlier = 0.0
+    sJ = simplify_matrix(J_raw, model.q, deadline, progress, "J", shift, only=only_J, values=values)
+    sT = simplify_matrix(T_raw, model.q, deadline, progress, "T", shift, only=only_T, values=values)
+    pending = tuple(("J", i, j) for i, j in sJ.pending) + tuple(("T", i, j) for i, j in sT.pending)
+    notes = ([model.snap_note] if model.snaps else []) + sJ.notes + sT.notes
     result = Derivation(
         robot.name,
         frame,
         model.q,
         robot.joint_types,
-        T,
-        J,
+        sT.matrix,
+        sJ.matrix,
         dict(model.params),
         dict(model.display),
-        notes,
-        not notes,
-        time.perf_counter() - start,
-        timeout,
+        tuple(notes),
+        not pending,
+        earlier + time.perf_counter() - start,
+        budget if budget is None or hit is None else max(budget, hit["timeout"] or 0.0),
+        snaps=model.snaps,
+        pending=pending,
     )
     if use_cache:
         cache.store(key, {f.name: getattr(result, f.name) for f in dataclasses.fields(result)})

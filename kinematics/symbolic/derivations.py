@@ -27,10 +27,10 @@ import sympy as sp
 
 from ..model import Robot
 from ..numeric import jacobian as numeric_jacobian
-from .chain import Frames, axis_motion, frames
+from .chain import Frames, axis_motion, frames, frames_within
 from .codegen import numeric_function
 from .model import SymbolicModel, build_model, check_frame
-from .trig import is_zero
+from .trig import Deadline, is_zero
 
 __all__ = [
     "jacobian_differentiation",
@@ -81,12 +81,19 @@ def whitney_columns(model: SymbolicModel, F: Frames, point: sp.Matrix) -> sp.Mat
     return _joint_columns(model, cols)
 
 
-def jacobian_whitney(robot: Robot, frame: str = "base", symbolic_params: bool = False) -> sp.Matrix:
-    """Whitney's geometric columns: [zᵢ₋₁ × (pₙ − pᵢ₋₁); zᵢ₋₁] or [zᵢ₋₁; 0], exact, unsimplified."""
+def jacobian_whitney(
+    robot: Robot, frame: str = "base", symbolic_params: bool = False, deadline: Deadline | None = None
+) -> sp.Matrix:
+    """Whitney's geometric columns: [zᵢ₋₁ × (pₙ − pᵢ₋₁); zᵢ₋₁] or [zᵢ₋₁; 0], exact, unsimplified.
+
+    With a ``deadline``, the chain's products stop being expanded once it has passed
+    (:func:`.chain.frames_within`): the result is exact either way.
+    """
     frame = check_frame(frame)
     model = build_model(robot, symbolic_params)
-    F = frames(model)
-    return _in_frame(whitney_columns(model, F, F.tool[:3, 3]), model, frame)
+    F, _ = frames_within(model, deadline)
+    J = whitney_columns(model, F, F.tool[:3, 3])
+    return J if frame == "base" else _rotate(J, F.tool[:3, :3].T)
 
 
 def jacobian_differentiation(robot: Robot, frame: str = "base", symbolic_params: bool = False) -> sp.Matrix:

@@ -50,6 +50,8 @@ def shortest_rows(model: SymbolicModel, rows: Sequence[int], deadline: Deadline 
         ks = list(range(m + 1))
     best: tuple[int, sp.Matrix] | None = None
     for k in ks:
+        if best is not None and deadline is not None and deadline.expired():
+            break
         F = relative_frames(model, k)
         points = [F.tool[:3, 3]]
         if len(rows) == 6:

@@ -15,6 +15,7 @@ Joint variables are the real symbols ``q1 … qn``; their display names
 from __future__ import annotations
 
 import functools
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -22,7 +23,9 @@ import sympy as sp
 
 from ..errors import JacobianLabError
 from ..model import Robot
-from .exact import exact_angle, exact_number, exact_transform, is_right_angle_multiple, rot_x, rot_z, trans
+from .escape import plain
+from .exact import exact_number, rot_x, rot_z, trans
+from .snap import LENGTH_NOISE, SNAP_TOL, Snap, Snapper, snap_summary
 
 __all__ = [
     "SymbolicError",
@@ -61,6 +64,7 @@ class SymbolicModel:
         params: Symbolic parameters → their values [m] or [rad] (empty unless ``symbolic_params``).
         display: LaTeX display names of the joint and parameter symbols.
         symbolic_params: Whether DH lengths and offsets are symbols.
+        snaps: Rounded values of the robot replaced by exact ones (:mod:`.snap`).
     """
 
     robot: Robot
@@ -75,6 +79,12 @@ class SymbolicModel:
     params: dict[sp.Symbol, float] = field(default_factory=dict)
     display: dict[sp.Symbol, str] = field(default_factory=dict)
     symbolic_params: bool = False
+    snaps: tuple[Snap, ...] = ()
+
+    @property
+    def snap_note(self) -> str:
+        """The note saying which values were snapped and the largest change ("" if none)."""
+        return snap_summary(self.snaps)
 
     @property
     def dof(self) -> int:
@@ -89,7 +99,7 @@ class SymbolicModel:
     def cache_key(self) -> str:
         """Text identifying the model for caches: fingerprint, option and parameter names."""
         names = ",".join(sorted(str(s) for s in self.params))
-        return f"{self.robot.fingerprint()}|params={self.symbolic_params}|{names}"
+        return f"{self.robot.fingerprint()}|params={self.symbolic_params}|{names}|snap={SNAP_TOL}"
 
     def angle_offsets(self) -> dict[sp.Symbol, sp.Expr]:
         """Joint symbol → constant offset of its revolute axis, for offsets that are not multiples of π/2.
@@ -110,7 +120,8 @@ class SymbolicModel:
 
     def exact_values(self) -> dict[sp.Symbol, sp.Expr]:
         """Parameter symbols → their exact values (what the model holds with ``symbolic_params=False``)."""
-        return {s: exact_angle(v) if _is_angle(s) else exact_number(v) for s, v in self.params.items()}
+        S = Snapper()  # the values the model would hold, without recording them again
+        return {s: S.angle(v, "") if _is_angle(s) else S.length(v, "") for s, v in self.params.items()}
 
     def numeric_values(self) -> dict[sp.Symbol, sp.Float]:
         """Parameter symbols → their values as SymPy floats (for evaluating an expression)."""
@@ -126,22 +137,24 @@ class _Params:
         # ones (a{i}, alpha{i}, d{i}, theta{i}; for the modified convention a and alpha of row i are
         # Craig's a_{i-1}, alpha_{i-1}), d{i}0 / theta{i}0 for the constant offset of a joint
         # variable, and xt, yt, zt / xb, yb, zb for the tool / base translation.
+        self.snap = Snapper()
         self.rename = dict(robot.param_names)
         self.values: dict[sp.Symbol, float] = {}
         self.display: dict[sp.Symbol, str] = {}
 
-    def length(self, name: str, value: float, latex: str) -> sp.Expr:
-        if not self.enabled or abs(value) < 1e-12:
-            return exact_number(value)
+    def length(self, name: str, value: float, latex: str, where: str) -> sp.Expr:
+        if not self.enabled or abs(value) <= LENGTH_NOISE:
+            return self.snap.length(value, where)
         return self._symbol(name, value, latex)
 
-    def angle(self, name: str, value: float, latex: str) -> sp.Expr:
-        if not self.enabled or is_right_angle_multiple(value):
-            return exact_angle(value)
+    def angle(self, name: str, value: float, latex: str, where: str) -> sp.Expr:
+        snapped = self.snap.snapped_angle(value)
+        if not self.enabled or (snapped is not None and (snapped / (sp.pi / 2)).is_Integer):
+            return self.snap.angle(value, where)
         return self._symbol(name, value, latex)
 
     def _symbol(self, name: str, value: float, latex: str) -> sp.Symbol:
-        if name in self.rename:
+        if re.fullmatch(r"[A-Za-z][A-Za-z0-9]{0,15}", str(self.rename.get(name, ""))):  # never markup
             name = self.rename[name]
             latex = _generic_latex(name)
         sym = sp.Symbol(name, real=True)
@@ -170,15 +183,16 @@ def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list] | None:
     pj, jc, offsets = [], [], []
     for i, (row, ax) in enumerate(zip(robot.dh, robot.axes, strict=True), start=1):
         k = i - 1 if modified else i  # Craig's a_{i-1}, alpha_{i-1}
-        a = P.length(f"a{k}", row.a, f"a_{{{k}}}")
-        alpha = P.angle(f"alpha{k}", row.alpha, f"\\alpha_{{{k}}}")
+        at = f"DH row {i}:"
+        a = P.length(f"a{k}", row.a, f"a_{{{k}}}", f"{at} a")
+        alpha = P.angle(f"alpha{k}", row.alpha, f"\\alpha_{{{k}}}", f"{at} alpha")
         revolute = row.joint == "revolute"
         if revolute:
-            d = P.length(f"d{i}", row.d, f"d_{{{i}}}")
-            theta = P.angle(f"theta{i}0", row.theta, f"\\theta_{{{i}}}^{{0}}")
+            d = P.length(f"d{i}", row.d, f"d_{{{i}}}", f"{at} d")
+            theta = P.angle(f"theta{i}0", row.theta, f"\\theta_{{{i}}}^{{0}}", f"{at} theta")
         else:
-            d = P.length(f"d{i}0", row.d, f"d_{{{i}}}^{{0}}")
-            theta = P.angle(f"theta{i}", row.theta, f"\\theta_{{{i}}}")
+            d = P.length(f"d{i}0", row.d, f"d_{{{i}}}^{{0}}", f"{at} d")
+            theta = P.angle(f"theta{i}", row.theta, f"\\theta_{{{i}}}", f"{at} theta")
         if modified:
             T_pj = rot_x(alpha) * trans(x=a) * (sp.eye(4) if revolute else rot_z(theta))
             T_jc = trans(z=d) if revolute else sp.eye(4)
@@ -194,18 +208,24 @@ def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list] | None:
 
 
 def _frame(T: np.ndarray, P: _Params, side: str) -> sp.Matrix:
-    M = exact_transform(T)
+    M = P.snap.transform(T, f"{side} transform")
     for r, axis in enumerate("xyz"):
-        M[r, 3] = P.length(f"{axis}{side[0]}", float(T[r, 3]), f"{axis}_{{\\mathrm{{{side[0]}}}}}")
+        if M[r, 3] != 0:
+            where = f"{side} transform: translation {axis}"
+            M[r, 3] = P.length(f"{axis}{side[0]}", float(T[r, 3]), f"{axis}_{{\\mathrm{{{side[0]}}}}}", where)
     return M
 
 
 def _numeric_mismatch(model: SymbolicModel) -> bool:
-    """True if the exact transforms do not reproduce the robot's numeric ones (to 1e-9)."""
+    """True if the exact transforms do not reproduce the robot's numeric ones (to 1e-9, or to the
+    size of what was snapped)."""
     vals = model.numeric_values()
+    scale = 1.0 + max((float(np.abs(ax.T_parent_joint[:3, 3]).max()) for ax in model.robot.axes), default=0.0)
+    largest = max((s.change for s in model.snaps), default=0.0)
+    atol = 1e-9 + 2 * largest * scale
     for ax, pj, jc in zip(model.robot.axes, model.parent_joint, model.joint_child, strict=True):
         for S, N in ((pj, ax.T_parent_joint), (jc, ax.T_joint_child)):
-            if not np.allclose(np.array(S.xreplace(vals).evalf(), dtype=float), N, atol=1e-9):
+            if not np.allclose(np.array(S.xreplace(vals).evalf(), dtype=float), N, atol=atol):
                 return True
     return False
 
@@ -239,11 +259,18 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
         pj, jc, offsets = dh
         values = [q[ax.joint_index] + off for ax, off in zip(robot.axes, offsets, strict=True)]
     else:
-        pj = [exact_transform(ax.T_parent_joint) for ax in robot.axes]
-        jc = [exact_transform(ax.T_joint_child) for ax in robot.axes]
+        pj = [P.snap.transform(ax.T_parent_joint, f"joint {plain(ax.name, 60)!r}") for ax in robot.axes]
+        jc = [
+            P.snap.transform(ax.T_joint_child, f"joint {plain(ax.name, 60)!r} (after the axis)")
+            for ax in robot.axes
+        ]
         values = [
             exact_number(ax.multiplier) * q[ax.joint_index]
-            + (exact_angle(ax.offset) if ax.kind == "revolute" else exact_number(ax.offset))
+            + (
+                P.snap.angle(ax.offset, f"joint {plain(ax.name, 60)!r}: offset")
+                if ax.kind == "revolute"
+                else P.snap.length(ax.offset, f"joint {plain(ax.name, 60)!r}: offset")
+            )
             for ax in robot.axes
         ]
     display = {
@@ -264,6 +291,7 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
         dict(P.values),
         {**display, **P.display},
         symbolic_params,
+        tuple(P.snap.snaps),
     )
     if dh is not None and _numeric_mismatch(model):  # a DH table that does not describe the axes
         raise SymbolicError(f"robot {robot.name!r}: its DH table does not reproduce its axes")

@@ -19,6 +19,8 @@ from sympy.printing.latex import LatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
 from sympy.printing.precedence import PRECEDENCE, precedence
 
+from .escape import latex_text, xml_text
+
 __all__ = ["Notation", "decimal_text"]
 
 
@@ -44,6 +46,8 @@ class Notation:
         display: LaTeX display names of joint and parameter symbols.
         joint_kinds: ``"revolute"`` / ``"prismatic"`` per joint.
         params: Symbolic parameters → values [m] / [rad], listed in the legend.
+        joint_names: The robot's joint names, listed in the legend (escaped) unless they are
+            the default ``q1 … qn``.
     """
 
     def __init__(
@@ -52,12 +56,15 @@ class Notation:
         display: Mapping[sp.Symbol, str],
         joint_kinds: Sequence[str],
         params: Mapping[sp.Symbol, float] | None = None,
+        joint_names: Sequence[str] = (),
     ) -> None:
         self.q = tuple(q)
         self.index = {s: i + 1 for i, s in enumerate(self.q)}
         self.display = dict(display)
         self.joint_kinds = tuple(joint_kinds)
         self.params = dict(params or {})
+        default = tuple(f"q{i + 1}" for i in range(len(self.q)))
+        self.joint_names = tuple(joint_names) if tuple(joint_names) != default else ()
         self.used: set[tuple[str, tuple[int, ...]]] = set()
 
     # ---------------------------------------------------------------- helpers
@@ -122,6 +129,12 @@ class Notation:
         }
         out += [joint[k] for k in kinds]
         out += [f"{self.display[s]} = {self.params[s]:.6g}\\,\\mathrm{{{self._unit(s)}}}" for s in params]
+        if self.joint_names:
+            names = ", ".join(
+                f"{self.display[q]}\\text{{: {latex_text(n)}}}"
+                for q, n in zip(self.q, self.joint_names, strict=True)
+            )
+            out.append(f"\\text{{joints: }} {names}")
         return "\\text{where } " + ", \\quad ".join(out)
 
     # ----------------------------------------------------------------- MathML
@@ -129,8 +142,20 @@ class Notation:
         """Presentation MathML (the inner element, without ``<math>``) of an expression or matrix."""
         return _MathML(self).doprint(expr).replace("<mo>-</mo>", "<mo>\u2212</mo>")
 
+    def ordered_terms(self, expr: sp.Expr) -> list[sp.Expr]:
+        """The terms of a sum in the order the printers show them."""
+        return list(_MathML(self)._as_ordered_terms(expr, order=None))
+
     def mathml_legend(self) -> str:
         """The legend as presentation MathML: one ``<mrow>`` of ``<mtext>`` and formulas ("" if empty)."""
+        out = self.mathml_legend_items()
+        if not out:
+            return ""
+        sep = '<mo separator="true">,</mo><mspace width="1em"/>'
+        return "<mrow><mtext>where&#xa0;</mtext>" + sep.join(out) + "</mrow>"
+
+    def mathml_legend_items(self) -> list[str]:
+        """The legend's items, each a MathML fragment (the joint names escaped), for wrapping text."""
         patterns, kinds, params = self._legend()
         theta = lambda i: f"<msub><mi>θ</mi><mi>{i}</mi></msub>"  # noqa: E731
         out = []
@@ -155,10 +180,12 @@ class Notation:
             f"<mtext>&#xa0;{self._unit(s)}</mtext>"
             for s in params
         ]
-        if not out:
-            return ""
-        sep = '<mo separator="true">,</mo><mspace width="1em"/>'
-        return "<mrow><mtext>where&#xa0;</mtext>" + sep.join(out) + "</mrow>"
+        if self.joint_names:
+            out += [
+                f"{_mathml_name(self.display[q])}<mtext>:&#xa0;{xml_text(n)}</mtext>"
+                for q, n in zip(self.q, self.joint_names, strict=True)
+            ]
+        return out
 
 
 def _natural(name: str) -> tuple:
@@ -174,7 +201,7 @@ def _mathml_name(latex: str) -> str:
     """MathML of one of our display names (``\\theta_{2}``, ``a_{3}``, ``x_{\\mathrm{t}}``, ``d_{3}^{0}``)."""
     m = _DISPLAY.match(latex)
     if m is None:
-        return f"<mi>{latex}</mi>"
+        return f"<mi>{xml_text(latex)}</mi>"
     name, sub, sup = m.groups()
     head = f"<mi>{_GREEK.get(name, name)}</mi>"
     sub_el = (

@@ -8,15 +8,16 @@ no LaTeX renderer; Chromium renders MathML). :func:`latex_parts` and
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from html import escape
 
 import sympy as sp
 
 from ..model import Robot
 from .core import DEFAULT_TIMEOUT, Derivation, derive
+from .escape import NOTE_CHARS, xml_text
+from .layout import MATHML_WIDTH, latex_matrix, mathml_lines, mathml_matrix, text_width, too_long
 from .printing import Notation
 from .singular import Determinant, determinant
-from .trig import Progress
+from .trig import Deadline, Progress
 
 __all__ = [
     "MATH_STYLE",
@@ -37,9 +38,10 @@ MATH_STYLE = (
 KIND_TEXT = {"wrist": "wrist singularity", "elbow": "elbow singularity", "shoulder": "shoulder singularity"}
 
 
-def notation_for(d: Derivation | Determinant) -> Notation:
-    """A fresh :class:`Notation` for the symbols of a derivation or determinant."""
-    return Notation(d.q, d.display, d.joint_kinds, d.params)
+def notation_for(d: Derivation | Determinant, robot: Robot | None = None) -> Notation:
+    """A fresh :class:`Notation` for the symbols of a derivation or determinant (with the robot's
+    joint names in the legend when ``robot`` is given)."""
+    return Notation(d.q, d.display, d.joint_kinds, d.params, robot.joint_names if robot is not None else ())
 
 
 @dataclass
@@ -52,7 +54,8 @@ class TypesetParts:
         det: ``det J = ...`` (or det(J Jᵀ)), or ``None`` if not computed.
         singular: One formula per singular set (``factor = 0``, solutions, kind).
         legend: The notation legend (uses only the abbreviations that appear above).
-        notes: Plain-text notes (time limits, identically zero determinants, ...).
+        notes: Plain-text notes (snapped values, time limits, ...): escape them for the output.
+        legend_items: The legend's items as separate MathML fragments (for wrapping text).
     """
 
     matrix: str
@@ -61,6 +64,7 @@ class TypesetParts:
     singular: list[str]
     legend: str
     notes: list[str] = field(default_factory=list)
+    legend_items: list[str] = field(default_factory=list)
 
 
 def _lhs(frame: str, latex: bool) -> str:
@@ -96,23 +100,41 @@ def _det_label(det: Determinant, latex: bool) -> str:
     return f"<mi>det</mi><mo>&#x2061;</mo><mo>(</mo>{pair[0]}<mo>&#x2062;</mo>{pair[1]}<mo>)</mo>"
 
 
-def _parts(d: Derivation, det: Determinant | None, latex: bool) -> TypesetParts:
-    N = notation_for(d)
+def _matrix(
+    N: Notation, M: sp.Matrix, latex: bool, deadline: Deadline | None, wrap: bool
+) -> tuple[str, list]:
+    if latex:
+        return latex_matrix(N, M, deadline)
+    return mathml_matrix(N, M, deadline, MATHML_WIDTH if wrap else None)
+
+
+def _parts(
+    d: Derivation, det: Determinant | None, latex: bool, robot: Robot, deadline: Deadline | None, wrap: bool
+) -> TypesetParts:
+    N = notation_for(d, robot)
     show = N.latex if latex else N.mathml
     eq = " = " if latex else "<mo>=</mo>"
     lhs = _lhs(d.frame, latex)
-    matrix = f"{lhs}{eq}{show(d.J)}"
+    body, skipped = _matrix(N, d.J, latex, deadline, wrap)
+    matrix = f"{lhs}{eq}{body}"
     columns = []
     for j in range(d.J.cols):
         name = f"{lhs}_{{{j + 1}}}" if latex else f"<msub>{lhs}<mn>{j + 1}</mn></msub>"
         if latex and d.frame == "tool":
             name = f"J_{{\\mathrm{{tool}}, {j + 1}}}"
-        columns.append(f"{name}{eq}{show(d.J[:, j])}")
+        columns.append(f"{name}{eq}{_matrix(N, d.J[:, j], latex, deadline, wrap)[0]}")
     det_text, singular, notes = None, [], list(d.notes)
+    if skipped:
+        notes.append(
+            f"{len(skipped)} entries of J are shown as * (too long to typeset, or past the time limit); "
+            "the Python and JSON exports hold them in full"
+        )
     if det is not None:
         notes += list(det.notes)
         expr = det.expr
-        if expr is not None:
+        if expr is not None and deadline is not None and deadline.expired():
+            notes.append("det J is not typeset: time limit reached")
+        elif expr is not None:
             det_text = f"{_det_label(det, latex)}{eq}{show(expr)}"
         for s in det.singular_sets:
             text = f"{show(s.factor)}{eq}{'0' if latex else '<mn>0</mn>'}"
@@ -131,7 +153,7 @@ def _parts(d: Derivation, det: Determinant | None, latex: bool) -> TypesetParts:
                 )
             singular.append(text)
     legend = N.latex_legend() if latex else N.mathml_legend()
-    return TypesetParts(matrix, columns, det_text, singular, legend, notes)
+    return TypesetParts(matrix, columns, det_text, singular, legend, notes, N.mathml_legend_items())
 
 
 def _typeset(
@@ -142,14 +164,17 @@ def _typeset(
     with_det: bool,
     timeout: float | None,
     progress: Progress | None,
+    deadline: Deadline | None = None,
+    wrap: bool = False,
 ) -> TypesetParts:
-    d = derive(robot, frame, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
+    deadline = deadline if deadline is not None else Deadline(timeout)
+    d = derive(robot, frame, symbolic_params=symbolic_params, progress=progress, deadline=deadline)
     det = (
-        determinant(robot, symbolic_params=symbolic_params, timeout=timeout, progress=progress)
+        determinant(robot, symbolic_params=symbolic_params, progress=progress, deadline=deadline)
         if with_det
         else None
     )
-    return _parts(d, det, latex=latex)
+    return _parts(d, det, latex, robot, deadline, wrap)
 
 
 def latex_parts(
@@ -160,9 +185,14 @@ def latex_parts(
     with_det: bool = True,
     timeout: float | None = DEFAULT_TIMEOUT,
     progress: Progress | None = None,
+    deadline: Deadline | None = None,
 ) -> TypesetParts:
-    """LaTeX source of J, its columns, det J, the singular sets and the legend (one formula each)."""
-    return _typeset(robot, frame, True, symbolic_params, with_det, timeout, progress)
+    """LaTeX source of J, its columns, det J, the singular sets and the legend (one formula each).
+
+    ``deadline`` (shared with other steps) replaces ``timeout``: derivation, determinant and
+    typesetting all stop at it (see the notes).
+    """
+    return _typeset(robot, frame, True, symbolic_params, with_det, timeout, progress, deadline)
 
 
 def mathml_parts(
@@ -173,9 +203,14 @@ def mathml_parts(
     with_det: bool = True,
     timeout: float | None = DEFAULT_TIMEOUT,
     progress: Progress | None = None,
+    deadline: Deadline | None = None,
+    wrap: bool = False,
 ) -> TypesetParts:
-    """The same pieces as :func:`latex_parts`, as MathML elements (without ``<math>``)."""
-    return _typeset(robot, frame, False, symbolic_params, with_det, timeout, progress)
+    """The same pieces as :func:`latex_parts`, as MathML elements (without ``<math>``).
+
+    ``wrap``: break entries wider than :data:`.layout.MATHML_WIDTH` characters over lines.
+    """
+    return _typeset(robot, frame, False, symbolic_params, with_det, timeout, progress, deadline, wrap)
 
 
 def jacobian_latex(
@@ -190,8 +225,19 @@ def jacobian_latex(
 
 
 _LEFT_MTD = '<mtd style="text-align: left">'
-WIDE_MATHML = 15_000
-"""Above this many characters of MathML, ``layout="auto"`` shows J column by column."""
+PANEL_WIDTH = 56
+"""Width of the app's panel in characters (about 600 px): a wider J is shown column by column."""
+
+
+def _matrix_width(robot: Robot, frame: str, symbolic_params: bool, timeout: float | None) -> float:
+    """Estimated width [characters] of J with wrapped entries: the widest line of each column, summed."""
+    d = derive(robot, frame, symbolic_params=symbolic_params, timeout=timeout)  # cached by mathml_parts
+    N = notation_for(d, robot)
+    widths = [
+        max((max(map(text_width, mathml_lines(N, e))) for e in d.J[:, j] if not too_long(e)), default=1.0)
+        for j in range(d.J.cols)
+    ]
+    return sum(widths) + 2.0 * len(widths) + 4.0
 
 
 def jacobian_mathml(
@@ -202,24 +248,33 @@ def jacobian_mathml(
     symbolic_params: bool = False,
     layout: str = "auto",
 ) -> str:
-    """J(q) for the browser: ``<math display="block">J = […]</math>`` and a legend line.
+    """J(q) for the browser: ``<math display="block">J = […]</math>``, a legend and notes.
 
-    The legend is a ``<p class="jl-legend">`` holding an inline ``<math>``; notes (for example
-    entries left unsimplified at the time limit) follow as ``<p class="jl-note">``.
+    Never wider than about 600 px: entries wider than :data:`.layout.MATHML_WIDTH` characters
+    are broken over lines (after a term, or inside a product's parentheses), and a J whose
+    columns together are wider than :data:`PANEL_WIDTH` characters is shown column by column
+    (J₁ = […], J₂ = […], …). The legend is a ``<p class="jl-legend">`` of inline ``<math>``
+    items (so the paragraph wraps between them; long joint names are listed there, escaped,
+    never in the matrix); notes (snapped values, time limits) follow as ``<p class="jl-note">``.
 
     Args:
         robot: The robot.
         frame: ``"base"`` or ``"tool"``.
-        timeout: Simplification budget [s] (the result is cached, so only the first call pays).
+        timeout: Time budget [s] (the result is cached, so only the first call pays).
         symbolic_params: Keep DH lengths and offsets as symbols.
-        layout: ``"matrix"`` (one J = […]), ``"columns"`` (J₁ = […], J₂ = […], … one per
-            block, for arms whose whole matrix is too wide to read), or ``"auto"``: columns
-            when the matrix exceeds :data:`WIDE_MATHML` characters (the 7-joint arms).
+        layout: ``"matrix"`` (one J = […]), ``"columns"`` (one block per column), or ``"auto"``:
+            columns when the matrix is wider than :data:`PANEL_WIDTH` characters.
     """
     if layout not in ("auto", "matrix", "columns"):
         raise ValueError(f"layout must be 'auto', 'matrix' or 'columns', got {layout!r}")
-    p = mathml_parts(robot, frame, symbolic_params=symbolic_params, with_det=False, timeout=timeout)
-    if layout == "columns" or (layout == "auto" and len(p.matrix) > WIDE_MATHML):
+    p = mathml_parts(
+        robot, frame, symbolic_params=symbolic_params, with_det=False, timeout=timeout, wrap=True
+    )
+    if layout == "auto":
+        layout = (
+            "columns" if _matrix_width(robot, frame, symbolic_params, timeout) > PANEL_WIDTH else "matrix"
+        )
+    if layout == "columns":
         # Left-aligned entries, so that short ones (0, 1) stay in view beside very long ones.
         columns = [column.replace("<mtd>", _LEFT_MTD) for column in p.columns]
         out = "\n".join(
@@ -227,8 +282,9 @@ def jacobian_mathml(
         )
     else:
         out = f'<math display="block" style="{MATH_STYLE}"><mrow>{p.matrix}</mrow></math>'
-    if p.legend:
-        out += f'\n<p class="jl-legend"><math style="{MATH_STYLE}">{p.legend}</math></p>'
+    if p.legend_items:
+        items = ", ".join(f'<math style="{MATH_STYLE}">{item}</math>' for item in p.legend_items)
+        out += f'\n<p class="jl-legend">where {items}</p>'
     for note in p.notes:
-        out += f'\n<p class="jl-note">{escape(note)}</p>'
+        out += f'\n<p class="jl-note">{xml_text(note, NOTE_CHARS)}</p>'
     return out

@@ -38,6 +38,7 @@ it can take hours. The library's robots have at most 60; a 6R arm with arbitrary
 offsets, 300 or more."""
 
 
+@cache.register_dataclass
 @dataclass(frozen=True)
 class SingularSet:
     """Configurations where one factor of the determinant vanishes.
@@ -133,19 +134,21 @@ def _parse_rows(rows: object) -> tuple[int, ...]:
     return out
 
 
-def det_rows(robot: Robot) -> tuple[int, ...]:
+def det_rows(robot: Robot, deadline: Deadline | None = None) -> tuple[int, ...]:
     """The rows whose determinant describes the robot's singularities.
 
     The task rows (:func:`kinematics.task_rows`) when they are square; else the
     rows of J that are not identically zero when there are exactly n of them
     (SCARA: vx, vy, vz, ωz); else for a planar arm with fewer than 3 joints its
     position rows (2R: vx, vy, as the course writes det J = a₁a₂s₂); else the
-    task rows (det(J Jᵀ) or det(JᵀJ)).
+    task rows (det(J Jᵀ) or det(JᵀJ)). At the ``deadline``, the task rows.
     """
     rows, n = task_rows(robot), robot.dof
-    if len(rows) == n:
+    if len(rows) == n or (deadline is not None and deadline.expired()):
         return rows
-    J = jacobian_whitney(robot)
+    J = jacobian_whitney(robot, deadline=deadline)
+    if deadline is not None and deadline.expired():
+        return rows
     q = build_model(robot).q
     nonzero = tuple(i for i in range(6) if not all(is_zero(e, q) for e in J[i, :]))
     if len(nonzero) == n:
@@ -181,8 +184,10 @@ def _compute(
     values = {} if symbolic_params else model.exact_values()
     if progress:
         progress(f"det: expressing rows {rows} of J where they are shortest")
+    gram = len(rows) != robot.dof
+    if deadline.expired():
+        return gram, None, (), ["determinant skipped: time limit reached before it started"]
     M = shortest_rows(model, rows, deadline)
-    gram = M.rows != M.cols
     size = sum(len(sp.Add.make_args(e)) for e in M)
     if size > MAX_DET_TERMS or deadline.expired():
         why = "time limit reached" if size <= MAX_DET_TERMS else f"J has {size} terms in its shortest form"
@@ -193,6 +198,8 @@ def _compute(
         if progress:
             progress("det: determinant and factors")
         det = P.det(Mp)
+        if deadline.expired():
+            return False, None, (), ["determinant not computed: time limit reached while expanding it"]
         notes = [] if len(sp.Add.make_args(det)) <= MAX_FACTOR_TERMS else ["det J too large to factor"]
         return False, _tidy(P.factor(det), values, model.q), (), notes
     if progress:
@@ -204,6 +211,8 @@ def _compute(
     if g == 0:
         return True, (sp.Integer(0), ()), tuple((sp.Integer(0), ()) for _ in minors), []
     common = P.factor(g)
+    if deadline.expired():
+        return True, None, (), [f"time limit of {deadline.seconds:g} s reached while factoring the minors"]
     shown = []  # each minor as (factors common to all) × (its own cofactor, not factored further)
     for _, d in minors:
         if d == 0:
@@ -222,6 +231,7 @@ def determinant(
     timeout: float | None = DEFAULT_TIMEOUT,
     use_cache: bool = True,
     progress: Progress | None = None,
+    deadline: Deadline | None = None,
 ) -> Determinant:
     """Factored det J of the task rows (or det(J Jᵀ) for a redundant arm) and its singular sets.
 
@@ -233,6 +243,7 @@ def determinant(
         timeout: Time budget [s]; past it the result says what was not computed.
         use_cache: Read and write the on-disk cache.
         progress: Called with short progress messages.
+        deadline: A deadline shared with other steps (an export); replaces ``timeout``.
 
     Example:
         >>> from kinematics import Robot
@@ -242,13 +253,13 @@ def determinant(
         >>> d.expr, [s.solutions for s in d.singular_sets]
         (a1*a2*sin(q2), [(0, pi)])
     """
-    rows = det_rows(robot) if rows is None else _parse_rows(rows)
+    deadline = deadline if deadline is not None else Deadline(timeout)
+    rows = det_rows(robot, deadline) if rows is None else _parse_rows(rows)
     display_model = build_model(robot, symbolic_params)
     key = f"det|{display_model.cache_key()}|{rows}"
     hit = cache.load(key) if use_cache else None
     if isinstance(hit, dict):
         return Determinant(**{**hit, "robot": robot.name})
-    deadline = Deadline(timeout)
     gram, factored, minors, notes = _compute(robot, rows, symbolic_params, deadline, progress)
     sets = []
     if factored is not None and factored[0] != 0:

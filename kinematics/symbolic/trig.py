@@ -12,9 +12,7 @@ cheap, predictable steps do what a person does by hand:
    ``fu`` rule TR10i, keeping only collapses into sums of joint angles);
 3. :func:`nest`: common factors pulled out, greedily, outermost joints first.
 
-:func:`simplify_matrix` runs them entry by entry and checks a
-:class:`Deadline` between entries: past it, the remaining entries keep their
-unsimplified form and a note says so.
+:mod:`.simplify` runs them entry by entry within a :class:`Deadline`.
 """
 
 from __future__ import annotations
@@ -32,13 +30,12 @@ __all__ = [
     "is_zero",
     "collapse",
     "nest",
-    "simplify_entry",
-    "simplify_matrix",
+    "AngleShift",
     "MAX_TERMS",
 ]
 
 MAX_TERMS = 600
-"""Entries with more terms than this in normal form are not collapsed nor nested (too slow to be worth it)."""
+"""Entries with more terms than this in normal form are not nested (too slow to be worth it)."""
 
 Progress = Callable[[str], None]
 
@@ -57,6 +54,16 @@ class Deadline:
     def expired(self) -> bool:
         """True once the budget is spent."""
         return self.seconds is not None and time.perf_counter() - self.start > self.seconds
+
+    def remaining(self) -> float:
+        """Seconds left [s] (``inf`` without a limit, 0 once expired)."""
+        if self.seconds is None:
+            return float("inf")
+        return max(0.0, self.seconds - (time.perf_counter() - self.start))
+
+    def allows(self, seconds: float) -> bool:
+        """True if a step expected to take ``seconds`` [s] fits in what is left."""
+        return self.remaining() >= seconds
 
     def elapsed(self) -> float:
         """Seconds since the deadline was created."""
@@ -210,61 +217,3 @@ class AngleShift:
     def undo(self, expr: sp.Expr) -> sp.Expr:
         """``expr`` back in the joint symbols."""
         return expr.xreplace(self.back) if self.back else expr
-
-
-def simplify_entry(expr: sp.Expr, q: Sequence[sp.Symbol], shift: AngleShift | None = None) -> sp.Expr:
-    """:func:`normal_form`, then :func:`collapse`, then :func:`nest`: what a person would write.
-
-    Entries that are still longer than :data:`MAX_TERMS` terms in normal form are
-    returned expanded (collapsing and nesting them would take minutes).
-    """
-    shift = shift or AngleShift(q)
-    v = shift.vars
-    out = normal_form(shift.apply(expr), v)
-    if len(sp.Add.make_args(out)) <= MAX_TERMS:
-        out = nest(collapse(out, v), v)
-    return shift.undo(out)
-
-
-def simplify_matrix(
-    M: sp.Matrix,
-    q: Sequence[sp.Symbol],
-    deadline: Deadline | None = None,
-    progress: Progress | None = None,
-    label: str = "J",
-    shift: AngleShift | None = None,
-) -> tuple[sp.Matrix, list[str]]:
-    """Simplify every entry of ``M`` with :func:`simplify_entry`, within ``deadline``.
-
-    Args:
-        M: Matrix of exact expressions.
-        q: Joint symbols.
-        deadline: Checked between entries; once expired, the remaining entries
-            are left unsimplified.
-        progress: Called with a short message before each entry.
-        label: Name of the matrix in messages and notes.
-        shift: Joint offsets to work around (see :class:`AngleShift`).
-
-    Returns:
-        The simplified matrix and a list of notes (empty when every entry was simplified).
-    """
-    out = sp.zeros(*M.shape)
-    skipped = []
-    total = M.rows * M.cols
-    for k in range(total):
-        i, j = divmod(k, M.cols)
-        if deadline is not None and deadline.expired():
-            skipped.append((i, j))
-            out[i, j] = M[i, j]
-            continue
-        if progress is not None:
-            progress(f"simplifying {label}: entry {k + 1}/{total}")
-        out[i, j] = simplify_entry(M[i, j], q, shift)
-    notes = []
-    if skipped:
-        notes.append(
-            f"time limit of {deadline.seconds:g} s reached while simplifying {label}: "  # type: ignore[union-attr]
-            f"{len(skipped)} of {total} entries are shown unsimplified (exact, but long); "
-            "raise the timeout to simplify them all"
-        )
-    return out, notes
