@@ -50,8 +50,10 @@ class RobotCatalog:
         """
         path = Path(path)
         urdf = path.suffix.lower() == ".urdf"
+        # A URDF is listed under its <robot name> (read now, so a broken file fails at once).
+        stem = robots.load_file(path, base_link, tip_link).name if urdf else path.stem
         with self._lock:
-            name = path.stem
+            name = stem or path.stem
             while name in robots.names() or name in self._files:
                 name += " (file)"
             self._files[name] = path

@@ -434,7 +434,7 @@ URDF = """<?xml version="1.0"?>
     ids=["meshes-present", "mesh-missing"],
 )
 def test_urdf_robot_drawn_with_its_meshes_or_generated_geometry(tmp_path, fore, meshes):
-    path = tmp_path / "two_link.urdf"
+    path = tmp_path / "arm_file.urdf"  # listed under its <robot name>, not the file stem
     path.write_text(URDF.replace("FORE", fore))
     with running_lab(urdf=str(path)) as (lab, session, _):
         assert session.state.robot_name == "two_link"

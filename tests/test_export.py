@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
-import io
 import json
-import time
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -131,45 +129,3 @@ def test_export_rejects_bad_input():
 
 
 # ------------------------------------------------------------------------- CLI
-def test_cli_stdout_and_file(tmp_path, capsys):
-    assert ex.main(["planar2", "--format", "json"]) == 0
-    assert json.loads(capsys.readouterr().out)["robot"] == "planar2"
-    out = tmp_path / "J.py"
-    assert ex.main(["trr", "--format", "python", "--symbolic-params", "--frame", "tool", "-o", str(out)]) == 0
-    assert capsys.readouterr().out == ""
-    module = import_source(tmp_path / "J_trr.py", out.read_text(), "J_trr_cli")
-    assert module.FRAME == "tool" and "l2" in module.PARAMETERS
-
-
-def test_cli_accepts_a_robot_file_path(tmp_path, capsys):
-    src = robots.DATA_DIR / "planar3.toml"
-    dst = tmp_path / "planar3.toml"
-    dst.write_text(src.read_text())
-    assert ex.main([str(dst), "-f", "latex"]) == 0
-    assert "\\begin{bmatrix}" in capsys.readouterr().out
-
-
-def test_cli_errors(tmp_path, capsys):
-    assert ex.main(["no_such_robot"]) == 1
-    err = capsys.readouterr().err
-    assert "unknown robot 'no_such_robot'" in err and "puma560" in err
-    assert ex.main(["planar2", "--format", "pdf"]) == 2
-    assert "invalid choice" in capsys.readouterr().err
-    assert ex.main(["planar2", "-o", str(tmp_path / "missing" / "J.tex")]) == 1
-    assert "cannot write" in capsys.readouterr().err
-    assert ex.main(["planar2", "--timeout", "-3"]) == 1
-    assert "timeout" in capsys.readouterr().err
-    assert ex.main(["--help"]) == 0
-
-
-def test_progress_only_after_a_second():
-    quiet = io.StringIO()
-    with ex._StderrProgress(quiet, after=1.0) as progress:
-        progress("fast step")
-    assert quiet.getvalue() == ""
-    slow = io.StringIO()
-    with ex._StderrProgress(slow, after=0.05) as progress:
-        progress("simplifying J: entry 3/36")
-        time.sleep(0.5)
-    lines = slow.getvalue().splitlines()
-    assert "simplifying J: entry 3/36" in lines[0] and lines[-1].endswith("done")
