@@ -13,6 +13,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+from typing import Any
 
 import numpy as np
 
@@ -102,9 +103,9 @@ def reduce(state: LabState, action: Action) -> LabState:
             q = _with(state.q, i, snap_joint(robot, i, x, float(state.q[i])))
             return state.replace(q=q, configuration=named_configuration_at(state, q), stopped="")
         case SetConfiguration(q=values, name=name):
-            q = np.array([_finite(v, "joint value") for v in values]) if len(values) == n else None
-            if q is None:
+            if len(values) != n:
                 raise InvalidAction(f"a configuration needs {n} joint values, got {len(values)}")
+            q = np.array([_finite(v, "joint value") for v in values])
             return state.replace(q=frozen(q), configuration=name or named_configuration_at(state, q))
         case GoTo(name=name):
             if name == "home":
@@ -162,7 +163,8 @@ def _option(options: Options, name: str, value: object) -> Options:
             raise InvalidAction(f"{name} must be one of {_CHOICES[name]}, got {value!r}")
     elif not isinstance(value, bool):
         raise InvalidAction(f"{name} is on or off (a bool), got {value!r}")
-    return dataclasses.replace(options, **{name: value})
+    changes: dict[str, Any] = {name: value}
+    return dataclasses.replace(options, **changes)
 
 
 def _step(state: LabState, dt: float) -> LabState:

@@ -327,8 +327,8 @@ class ClientSession:
             return
         cam = self.client.camera
         cam.up_direction = (0.0, 0.0, 1.0)
-        cam.position = tuple(float(x) for x in position)
-        cam.look_at = tuple(float(x) for x in look_at)  # after position: setting position moves look_at
+        cam.position = np.asarray(position, float)
+        cam.look_at = np.asarray(look_at, float)  # after position: setting position moves look_at
 
     def _camera_moved(self, camera: viser.CameraHandle) -> None:
         """The canvas changed shape (a panel collapsed, the window resized): keep everything in view."""

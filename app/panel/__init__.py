@@ -14,7 +14,9 @@ screen.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
+from typing import Any
 
 import viser
 
@@ -98,7 +100,7 @@ class PanelView:
             self.toggles = {}
             for key, label, hint in _TOGGLES:
                 box = gui.add_checkbox(label, initial_value=getattr(state.options, key), hint=hint)
-                bind(box, dispatch, lambda v, key=key: SetOption(key, bool(v)))
+                bind(box, dispatch, functools.partial(_option, key))
                 self.toggles[key] = box
             self.scale = gui.add_slider(
                 "Glyph scale",
@@ -202,3 +204,7 @@ class PanelView:
 
 def _chain_label(chain: ChainInfo) -> str:
     return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"
+
+
+def _option(key: str, value: Any) -> SetOption:
+    return SetOption(key, bool(value))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import viser
 
@@ -15,7 +16,7 @@ __all__ = ["sync_value", "bind", "bind_click", "Dispatch"]
 Dispatch = Callable[[Action], None]
 
 
-def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[object], Action | None]) -> None:
+def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any], Action | None]) -> None:
     """When the user changes ``handle``, dispatch ``make(value)`` (nothing when it returns ``None``)."""
 
     def callback(event: viser.GuiEvent) -> None:
@@ -37,7 +38,7 @@ def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable
     button.on_click(callback)
 
 
-def sync_value(handle: viser.GuiInputHandle, value: float | str | bool) -> None:
+def sync_value(handle: Any, value: float | str | bool) -> None:
     """Show ``value`` on ``handle`` unless it already shows it (floats compared with a tolerance).
 
     A slider the user is dragging already holds the value the state was set from; writing back a

@@ -7,6 +7,9 @@ column arrow; its range, step and snapping come from :mod:`app.ranges`.
 
 from __future__ import annotations
 
+import functools
+from typing import Any
+
 import numpy as np
 import viser
 
@@ -14,7 +17,7 @@ from kinematics import Robot
 
 from .. import fmt
 from ..actions import GoTo, SetJoint
-from ..ranges import from_display, joint_ranges, to_display
+from ..ranges import Range, from_display, joint_ranges, to_display
 from ..viser_adapter import handle_uuid
 from .common import Dispatch, bind, sync_value
 from .style import slider_css
@@ -59,7 +62,7 @@ class JointsPanel:
                     f"{fmt.number(r.lo)} to {fmt.number(r.hi)} {r.unit}. "
                     "Arrow keys: 10 steps; Shift + arrow: one fine step.",
                 )
-                bind(slider, dispatch, lambda v, i=i, r=r: SetJoint(i, from_display(r, float(v))))
+                bind(slider, dispatch, functools.partial(_set_joint, i, r))
                 css.append(slider_css(handle_uuid(slider), i))
                 self.sliders.append(slider)
             gui.add_html(f"<style>{''.join(css)}</style>")
@@ -96,3 +99,7 @@ def configurations_html(robot: Robot) -> str:
     )
     listing = f'<ul class="jl-conf">{items or "<li>none</li>"}</ul>'
     return f'<div class="jl"><b>Named configurations</b>{listing}</div>'
+
+
+def _set_joint(i: int, r: Range, value: Any) -> SetJoint:
+    return SetJoint(i, from_display(r, float(value)))

@@ -10,6 +10,7 @@ and closes with Escape, its × or a click outside (see the page script).
 from __future__ import annotations
 
 import threading
+from typing import Any
 
 import numpy as np
 import viser
@@ -60,7 +61,7 @@ class MatrixPanel:
     def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
         self.gui = gui
         self.robot = robot
-        self._modal: viser.GuiModalHandle | None = None
+        self._modal: Any = None  # viser's modal handle (not exported by name)
         self._modal_html: viser.GuiHtmlHandle | None = None
         self._last = ""
         self._last_args: tuple = (np.zeros((6, robot.dof)), (), "base", "")

@@ -12,7 +12,9 @@
 
 from __future__ import annotations
 
+import functools
 import math
+from typing import Any
 
 import numpy as np
 import viser
@@ -103,7 +105,7 @@ class ForwardPanel:
             self.sliders = []
             for i, (joint, r) in enumerate(zip(robot.joints, self.ranges, strict=True)):
                 slider = _slider(gui, f"q̇{i + 1}", r, f"rate of {joint.name}")
-                bind(slider, dispatch, lambda v, i=i, r=r: SetRate(i, from_display(r, float(v))))
+                bind(slider, dispatch, functools.partial(_set_rate, i, r))
                 css.append(slider_css(handle_uuid(slider), i))
                 self.sliders.append(slider)
             gui.add_html(f"<style>{''.join(css)}</style>")
@@ -153,7 +155,7 @@ class InversePanel:
             self.sliders = {}
             for r in rows:
                 slider = _slider(gui, _TWIST_ROWS[r], self.ranges[r], "desired tool velocity, base axes")
-                bind(slider, dispatch, lambda v, r=r: SetDesired(r, from_display(self.ranges[r], float(v))))
+                bind(slider, dispatch, functools.partial(_set_desired, r, self.ranges[r]))
                 self.sliders[r] = slider
             self.damping = gui.add_slider(
                 "damping λ",
@@ -228,7 +230,7 @@ class ForcePanel:
             self.sliders = {}
             for r in rows:
                 slider = _slider(gui, _WRENCH_ROWS[r], self.ranges[r], "applied at the tool point, base axes")
-                bind(slider, dispatch, lambda v, r=r: SetWrench(r, float(v)))
+                bind(slider, dispatch, functools.partial(_set_wrench, r))
                 self.sliders[r] = slider
             zero = gui.add_button("Remove the force (F = 0)")
             bind_click(zero, dispatch, ClearWrench)
@@ -257,3 +259,15 @@ class ForcePanel:
 
     def remove(self) -> None:
         self.root.remove()
+
+
+def _set_rate(i: int, r: Range, value: Any) -> SetRate:
+    return SetRate(i, from_display(r, float(value)))
+
+
+def _set_desired(row: int, r: Range, value: Any) -> SetDesired:
+    return SetDesired(row, from_display(r, float(value)))
+
+
+def _set_wrench(row: int, value: Any) -> SetWrench:
+    return SetWrench(row, float(value))

@@ -106,9 +106,9 @@ class _Ellipsoid:
         self.extent = np.zeros((0, 3))
         if show:
             r = np.clip(np.nan_to_num(radii, nan=0.0, posinf=cap), TINY, cap)
-            self.node.scale = tuple(float(x) for x in r)
-            self.node.wxyz = tuple(float(x) for x in finite(wxyz(axes)))
-            self.node.position = tuple(float(x) for x in finite(center))
+            self.node.scale = (float(r[0]), float(r[1]), float(r[2]))
+            self.node.wxyz = finite(wxyz(axes)).astype(float)
+            self.node.position = finite(center).astype(float)
             self.extent = center + np.concatenate([axes * r, -(axes * r)], axis=1).T
 
 
@@ -176,16 +176,16 @@ class Overlays:
             self.velocity.node.color = STATUS_RGB[status]
             self._status = status
         if snap.rotational is not None:
-            e = snap.rotational
-            self.rotational.set(p, e.axes, e.radii * 0.6 * unit, options.rotational_ellipsoid, cap)
+            rot = snap.rotational
+            self.rotational.set(p, rot.axes, rot.radii * 0.6 * unit, options.rotational_ellipsoid, cap)
         else:
             self.rotational.set(p, np.eye(3), np.zeros(3), False, 1.0)
-        e = snap.force
-        if e is not None:
-            radii = e.radii * (lin * FORCE_SIGMA_REF**2 * s * s)
+        force = snap.force
+        if force is not None:
+            radii = force.radii * (lin * FORCE_SIGMA_REF**2 * s * s)
             if self.planar:  # a planar arm's force ellipse lies in the plane: flatten the out-of-plane axis
-                radii = np.where(np.abs(e.axes[2]) > 0.99, 0.0, radii)
-            self.force.set(p, e.axes, radii, options.force_ellipsoid, cap)
+                radii = np.where(np.abs(force.axes[2]) > 0.99, 0.0, radii)
+            self.force.set(p, force.axes, radii, options.force_ellipsoid, cap)
         else:
             self.force.set(p, np.eye(3), np.zeros(3), False, cap)
 
@@ -238,7 +238,7 @@ class Overlays:
         label_v = self.lost_labels["v"]
         set_if_changed(label_v, "visible", bool(show_v))
         if show_v:
-            label_v.position = tuple(float(x) for x in finite(self.lost_v.tips[0]))
+            label_v.position = finite(self.lost_v.tips[0]).astype(float)
         label_w = self.lost_labels["w"]
         set_if_changed(self.lost_w, "visible", bool(show_w))
         set_if_changed(label_w, "visible", bool(show_w))
@@ -247,7 +247,7 @@ class Overlays:
             half = length * np.sqrt(lost.rotation_share)
             axis = np.array([[p - a * half, p + a * half]])
             self.lost_w.points = finite(np.concatenate([axis, _ring(p + a * 0.6 * half, a, 0.25 * half)]))
-            label_w.position = tuple(float(x) for x in finite(p + a * half))
+            label_w.position = finite(p + a * half).astype(float)
 
     def remove(self) -> None:
         for node in self._nodes:

@@ -38,7 +38,8 @@ def install_fast_prop_casts() -> None:
     base = props_api.AssignablePropsBase
     if not callable(getattr(base, "_cast_value_recursive", None)):
         raise ViserApiChanged("install_fast_prop_casts", "AssignablePropsBase._cast_value_recursive is gone")
-    f16, f32, f64, u8 = (npt.NDArray[t] for t in (np.float16, np.float32, np.float64, np.uint8))
+    f16, f32 = npt.NDArray[np.float16], npt.NDArray[np.float32]
+    f64, u8 = npt.NDArray[np.float64], npt.NDArray[np.uint8]
     colors_to_uint8 = props_api.colors_to_uint8
 
     def cast(self: Any, hint: Any, value: Any, prop_name: str) -> Any:
@@ -93,5 +94,5 @@ def _install_fast_pose_setter() -> None:
         current[:] = value_cast
         queue(make_message(value_cast))
 
-    handles._jl_original_set_pose_vector = original
-    handles._set_pose_vector = set_pose_vector
+    setattr(handles, "_jl_original_set_pose_vector", original)  # noqa: B010 (a module, not a class)
+    setattr(handles, "_set_pose_vector", set_pose_vector)  # noqa: B010

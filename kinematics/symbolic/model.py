@@ -17,6 +17,7 @@ from __future__ import annotations
 import functools
 import re
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 import sympy as sp
@@ -42,11 +43,13 @@ class SymbolicError(JacobianLabError):
     """A symbolic request is invalid: unknown frame or option, or a robot it cannot handle."""
 
 
-def check_frame(frame: object) -> str:
+def check_frame(frame: object) -> Literal["base", "tool"]:
     """Return ``frame`` if it is ``"base"`` or ``"tool"``, else raise :class:`SymbolicError`."""
-    if frame not in FRAMES:
-        raise SymbolicError(f"frame must be 'base' or 'tool', got {frame!r}")
-    return frame  # type: ignore[return-value]
+    if frame == "base":
+        return "base"
+    if frame == "tool":
+        return "tool"
+    raise SymbolicError(f"frame must be 'base' or 'tool', got {frame!r}")
 
 
 @dataclass(frozen=True, eq=False)

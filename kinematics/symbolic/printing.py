@@ -13,6 +13,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping, Sequence
 from decimal import Decimal, localcontext
+from typing import Literal
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
@@ -100,7 +101,7 @@ class Notation:
         """LaTeX of an expression or matrix (matrices as ``bmatrix``)."""
         return _Latex(self).doprint(expr)
 
-    def _legend(self) -> tuple[list[str], list[str], list[sp.Symbol]]:
+    def _legend(self) -> tuple[list[str], list[Literal["revolute", "prismatic"]], list[sp.Symbol]]:
         """What the legend lists: index patterns of the abbreviations used ("i", "ij", …),
         the joint kinds present, and the parameters."""
         sizes = sorted({len(idx) for _, idx in self.used})

@@ -81,7 +81,10 @@ def _det_label(det: Determinant, latex: bool) -> str:
     """``det J``, ``det J_v``, ``det J_ω``, ``det J_(vx, vy, ωz)``, ``det(J Jᵀ)`` or ``det(Jᵀ J)``."""
     rows = det.rows
     names = _ROWS_LATEX if latex else _ROWS_MATHML
-    blocks = {(0, 1, 2): "v" if latex else "<mi>v</mi>", (3, 4, 5): "\\omega" if latex else "<mi>ω</mi>"}
+    blocks: dict[tuple[int, ...], str] = {
+        (0, 1, 2): "v" if latex else "<mi>v</mi>",
+        (3, 4, 5): "\\omega" if latex else "<mi>ω</mi>",
+    }
     if len(rows) == 6:
         J = "J" if latex else "<mi>J</mi>"
     else:

@@ -104,10 +104,11 @@ class Determinant:
         """det J as a product, or det(J Jᵀ) as a sum of squared products; None if not computed."""
         if not self.gram:
             return None if self.factored is None else self.product(self.factored)
-        if any(m is None for m in self.minors) or not self.minors:
+        minors = [m for m in self.minors if m is not None]
+        if len(minors) < len(self.minors) or not minors:
             return None
         return sp.Add(
-            *[sp.Pow(self.product(m), 2, evaluate=False) for m in self.minors if m[0] != 0], evaluate=False
+            *[sp.Pow(self.product(m), 2, evaluate=False) for m in minors if m[0] != 0], evaluate=False
         )
 
     @property
@@ -124,7 +125,7 @@ def _parse_rows(rows: object) -> tuple[int, ...]:
             raise SymbolicError(f"rows must be one of {', '.join(PART_ROWS)} or row indices, got {rows!r}")
         return PART_ROWS[rows]
     try:
-        out = tuple(sorted(int(r) for r in rows))  # type: ignore[union-attr]
+        out = tuple(sorted(int(r) for r in rows))  # type: ignore[attr-defined]
     except (TypeError, ValueError):
         raise SymbolicError(
             f"rows must be a part name or a sequence of row indices 0-5, got {rows!r}"
@@ -213,7 +214,7 @@ def _compute(
     common = P.factor(g)
     if deadline.expired():
         return True, None, (), [f"time limit of {deadline.seconds:g} s reached while factoring the minors"]
-    shown = []  # each minor as (factors common to all) × (its own cofactor, not factored further)
+    shown: list[Factored] = []  # each minor as (common factors) × (its own cofactor, not factored further)
     for _, d in minors:
         if d == 0:
             shown.append((sp.Integer(0), ()))
