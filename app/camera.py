@@ -14,6 +14,7 @@ from __future__ import annotations
 import threading
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -24,6 +25,7 @@ __all__ = [
     "framing",
     "facing",
     "CameraMove",
+    "TabCamera",
     "THREE_QUARTER",
     "FROM_ABOVE",
 ]
@@ -172,3 +174,73 @@ class CameraMove:
             self.apply(p0 + (p1 - p0) * s, t0 + (t1 - t0) * s)
             if k < self.frames:
                 time.sleep(self.duration / self.frames)
+
+
+class TabCamera:
+    """One tab's camera: reads the browser's view, frames what is drawn, glides there.
+
+    Args:
+        client: The tab's viser client (its ``camera``).
+    """
+
+    def __init__(self, client: Any) -> None:
+        self.client = client
+        self.mover = CameraMove(self._set)
+        self._aspect = 0.0
+        self._closed = False
+
+    def view(self) -> View | None:
+        """The browser's current view, or None before its first camera message."""
+        cam = self.client.camera
+        try:
+            aspect, fov = float(cam.aspect), float(cam.fov)
+        except Exception:
+            return None
+        if not (np.isfinite(aspect) and aspect > 0.05 and np.isfinite(fov) and fov > 0.05):
+            return None
+        return View(
+            np.asarray(cam.position, float),
+            np.asarray(cam.look_at, float),
+            np.array([0.0, 0, 1]),
+            fov,
+            aspect,
+        )
+
+    def frame(
+        self, points: np.ndarray, pad: float, direction: np.ndarray | None = None, glide: bool = True
+    ) -> None:
+        """Point the camera at ``points`` (+ ``pad`` [m]) from ``direction`` (default: the current one)."""
+        view = self.view()
+        if view is None:  # no camera message yet: assume a 16:9 canvas and viser's default fov
+            view = View(np.array([1.3, -1.5, 0.9]), np.zeros(3), np.array([0.0, 0, 1]), 1.3, 1.4)
+        end = framing(view, points, direction, pad=pad)
+        if glide:
+            self.mover.to((view.position, view.look_at), end)
+        else:
+            self.mover.cancel()
+            self._set(*end)
+
+    def frame_if_needed(self, points: np.ndarray, pad: float) -> None:
+        """Glide to a framing only when something drawn left the view (or shrank to a speck)."""
+        view = self.view()
+        if view is not None and needs_framing(view, points):
+            self.frame(points, pad)
+
+    def canvas_changed(self, aspect: float) -> bool:
+        """Record the canvas's aspect; True the first time and when it changed by more than 5 %."""
+        changed = not self._aspect or abs(aspect - self._aspect) > 0.05 * self._aspect
+        self._aspect = aspect
+        return changed
+
+    def close(self) -> None:
+        """Stop any move (the tab has gone)."""
+        self._closed = True
+        self.mover.cancel()
+
+    def _set(self, position: np.ndarray, look_at: np.ndarray) -> None:
+        if self._closed:
+            return
+        cam = self.client.camera
+        cam.up_direction = (0.0, 0.0, 1.0)
+        cam.position = np.asarray(position, float)
+        cam.look_at = np.asarray(look_at, float)  # after position: setting position moves look_at

@@ -48,7 +48,7 @@ from .actions import (
     SetJoint,
     SetRobot,
 )
-from .camera import FROM_ABOVE, CameraMove, View, facing, framing, needs_framing
+from .camera import FROM_ABOVE, TabCamera, facing
 from .catalog import RobotCatalog
 from .panel import PanelView
 from .reducer import reduce
@@ -106,8 +106,7 @@ class ClientSession:
         self._last_redraw = 0.0
         self._subscribers: list[Callable[[LabState], None]] = []
         self._symbolic_wanted: tuple | None = None
-        self._camera = CameraMove(self._set_camera)
-        self._aspect = 0.0
+        self.camera = TabCamera(client)
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.snapshot: Snapshot | None = None
         self.scene: SceneView | None = None
@@ -184,6 +183,11 @@ class ClientSession:
         return reduce(state, action)
 
     @property
+    def closed(self) -> bool:
+        """Whether the tab has gone (its session no longer draws)."""
+        return self._closed
+
+    @property
     def pending(self) -> bool:
         """Whether actions of this tab wait for, or are in, the renderer's visit."""
         with self._queue_lock:
@@ -253,13 +257,13 @@ class ClientSession:
             self.ticker.stop()
         if rebuild or state.options.jacobian_frame != old.options.jacobian_frame:
             self._request_symbolic()
+        assert self.scene is not None
+        pad = 0.18 * self.scene.size  # link meshes and labels reach beyond the points drawn
         if rebuild:
-            assert self.scene is not None
-            self._frame(
-                direction=FROM_ABOVE if state.robot.planar else facing(self.scene.extent), glide=False
-            )
+            direction = FROM_ABOVE if state.robot.planar else facing(self.scene.extent)
+            self.camera.frame(self.scene.extent, pad, direction, glide=False)
         elif jump:
-            self._frame_if_needed()
+            self.camera.frame_if_needed(self.scene.extent, pad)
         for fn in list(self._subscribers):
             try:
                 fn(state)
@@ -286,59 +290,13 @@ class ClientSession:
             )
 
     # ------------------------------------------------------------------ camera
-    def _view(self) -> View | None:
-        cam = self.client.camera
-        try:
-            aspect = float(cam.aspect)
-            fov = float(cam.fov)
-        except Exception:
-            return None
-        if not (np.isfinite(aspect) and aspect > 0.05 and np.isfinite(fov) and fov > 0.05):
-            return None
-        return View(
-            np.asarray(cam.position, float),
-            np.asarray(cam.look_at, float),
-            np.array([0.0, 0, 1]),
-            fov,
-            aspect,
-        )
-
-    def _frame_if_needed(self) -> None:
-        view = self._view()
-        if view is not None and self.scene is not None and needs_framing(view, self.scene.extent):
-            self._frame()
-
-    def _frame(self, direction: np.ndarray | None = None, glide: bool = True) -> None:
-        """Point the camera at everything drawn (from ``direction``, default the current one)."""
-        view = self._view()
-        if self.scene is None:
-            return
-        if view is None:  # no camera message yet: assume a 16:9 canvas and viser's default fov
-            view = View(np.array([1.3, -1.5, 0.9]), np.zeros(3), np.array([0.0, 0, 1]), 1.3, 1.4)
-        end = framing(view, self.scene.extent, direction, pad=0.18 * self.scene.size)
-        if glide:
-            self._camera.to((view.position, view.look_at), end)
-        else:
-            self._camera.cancel()
-            self._set_camera(*end)
-
-    def _set_camera(self, position: np.ndarray, look_at: np.ndarray) -> None:
-        if self._closed:
-            return
-        cam = self.client.camera
-        cam.up_direction = (0.0, 0.0, 1.0)
-        cam.position = np.asarray(position, float)
-        cam.look_at = np.asarray(look_at, float)  # after position: setting position moves look_at
-
     def _camera_moved(self, camera: viser.CameraHandle) -> None:
         """The canvas changed shape (a panel collapsed, the window resized): keep everything in view."""
         try:
-            aspect = float(camera.aspect)
-            if not self._aspect or abs(aspect - self._aspect) > 0.05 * self._aspect:
+            if self.camera.canvas_changed(float(camera.aspect)):
                 with self.lock:
-                    if not self._closed:
-                        self._frame_if_needed()
-            self._aspect = aspect
+                    if not self._closed and self.scene is not None:
+                        self.camera.frame_if_needed(self.scene.extent, 0.18 * self.scene.size)
         except Exception as exc:
             self.report_error(exc)
 
@@ -412,7 +370,7 @@ class ClientSession:
         self.ticker.close()
         if self._own_renderer:
             self.renderer.close()
-        self._camera.cancel()
+        self.camera.close()
         with self.lock:
             self._release_symbolic()
             self._subscribers.clear()

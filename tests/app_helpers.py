@@ -88,3 +88,9 @@ def gui_contents(session: ClientSession) -> list[str]:
         p.force.torques,
     ]
     return [h.content for h in handles]
+
+
+def assert_all_finite(session: ClientSession) -> None:
+    """No NaN or ∞ (number or text) in the session's scene props and readouts."""
+    bad = nonfinite_paths(scene_props(session)) + nonfinite_paths(gui_contents(session))
+    assert not bad, bad

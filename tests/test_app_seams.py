@@ -165,3 +165,38 @@ def test_contrast_and_delta_e_match_known_values():
     assert contrast((118, 118, 118), (255, 255, 255)) == pytest.approx(4.54, abs=0.01)
     assert delta_e((255, 0, 0), (255, 0, 0)) == 0.0
     assert delta_e((0, 0, 0), (255, 255, 255)) == pytest.approx(100.0, abs=0.1)
+
+
+def test_a_tab_closed_while_its_session_is_built_is_forgotten(monkeypatch):
+    """Closing a tab before its session is ready must not leave the session in the server's table."""
+    import threading
+
+    import app.server as server_module
+    from app.server import Lab
+    from app.session import ClientSession
+
+    building, release = threading.Event(), threading.Event()
+    built: list[ClientSession] = []
+
+    class SlowSession(ClientSession):
+        def __init__(self, *args, **kwargs):
+            building.set()
+            assert release.wait(30)
+            super().__init__(*args, **kwargs)
+            built.append(self)
+
+    monkeypatch.setattr(server_module, "ClientSession", SlowSession)
+    lab = Lab(port=0)
+    try:
+        ws = ViserWsClient(f"ws://127.0.0.1:{lab.port}")
+        ws.__enter__()
+        wait_until(building.is_set)
+        ws.__exit__(None, None, None)  # the tab closes while its session is being built
+        wait_until(lambda: lab.server.get_clients() == {})
+        release.set()
+        wait_until(lambda: len(built) == 1)
+        wait_until(lambda: built[0].closed)
+        assert lab.sessions == {}
+    finally:
+        release.set()
+        lab.stop()

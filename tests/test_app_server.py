@@ -13,8 +13,7 @@ import math
 
 import numpy as np
 import pytest
-from app_helpers import gui_contents, nonfinite_paths, running_lab, scene_node, scene_props, wait_until
-from wsclient import ViserWsClient
+from app_helpers import assert_all_finite, running_lab, scene_node, wait_until
 
 import robots
 from app import fmt
@@ -33,7 +32,7 @@ from app.palette import LOST_RGB
 from app.ranges import joint_ranges, to_display
 from app.scene.geometry import TINY
 from app.state import LabState
-from app.viser_adapter import handle_uuid, is_removed
+from app.viser_adapter import is_removed
 from kinematics import jacobian
 from kinematics.analysis import task_rows
 
@@ -53,11 +52,6 @@ def session(lab_client):
     session.settle()
     assert session.state.configuration == "home"
     return session
-
-
-def assert_all_finite(session) -> None:
-    bad = nonfinite_paths(scene_props(session)) + nonfinite_paths(gui_contents(session))
-    assert not bad, bad
 
 
 def singular_configurations():
@@ -353,144 +347,3 @@ def test_download_sends_the_file(lab_client, session):
     _, part = ws.wait_for(lambda m: m["type"] == "FileTransferPart", after=mark)
     assert bytes(part["content"]).lstrip().startswith(b"{")
     assert session.errors == errors
-
-
-def test_an_error_is_shown_to_that_client_only(lab_client, session, monkeypatch):
-    lab, _, ws = lab_client
-    import app.session as session_module
-
-    def broken(state):
-        raise RuntimeError("deliberate failure")
-
-    monkeypatch.setattr(session_module, "compute", broken)
-    mark = ws.mark()
-    errors = session.errors
-    session.panel.joints.sliders[0].value = 12.0
-    session.settle()
-    assert session.errors == errors + 1
-    _, msg = ws.wait_for(lambda m: m["type"] == "NotificationShowMessage", after=mark)
-    assert "deliberate failure" in msg["props"]["body"]
-    monkeypatch.undo()
-    session.panel.joints.sliders[0].value = 13.0  # the session carries on
-    session.settle()
-    assert session.errors == errors + 1
-    assert session.state.q[0] == pytest.approx(math.radians(13.0))
-    with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as other:
-        wait_until(lambda: len(lab.sessions) == 2)
-        second = lab.session()
-        assert second is not session and second.errors == 0
-        second.panel.joints.sliders[0].value = -40.0
-        second.settle()
-        assert session.state.q[0] == pytest.approx(math.radians(13.0))
-        assert second.state.q[0] == pytest.approx(math.radians(-40.0))
-        assert other.wait_for(lambda m: m["type"] == "SceneNodeUpdateMessage")
-    wait_until(lambda: len(lab.sessions) == 1)
-
-
-def test_a_nonfinite_value_from_the_page_is_refused(lab_client, session):
-    _, _, ws = lab_client
-    q = session.state.q.copy()
-    errors = session.errors
-    ws.set_value(handle_uuid(session.panel.joints.sliders[2]), math.nan)
-    wait_until(lambda: session.errors == errors + 1)
-    np.testing.assert_array_equal(session.state.q, q)
-    session.panel.joints.sliders[0].value = 5.0  # the next event redraws as usual
-    session.settle()
-    assert session.errors == errors + 1 and session.state.q[0] == pytest.approx(math.radians(5.0))
-    assert_all_finite(session)
-
-
-def test_no_nonfinite_value_reached_the_client(lab_client):
-    _, session, ws = lab_client
-    session.settle()
-    mark = ws.mark()
-    session.dispatch(GoTo("wrist_singular"))
-    ws.wait_for(lambda m: m["type"] == "SceneNodeUpdateMessage", after=mark)
-    messages = [m for _, m in ws.messages]
-    assert len(messages) > 100
-    bad = nonfinite_paths(messages)
-    assert not bad, bad[:10]
-
-
-# ------------------------------------------------------------------ URDF robots
-URDF = """<?xml version="1.0"?>
-<robot name="two_link">
-  <link name="base"><visual><geometry><cylinder radius="0.05" length="0.1"/></geometry></visual></link>
-  <link name="upper"><visual><origin xyz="0.15 0 0"/><geometry><box size="0.3 0.04 0.04"/></geometry></visual></link>
-  <link name="fore"><visual><origin xyz="0.1 0 0"/><geometry>FORE</geometry></visual></link>
-  <link name="tool"/>
-  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
-    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
-  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/>
-    <origin xyz="0.3 0 0"/><axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
-  <joint name="flange" type="fixed"><parent link="fore"/><child link="tool"/><origin xyz="0.2 0 0"/></joint>
-</robot>
-"""
-
-
-@pytest.mark.parametrize(
-    ("fore", "meshes"),
-    [('<box size="0.2 0.03 0.03"/>', True), ('<mesh filename="meshes/missing.stl"/>', False)],
-    ids=["meshes-present", "mesh-missing"],
-)
-def test_urdf_robot_drawn_with_its_meshes_or_generated_geometry(tmp_path, fore, meshes):
-    path = tmp_path / "arm_file.urdf"  # listed under its <robot name>, not the file stem
-    path.write_text(URDF.replace("FORE", fore))
-    with running_lab(urdf=str(path)) as (lab, session, _):
-        assert session.state.robot_name == "two_link"
-        assert any(name.startswith("/lab/arm/urdf") for name in scene_props(session)) == meshes
-        assert session.panel.robot.options[0] == "two_link" and "puma560" in session.panel.robot.options
-        session.panel.joints.sliders[1].value = -30.0
-        session.settle()
-        assert session.state.q[1] == pytest.approx(math.radians(-30.0))
-        assert session.errors == 0
-        assert_all_finite(session)
-
-
-def test_serve_prints_the_url_and_stops(capsys):
-    from app.server import serve
-
-    lab = serve(port=0, block=False)
-    try:
-        out = capsys.readouterr().out
-        assert f"http://127.0.0.1:{lab.port}" in out and "puma560" in out
-    finally:
-        lab.stop()
-
-
-def test_an_unknown_robot_is_refused_before_the_server_starts():
-    from app.server import Lab
-    from kinematics.errors import UnknownRobotError
-
-    with pytest.raises(UnknownRobotError, match="puma560"):
-        Lab(robot="no_such_robot", port=0)
-
-
-DATA = __import__("pathlib").Path(__file__).parent / "data" / "urdf"
-
-
-def test_urdf_with_several_chains_offers_a_chain_picker():
-    """A gripper arm opens at its hand (no jaw as a 4th joint); the picker switches to a finger chain."""
-    with running_lab(urdf=str(DATA / "gripper_arm.urdf")) as (lab, session, _):
-        assert session.state.robot.dof == 3
-        chain = session.panel.chain
-        assert chain is not None and len(chain.options) == 3
-        assert "hand" in chain.value and "chain" in session.panel.source.content
-        finger = next(o for o in chain.options if "left_finger" in o)
-        chain.value = finger
-        session.settle()
-        assert session.state.robot.dof == 4 and session.state.chain == "left_finger"
-        assert session.panel.chain is not None and session.panel.chain.value == finger
-        assert "left_finger" in session.panel.source.content
-        assert session.errors == 0
-        assert_all_finite(session)
-
-
-def test_hostile_mesh_paths_are_listed_not_read():
-    """Mesh names that point outside the URDF's folders are never opened: the panel lists them as not found."""
-    with running_lab(urdf=str(DATA / "mesh_arm" / "urdf" / "hostile.urdf")) as (lab, session, _):
-        content = session.panel.source.content
-        assert "mesh files not found" in content and "/etc/passwd" in content
-        # Generated geometry: no mesh node, nothing read from outside.
-        assert not any(name.startswith("/lab/arm/urdf") for name in scene_props(session))
-        assert session.errors == 0
