@@ -56,7 +56,7 @@ STATUS_RGB = {
 STATUS_TEXT = {"regular": "#ffffff", "near singular": "#1f2328", "singular": "#ffffff"}
 """Text colour on each status colour (contrast ≥ 4.5:1)."""
 LINK_RGB = (150, 156, 166)
-LOST_RGB = (120, 0, 16)  # dark crimson: the lost direction (red family = singular)
+LOST_RGB = (95, 0, 12)  # dark crimson: the lost direction (red family = singular)
 TWIST_RGB = (20, 20, 20)  # v = J q̇: black
 TWIST_ANGULAR_RGB = (95, 61, 0)  # ω = J q̇: dark umber
 DESIRED_RGB = (200, 204, 212)  # the desired tool velocity: light grey (what J q̇ should reach)

@@ -102,6 +102,7 @@ class ForwardPanel:
         self.root = gui.add_folder(None, order=order)
         css = []
         with self.root:
+            self.twist = gui.add_html("")  # the result first: in sight while the sliders move
             self.sliders = []
             for i, (joint, r) in enumerate(zip(robot.joints, self.ranges, strict=True)):
                 slider = _slider(gui, f"q̇{i + 1}", r, f"rate of {joint.name}")
@@ -115,7 +116,6 @@ class ForwardPanel:
             bind_click(self.play, dispatch, lambda: Play(not self._playing))
             stop = gui.add_button("Stop (q̇ = 0)", icon=viser.Icon.PLAYER_STOP)
             bind_click(stop, dispatch, StopRates)
-            self.twist = gui.add_html("")
 
     def show(self, state: LabState) -> None:
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
@@ -152,6 +152,8 @@ class InversePanel:
         self.ranges = twist_ranges(robot)
         self.root = gui.add_folder(None, order=order)
         with self.root:
+            self.rates = gui.add_html("")  # the results first: in sight while the sliders move
+            self.result = gui.add_html("")
             self.sliders = {}
             for r in rows:
                 slider = _slider(gui, _TWIST_ROWS[r], self.ranges[r], "desired tool velocity, base axes")
@@ -166,8 +168,6 @@ class InversePanel:
                 hint="0: pseudo-inverse J⁺; > 0: damped least squares (bounded rates, less accuracy)",
             )
             bind(self.damping, dispatch, lambda v: SetOption("damping", float(v)))
-            self.rates = gui.add_html("")
-            self.result = gui.add_html("")
             self._shown: tuple | None = None
 
     def show(self, state: LabState) -> None:
@@ -227,6 +227,7 @@ class ForcePanel:
         self.root = gui.add_folder(None, order=order)
         rows = (0, 1, 5) if robot.planar else range(6)
         with self.root:
+            self.torques = gui.add_html("")  # the result first: in sight while the sliders move
             self.sliders = {}
             for r in rows:
                 slider = _slider(gui, _WRENCH_ROWS[r], self.ranges[r], "applied at the tool point, base axes")
@@ -234,7 +235,6 @@ class ForcePanel:
                 self.sliders[r] = slider
             zero = gui.add_button("Remove the force (F = 0)")
             bind_click(zero, dispatch, ClearWrench)
-            self.torques = gui.add_html("")
             self._idle = False
 
     def show(self, state: LabState) -> None:
