@@ -19,12 +19,13 @@ __all__ = [
     "exact_angle",
     "is_right_angle_multiple",
     "exact_transform",
+    "SPECIAL_VALUES",
     "rot_x",
     "rot_z",
     "trans",
 ]
 
-_SPECIAL = [
+SPECIAL_VALUES = (
     sp.Integer(0),
     sp.Integer(1),
     sp.Rational(1, 2),
@@ -32,8 +33,9 @@ _SPECIAL = [
     sp.sqrt(3) / 2,
     (sp.sqrt(6) - sp.sqrt(2)) / 4,
     (sp.sqrt(6) + sp.sqrt(2)) / 4,
-]
-_SPECIAL_F = [float(v) for v in _SPECIAL]
+)
+"""Exact sines and cosines of the multiples of 15° (0, 1, 1/2, √2/2, √3/2, (√6 ∓ √2)/4)."""
+_SPECIAL_F = [float(v) for v in SPECIAL_VALUES]
 
 
 def exact_number(x: float, tol: float = 1e-12) -> sp.Expr:
@@ -44,7 +46,7 @@ def exact_number(x: float, tol: float = 1e-12) -> sp.Expr:
     digits (``sympy.nsimplify(x, rational=True)``: 0.4318 → 2159/5000).
     """
     x = float(x)
-    for exact, approx in zip(_SPECIAL, _SPECIAL_F, strict=True):
+    for exact, approx in zip(SPECIAL_VALUES, _SPECIAL_F, strict=True):
         if abs(abs(x) - approx) < tol:
             return exact if x >= 0 else -exact
     return sp.nsimplify(x, rational=True)

@@ -27,7 +27,7 @@ import sympy as sp
 
 from ..transforms import matrix_to_rpy
 from .cachecodec import register_dataclass
-from .exact import exact_angle, exact_number
+from .exact import SPECIAL_VALUES, exact_angle, exact_number
 
 __all__ = ["SNAP_TOL", "LENGTH_NOISE", "Snap", "Snapper", "snap_summary"]
 
@@ -39,15 +39,7 @@ LENGTH_NOISE = 1e-9
 
 _STEP = math.pi / 12
 _QUIET = 1e-12  # changes below this are float noise of exact values: not reported
-_SPECIAL = [
-    sp.Integer(0),
-    sp.Integer(1),
-    sp.Rational(1, 2),
-    sp.sqrt(2) / 2,
-    sp.sqrt(3) / 2,
-    (sp.sqrt(6) - sp.sqrt(2)) / 4,
-    (sp.sqrt(6) + sp.sqrt(2)) / 4,
-]
+_SPECIAL = SPECIAL_VALUES
 _SPECIAL_F = np.array([float(v) for v in _SPECIAL])
 
 
