@@ -31,3 +31,25 @@ def _private_cache(tmp_path_factory):
     mp.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
     yield
     mp.undo()
+
+
+@pytest.fixture(scope="module")
+def lab_client():
+    """One running lab (a free port) and one websocket client per test module; always stopped."""
+    from app_helpers import running_lab
+
+    with running_lab() as (lab, session, ws):
+        yield lab, session, ws
+
+
+@pytest.fixture
+def session(lab_client):
+    """The module's session, reset to a fresh state of the default robot, so each test stands alone."""
+    from app.actions import ReplaceState
+    from app.state import LabState
+
+    lab, session, _ = lab_client
+    session.dispatch(ReplaceState(LabState.initial(lab.default_robot, lab.catalog.load(lab.default_robot))))
+    session.settle()
+    assert session.state.configuration == "home"
+    return session

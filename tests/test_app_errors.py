@@ -6,27 +6,11 @@ import math
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, nonfinite_paths, running_lab, wait_until
+from app_helpers import assert_all_finite, nonfinite_paths, wait_until
 from wsclient import ViserWsClient
 
-from app.actions import GoTo, ReplaceState
-from app.state import LabState
+from app.actions import GoTo
 from app.viser_adapter import handle_uuid
-
-
-@pytest.fixture(scope="module")
-def lab_client():
-    with running_lab() as (lab, session, ws):
-        yield lab, session, ws
-
-
-@pytest.fixture
-def session(lab_client):
-    """The module's session, reset to a fresh state of the default robot."""
-    lab, session, _ = lab_client
-    session.dispatch(ReplaceState(LabState.initial(lab.default_robot, lab.catalog.load(lab.default_robot))))
-    session.settle()
-    return session
 
 
 def test_an_error_is_shown_to_that_client_only(lab_client, session, monkeypatch):

@@ -13,14 +13,13 @@ import math
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, running_lab, scene_node, wait_until
+from app_helpers import assert_all_finite, scene_node, wait_until
 
 import robots
 from app import fmt
 from app.actions import (
     ChooseRobot,
     GoTo,
-    ReplaceState,
     RequestDownload,
     SetDesired,
     SetJoint,
@@ -31,27 +30,9 @@ from app.actions import (
 from app.palette import LOST_RGB
 from app.ranges import joint_ranges, to_display
 from app.scene.geometry import TINY
-from app.state import LabState
 from app.viser_adapter import is_removed
 from kinematics import jacobian
 from kinematics.analysis import task_rows
-
-
-@pytest.fixture(scope="module")
-def lab_client():
-    with running_lab() as (lab, session, ws):
-        yield lab, session, ws
-
-
-@pytest.fixture
-def session(lab_client):
-    """The module's session, reset to a fresh state of the default robot."""
-    lab, session, _ = lab_client
-    robot = lab.catalog.load(lab.default_robot)
-    session.dispatch(ReplaceState(LabState.initial(lab.default_robot, robot)))
-    session.settle()
-    assert session.state.configuration == "home"
-    return session
 
 
 def singular_configurations():
