@@ -163,6 +163,7 @@ async def _guarded_consumer(
     peer = clip(getattr(websocket, "remote_address", "?"), 60)
     import websockets.exceptions as wse
 
+    closing = False  # once closed for flooding, frames still buffered are discarded, not counted again
     try:
         while True:
             try:
@@ -174,6 +175,8 @@ async def _guarded_consumer(
                         "closed the connection of %s: a message over %d bytes", peer, limits.max_message_bytes
                     )
                 raise
+            if closing:
+                continue
             try:
                 if not isinstance(raw, bytes):
                     raise TypeError(f"a text frame of {len(raw)} characters")
@@ -191,6 +194,7 @@ async def _guarded_consumer(
             else:  # superseded by this newer state, or refused
                 limits.count("dropped")
                 if verdict == "close":
+                    closing = True
                     limits.count("closed")
                     log.warning(
                         "closed the connection of %s: over %g messages/s",
