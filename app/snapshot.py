@@ -15,7 +15,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinematics import jacobian, joint_frames, link_frames
-from kinematics.analysis import DEFAULT_RTOL, Ellipsoid, force_ellipsoid, task_rows, velocity_ellipsoid
+from kinematics.analysis import (
+    Ellipsoid,
+    condition_number,
+    force_ellipsoid,
+    manipulability,
+    rank,
+    singular_values,
+    task_rows,
+    velocity_ellipsoid,
+)
 from kinematics.inverse import solve_rates
 from kinematics.lost import LostDirection, lost_direction
 from kinematics.singularity import SingularityReport, assess
@@ -90,12 +99,6 @@ class Snapshot:
         return self.link_frames[-1, :3, 3]
 
 
-def _condition(radii: np.ndarray, k: int) -> float:
-    """σ₁/σ_k of the first ``k`` singular values ``radii`` (descending), ``inf`` when σ_k ≈ 0."""
-    s = radii[:k]
-    return float("inf") if s[-1] <= DEFAULT_RTOL * max(s[0], 1.0) else float(s[0] / s[-1])
-
-
 def compute(state: LabState) -> Snapshot:
     """Evaluate everything the views draw for ``state`` (one call per event)."""
     robot, q = state.robot, state.q
@@ -107,15 +110,7 @@ def compute(state: LabState) -> Snapshot:
     rows = task_rows(robot)
     report = assess(robot, q, J)
     J_task = J[list(rows)]
-    sigma = np.linalg.svd(J_task, compute_uv=False)
     square = J_task.shape[0] == n
-    velocity = velocity_ellipsoid(J, "linear")
-    rotational = velocity_ellipsoid(J, "angular") if not planar else None
-    k_lin = min(len(translational_rows(planar)), n)
-    cond_t = _condition(velocity.radii, k_lin) if len(translational_rows(planar)) <= n else float("inf")
-    if planar:
-        cond_t = _condition(np.linalg.svd(J[[0, 1]], compute_uv=False), min(2, n))
-    cond_r = None if rotational is None else (_condition(rotational.radii, 3) if n >= 3 else float("inf"))
     length = reach(robot)
     v_task = state.v_desired[list(rows)]
     rates = solve_rates(J_task, v_task, state.options.damping) if np.any(v_task) else np.zeros(n)
@@ -131,14 +126,14 @@ def compute(state: LabState) -> Snapshot:
         J_shown=J_shown,
         rows=rows,
         report=report,
-        sigma=sigma,
-        manipulability=float(np.prod(sigma)) if len(rows) <= n else 0.0,
+        sigma=singular_values(J, rows),
+        manipulability=float(manipulability(J, rows)),
         det=float(np.linalg.det(J_task)) if square else None,
-        rank=int(np.sum(sigma > DEFAULT_RTOL * max(float(sigma[0]), 1.0))),
-        cond_translational=cond_t,
-        cond_rotational=cond_r,
-        velocity=velocity,
-        rotational=rotational,
+        rank=int(rank(J, rows)),
+        cond_translational=float(condition_number(J, translational_rows(planar))),
+        cond_rotational=None if planar else float(condition_number(J, "angular")),
+        velocity=velocity_ellipsoid(J, "linear"),
+        rotational=velocity_ellipsoid(J, "angular") if not planar else None,
         force=force_ellipsoid(J, "linear") if state.options.force_ellipsoid else None,
         lost=lost_direction(J, rows, length) if report.status != "regular" else None,
         length=length,

@@ -25,7 +25,7 @@ import numpy as np
 
 from .errors import ArrayError, OptionError
 from .model import Robot
-from .validation import is_number, show
+from .validation import finite_matrix, is_number, show
 
 __all__ = [
     "Part",
@@ -59,18 +59,7 @@ DEFAULT_RTOL = 1e-9
 
 def as_jacobian(J: object, what: str = "J") -> np.ndarray:
     """``J`` as a float array of shape (6, n) or (N, 6, n) with finite entries, or ArrayError."""
-    try:
-        A = np.asarray(J)
-    except (TypeError, ValueError, OverflowError):
-        raise ArrayError(f"{what} must be an array of numbers, got {show(J)}") from None
-    if A.dtype.kind not in "iuf":
-        raise ArrayError(f"{what} must hold ints or floats, got dtype {A.dtype}")
-    A = A.astype(float, copy=False)
-    if A.ndim not in (2, 3) or A.shape[-2] != 6:
-        raise ArrayError(f"{what} should have shape (6, n) or (N, 6, n), got {A.shape}")
-    if not np.isfinite(A).all():
-        raise ArrayError(f"{what} contains NaN or infinity")
-    return A
+    return finite_matrix(J, what, rows=6)
 
 
 def check_rtol(rtol: object) -> float:

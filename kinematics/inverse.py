@@ -14,25 +14,9 @@ import numpy as np
 
 from .analysis import DEFAULT_RTOL, check_rtol
 from .errors import ArrayError, OptionError
-from .validation import is_number, show
+from .validation import finite_matrix, is_number, show
 
 __all__ = ["pinv", "dls", "nullspace_projector", "solve_rates"]
-
-
-def _matrix(J: object, what: str = "J") -> np.ndarray:
-    """``J`` as a finite float array of shape (m, n) or (N, m, n), or ArrayError."""
-    try:
-        A = np.asarray(J)
-    except (TypeError, ValueError, OverflowError):
-        raise ArrayError(f"{what} must be an array of numbers, got {show(J)}") from None
-    if A.dtype.kind not in "iuf":
-        raise ArrayError(f"{what} must hold ints or floats, got dtype {A.dtype}")
-    if A.ndim not in (2, 3) or 0 in A.shape:
-        raise ArrayError(f"{what} should have shape (m, n) or (N, m, n), got {A.shape}")
-    A = A.astype(float, copy=False)
-    if not np.isfinite(A).all():
-        raise ArrayError(f"{what} contains NaN or infinity")
-    return A
 
 
 def pinv(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
@@ -41,7 +25,7 @@ def pinv(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
     Equals J⁻¹ for a square regular J; gives the minimum-norm least-squares
     solution q̇ = J⁺ v otherwise. Works on batches (N, m, n).
     """
-    J = _matrix(J)
+    J = finite_matrix(J)
     U, s, Vt = np.linalg.svd(J, full_matrices=False)
     tol = check_rtol(rtol) * np.maximum(s[..., :1], 1.0)
     with np.errstate(divide="ignore"):
@@ -57,7 +41,7 @@ def dls(J: np.ndarray, damping: float = 0.05) -> np.ndarray:
     """
     if not (is_number(damping) and 0 <= damping < math.inf):
         raise OptionError(f"damping must be a finite number ≥ 0, got {show(damping)}")
-    J = _matrix(J)
+    J = finite_matrix(J)
     U, s, Vt = np.linalg.svd(J, full_matrices=False)
     with np.errstate(divide="ignore", invalid="ignore"):
         f = np.where(s**2 + damping**2 > 0, s / (s**2 + damping**2), 0.0)
@@ -70,14 +54,14 @@ def nullspace_projector(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray
     ``q̇ = J⁺ v + N q̇₀`` reaches the task velocity v while following q̇₀ as
     closely as the task allows (self-motion of a redundant arm).
     """
-    J = _matrix(J)
+    J = finite_matrix(J)
     n = J.shape[-1]
     return np.eye(n) - pinv(J, rtol) @ J
 
 
 def solve_rates(J: np.ndarray, v: np.ndarray, damping: float = 0.0) -> np.ndarray:
     """Joint rates for a desired task velocity: J⁺ v (``damping`` = 0) or the DLS solution."""
-    J = _matrix(J)
+    J = finite_matrix(J)
     v = _vector(v, J)
     inv = pinv(J) if damping == 0 else dls(J, damping)
     return inv @ v

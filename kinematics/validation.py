@@ -21,7 +21,7 @@ from typing import TypeGuard
 
 import numpy as np
 
-from .errors import RobotDefinitionError
+from .errors import ArrayError, RobotDefinitionError
 
 __all__ = [
     "MAX_LENGTH",
@@ -35,6 +35,7 @@ __all__ = [
     "bounded_number",
     "joint_limits",
     "frozen_array",
+    "finite_matrix",
 ]
 
 MAX_LENGTH = 1e15
@@ -161,3 +162,27 @@ def frozen_array(a: object, dtype: type = float) -> np.ndarray:
     out: np.ndarray = np.array(a, dtype=dtype)
     out.flags.writeable = False
     return out
+
+
+def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> np.ndarray:
+    """``J`` as a finite float array of shape (m, n) or a batch (N, m, n), or ArrayError.
+
+    Args:
+        J: The array.
+        what: Its name in messages.
+        rows: The number of rows m required (6 for a Jacobian), or None for any non-empty matrix.
+    """
+    try:
+        A = np.asarray(J)
+    except (TypeError, ValueError, OverflowError):
+        raise ArrayError(f"{what} must be an array of numbers, got {show(J)}") from None
+    if A.dtype.kind not in "iuf":
+        raise ArrayError(f"{what} must hold ints or floats, got dtype {A.dtype}")
+    A = A.astype(float, copy=False)
+    if rows is not None and (A.ndim not in (2, 3) or A.shape[-2] != rows):
+        raise ArrayError(f"{what} should have shape ({rows}, n) or (N, {rows}, n), got {A.shape}")
+    if rows is None and (A.ndim not in (2, 3) or 0 in A.shape):
+        raise ArrayError(f"{what} should have shape (m, n) or (N, m, n), got {A.shape}")
+    if not np.isfinite(A).all():
+        raise ArrayError(f"{what} contains NaN or infinity")
+    return A

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import importlib.util
+
 import numpy as np
 
 
@@ -14,3 +16,12 @@ def random_q(robot, rng: np.random.Generator, size: int | None = None) -> np.nda
         lim[1, i] = min(lim[1, i], span)
     shape = (robot.dof,) if size is None else (size, robot.dof)
     return rng.uniform(lim[0], lim[1], size=shape)
+
+
+def import_source(path, text, name):
+    """Write ``text`` (an exported Python module) to ``path`` and import it as ``name``."""
+    path.write_text(text)
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

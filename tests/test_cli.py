@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import importlib.util
 import io
 import json
 import time
 
 import numpy as np
 import pytest
+from kinematics_helpers import import_source
 
 import robots
 from app import export_command
@@ -33,14 +33,6 @@ def forked(tmp_path):
     path = tmp_path / "forked.urdf"
     path.write_text(TWO_LEAVES)
     return path
-
-
-def import_source(path, text, name):
-    path.write_text(text)
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 # ------------------------------------------------------------------ robots

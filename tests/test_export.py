@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
+from kinematics_helpers import import_source
 
 import kinematics
 import robots
@@ -15,14 +15,6 @@ from kinematics import export as ex
 from kinematics.symbolic import jacobian_mathml
 
 MATHML = "{http://www.w3.org/1998/Math/MathML}"
-
-
-def import_source(path, text, name):
-    path.write_text(text)
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 def random_configurations(robot, count=4, seed=3):
