@@ -44,6 +44,7 @@ __all__ = [
     "DEFAULT_RTOL",
     "as_jacobian",
     "check_rtol",
+    "part_rows",
 ]
 
 Part = Literal["full", "linear", "angular", "planar"]
@@ -83,6 +84,15 @@ def _rows(part: object) -> tuple[int, ...]:
     if not rows or not ok or len(set(rows)) != len(rows):
         raise OptionError(f"rows of J must be distinct indices 0…5 (0-2 v, 3-5 ω), got {show(part)}")
     return tuple(int(r) for r in rows)
+
+
+def part_rows(part: Part | tuple[int, ...]) -> tuple[int, ...]:
+    """The row indices of J named by ``part`` (a :data:`PART_ROWS` key or distinct indices 0…5).
+
+    Raises:
+        OptionError: ``part`` is neither a part name nor distinct row indices 0…5.
+    """
+    return _rows(part)
 
 
 def select_rows(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray:
