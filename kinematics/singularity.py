@@ -25,12 +25,13 @@ from typing import Literal
 import numpy as np
 
 from .analysis import DEFAULT_RTOL, PART_ROWS, as_jacobian, check_rtol, task_rows
+from .descent import descend_to_singularity
 from .errors import ArrayError, ConfigurationError, OptionError
 from .model import Robot
 from .numeric import as_configuration, chain_frames, jacobian
 from .validation import is_number, show
 
-__all__ = ["SingularityReport", "assess", "NEAR_CONDITION"]
+__all__ = ["SingularityReport", "assess", "NEAR_CONDITION", "NearestSingularity", "nearest"]
 
 NEAR_CONDITION = 50.0
 """Task condition number above which a configuration is called "near singular"."""
@@ -198,3 +199,49 @@ def _common_point(z: np.ndarray, p: np.ndarray) -> np.ndarray | None:
     if max(np.linalg.norm(Pi @ (x - pi)) for Pi, pi in zip(P, p, strict=True)) > 1e-9:
         return None
     return x
+
+
+@dataclass(frozen=True, eq=False)
+class NearestSingularity:
+    """What :func:`nearest` found.
+
+    Attributes:
+        q: (n,) the end of the descent [rad | m].
+        path: (k+1, n) every iterate from q0 to q (to animate the descent).
+        sigma_ratio: σmin/σmax of the task rows at ``q`` (< tol when converged).
+        converged: True when sigma_ratio < tol.
+        report: :func:`assess` at ``q`` (its ``kinds``: wrist, elbow, shoulder ...).
+    """
+
+    q: np.ndarray
+    path: np.ndarray
+    sigma_ratio: float
+    converged: bool
+    report: SingularityReport
+
+
+def nearest(robot: Robot, q0: object, *, max_iterations: int = 100, tol: float = 1e-6) -> NearestSingularity:
+    """A singular configuration near ``q0``: descend σmin of the task rows of J from ``q0``.
+
+    Minimum-norm Newton steps on w = Π σᵢ = 0 (see :mod:`kinematics.descent`), so the path
+    heads for a nearby piece of the singular set (e.g. q2 → 0 for a planar 2R arm from
+    q2 = 20°), until σmin/σmax < ``tol`` (then a few more steps, so that :func:`assess` calls
+    the end singular). Joint limits are not enforced (they bound sliders, not maths). For a
+    redundant arm the descent is slower and may end with ``converged=False``.
+
+    Raises:
+        ConfigurationError: ``q0`` is not one configuration.
+        OptionError: ``max_iterations`` is not an int ≥ 0 or ``tol`` not in (0, 1).
+    """
+    q = as_configuration(robot, q0, "q0")
+    if q.ndim != 1:
+        raise ConfigurationError(f"q0 must be one configuration ({robot.dof},), got shape {q.shape}")
+    if not (isinstance(max_iterations, (int, np.integer)) and not isinstance(max_iterations, bool)):
+        raise OptionError(f"max_iterations must be an int ≥ 0, got {show(max_iterations)}")
+    if max_iterations < 0:
+        raise OptionError(f"max_iterations must be an int ≥ 0, got {show(max_iterations)}")
+    if not (is_number(tol) and 0.0 < tol < 1.0):
+        raise OptionError(f"tol must be a number in (0, 1) (a ratio σmin/σmax), got {show(tol)}")
+    path, ratio = descend_to_singularity(robot, q, list(task_rows(robot)), int(max_iterations), float(tol))
+    end = path[-1]
+    return NearestSingularity(end, path, ratio, ratio < tol, assess(robot, end))
