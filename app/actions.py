@@ -34,6 +34,13 @@ __all__ = [
     "Play",
     "Step",
     "RequestDownload",
+    "StepOnce",
+    "ResetMotion",
+    "ApplyPreset",
+    "DriveTool",
+    "SelfMove",
+    "FollowPath",
+    "FindSingularity",
     "COMMANDS",
 ]
 
@@ -137,9 +144,14 @@ class ReplaceState:
 
 @dataclass(frozen=True)
 class Play:
-    """Start (``True``) or stop moving the joints at q̇ in time."""
+    """Start (``True``) or pause the motion ``kind`` in time.
+
+    ``kind`` (see :data:`app.motion_state.MOTIONS`): "joints" moves the joints at q̇, "resolved_rate"
+    holds the desired tool twist (q̇ = J⁺ v), "climb" raises w with the tool held. Pausing ignores it.
+    """
 
     playing: bool
+    kind: str = "joints"
 
 
 @dataclass(frozen=True)
@@ -150,13 +162,68 @@ class Step:
 
 
 @dataclass(frozen=True)
+class StepOnce:
+    """One frame of the motion ``kind`` (while paused), for working through it step by step."""
+
+    kind: str = "resolved_rate"
+
+
+@dataclass(frozen=True)
+class ResetMotion:
+    """Stop and put the arm back where the motion started (its trace cleared)."""
+
+
+@dataclass(frozen=True, eq=False)
+class ApplyPreset:
+    """Set up the resolved-rate preset ``name``: the arm at ``q``, the desired twist ``twist`` (6,)
+    [m/s; rad/s] in ``frame`` axes, ready to Play at playback ``speed``."""
+
+    name: str
+    q: tuple[float, ...]
+    twist: tuple[float, ...]
+    frame: str = "base"
+    speed: float = 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class DriveTool:
+    """The tool was dragged to ``T_base_target`` (16 numbers, a 4×4 row-major): solve IK from the
+    current q (the option's method and mode) and move there."""
+
+    T_base_target: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class SelfMove:
+    """Move the self-motion parameter to ``s`` [rad | m]: the arm moves in the null space of J, the
+    tool held where it was when the self-motion began."""
+
+    s: float
+
+
+@dataclass(frozen=True, eq=False)
+class FollowPath:
+    """Play back the configurations ``path`` (k, n) (e.g. the descent to the nearest singularity);
+    ``found`` is said when it ends."""
+
+    path: tuple[tuple[float, ...], ...]
+    found: str
+
+
+@dataclass(frozen=True)
+class FindSingularity:
+    """Find the nearest singularity from here (a command: the session computes the descent away from
+    the drawing thread, then dispatches :class:`FollowPath`)."""
+
+
+@dataclass(frozen=True)
 class RequestDownload:
     """Send J(q) exported as ``label`` ("LaTeX", "Python" or "JSON") to this tab (a command)."""
 
     label: str
 
 
-COMMANDS = (ChooseRobot, ChooseChain, RequestDownload)
+COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity)
 """Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
 
 Action = (
@@ -176,4 +243,11 @@ Action = (
     | Play
     | Step
     | RequestDownload
+    | StepOnce
+    | ResetMotion
+    | ApplyPreset
+    | DriveTool
+    | SelfMove
+    | FollowPath
+    | FindSingularity
 )

@@ -110,6 +110,12 @@ class RobotCatalog:
         resolved, unresolved = mesh_report(path)
         return len(resolved), unresolved
 
+    def presets(self, name: str) -> tuple[robots.MotionPreset, ...]:
+        """The resolved-rate presets of the robot listed as ``name`` (none for a URDF)."""
+        if name in self._files:
+            return robots.motions(self._files[name])
+        return robots.motions(name) if name in robots.names() else ()
+
     def load(self, name: str) -> Robot:
         """The robot listed as ``name`` (loaded once).
 

@@ -19,15 +19,22 @@ import numpy as np
 
 from kinematics import Robot
 
+from . import motion_reducer
 from .actions import (
     Action,
+    ApplyPreset,
     ChooseChain,
     ChooseRobot,
     ClearWrench,
+    DriveTool,
+    FindSingularity,
+    FollowPath,
     GoTo,
     Play,
     ReplaceState,
     RequestDownload,
+    ResetMotion,
+    SelfMove,
     SetConfiguration,
     SetDesired,
     SetJoint,
@@ -36,15 +43,23 @@ from .actions import (
     SetRobot,
     SetWrench,
     Step,
+    StepOnce,
     StopRates,
 )
+from .motion_reducer import FRAME_DT, MotionRefused
 from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
 from .state import LabState, Options, default_options, frozen
 
 __all__ = ["reduce", "InvalidAction", "named_configuration_at"]
 
-_FLOAT_OPTIONS = {"scale": (0.1, 3.0), "damping": (0.0, 1.0)}
-_CHOICES = {"jacobian_frame": ("base", "tool")}
+_FLOAT_OPTIONS = {"scale": (0.1, 3.0), "damping": (0.0, 1.0), "speed": (0.05, 2.0)}
+_CHOICES = {
+    "jacobian_frame": ("base", "tool"),
+    "twist_frame": ("base", "tool"),
+    "ik_method": ("dls", "newton"),
+    "ik_mode": ("position", "pose"),
+}
+_JOINT_OPTIONS = ("map_i", "map_j")
 
 
 class InvalidAction(ValueError):
@@ -95,6 +110,20 @@ def reduce(state: LabState, action: Action) -> LabState:
     Raises:
         InvalidAction: the action cannot apply (the message names the input and the reason).
     """
+    try:
+        after = _reduce(state, action)
+    except MotionRefused as exc:
+        raise InvalidAction(str(exc)) from None
+    m = after.motion
+    if m.anchor is not None and m.kind != "climb" and not isinstance(action, (SelfMove, Step)):
+        if after.q is not state.q or after.robot is not state.robot:  # moved by hand: a new self-motion
+            after = after.replace(
+                motion=m.replace(s=0.0, anchor=None, self_trace=m.self_trace[:0], direction=None)
+            )
+    return after
+
+
+def _reduce(state: LabState, action: Action) -> LabState:
     robot, n = state.robot, state.robot.dof
     match action:
         case SetJoint(index=i, value=value):
@@ -133,31 +162,51 @@ def reduce(state: LabState, action: Action) -> LabState:
         case ClearWrench():
             return state.replace(wrench=frozen(np.zeros(6)))
         case SetOption(name=name, value=value):
-            return state.replace(options=_option(state.options, name, value))
+            return state.replace(options=_option(state.options, name, value, n))
         case SetRobot(name=name, robot=new, chain=chain):
             return LabState.initial(name, new, default_options(new, state.options), chain)
         case ReplaceState(state=other):
             return other
-        case Play(playing=playing):
-            if playing and not np.any(state.qd):
-                return state.replace(playing=False, stopped="set a joint rate q̇ first")
-            return state.replace(playing=bool(playing), stopped="")
+        case Play(playing=playing, kind=kind):
+            return motion_reducer.play(state, bool(playing), kind)
         case Step(dt=dt):
-            return _step(state, _finite(dt, "time step"))
-        case ChooseRobot() | ChooseChain() | RequestDownload():
+            return motion_reducer.step(state, _finite(dt, "time step"))
+        case StepOnce(kind=kind):
+            if state.playing:
+                return state
+            if state.motion.kind != kind or state.motion.trace is None:
+                started = motion_reducer.play(state, True, kind)
+                if not started.playing:
+                    return started
+                state = started.replace(playing=False)
+            return motion_reducer.step(state, FRAME_DT, force=True)
+        case ResetMotion():
+            return motion_reducer.reset(state)
+        case ApplyPreset(name=name, q=q, twist=twist, frame=frame, speed=speed):
+            speed = min(max(_finite(speed, "preset speed"), 0.05), 2.0)
+            return motion_reducer.apply_preset(state, name, q, twist, frame, speed)
+        case DriveTool(T_base_target=values):
+            return motion_reducer.drive_tool(state, values)
+        case SelfMove(s=s):
+            return motion_reducer.self_move(state, _finite(s, "self-motion"))
+        case FollowPath(path=path, found=found):
+            return motion_reducer.follow_path(state, path, found)
+        case ChooseRobot() | ChooseChain() | RequestDownload() | FindSingularity():
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )
     raise InvalidAction(f"unknown action {action!r}")
 
 
-def _option(options: Options, name: str, value: object) -> Options:
+def _option(options: Options, name: str, value: object, n: int) -> Options:
     fields = {f.name: f for f in dataclasses.fields(Options)}
     if name not in fields:
         raise InvalidAction(f"unknown display option {name!r}; options are {sorted(fields)}")
     if name in _FLOAT_OPTIONS:
         lo, hi = _FLOAT_OPTIONS[name]
         value = min(max(_finite(value, name), lo), hi)
+    elif name in _JOINT_OPTIONS:
+        value = _index(value, n, "map joint")
     elif name in _CHOICES:
         if value not in _CHOICES[name]:
             raise InvalidAction(f"{name} must be one of {_CHOICES[name]}, got {value!r}")
@@ -165,20 +214,3 @@ def _option(options: Options, name: str, value: object) -> Options:
         raise InvalidAction(f"{name} is on or off (a bool), got {value!r}")
     changes: dict[str, Any] = {name: value}
     return dataclasses.replace(options, **changes)
-
-
-def _step(state: LabState, dt: float) -> LabState:
-    """Advance the joints by q̇ dt while playing; stop at a slider end and say which joint stopped."""
-    if not state.playing or dt <= 0.0:
-        return state
-    ranges = joint_ranges(state.robot)
-    q = np.array(state.q) + np.array(state.qd) * dt
-    lo = np.array([r.clamp_si(-np.inf) for r in ranges])
-    hi = np.array([r.clamp_si(np.inf) for r in ranges])
-    hit = np.flatnonzero((q <= lo) | (q >= hi))
-    q = np.clip(q, lo, hi)
-    changes: dict[str, object] = {"q": frozen(q), "time": state.time + dt, "configuration": ""}
-    if hit.size:
-        names = ", ".join(state.robot.joints[i].name for i in hit)
-        changes.update(playing=False, stopped=f"stopped: {names} reached the end of its range")
-    return state.replace(**changes)

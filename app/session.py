@@ -41,6 +41,9 @@ from .actions import (
     Action,
     ChooseChain,
     ChooseRobot,
+    DriveTool,
+    FindSingularity,
+    FollowPath,
     GoTo,
     ReplaceState,
     RequestDownload,
@@ -48,6 +51,7 @@ from .actions import (
     SetJoint,
     SetRobot,
 )
+from .background import background, nearest_path
 from .camera import FROM_ABOVE, TabCamera, facing
 from .catalog import RobotCatalog
 from .panel import PanelView
@@ -143,7 +147,7 @@ class ClientSession:
             True when actions arrived meanwhile (the renderer visits again).
         """
         with self._queue_lock:
-            actions, self._queue = self._queue, []
+            actions, self._queue = _coalesced(self._queue), []
         if actions and not self._closed:
             with self.lock:
                 state, jump = self.state, False
@@ -180,7 +184,24 @@ class ClientSession:
         if isinstance(action, RequestDownload):
             self._download(state, action.label)
             return state
+        if isinstance(action, FindSingularity):
+            self._find_singularity(state)
+            return state.replace(playing=False, stopped="looking for the nearest singularity…")
         return reduce(state, action)
+
+    def _find_singularity(self, state: LabState) -> None:
+        """Descend to the nearest singularity away from the drawing thread, then play the descent."""
+        robot, q = state.robot, np.array(state.q)
+
+        def done(future: Future[FollowPath]) -> None:
+            if self._closed or self.state.robot is not robot:
+                return
+            try:
+                self.dispatch(future.result())
+            except Exception as exc:
+                self.report_error(exc)
+
+        background().submit(nearest_path, robot, q).add_done_callback(done)
 
     @property
     def closed(self) -> bool:
@@ -235,7 +256,7 @@ class ClientSession:
                 if rebuild or self.scene is None:
                     if self.scene is not None:
                         self.scene.remove()
-                    self.scene = SceneView(self.client, state.robot)
+                    self.scene = SceneView(self.client, state.robot, self.dispatch)
                     name = state.robot_name
                     self.panel.build_robot(
                         state.robot,
@@ -243,6 +264,7 @@ class ClientSession:
                         self.catalog.chains(name),
                         state.chain,
                         self.catalog.meshes(name),
+                        self.catalog.presets(name),
                     )
                 self.scene.update(snap, state)
                 self.panel.draw(state, snap)
@@ -374,6 +396,16 @@ class ClientSession:
         with self.lock:
             self._release_symbolic()
             self._subscribers.clear()
+
+
+def _coalesced(actions: list[Action]) -> list[Action]:
+    """``actions`` without drag events that a later one in the same batch supersedes (IK is solved once,
+    for the latest pose of the handle)."""
+    return [
+        a
+        for a, b in zip(actions, [*actions[1:], None], strict=True)
+        if not (isinstance(a, DriveTool) and isinstance(b, DriveTool))
+    ]
 
 
 def _is_jump(before: LabState, after: LabState, action: Action) -> bool:

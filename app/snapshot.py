@@ -29,6 +29,7 @@ from kinematics.inverse import solve_rates
 from kinematics.lost import LostDirection, lost_direction
 from kinematics.singularity import SingularityReport, assess
 
+from .maps import Cloud, JointMap, joint_map, workspace_cloud
 from .ranges import reach
 from .state import LabState
 
@@ -67,6 +68,9 @@ class Snapshot:
         produced: The task twist those rates actually produce, J q̇ (task rows, others 0) (6,).
         shortfall: What is lost, v − J q̇ over the task rows (6,).
         torques: Jᵀ F (n,) [N·m | N] balancing the applied wrench.
+        joint_map: w over the two chosen joints (when the map is shown), else ``None``.
+        cloud: The workspace cloud (when shown), else ``None``.
+        T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
     """
 
     q: np.ndarray
@@ -92,6 +96,13 @@ class Snapshot:
     produced: np.ndarray
     shortfall: np.ndarray
     torques: np.ndarray
+    joint_map: JointMap | None = None
+    cloud: Cloud | None = None
+
+    @property
+    def T_tool(self) -> np.ndarray:
+        """The tool pose T_base_tool (4, 4)."""
+        return self.link_frames[-1]
 
     @property
     def tool_point(self) -> np.ndarray:
@@ -113,9 +124,10 @@ def compute(state: LabState) -> Snapshot:
     square = J_task.shape[0] == n
     length = reach(robot)
     v_task = state.v_desired[list(rows)]
-    rates = solve_rates(J_task, v_task, state.options.damping) if np.any(v_task) else np.zeros(n)
+    J_twist = J_task if state.options.twist_frame == "base" else jacobian(robot, q, "tool")[list(rows)]
+    rates = solve_rates(J_twist, v_task, state.options.damping) if np.any(v_task) else np.zeros(n)
     produced = np.zeros(6)
-    produced[list(rows)] = J_task @ rates
+    produced[list(rows)] = J_twist @ rates
     shortfall = np.zeros(6)
     shortfall[list(rows)] = state.v_desired[list(rows)] - produced[list(rows)]
     return Snapshot(
@@ -142,4 +154,13 @@ def compute(state: LabState) -> Snapshot:
         produced=produced,
         shortfall=shortfall,
         torques=J.T @ state.wrench,
+        joint_map=_map(state),
+        cloud=workspace_cloud(robot) if state.options.workspace else None,
     )
+
+
+def _map(state: LabState) -> JointMap | None:
+    o = state.options
+    if not o.joint_map or state.robot.dof < 2 or o.map_i == o.map_j:
+        return None
+    return joint_map(state.robot, np.array(state.q), o.map_i, o.map_j)

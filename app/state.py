@@ -22,6 +22,8 @@ import numpy as np
 from kinematics import Robot
 from kinematics.analysis import task_rows
 
+from .motion_state import MotionState
+
 __all__ = ["Options", "LabState", "Frame", "frozen", "default_options"]
 
 Frame = Literal["base", "tool"]
@@ -51,6 +53,14 @@ class Options:
         scale: Multiplier on the automatic arrow and ellipsoid size.
         jacobian_frame: Frame of the Jacobian shown in the panel ("base" or "tool").
         damping: λ of damped least squares for q̇ = J⁺ v (0: the pseudo-inverse) [same units as J].
+        twist_frame: Axes of the desired tool twist v ("base", or "tool": held in the moving tool axes).
+        speed: Playback speed of every motion (1: real time; 0.1: ten times slower).
+        gizmo: Show the drag handle at the tool ("drive the tool": IK every frame).
+        ik_method: "dls" (damped least squares) or "newton" (the course's J⁻¹, J⁺ when not square).
+        ik_mode: "position" (the tool point follows the handle) or "pose" (the whole tool frame).
+        workspace: Show the workspace cloud (tool points of random configurations coloured by w).
+        joint_map: Compute and show the map of w over two joints.
+        map_i, map_j: The two joints of the map (indices).
     """
 
     frames: bool = False
@@ -63,6 +73,15 @@ class Options:
     scale: float = 1.0
     jacobian_frame: Frame = "base"
     damping: float = 0.0
+    twist_frame: Frame = "base"
+    speed: float = 1.0
+    gizmo: bool = False
+    ik_method: Literal["dls", "newton"] = "dls"
+    ik_mode: Literal["position", "pose"] = "position"
+    workspace: bool = False
+    joint_map: bool = False
+    map_i: int = 0
+    map_j: int = 1
 
 
 GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")
@@ -83,6 +102,9 @@ def default_options(robot: Robot, keep: Options | None = None) -> Options:
         velocity_ellipsoid=not angular_task,
         rotational_ellipsoid=angular_task,
         force_ellipsoid=False,
+        workspace=False,
+        map_i=0,
+        map_j=min(1, robot.dof - 1),
     )
 
 
@@ -104,6 +126,7 @@ class LabState:
         time: Time moved so far [s].
         stopped: Why the last motion stopped ("" when it did not), shown to the user.
         chain: Tip link of the URDF chain shown ("" for the default chain or a non-URDF robot).
+        motion: What Play runs, where it started, what it traced (:class:`~app.motion_state.MotionState`).
     """
 
     robot_name: str
@@ -118,6 +141,7 @@ class LabState:
     time: float = 0.0
     stopped: str = ""
     chain: str = ""
+    motion: MotionState = field(default_factory=MotionState)
 
     def __post_init__(self) -> None:
         n = self.robot.dof

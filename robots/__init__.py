@@ -9,6 +9,7 @@ from __future__ import annotations
 import functools
 import math
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -23,7 +24,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["DATA_DIR", "TASKS", "names", "load", "load_file", "info"]
+__all__ = ["DATA_DIR", "TASKS", "names", "load", "load_file", "info", "motions", "MotionPreset"]
 
 DATA_DIR = Path(__file__).resolve().parent / "data"
 SUFFIXES = (".toml", ".urdf")
@@ -38,6 +39,7 @@ _TOP_OPTIONAL = {
     "base": dict,
     "tool": dict,
     "configurations": list,
+    "motions": list,  # [[motions]]: resolved-rate presets (a start, a tool twist held), see motions()
     "symbols": dict,  # [symbols]: course names of the symbolic parameters, kinematics.Robot.param_names
 }
 _JOINT = {"joint": str, "a": float, "alpha": float, "d": float, "theta": float}
@@ -45,6 +47,30 @@ _JOINT_OPTIONAL = {"name": str, "qlim": list}
 _CONF = {"name": str, "q": list}
 _CONF_OPTIONAL = {"description": str, "singular": str}
 _FRAME_OPTIONAL = {"xyz": list, "rpy": list}
+_MOTION = {"name": str, "start": str, "twist": list}
+_MOTION_OPTIONAL = {"frame": str, "description": str, "speed": float}
+
+
+@dataclass(frozen=True, eq=False)
+class MotionPreset:
+    """A resolved-rate demonstration of a robot file's ``[[motions]]`` table, in SI units.
+
+    Attributes:
+        name: What the user picks ("straight line into the wrist singularity").
+        description: What it shows.
+        q: The start configuration (n,) [rad | m] (a named configuration of the file, or home).
+        twist: The tool twist held, [v; ω] (6,) [m/s; rad/s] (the file gives ω in deg/s).
+        frame: Axes of the twist: "base" or "tool".
+        speed: Playback speed to watch it at (1: real time; the course's TRR example runs into its
+            singularity in a tenth of a second, so it is shown at 0.1).
+    """
+
+    name: str
+    description: str
+    q: np.ndarray
+    twist: np.ndarray
+    frame: str
+    speed: float = 1.0
 
 
 def names() -> list[str]:
@@ -84,6 +110,26 @@ def info(name_or_path: str | Path) -> dict:
     path = _resolve(name_or_path)
     doc = _validated(path, _read(path))
     return {"name": doc["name"], "convention": doc["convention"]} | _meta(doc)
+
+
+def motions(name_or_path: str | Path) -> tuple[MotionPreset, ...]:
+    """The resolved-rate presets of a robot file (``[[motions]]``; none for a URDF)."""
+    path = _resolve(name_or_path)
+    if path.suffix.lower() != ".toml":
+        return ()
+    doc = _validated(path, _read(path))
+    revolute = [j["joint"] == "revolute" for j in doc["joints"]]
+    starts = {c["name"]: c["q"] for c in doc.get("configurations", [])}
+    out = []
+    for m in doc.get("motions", []):
+        q = [
+            math.radians(v) if rev else float(v) for v, rev in zip(starts[m["start"]], revolute, strict=True)
+        ]
+        twist = [float(v) for v in m["twist"][:3]] + [math.radians(v) for v in m["twist"][3:]]
+        text = _text(m.get("description", ""))
+        frame, speed = m.get("frame", "base"), float(m.get("speed", 1.0))
+        out.append(MotionPreset(m["name"], text, np.array(q), np.array(twist), frame, speed))
+    return tuple(out)
 
 
 def load_file(path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> Robot:
@@ -236,6 +282,14 @@ def _validated(path: Path, doc: dict) -> dict:
             raise RobotDefinitionError(f"{where}, key 'name': duplicate configuration name {c['name']!r}")
         seen.add(c["name"])
         _numbers(c["q"], len(doc["joints"]), f"{where} ({c['name']!r}), key 'q' (one value per joint)")
+    for i, m in enumerate(doc.get("motions", [])):
+        where = f"{f}, motions entry {i + 1}"
+        _check_table(m, _MOTION, _MOTION_OPTIONAL, where)
+        _one_of(m["start"], tuple(seen), f"{where}, key 'start' (a configuration name)")
+        _numbers(m["twist"], 6, f"{where}, key 'twist' (vx vy vz in m/s, ωx ωy ωz in deg/s)")
+        _one_of(m.get("frame", "base"), ("base", "tool"), f"{where}, key 'frame'")
+        if not 0.05 <= m.get("speed", 1.0) <= 2.0:
+            raise RobotDefinitionError(f"{where}, key 'speed': expected 0.05 to 2, got {m['speed']!r}")
     return doc
 
 

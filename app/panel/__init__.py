@@ -20,6 +20,7 @@ from typing import Any
 
 import viser
 
+import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
@@ -28,6 +29,7 @@ from ..snapshot import Snapshot
 from ..state import LabState, Options
 from ..viser_adapter import handle_uuid, run_javascript, set_page_title
 from .common import Dispatch, bind, sync_value
+from .explore import MapsPanel, MotionPanel, slider_ids
 from .joints import JointsPanel, configurations_html
 from .matrix import MatrixPanel
 from .motion import ForcePanel, ForwardPanel, InversePanel
@@ -94,6 +96,8 @@ class PanelView:
         self.tab_forward = self.views.add_tab("v = J q̇", viser.Icon.ARROW_UP_RIGHT)
         self.tab_inverse = self.views.add_tab("q̇ = J⁺v", viser.Icon.ARROW_BACK_UP)
         self.tab_force = self.views.add_tab("τ = JᵀF", viser.Icon.WEIGHT)
+        self.tab_motion = self.views.add_tab("Motion", viser.Icon.PLAYER_PLAY)
+        self.tab_maps = self.views.add_tab("Maps", viser.Icon.MAP)
         self.tab_view = self.views.add_tab("View", viser.Icon.EYE)
         self.views.dock_below(gui.main_panel)
         with self.tab_view:
@@ -117,6 +121,8 @@ class PanelView:
         self.inverse: InversePanel | None = None
         self.force: ForcePanel | None = None
         self.matrix: MatrixPanel | None = None
+        self.motion: MotionPanel | None = None
+        self.maps: MapsPanel | None = None
         self.about: viser.GuiHtmlHandle | None = None
 
     def build_robot(
@@ -126,6 +132,7 @@ class PanelView:
         chains: Sequence[ChainInfo] = (),
         chain: str = "",
         meshes: tuple[int, list[str]] = (0, []),
+        presets: Sequence[robots.MotionPreset] = (),
     ) -> None:
         """(Re)build the robot-dependent parts.
 
@@ -135,6 +142,7 @@ class PanelView:
             chains: The serial chains of its URDF file (a picker is shown when there are several).
             chain: Tip link of the chain shown ("" for the default one).
             meshes: (found, not found) mesh files of its URDF.
+            presets: Its resolved-rate presets (the Motion tab).
         """
         self.remove_robot()
         shown = next((c for c in chains if c.tip_link == chain), None) or next(
@@ -162,24 +170,42 @@ class PanelView:
             self.inverse = InversePanel(self.gui, self.dispatch, robot, rows, order=100)
         with self.tab_force:
             self.force = ForcePanel(self.gui, self.dispatch, robot, order=100)
+        with self.tab_motion:
+            self.motion = MotionPanel(self.gui, self.dispatch, robot, presets, order=100)
+        with self.tab_maps:
+            self.maps = MapsPanel(self.gui, self.dispatch, robot, slider_ids(self.joints.sliders), order=100)
         with self.tab_view:
             self.about = self.gui.add_html(configurations_html(robot), order=200)
         sliders = [*self.joints.sliders, *self.forward.sliders, *self.inverse.sliders.values()]
-        sliders += [*self.force.sliders.values(), self.inverse.damping, self.scale]
+        sliders += [*self.force.sliders.values(), self.inverse.damping, self.scale, self.motion.speed]
+        if self.motion.self_slider is not None:
+            sliders.append(self.motion.self_slider)
         run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
 
     def remove_robot(self) -> None:
         if self.chain is not None:
             self.chain.remove()
             self.chain = None
-        for part in (self.joints, self.forward, self.inverse, self.force, self.matrix, self.about):
+        parts = (
+            self.joints,
+            self.forward,
+            self.inverse,
+            self.force,
+            self.matrix,
+            self.motion,
+            self.maps,
+            self.about,
+        )
+        for part in parts:
             if part is not None:
                 part.remove()
         self.joints = self.forward = self.inverse = self.force = self.matrix = self.about = None
+        self.motion = self.maps = None
 
     def draw(self, state: LabState, snap: Snapshot) -> None:
         """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes)."""
         assert self.joints and self.forward and self.inverse and self.force and self.matrix
+        assert self.motion and self.maps
         sync_value(self.robot, state.robot_name)
         self.joints.show(state.q, state.configuration)
         self.forward.show(state)
@@ -195,6 +221,8 @@ class PanelView:
         self.forward.update(snap, state)
         self.inverse.update(snap, state)
         self.force.update(snap, state)
+        self.motion.draw(state, snap)
+        self.maps.draw(state, snap)
 
     def _show_options(self, options: Options) -> None:
         for key, box in self.toggles.items():

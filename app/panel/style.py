@@ -40,6 +40,12 @@ BASE_CSS = """
 .jl-mathml { padding: 4px 0; font-size: 16px; overflow-wrap: anywhere; }
 .jl-big .jl-mathml { font-size: 22px; }
 .jl-bars { width: 100%; border-collapse: collapse; }
+/* The joint-space map of w: a pixelated heat map, the arm's q as a ring; a click goes there. */
+.jl-map { position: relative; width: 100%; max-width: 340px; aspect-ratio: 1; cursor: crosshair;
+  margin: 4px auto; }
+.jl-map img { width: 100%; height: 100%; image-rendering: pixelated; display: block; border: 1px solid #868e96; }
+.jl-map-dot { position: absolute; width: 14px; height: 14px; margin: -7px 0 0 -7px; border-radius: 50%;
+  border: 3px solid #fff; box-shadow: 0 0 0 1.5px #000; pointer-events: none; }
 .jl-bars td { padding: 1px 3px; font-variant-numeric: tabular-nums; white-space: nowrap; font-size: 13.5px; }
 .jl-bars td.name { font-weight: 700; width: 2.4em; }
 .jl-bars td.track { width: 100%; position: relative; }
@@ -151,10 +157,31 @@ PAGE_JS = """
       event.stopPropagation();
     }
   });
+  // Typing a value into a slider's own number box, as a user would (the server clamps it).
+  const typeInto = (id, value) => {
+    const root = document.getElementById(id);
+    const input = root && root.parentElement && root.parentElement.querySelector("input.mantine-NumberInput-input");
+    if (!input) return;
+    const fine = (window.__jacobianLabSteps || {})[id] || 0.1;
+    const decimals = Math.max(0, -Math.floor(Math.log10(fine) + 1e-9));
+    const setter = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set;
+    setter.call(input, (Math.round(value / fine) * fine).toFixed(decimals));
+    input.dispatchEvent(new Event("input", { bubbles: true }));
+  };
   // The enlarged J closes with its x, and with a click outside it.
   document.addEventListener("click", (event) => {
     const target = event.target;
     if (!(target instanceof Element)) return;
+    const map = target.closest(".jl-map");
+    if (map) {  // the joint map: go to the clicked (qi, qj)
+      const box = map.getBoundingClientRect();
+      const u = Math.min(1, Math.max(0, (event.clientX - box.left) / box.width));
+      const v = Math.min(1, Math.max(0, (event.clientY - box.top) / box.height));
+      const d = map.dataset;
+      typeInto(d.i, parseFloat(d.ilo) + u * (parseFloat(d.ihi) - parseFloat(d.ilo)));
+      typeInto(d.j, parseFloat(d.jhi) - v * (parseFloat(d.jhi) - parseFloat(d.jlo)));
+      return;
+    }
     if (target.closest(".jl-close-x")) { modalClose(); return; }
     if (target.classList.contains("mantine-Modal-inner") || target.classList.contains("mantine-Modal-overlay")) {
       const open = document.querySelector(".mantine-Modal-content .jl-big");

@@ -14,9 +14,11 @@ import viser
 
 from kinematics import Robot
 
+from ..panel.common import Dispatch
 from ..snapshot import Snapshot
 from ..state import LabState
 from .arm import ArmGeometry, ArmView
+from .drive import DriveView
 from .overlays import Overlays
 
 __all__ = ["SceneView", "ArmGeometry"]
@@ -25,9 +27,14 @@ __all__ = ["SceneView", "ArmGeometry"]
 class SceneView:
     """Scene nodes of one tab for one robot."""
 
-    def __init__(self, client: viser.ClientHandle, robot: Robot, root: str = "/lab") -> None:
+    def __init__(
+        self, client: viser.ClientHandle, robot: Robot, dispatch: Dispatch | None = None, root: str = "/lab"
+    ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
         self.overlays = Overlays(client.scene, self.arm.geometry, robot.dof, robot.planar, f"{root}/jacobian")
+        self.drive = DriveView(
+            client.scene, dispatch or (lambda action: None), self.size, robot.planar, f"{root}/drive"
+        )
 
     @property
     def size(self) -> float:
@@ -37,14 +44,17 @@ class SceneView:
     @property
     def extent(self) -> np.ndarray:
         """Points (N, 3) [m] of everything drawn at the last update: arm, ellipsoids, arrow tips."""
-        return self.overlays.extent
+        extra = self.drive.extent
+        return np.concatenate([self.overlays.extent, extra]) if len(extra) else self.overlays.extent
 
     def update(self, snap: Snapshot, state: LabState) -> None:
         """Move every node to ``snap`` (call inside ``client.atomic()``)."""
         self.arm.update(snap, state.options)
         self.overlays.update(snap, state)
+        self.drive.update(snap, state)
 
     def remove(self) -> None:
         """Remove every node (on robot switch or disconnect)."""
+        self.drive.remove()
         self.overlays.remove()
         self.arm.remove()
