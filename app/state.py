@@ -80,8 +80,8 @@ class Options:
     ik_mode: Literal["position", "pose"] = "position"
     workspace: bool = False
     joint_map: bool = False
-    map_i: int = 0
-    map_j: int = 1
+    map_i: int = 1
+    map_j: int = 2
 
 
 GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")
@@ -103,8 +103,9 @@ def default_options(robot: Robot, keep: Options | None = None) -> Options:
         rotational_ellipsoid=angular_task,
         force_ellipsoid=False,
         workspace=False,
-        map_i=0,
-        map_j=min(1, robot.dof - 1),
+        # q1 of most arms turns everything about the base axis and leaves w unchanged: map q2, q3.
+        map_i=1 if robot.dof >= 3 else 0,
+        map_j=2 if robot.dof >= 3 else min(1, robot.dof - 1),
     )
 
 

@@ -87,10 +87,22 @@ def gui_contents(session: ClientSession) -> list[str]:
         p.inverse.result,
         p.force.torques,
     ]
+    if p.motion is not None and p.maps is not None:
+        handles += [p.motion.readout, p.motion.ik, p.motion.about, p.maps.map]
     return [h.content for h in handles]
 
 
+def chart_data(session: ClientSession) -> list[Any]:
+    """The data of every chart of the session's Motion tab."""
+    m = session.panel.motion
+    if m is None:
+        return []
+    charts = [m.measures, m.kappa, m.rates] + ([m.self_chart] if m.self_chart is not None else [])
+    return [c.data for c in charts]
+
+
 def assert_all_finite(session: ClientSession) -> None:
-    """No NaN or ∞ (number or text) in the session's scene props and readouts."""
+    """No NaN or ∞ (number or text) in the session's scene props, readouts and charts."""
     bad = nonfinite_paths(scene_props(session)) + nonfinite_paths(gui_contents(session))
+    bad += nonfinite_paths(chart_data(session))
     assert not bad, bad

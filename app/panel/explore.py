@@ -288,9 +288,11 @@ class MapsPanel:
                 "Joint-space map of w", initial_value=False, disabled=robot.dof < 2
             )
             bind(self.show_map, dispatch, lambda v: SetOption("joint_map", bool(v)))
-            self.i = gui.add_dropdown("x axis", names, initial_value=names[0])
+            self.i = gui.add_dropdown("x axis", names, initial_value=names[1 if robot.dof >= 3 else 0])
             bind(self.i, dispatch, functools.partial(_map_joint, "map_i", names))
-            self.j = gui.add_dropdown("y axis", names, initial_value=names[min(1, robot.dof - 1)])
+            self.j = gui.add_dropdown(
+                "y axis", names, initial_value=names[2 if robot.dof >= 3 else min(1, robot.dof - 1)]
+            )
             bind(self.j, dispatch, functools.partial(_map_joint, "map_j", names))
             self.map = gui.add_html("")
         self._shown: str | None = None

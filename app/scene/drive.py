@@ -123,7 +123,7 @@ class DriveView:
                 f"{self.root}/cloud",
                 points=finite(cloud.points),
                 colors=cloud.colors,
-                point_size=0.012 * self.size,
+                point_size=0.004 * self.size,
                 point_shape="circle",
             )
             self._cloud_of = cloud
