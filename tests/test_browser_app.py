@@ -171,3 +171,69 @@ def test_app_in_chromium_at_1280x720(tmp_path):
         lab.stop()
     assert not errors, errors
     assert session.errors == 0
+
+
+def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
+    """The Motion tab: a preset and Play move the arm by itself (the 3-D view changes with no input)
+    and the charts appear; the Maps tab: a click on the joint map moves the two joints there."""
+    sync_playwright = _require_browser()
+    out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out_dir.mkdir(parents=True, exist_ok=True)
+    lab = Lab(port=0)
+    errors: list[str] = []
+    try:
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            try:
+                page = browser.new_page(viewport=VIEWPORT)
+                page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
+                page.goto(lab.url)
+                page.wait_for_selector("[role=slider]", timeout=120_000)
+                session = lab.session()
+                _wait(lambda: session.snapshot is not None)
+                for button in page.query_selector_all(".mantine-Notification-closeButton"):
+                    button.click()
+
+                page.get_by_role("tab", name="Motion").click()
+                page.get_by_label("Preset", exact=True).first.click()
+                page.get_by_role(
+                    "option", name="straight line into the wrist singularity", exact=True
+                ).click()
+                _wait(lambda: session.state.motion.preset == "straight line into the wrist singularity")
+                before = _steady_canvas(page)
+                page.get_by_role("button", name="Play", exact=True).click()
+                _wait(lambda: session.state.playing)
+                # Nothing else is touched: the arm moves by itself until it stops, saying why.
+                _wait(lambda: not session.state.playing, timeout=60)
+                assert session.state.stopped.startswith("stopped:")
+                assert len(session.state.motion.trace) > 60
+                after = _steady_canvas(page)
+                changed = np.abs(after - before).max(axis=-1) > 30
+                assert changed.mean() > 0.01, f"the 3-D view barely changed ({changed.mean():.4%} of pixels)"
+                page.get_by_text("joint rates", exact=True).first.scroll_into_view_if_needed()
+                _wait(lambda: page.locator(".uplot").count() >= 3)
+                assert page.locator(".uplot canvas").first.bounding_box()["width"] > 200
+                page.screenshot(path=str(out_dir / "app_motion.png"))
+
+                page.get_by_role("tab", name="Maps").click()
+                page.get_by_label("Joint-space map of w", exact=True).first.check()
+                _wait(lambda: page.locator(".jl-map img").count() > 0)
+                q_before = np.array(session.state.q)
+                image = page.locator(".jl-map img").first
+                image.scroll_into_view_if_needed()
+                box = image.bounding_box()
+                page.mouse.click(box["x"] + 0.25 * box["width"], box["y"] + 0.5 * box["height"])
+                jm = session.snapshot.joint_map
+                want_i = jm.lo[0] + 0.25 * (jm.hi[0] - jm.lo[0])
+                want_j = jm.hi[1] - 0.5 * (jm.hi[1] - jm.lo[1])
+                _wait(lambda: abs(math.degrees(session.state.q[jm.i]) - want_i) < 1.0)
+                _wait(lambda: abs(math.degrees(session.state.q[jm.j]) - want_j) < 1.0)
+                others = [k for k in range(len(q_before)) if k not in (jm.i, jm.j)]
+                np.testing.assert_allclose(np.array(session.state.q)[others], q_before[others])
+                page.screenshot(path=str(out_dir / "app_maps.png"))
+            finally:
+                browser.close()
+    finally:
+        lab.stop()
+    assert not errors, errors
+    assert session.errors == 0
