@@ -182,7 +182,12 @@ class MotionPanel:
             self.about.content = self._about(m.preset)
             self.readout.content = _readout(state, snap)
         self.ik.content = _ik_html(state)
-        if m.trace is not self._trace and m.trace is not None:
+        # Charts at most every third frame while playing (each update resends the whole series).
+        if (
+            m.trace is not self._trace
+            and m.trace is not None
+            and (not state.playing or len(m.trace) % 3 == 1)
+        ):
             self._trace = m.trace
             self._plot(m.trace)
         if self.self_chart is not None and len(m.self_trace) >= 2:
