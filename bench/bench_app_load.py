@@ -51,11 +51,16 @@ from app.viser_adapter import message_class  # noqa: E402
 CLK_TCK = os.sysconf("SC_CLK_TCK")
 
 
-def start_server(robot: str, limits: bool) -> tuple[subprocess.Popen, int]:
-    """The app in its own process; its port."""
+def start_server(
+    robot: str, limits: bool, port: int = 0, root: Path | None = None
+) -> tuple[subprocess.Popen, int]:
+    """The app (from the checkout ``root``, default this one) in its own process on ``port``; its port."""
     pre = "from app.viser_adapter import install_message_limits; install_message_limits(); " if limits else ""
-    code = pre + f"from app.server import serve; serve(robot={robot!r}, host='127.0.0.1', port=0, block=True)"
-    root = Path(__file__).resolve().parents[1]
+    code = (
+        pre
+        + f"from app.server import serve; serve(robot={robot!r}, host='127.0.0.1', port={port}, block=True)"
+    )
+    root = root or Path(__file__).resolve().parents[1]
     env = dict(os.environ, PYTHONUNBUFFERED="1", PYTHONPATH=str(root))
     proc = subprocess.Popen(
         [sys.executable, "-u", "-c", code],
@@ -241,17 +246,25 @@ def main() -> int:
     parser.add_argument("--limits", action="store_true", help="install the message limits in the server")
     parser.add_argument("--warmup", type=float, default=3.0, help="unmeasured exploring first [s]")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--port", type=int, default=0, help="the server's port (0: a free one)")
+    parser.add_argument(
+        "--app-root",
+        type=Path,
+        default=None,
+        help="serve the app of this checkout (e.g. to compare a baseline)",
+    )
     args = parser.parse_args()
     if not 1 <= args.seconds <= 120 or not all(1 <= n <= 200 for n in args.tabs):
         parser.error("--seconds must be in [1, 120] and --tabs in [1, 200]")
 
-    print(f"robot {args.robot}, {args.seconds:g} s per run, {os.cpu_count()} CPUs; slider → redrawn scene")
+    app = args.app_root or "this checkout"
+    print(f"app {app}; robot {args.robot}, {args.seconds:g} s per run, {os.cpu_count()} CPUs; slider → scene")
     print(f"load average before: {Path('/proc/loadavg').read_text().split()[:3]}")
     columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "max ms", "CPU %", "client %")
     header = " ".join(f"{c:>{w}}" for c, w in zip(columns, (5, 8, 8, 10, 8, 8, 8, 6, 8), strict=True))
     print(header + ("   flood (sent, closed)" if args.hostile else ""))
     for n in args.tabs:
-        proc, port = start_server(args.robot, args.limits)
+        proc, port = start_server(args.robot, args.limits, args.port, args.app_root)
         try:
             r = asyncio.run(run(n, args.seconds, args.hostile, port, proc.pid, args.seed, args.warmup))
         finally:

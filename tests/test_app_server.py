@@ -29,9 +29,9 @@ from app.actions import (
 )
 from app.palette import LOST_RGB
 from app.ranges import joint_ranges, to_display
-from app.scene.geometry import TINY
+from app.scene.geometry import TINY, wxyz, wxyz_one
 from app.viser_adapter import is_removed
-from kinematics import jacobian
+from kinematics import jacobian, joint_frames, link_frames
 from kinematics.analysis import task_rows
 
 
@@ -69,6 +69,57 @@ def test_slider_change_is_one_redraw_with_the_new_jacobian(session):
     assert session.panel.matrix.numeric.content != matrix
     assert fmt.fixed(J[0, 0]) in session.panel.matrix.numeric.content
     assert_all_finite(session)
+
+
+def _chain_points(robot, q) -> np.ndarray:
+    """The drawn chain, worked out directly: frame 0; per axis its origin, its corners, its link frame; the tool."""
+    L, W = link_frames(robot, q), joint_frames(robot, q)
+    pts = [L[0, :3, 3]]
+    for k, ax in enumerate(robot.axes):
+        pts.append(W[k, :3, 3])
+        moved = L[k + 1] @ np.linalg.inv(ax.T_joint_child)
+        pts += [(moved @ np.append(c, 1.0))[:3] for c in np.asarray(ax.corners, float).reshape(-1, 3)]
+        pts.append(L[k + 1, :3, 3])
+    pts.append(L[-1, :3, 3])
+    return np.array(pts)
+
+
+@pytest.mark.parametrize("robot_name", ["puma560", "panda"])
+def test_links_axes_and_labels_are_where_the_kinematics_puts_them(session, robot_name):
+    """One batched node holds every link and revolute axis: its instances sit on the chain's points."""
+    session.dispatch(ChooseRobot(robot_name))
+    session.settle()
+    session.dispatch(SetJoint(1, 0.7))
+    session.settle()
+    robot, q = session.state.robot, session.state.q
+    pts = _chain_points(robot, q)
+    W = joint_frames(robot, q)
+    cylinders = scene_node(session, "/lab/arm/cylinders")
+    n_links = len(pts) - 1
+    positions = np.asarray(cylinders.batched_positions).reshape(-1, 3)
+    np.testing.assert_allclose(positions[:n_links], (pts[:-1] + pts[1:]) / 2, atol=1e-5)
+    lengths = np.asarray(cylinders.batched_scales).reshape(-1, 3)[:n_links, 2]
+    np.testing.assert_allclose(
+        lengths, np.maximum(np.linalg.norm(np.diff(pts, axis=0), axis=1), TINY), atol=1e-5
+    )
+    revolute = [k for k, ax in enumerate(robot.axes) if ax.kind == "revolute"]
+    np.testing.assert_allclose(positions[n_links:], W[revolute, :3, 3], atol=1e-5)  # axes centred on joints
+    size = session.scene.size
+    for j, label in enumerate(session.scene.arm.labels):
+        k = next(k for k, ax in enumerate(robot.axes) if ax.joint_index == j)
+        beyond = 0.17 * size * (1.0 + 0.1 * k) / 2 + 0.02 * size
+        np.testing.assert_allclose(label.position, W[k, :3, 3] + W[k, :3, 2] * beyond, atol=1e-5)
+
+
+def test_one_quaternion_is_the_batched_one_up_to_sign():
+    rng = np.random.default_rng(7)
+    samples = [np.eye(3), np.diag([1.0, -1.0, -1.0]), np.diag([-1.0, 1.0, -1.0]), np.diag([-1.0, -1.0, 1.0])]
+    samples += [np.linalg.qr(rng.normal(size=(3, 3)))[0] for _ in range(200)]
+    for R in samples:
+        R = R * np.sign(np.linalg.det(R))  # a rotation
+        a, b = wxyz(R), np.array(wxyz_one(R))
+        assert min(np.abs(a - b).max(), np.abs(a + b).max()) < 1e-12
+    assert wxyz_one(np.full((3, 3), np.nan)) == (1.0, 0.0, 0.0, 0.0)
 
 
 def test_a_burst_of_actions_is_coalesced_into_few_redraws(session):

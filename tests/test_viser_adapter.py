@@ -155,6 +155,44 @@ def test_scene_handles_and_node_props_read_what_is_sent(connected):
     assert "/probe/ellipsoid" not in va.scene_handles(client.scene)
 
 
+def test_update_props_sends_the_changed_props_in_one_message(connected):
+    _, client, ws = connected
+    v, f = np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], np.uint32)
+    node = client.scene.add_batched_meshes_simple(
+        "/probe/batch",
+        v,
+        f,
+        batched_wxyzs=np.tile([1.0, 0, 0, 0], (2, 1)),
+        batched_positions=np.zeros((2, 3)),
+        batched_scales=np.ones((2, 3)),
+    )
+    positions = np.array([[0.5, -1.0, 2.0], [0.25, 0.0, -0.5]])
+    wxyzs = np.array([[0.0, 1.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]])
+    ws.wait_for(lambda m: m["type"] == "BatchedMeshesMessage" and m["name"] == "/probe/batch")
+    mark = ws.mark()
+    assert va.update_props(
+        node, batched_positions=positions, batched_wxyzs=wxyzs, batched_scales=np.ones((2, 3))
+    )
+    _, message = ws.wait_for(lambda m: m.get("name") == "/probe/batch", after=mark)  # the next one
+    assert message["type"] == "SceneNodeUpdateMessage"
+    assert sorted(message["updates"]) == ["batched_positions", "batched_wxyzs"]  # scales did not change
+    np.testing.assert_allclose(message["updates"]["batched_positions"].reshape(2, 3), positions)
+    np.testing.assert_allclose(message["updates"]["batched_wxyzs"].reshape(2, 4), wxyzs)
+    np.testing.assert_allclose(node.batched_positions, positions)  # the handle holds what was sent
+    assert node.batched_positions.dtype == np.float32
+    positions[0, 0] = 9.0  # the caller's array is not shared with the handle
+    assert node.batched_positions[0, 0] == pytest.approx(0.5)
+    assert not va.update_props(
+        node, batched_positions=node.batched_positions.copy()
+    )  # unchanged: nothing sent
+    three = np.arange(9.0).reshape(3, 3)
+    assert va.update_props(node, batched_positions=three, batched_wxyzs=np.tile([1.0, 0, 0, 0], (3, 1)))
+    np.testing.assert_allclose(node.batched_positions, three)  # a new instance count is stored whole
+    node.remove()
+    with pytest.raises(RuntimeError, match="removed"):
+        va.update_props(node, batched_positions=three)
+
+
 # ----------------------------------------------------------------------------- message limits
 @pytest.fixture
 def limited():

@@ -27,18 +27,29 @@ from .readouts import ROW_NAMES
 __all__ = ["matrix_html", "MatrixPanel"]
 
 
-def matrix_html(J: np.ndarray, robot: Robot, rows: tuple[int, ...], frame: str, big: bool = False) -> str:
-    """HTML table of J (6, n): coloured joint columns headed q1…qn, [v; ω] rows, non-task rows greyed."""
-    head = "".join(
+def _head(robot: Robot) -> str:
+    """The header cells of J's table: q1…qn in the joints' colours, each joint's name on hover."""
+    return "".join(
         f'<th class="col" style="color:{joint_text_hex(i)};border-color:{joint_hex(i)}" '
         f'title="{fmt.escape(j.name)}">q{i + 1}</th>'
         for i, j in enumerate(robot.joints)
     )
-    values = np.array(fmt.cleaned(np.asarray(J, float).ravel())).reshape(J.shape)
+
+
+def matrix_html(
+    J: np.ndarray, robot: Robot, rows: tuple[int, ...], frame: str, big: bool = False, head: str = ""
+) -> str:
+    """HTML table of J (6, n): coloured joint columns headed q1…qn, [v; ω] rows, non-task rows greyed.
+
+    ``head``: the header cells as :func:`_head` writes them for ``robot`` (worked out when empty).
+    """
+    head = head or _head(robot)
+    values = fmt.cleaned(np.asarray(J, float).ravel().tolist())
+    n = J.shape[1]
     body = []
     for r in range(6):
         classes = [c for c in ("off" if r not in rows else "", "split" if r == 3 else "") if c]
-        cells = "".join(f"<td>{fmt.fixed(x, 3)}</td>" for x in values[r])
+        cells = "".join([f"<td>{fmt.fixed(x, 3)}</td>" for x in values[r * n : (r + 1) * n]])
         body.append(f'<tr class="{" ".join(classes)}"><th class="row">{ROW_NAMES[r]}</th>{cells}</tr>')
     caption = (
         f'<div class="jl-note">J(q) in {"base" if frame == "base" else "tool"} axes, rows [v; ω], '
@@ -67,6 +78,7 @@ class MatrixPanel:
         self._last_args: tuple = (np.zeros((6, robot.dof)), (), "base", "")
         self._lock = threading.RLock()
         self._symbolic = ""
+        self._head = _head(robot)  # the same for every redraw of this robot
         self.root = gui.add_folder(None, order=order)
         with self.root:
             self.frame = gui.add_dropdown(
@@ -87,7 +99,7 @@ class MatrixPanel:
 
     def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:
         """Show the numeric J and measures, and in the enlarged view (if open) J under the status."""
-        self.numeric.content = matrix_html(J, self.robot, rows, frame)
+        self.numeric.content = matrix_html(J, self.robot, rows, frame, head=self._head)
         self.measures.content = measures
         with self._lock:
             self._last_args = (J, rows, frame, status)
@@ -96,7 +108,7 @@ class MatrixPanel:
 
     def _big(self) -> str:
         J, rows, frame, status = self._last_args
-        self._last = status + matrix_html(J, self.robot, rows, frame, big=True)
+        self._last = status + matrix_html(J, self.robot, rows, frame, big=True, head=self._head)
         symbolic = f'<div class="jl jl-big">{self._symbolic}</div>' if self._symbolic else ""
         close = (
             '<div class="jl-close-row"><button class="jl-close-x" title="Close (Esc)">× close</button></div>'

@@ -239,7 +239,7 @@ class ForcePanel:
 
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():
-            sync_value(slider, float(np.clip(state.wrench[r], slider.min, slider.max)))
+            sync_value(slider, min(max(float(state.wrench[r]), slider.min), slider.max))  # np.clip: 5 µs
 
     def update(self, snap: Snapshot, state: LabState) -> None:
         idle = not np.any(state.wrench)

@@ -11,6 +11,7 @@ robot and then only updated.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,6 +25,7 @@ from kinematics.urdf import mesh_filename_handler
 from ..palette import LINK_RGB, STATUS_RGB, joint_color
 from ..snapshot import Snapshot
 from ..state import Options
+from ..viser_adapter import update_props
 from .geometry import finite, segment_instances, set_if_changed, unit_box, unit_cylinder, wxyz
 
 __all__ = ["ArmGeometry", "ArmView"]
@@ -79,15 +81,31 @@ class ArmGeometry:
             L: Link frames (m + 2, 4, 4) as from :func:`kinematics.link_frames`.
             W: Joint frames (m, 4, 4) as from :func:`kinematics.joint_frames`.
         """
-        pts = [L[0, :3, 3]]
-        for k in range(len(W)):
-            pts.append(W[k, :3, 3])
-            if len(self.corners[k]):
-                moved = L[k + 1] @ self.moved_from_link[k]
-                pts.extend((moved @ self.corners[k].T).T[:, :3])
-            pts.append(L[k + 1, :3, 3])
-        pts.append(L[-1, :3, 3])
-        return np.array(pts)
+        owner, corners, order = self._gather
+        m = len(W)
+        parts = [L[:, :3, 3], W[:, :3, 3]]
+        if len(owner):  # corner points, moved with their axis: (L[k+1] · inv(T_joint_child[k])) · corner
+            moved = L[owner + 1] @ self.moved_from_link[owner]
+            parts.append(np.einsum("kij,kj->ki", moved[:, :3], corners))
+        points = np.concatenate(parts)
+        assert len(points) == len(L) + m + len(owner)
+        return points[order]
+
+    @functools.cached_property
+    def _gather(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Corner owners (C,), corner points (C, 4), and the order of the polyline's points in
+        [link frames (m + 2); joint frames (m); corners (C)], worked out once per robot."""
+        m = len(self.corners)
+        owner = np.array([k for k in range(m) for _ in self.corners[k]], dtype=int)
+        stacked = np.concatenate([*self.corners, np.zeros((0, 4))]) if m else np.zeros((0, 4))
+        order, c = [0], 0
+        for k in range(m):
+            order.append(m + 2 + k)
+            order += range(2 * m + 2 + c, 2 * m + 2 + c + len(self.corners[k]))
+            c += len(self.corners[k])
+            order.append(k + 1)
+        order.append(m + 1)
+        return owner, stacked, np.array(order, dtype=int)
 
 
 class ArmView:
@@ -128,6 +146,9 @@ class ArmView:
         n_cyl = self._n_links + len(self._rev)
         self._axis_radius = 0.04 * s * (1.0 - 0.07 * np.arange(m))  # nested when axes line up
         self._axis_length = 0.17 * s * (1.0 + 0.1 * np.arange(m))
+        self._radii = np.concatenate([np.full(self._n_links, 0.026 * s), self._axis_radius[self._rev]])
+        # A joint's label sits just beyond the end of its first axis' cylinder.
+        self._label_offset = (self._axis_length / 2 + 0.02 * s)[g.first_axis, None]
         cyl_colors = np.array(
             [LINK_RGB] * self._n_links + [joint_color(int(g.axis_joint[k])) for k in self._rev],
             dtype=np.uint8,
@@ -188,40 +209,40 @@ class ArmView:
         o = W[:, :3, 3]
         half = self._axis_length / 2
         if self.cylinders is not None:
-            parts = []
-            if self._draw_links:
-                pts = g.polyline(L, W)
-                parts.append(segment_instances(pts[:-1], pts[1:], 0.026 * g.size))
             r = self._rev
-            parts.append(
-                segment_instances(
-                    o[r] - z[r] * half[r, None], o[r] + z[r] * half[r, None], self._axis_radius[r]
-                )
-            )
-            pos, quat, scale = (np.concatenate(x) for x in zip(*parts, strict=True))
-            self.cylinders.batched_positions = finite(pos)
-            self.cylinders.batched_wxyzs = finite(quat)
-            self.cylinders.batched_scales = finite(scale)
+            ends = z[r] * half[r, None]
+            p0, p1 = o[r] - ends, o[r] + ends
+            if self._draw_links:  # the links first, then the revolute axes: one batch
+                pts = g.polyline(L, W)
+                p0, p1 = np.concatenate([pts[:-1], p0]), np.concatenate([pts[1:], p1])
+            pos, quat, scale = segment_instances(p0, p1, self._radii)
+            poses = {"batched_positions": finite(pos), "batched_wxyzs": finite(quat)}
             if snap.report.status != self._status and self._draw_links:
                 colors = self.cylinders.batched_colors.copy()
                 colors[: self._n_links] = _tint(LINK_RGB, snap.report.status)
-                self.cylinders.batched_colors = colors
+                poses["batched_colors"] = colors
+            update_props(self.cylinders, batched_scales=finite(scale), **poses)  # one message
         if self.boxes is not None:
             p = self._pri
             width = 2.2 * self._axis_radius[p]
-            self.boxes.batched_positions = finite(o[p])
-            self.boxes.batched_wxyzs = finite(wxyz(W[p, :3, :3]))
-            self.boxes.batched_scales = finite(np.column_stack([width, width, 2 * half[p]]))
+            update_props(
+                self.boxes,
+                batched_positions=finite(o[p]),
+                batched_wxyzs=finite(wxyz(W[p, :3, :3])),
+                batched_scales=finite(np.column_stack([width, width, 2 * half[p]])),
+            )
         self._status = snap.report.status
         set_if_changed(self.frames, "visible", options.frames)
         if options.frames:
-            self.frames.batched_positions = finite(L[:, :3, 3])
-            self.frames.batched_wxyzs = finite(wxyz(L[:, :3, :3]))
-        for j, label in enumerate(self.labels):
+            update_props(
+                self.frames, batched_positions=finite(L[:, :3, 3]), batched_wxyzs=finite(wxyz(L[:, :3, :3]))
+            )
+        for label in self.labels:
             set_if_changed(label, "visible", options.labels)
-            if options.labels:
-                k = g.first_axis[j]
-                label.position = tuple(finite(o[k] + z[k] * (half[k] + 0.02 * g.size)))
+        if options.labels:
+            k = g.first_axis
+            for label, position in zip(self.labels, finite(o[k] + z[k] * self._label_offset), strict=True):
+                label.position = position
 
     def remove(self) -> None:
         """Remove every node of this arm."""

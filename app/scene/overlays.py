@@ -35,8 +35,9 @@ from ..palette import (
 )
 from ..snapshot import Snapshot
 from ..state import LabState
+from ..viser_adapter import update_props
 from .arm import ArmGeometry
-from .geometry import TINY, finite, set_if_changed, wxyz
+from .geometry import TINY, finite, set_if_changed, wxyz_one
 
 __all__ = ["Overlays", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE"]
 
@@ -68,20 +69,25 @@ class _Arrows:
         self.tips: np.ndarray = np.zeros((0, 3))
 
     def set(self, starts: np.ndarray, vectors: np.ndarray, colors: np.ndarray, show: bool = True) -> None:
+        if not show:  # hidden: nothing to work out
+            self.tips = np.zeros((0, 3))
+            set_if_changed(self.node, "visible", False)
+            return
         lengths = np.linalg.norm(vectors, axis=1) if len(vectors) else np.zeros(0)
-        keep = np.isfinite(lengths) & (lengths > max(_MIN_LENGTH, self.radius)) if show else lengths < 0
+        keep = np.isfinite(lengths) & (lengths > max(_MIN_LENGTH, self.radius))
         self.tips = (starts + vectors)[keep]
         if not keep.any():
             set_if_changed(self.node, "visible", False)
             return
         points = finite(np.stack([starts[keep], starts[keep] + vectors[keep]], axis=1))
         shortest = float(lengths[keep].min())
-        set_if_changed(self.node, "head_length", round(float(min(6 * self.radius, 0.4 * shortest)), 4))
+        head = round(float(min(6 * self.radius, 0.4 * shortest)), 4)
+        change: dict = {"points": points, "head_length": head}
         mask = tuple(np.flatnonzero(keep))
         if mask != self._mask:
-            self.node.colors = np.asarray(colors[keep], np.uint8)
+            change["colors"] = np.asarray(colors[keep], np.uint8)
             self._mask = mask
-        self.node.points = points
+        update_props(self.node, **change)  # points, colours and head together: one message
         set_if_changed(self.node, "visible", True)
 
 
@@ -107,7 +113,7 @@ class _Ellipsoid:
         if show:
             r = np.clip(np.nan_to_num(radii, nan=0.0, posinf=cap), TINY, cap)
             self.node.scale = (float(r[0]), float(r[1]), float(r[2]))
-            self.node.wxyz = finite(wxyz(axes)).astype(float)
+            self.node.wxyz = wxyz_one(axes)
             self.node.position = finite(center).astype(float)
             self.extent = center + np.concatenate([axes * r, -(axes * r)], axis=1).T
 
@@ -246,7 +252,9 @@ class Overlays:
             a = lost.rotation
             half = length * np.sqrt(lost.rotation_share)
             axis = np.array([[p - a * half, p + a * half]])
-            self.lost_w.points = finite(np.concatenate([axis, _ring(p + a * 0.6 * half, a, 0.25 * half)]))
+            update_props(
+                self.lost_w, points=finite(np.concatenate([axis, _ring(p + a * 0.6 * half, a, 0.25 * half)]))
+            )
             label_w.position = finite(p + a * half).astype(float)
 
     def remove(self) -> None:

@@ -17,6 +17,8 @@ Wrapped:
   handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``.
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
   type aliases built once.
+* :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``
+  (through ``handle._impl.props`` and the scene's ``_queue_scene_message``).
 
 A package of three modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`), so each stays short;
 nothing outside this package touches viser's private API.
@@ -35,7 +37,7 @@ from .core import (
     set_page_title,
 )
 from .limits import MessageLimits, install_message_limits, uninstall_message_limits
-from .props import install_fast_prop_casts
+from .props import install_fast_prop_casts, update_props
 
 __all__ = [
     "TESTED_VISER",
@@ -51,5 +53,6 @@ __all__ = [
     "install_message_limits",
     "uninstall_message_limits",
     "install_fast_prop_casts",
+    "update_props",
     "clip",
 ]

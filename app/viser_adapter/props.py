@@ -6,7 +6,7 @@ from typing import Any
 
 from .core import ViserApiChanged, _private
 
-__all__ = ["install_fast_prop_casts"]
+__all__ = ["install_fast_prop_casts", "update_props"]
 
 
 # --------------------------------------------------------------------------- faster prop assignment
@@ -96,3 +96,74 @@ def _install_fast_pose_setter() -> None:
 
     setattr(handles, "_jl_original_set_pose_vector", original)  # noqa: B010 (a module, not a class)
     setattr(handles, "_set_pose_vector", set_pose_vector)  # noqa: B010
+
+
+# --------------------------------------------------------------------------- several props, one message
+def update_props(handle: Any, **updates: Any) -> bool:
+    """Assign several props of the scene node ``handle`` at once, sending ONE update message.
+
+    viser sends one ``SceneNodeUpdateMessage`` per assigned prop (three for a batched mesh's
+    positions, orientations and scales), each cast, compared, copied and serialized on its own.
+    Here the changed props travel together: one message of ``{name: value}``, which the browser
+    merges into the node's props exactly as it merges one. An array is stored at the dtype of the
+    prop's current value and sent only when it differs; a scalar only when it differs.
+
+    Arrays and plain scalars take this path; anything else (a prop not set yet, a tuple that viser
+    converts) is assigned through viser's own setter.
+
+    Returns:
+        Whether anything was sent.
+
+    Raises:
+        RuntimeError: the node was removed.
+        ViserApiChanged: the handle's internals or the message class moved.
+    """
+    import numpy as np
+
+    try:
+        impl = handle._impl
+        removed, props, queue = impl.removed, impl.props, impl.api._queue_scene_message
+    except AttributeError as exc:
+        raise ViserApiChanged(
+            "update_props", f"handle._impl.removed / props / api._queue_scene_message ({exc})"
+        ) from exc
+    if removed:
+        raise RuntimeError(f"update_props: {type(handle).__name__} {impl.name!r} was removed")
+    changed: dict[str, Any] = {}
+    for name, value in updates.items():
+        current = getattr(props, name)  # AttributeError: the node has no such prop
+        if isinstance(current, np.ndarray):
+            new = np.asarray(value, dtype=current.dtype)
+            if new.shape == current.shape:
+                if np.array_equal(current, new):
+                    continue
+                current[...] = new
+            else:
+                setattr(props, name, new.copy())
+            # The wire gets its own copy: the stored array is updated in place next time,
+            # maybe while the event loop is still serializing this message.
+            changed[name] = new.copy()
+        elif isinstance(value, np.ndarray) or isinstance(current, (list, tuple, dict)):
+            setattr(handle, name, value)  # first array for an unset prop, or a sequence: viser's own path
+        else:
+            if current == value:
+                continue
+            setattr(props, name, value)
+            changed[name] = value
+    if not changed:
+        return False
+    queue(_update_message()(impl.name, changed))
+    for name in changed:
+        handle._on_prop_assigned(name)
+    return True
+
+
+_UPDATE_MESSAGE: list[type] = []
+
+
+def _update_message() -> type:
+    if not _UPDATE_MESSAGE:
+        from .core import message_class
+
+        _UPDATE_MESSAGE.append(message_class("SceneNodeUpdateMessage"))
+    return _UPDATE_MESSAGE[0]
