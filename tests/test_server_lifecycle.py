@@ -91,7 +91,8 @@ def test_a_killed_worker_is_replaced_for_the_next_request(tmp_path):
         poll(lambda: not alive(worker), 10, "the worker gone")
         with ViserWsClient(server.url()) as ws:  # a later tab starts, and asks for a new J
             _, frame = ws.wait_for(
-                lambda m: m["type"] == "GuiDropdownMessage" and "tool" in m["props"]["options"], timeout=60
+                lambda m: m["type"] == "GuiDropdownMessage" and m["props"]["label"] == "Frame of J",
+                timeout=60,
             )
             ws.wait_for(_has_mathml, timeout=60)
             mark = ws.mark()
