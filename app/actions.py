@@ -1,7 +1,7 @@
 """Named actions: everything a tab can ask for, as plain frozen values.
 
-Views, the ticker (:class:`~app.ticker.Ticker`) and the hub
-(:class:`~app.hub.Hub`) only ever *dispatch* one of these; the pure
+Views, the ticker (:class:`~app.ticker.Ticker`) and the classroom
+(:class:`~app.classroom.Classroom`) only ever *dispatch* one of these; the pure
 :func:`app.reducer.reduce` turns (state, action) into the next state.
 Values are in SI units with radians (the views convert from degrees).
 """
@@ -41,6 +41,13 @@ __all__ = [
     "SelfMove",
     "FollowPath",
     "FindSingularity",
+    "ClaimPresenter",
+    "StopPresenting",
+    "ExploreAlone",
+    "FollowPresenter",
+    "CLASSROOM",
+    "Mirror",
+    "Redraw",
     "COMMANDS",
 ]
 
@@ -217,13 +224,52 @@ class FindSingularity:
 
 
 @dataclass(frozen=True)
+class ClaimPresenter:
+    """The tab typed ``token`` into "Presenter token" (a command: the classroom checks it)."""
+
+    token: str
+
+
+@dataclass(frozen=True)
+class StopPresenting:
+    """The presenter hands the room back (a command)."""
+
+
+@dataclass(frozen=True)
+class ExploreAlone:
+    """A follower leaves the presenter to explore on its own (a command)."""
+
+
+@dataclass(frozen=True)
+class FollowPresenter:
+    """A tab follows the presenter again (a command)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Mirror:
+    """Draw the presenter's ``state`` with the ``snapshot`` already computed for it (a follower's
+    session takes it as it is: one computation per presenter change, not one per follower)."""
+
+    state: LabState
+    snapshot: object
+
+
+@dataclass(frozen=True)
+class Redraw:
+    """Draw the tab again as it is (its classroom role changed, or refused input must be undone)."""
+
+
+@dataclass(frozen=True)
 class RequestDownload:
     """Send J(q) exported as ``label`` ("LaTeX", "Python" or "JSON") to this tab (a command)."""
 
     label: str
 
 
-COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity)
+CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
+"""Classroom commands: a follower may always send these (its other inputs are read-only)."""
+
+COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity, *CLASSROOM)
 """Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
 
 Action = (
@@ -250,4 +296,10 @@ Action = (
     | SelfMove
     | FollowPath
     | FindSingularity
+    | ClaimPresenter
+    | StopPresenting
+    | ExploreAlone
+    | FollowPresenter
+    | Mirror
+    | Redraw
 )

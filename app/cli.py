@@ -45,6 +45,15 @@ def _build_parser() -> argparse.ArgumentParser:
     add_chain_arguments(serve)
     serve.add_argument("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1)")
     serve.add_argument("--port", type=_port, default=8080, help="port (default 8080; 0 picks a free one)")
+    present = serve.add_mutually_exclusive_group()
+    present.add_argument(
+        "--presenter-token",
+        metavar="TOKEN",
+        help="classroom mode: the tab where TOKEN is typed presents, every other tab follows",
+    )
+    present.add_argument(
+        "--presenter", action="store_true", help="classroom mode with a random presenter token (printed)"
+    )
     sub.add_parser("robots", help="list the library robots")
     sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
     return parser
@@ -67,6 +76,13 @@ def _serve(args: argparse.Namespace) -> int:
         check_listen_address(args.host, args.port)
     except ValueError as exc:
         return _fail(str(exc))
+    token = args.presenter_token
+    if token is not None and not 1 <= len(token.strip()) <= 200:
+        return _fail("--presenter-token needs 1 to 200 characters (not only spaces)")
+    if args.presenter:
+        from app.classroom import random_token
+
+        token = random_token()
     try:  # fail before the server starts (and before viser is imported)
         if args.urdf or args.robot:
             robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip)
@@ -80,6 +96,7 @@ def _serve(args: argparse.Namespace) -> int:
             host=args.host,
             port=args.port,
             block=True,
+            presenter_token=token,
         )
     except JacobianLabError as exc:
         return _fail(str(exc))

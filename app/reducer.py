@@ -25,10 +25,13 @@ from .actions import (
     ApplyPreset,
     ChooseChain,
     ChooseRobot,
+    ClaimPresenter,
     ClearWrench,
     DriveTool,
+    ExploreAlone,
     FindSingularity,
     FollowPath,
+    FollowPresenter,
     GoTo,
     Play,
     ReplaceState,
@@ -44,6 +47,7 @@ from .actions import (
     SetWrench,
     Step,
     StepOnce,
+    StopPresenting,
     StopRates,
 )
 from .motion_reducer import FRAME_DT, MotionRefused
@@ -192,6 +196,10 @@ def _reduce(state: LabState, action: Action) -> LabState:
         case FollowPath(path=path, found=found):
             return motion_reducer.follow_path(state, path, found)
         case ChooseRobot() | ChooseChain() | RequestDownload() | FindSingularity():
+            raise InvalidAction(
+                f"{type(action).__name__} is a command the session carries out, not a state change"
+            )
+        case ClaimPresenter() | StopPresenting() | ExploreAlone() | FollowPresenter():
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )

@@ -21,7 +21,7 @@ from pathlib import Path
 import viser
 
 from .catalog import RobotCatalog
-from .hub import Hub
+from .classroom import Classroom
 from .lifecycle import check_listen_address, wait_for_stop
 from .renderer import Renderer
 from .session import ClientSession
@@ -42,6 +42,8 @@ class Lab:
         host: Address to listen on (127.0.0.1: this machine only; 0.0.0.0: the classroom network).
         port: Port; 0 picks a free one. A busy port makes viser try the next one.
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
+        presenter_token: With a token, classroom mode: the tab that types it presents and every
+            other tab follows (see :mod:`app.classroom`).
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -56,6 +58,7 @@ class Lab:
         port: int = 8080,
         base_link: str | None = None,
         tip_link: str | None = None,
+        presenter_token: str | None = None,
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
@@ -76,7 +79,7 @@ class Lab:
         self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
         self.sessions: dict[int, ClientSession] = {}
         self.renderer = Renderer()
-        self.hub = Hub()
+        self.classroom = Classroom(presenter_token) if presenter_token else None
         self._gone: set[int] = set()
         self._lock = threading.Lock()
         self.server.on_client_connect(self._connect)
@@ -100,7 +103,12 @@ class Lab:
     def _connect(self, client: viser.ClientHandle) -> None:
         try:
             session = ClientSession(
-                client, self.catalog, self.symbolic, self.default_robot, renderer=self.renderer
+                client,
+                self.catalog,
+                self.symbolic,
+                self.default_robot,
+                renderer=self.renderer,
+                classroom=self.classroom,
             )
         except Exception as exc:  # this client sees the error; the server and other clients carry on
             log.error("client %s: cannot start a session", client.client_id, exc_info=exc)
@@ -119,6 +127,8 @@ class Lab:
                 self.sessions[client.client_id] = session
         if gone:  # the tab closed while its session was being built
             session.close()
+        elif self.classroom is not None:
+            self.classroom.join(client.client_id, session)
 
     def _disconnect(self, client: viser.ClientHandle) -> None:
         with self._lock:
@@ -126,7 +136,8 @@ class Lab:
             if session is None:
                 self._gone.add(client.client_id)
         if session is not None:
-            self.hub.leave(client.client_id)
+            if self.classroom is not None:
+                self.classroom.closed(client.client_id)
             session.close()
 
     def _symbolic_restarted(self, notice: str) -> None:
@@ -170,6 +181,7 @@ def serve(
     block: bool = True,
     base_link: str | None = None,
     tip_link: str | None = None,
+    presenter_token: str | None = None,
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -180,6 +192,7 @@ def serve(
         port: Port (0 picks a free one).
         block: Serve until Ctrl-C (then stop and return); ``False`` returns the running :class:`Lab`.
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
+        presenter_token: Classroom mode with this presenter token (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -195,8 +208,22 @@ def serve(
     # The renderer and viser's event loop share the interpreter lock: hand it over every 1 ms instead of
     # 5 ms, so a redraw never holds back the sending of another tab's finished one for long.
     sys.setswitchinterval(0.001)
-    lab = Lab(robot=robot, urdf=urdf, host=host, port=port, base_link=base_link, tip_link=tip_link)
+    lab = Lab(
+        robot=robot,
+        urdf=urdf,
+        host=host,
+        port=port,
+        base_link=base_link,
+        tip_link=tip_link,
+        presenter_token=presenter_token,
+    )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
+    if presenter_token:
+        print(
+            f"Classroom mode: type the presenter token {presenter_token} into “Presenter token” "
+            "in the tab you present from; every other tab follows it.",
+            flush=True,
+        )
     if not block:
         return lab
     wait_for_stop(lab.stop)  # Ctrl-C, SIGTERM or SIGHUP: stop the server and its worker, once

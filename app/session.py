@@ -6,7 +6,7 @@ The flow is one-way::
                                                                           └──────► views draw(state, snapshot)
 
 :meth:`ClientSession.dispatch` is the only way in, for the views, the
-tab's :class:`~app.ticker.Ticker` and the server's :class:`~app.hub.Hub`
+tab's :class:`~app.ticker.Ticker` and the server's :class:`~app.classroom.Classroom`
 alike. It only queues the action: the server's one :class:`~app.renderer.Renderer`
 thread visits tabs in turn and reduces everything a tab queued since its last
 visit before drawing it once, so a burst of slider messages costs one
@@ -14,7 +14,7 @@ computation, and redraws of one tab are at most :data:`MAX_REDRAWS_PER_SECOND`. 
 *commands* the session carries out itself: loading a robot
 (:class:`~app.actions.ChooseRobot`) and preparing a download.
 
-After each change the session tells its subscribers (a presenter hub, a
+After each change the session tells its subscribers (the classroom, a
 recorder) the new state, starts or stops the ticker, asks for the symbolic
 J when the robot or frame changed, and re-frames the camera when what is
 drawn left the view after a jump (a named configuration, a robot switch, a
@@ -38,22 +38,31 @@ import viser
 from kinematics.analysis import task_rows
 
 from .actions import (
+    CLASSROOM,
     Action,
     ChooseChain,
     ChooseRobot,
+    ClaimPresenter,
     DriveTool,
+    ExploreAlone,
     FindSingularity,
     FollowPath,
+    FollowPresenter,
     GoTo,
+    Mirror,
+    Redraw,
     ReplaceState,
     RequestDownload,
     SetConfiguration,
     SetJoint,
     SetRobot,
+    Step,
+    StopPresenting,
 )
 from .background import background, nearest_path
 from .camera import FROM_ABOVE, TabCamera, facing
 from .catalog import RobotCatalog
+from .classroom import Classroom, Role
 from .panel import PanelView
 from .reducer import reduce
 from .renderer import Renderer
@@ -93,8 +102,13 @@ class ClientSession:
         robot_name: str,
         ticker: Ticker | None = None,
         renderer: Renderer | None = None,
+        classroom: Classroom | None = None,
     ) -> None:
         self.client = client
+        self.key = client.client_id
+        self.classroom = classroom
+        self.role = Role()
+        self._told_read_only = 0.0
         self.catalog = catalog
         self.symbolic = symbolic
         self.lock = threading.RLock()
@@ -108,7 +122,7 @@ class ClientSession:
         self._drawing = threading.local()
         self._closed = False
         self._last_redraw = 0.0
-        self._subscribers: list[Callable[[LabState], None]] = []
+        self._subscribers: list[Callable[[LabState, Snapshot], None]] = []
         self._symbolic_wanted: tuple | None = None
         self.camera = TabCamera(client)
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
@@ -116,13 +130,13 @@ class ClientSession:
         self.scene: SceneView | None = None
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
-            self.panel = PanelView(client, self.dispatch, catalog.names(), self.state)
+            self.panel = PanelView(client, self.dispatch, catalog.names(), self.state, classroom is not None)
             self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
 
     # ------------------------------------------------------------------ the way in
     def dispatch(self, action: Action) -> None:
-        """Queue ``action`` (from a view, the ticker or the hub); the renderer reduces and draws it.
+        """Queue ``action`` (from a view, the ticker or the classroom); the renderer reduces and draws it.
 
         Safe from any thread; returns at once. Echoes of the session's own redraw (inputs it sets)
         are ignored. :meth:`settle` waits until everything dispatched is on screen.
@@ -150,17 +164,29 @@ class ClientSession:
             actions, self._queue = _coalesced(self._queue), []
         if actions and not self._closed:
             with self.lock:
-                state, jump = self.state, False
+                state, jump, force = self.state, False, False
+                given: Mirror | None = None
                 for action in actions:
+                    if isinstance(action, Mirror):  # the presenter's state, drawn as it is
+                        state, given, jump = action.state, action, True
+                        continue
+                    if isinstance(action, Redraw):
+                        force = True
+                        continue
+                    if self.role.following and not isinstance(action, (*CLASSROOM, RequestDownload)):
+                        force = force or not isinstance(action, Step)  # undo what the input shows
+                        self._tell_read_only(action)
+                        continue
                     try:
                         before = state
                         state = self._apply(state, action)
                         jump = jump or _is_jump(before, state, action)
                     except Exception as exc:  # one tab's bad input never reaches the server or other tabs
                         self.report_error(exc)
-                if state is not self.state:
+                if state is not self.state or force:
+                    snap = given.snapshot if given is not None and given.state is state else None
                     try:
-                        self._commit(state, rebuild=state.robot is not self.state.robot, jump=jump)
+                        self._commit(state, rebuild=state.robot is not self.state.robot, jump=jump, snap=snap)
                     except Exception as exc:  # the tab keeps its last good state on screen
                         self.report_error(exc)
         with self._queue_lock:
@@ -183,6 +209,9 @@ class ClientSession:
             return reduce(state, SetRobot(state.robot_name, robot, chain=action.tip_link))
         if isinstance(action, RequestDownload):
             self._download(state, action.label)
+            return state
+        if isinstance(action, (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)):
+            self._classroom_command(action)
             return state
         if isinstance(action, FindSingularity):
             self._find_singularity(state)
@@ -234,8 +263,9 @@ class ClientSession:
             time.sleep(0.005)
         raise TimeoutError(f"client {self.client.client_id}: actions still queued after {timeout} s")
 
-    def subscribe(self, fn: Callable[[LabState], None]) -> Callable[[], None]:
-        """Call ``fn(state)`` after every change (a hub, a recorder); returns the unsubscribe function."""
+    def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]:
+        """Call ``fn(state, snapshot)`` after every change (the classroom, a recorder); returns the
+        unsubscribe function."""
         with self.lock:
             self._subscribers.append(fn)
 
@@ -246,10 +276,11 @@ class ClientSession:
         return unsubscribe
 
     # ------------------------------------------------------------------ commit and draw
-    def _commit(self, state: LabState, rebuild: bool, jump: bool) -> None:
-        """Take ``state``: compute its snapshot once, redraw in one batch, then run the effects."""
+    def _commit(self, state: LabState, rebuild: bool, jump: bool, snap: object = None) -> None:
+        """Take ``state``: compute its snapshot once (unless given: the presenter's), redraw in one
+        batch, then run the effects."""
         old = self.state
-        snap = compute(state)
+        snap = snap if isinstance(snap, Snapshot) else compute(state)
         self._drawing.active = True
         try:
             with self.client.atomic():
@@ -268,12 +299,13 @@ class ClientSession:
                     )
                 self.scene.update(snap, state)
                 self.panel.draw(state, snap)
+                self.panel.show_role(self.role)
         finally:
             self._drawing.active = False
         self.state, self.snapshot = state, snap
         self.redraws += 1
         self._last_redraw = time.monotonic()
-        if state.playing:
+        if state.playing and not self.role.following:  # a follower moves with the presenter's clock
             self.ticker.start()
         else:
             self.ticker.stop()
@@ -288,9 +320,65 @@ class ClientSession:
             self.camera.frame_if_needed(self.scene.extent, pad)
         for fn in list(self._subscribers):
             try:
-                fn(state)
+                fn(state, snap)
             except Exception:
                 log.exception("a subscriber of client %s failed", self.client.client_id)
+
+    # ------------------------------------------------------------------ classroom
+    @property
+    def latest(self) -> tuple[LabState, Snapshot | None]:
+        """The state and snapshot on screen."""
+        return self.state, self.snapshot
+
+    def mirror(self, state: LabState, snapshot: Snapshot) -> None:
+        """Draw the presenter's state (queued like any action; the latest of a burst wins)."""
+        self.dispatch(Mirror(state, snapshot))
+
+    def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None:
+        """Look where the presenter looks."""
+        if self._closed or not self.role.following:
+            return
+        with contextlib.suppress(Exception):
+            with self.client.atomic():
+                self.client.camera.up_direction = up
+                self.client.camera.position = position
+                self.client.camera.look_at = look_at
+
+    def role_changed(self, role: Role) -> None:
+        """The classroom says what this tab now is (redrawn on the renderer's next visit)."""
+        following_before = self.role.following
+        self.role = role
+        if role.note and not role.presenting:
+            self.notify("Classroom", role.note)
+        if role.following and not following_before:
+            self.ticker.stop()
+        self.dispatch(Redraw())
+
+    def _classroom_command(self, action: Action) -> None:
+        if self.classroom is None:
+            raise ValueError(
+                "this server has no presenter mode (start it with --presenter or --presenter-token)"
+            )
+        if isinstance(action, ClaimPresenter):
+            why = self.classroom.claim(self.key, action.token)
+            if why:
+                self.client.add_notification("Not the presenter", why, color="yellow", auto_close_seconds=6.0)
+        elif isinstance(action, StopPresenting):
+            self.classroom.resign(self.key)
+        elif isinstance(action, ExploreAlone):
+            self.classroom.explore_alone(self.key)
+        elif isinstance(action, FollowPresenter):
+            self.classroom.follow(self.key)
+
+    def _tell_read_only(self, action: Action) -> None:
+        """A follower moved an input: say once in a while that its inputs follow the presenter."""
+        now = time.monotonic()
+        if isinstance(action, Step) or now - self._told_read_only < 5.0:
+            return
+        self._told_read_only = now
+        self.notify(
+            "You follow the presenter", "Your inputs follow the presenter: press “Explore on my own” first."
+        )
 
     def notify(self, title: str, body: str) -> None:
         """Show this tab a short notice (e.g. the symbolic worker was restarted)."""
@@ -313,8 +401,12 @@ class ClientSession:
 
     # ------------------------------------------------------------------ camera
     def _camera_moved(self, camera: viser.CameraHandle) -> None:
-        """The canvas changed shape (a panel collapsed, the window resized): keep everything in view."""
+        """The canvas changed shape (a panel collapsed, the window resized): keep everything in view.
+        The presenter's camera is relayed to the followers."""
         try:
+            if self.classroom is not None and self.role.presenting:
+                pose = tuple(camera.position), tuple(camera.look_at), tuple(camera.up_direction)
+                self.classroom.camera(self.key, *pose)
             if self.camera.canvas_changed(float(camera.aspect)):
                 with self.lock:
                     if not self._closed and self.scene is not None:

@@ -1,4 +1,4 @@
-"""The seams around the one-way flow: time (the ticker), tabs that follow another (the hub), the camera,
+"""The seams around the one-way flow: time (the ticker), the camera,
 and the colours (contrast and distinctness), each tested without a browser."""
 
 from __future__ import annotations
@@ -11,9 +11,8 @@ from app_helpers import running_lab, wait_until
 from wsclient import ViserWsClient
 
 import robots
-from app.actions import Play, SetJoint, SetRate, Step
+from app.actions import Play, SetRate, Step
 from app.camera import THREE_QUARTER, View, facing, framing, in_view, needs_framing
-from app.hub import Hub
 from app.palette import (
     GLYPH_RGB,
     STATUS_RGB,
@@ -83,27 +82,6 @@ def test_a_tab_plays_on_its_own_ticker_and_stops_when_closed():
         session.settle()
         session.close()
         assert not session.ticker.running
-
-
-def test_hub_relays_the_leaders_states_to_followers():
-    with running_lab() as (lab, leader, _):
-        with ViserWsClient(f"ws://127.0.0.1:{lab.port}"):
-            wait_until(lambda: len(lab.sessions) == 2)
-            follower = next(s for s in lab.sessions.values() if s is not leader)
-            hub = Hub()
-            hub.lead(leader)
-            hub.follow(2, follower.dispatch)
-            assert hub.followers() == 1
-            leader.dispatch(SetJoint(2, -0.7))
-            leader.settle()
-            wait_until(lambda: follower.state.q[2] == pytest.approx(-0.7))
-            follower.settle()
-            np.testing.assert_allclose(follower.snapshot.J_base, leader.snapshot.J_base)
-            hub.leave(2)
-            leader.dispatch(SetJoint(2, -0.2))
-            leader.settle()
-            follower.settle()
-            assert follower.state.q[2] == pytest.approx(-0.7)  # no longer following
 
 
 def _view(aspect: float = 16 / 9) -> View:

@@ -95,6 +95,22 @@ def test_serve_refuses_links_for_a_library_robot(capsys):
     assert "--base and --tip choose a chain of the URDF given with --urdf" in capsys.readouterr().err
 
 
+def test_serve_presenter_flags(monkeypatch, capsys):
+    import app.server
+
+    calls = []
+    monkeypatch.setattr(app.server, "serve", lambda **kwargs: calls.append(kwargs))
+    assert main(["serve", "--presenter-token", "lecture-7", "--port", "8124"]) == 0
+    assert calls[-1]["presenter_token"] == "lecture-7"
+    assert main(["serve", "--presenter", "--port", "8124"]) == 0
+    token = calls[-1]["presenter_token"]
+    assert isinstance(token, str) and len(token) >= 10  # a random one
+    assert main(["serve", "--presenter", "--port", "8124"]) == 0
+    assert calls[-1]["presenter_token"] != token
+    assert main(["serve", "--presenter-token", "   ", "--port", "8124"]) == 2
+    assert "--presenter-token" in capsys.readouterr().err
+
+
 def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
     import app.server
 
@@ -110,6 +126,7 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "host": "127.0.0.1",
             "port": 8123,
             "block": True,
+            "presenter_token": None,
         }
     ]
 

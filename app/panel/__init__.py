@@ -25,9 +25,11 @@ from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
 from ..actions import ChooseChain, ChooseRobot, SetOption
+from ..classroom import Role
 from ..snapshot import Snapshot
 from ..state import LabState, Options
 from ..viser_adapter import handle_uuid, run_javascript, set_page_title
+from .classroom import ClassroomPanel
 from .common import Dispatch, bind, sync_value
 from .explore import MapsPanel, MotionPanel, slider_ids
 from .joints import JointsPanel, configurations_html
@@ -73,7 +75,12 @@ class PanelView:
     """Every GUI handle of one tab."""
 
     def __init__(
-        self, client: viser.ClientHandle, dispatch: Dispatch, robot_names: list[str], state: LabState
+        self,
+        client: viser.ClientHandle,
+        dispatch: Dispatch,
+        robot_names: list[str],
+        state: LabState,
+        classroom: bool = False,
     ):
         self.gui = gui = client.gui
         self.client = client
@@ -90,6 +97,7 @@ class PanelView:
         self.chain: viser.GuiDropdownHandle | None = None
         self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
+        self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
         self.tab_matrix = self.views.add_tab("J(q)", viser.Icon.MATH)
@@ -223,6 +231,11 @@ class PanelView:
         self.force.update(snap, state)
         self.motion.draw(state, snap)
         self.maps.draw(state, snap)
+
+    def show_role(self, role: Role) -> None:
+        """The tab's classroom role (nothing without a presenter mode)."""
+        if self.classroom is not None:
+            self.classroom.show(role)
 
     def _show_options(self, options: Options) -> None:
         for key, box in self.toggles.items():

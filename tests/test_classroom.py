@@ -1,0 +1,189 @@
+"""Classroom mode at server level: a presenter (by token), tabs that follow it, leaving and coming
+back, wrong tokens, and the presenter leaving. Three tabs of one running lab (websocket clients)."""
+
+from __future__ import annotations
+
+import contextlib
+
+import numpy as np
+import pytest
+from app_helpers import assert_all_finite, running_lab, wait_until
+from wsclient import ViserWsClient
+
+import robots
+from app.actions import ApplyPreset, Play, SetJoint
+from app.classroom import PRESENTER_LEFT, TOKEN_TRIES, TOKEN_WINDOW, Classroom
+
+TOKEN = "lecture-7"
+
+
+@contextlib.contextmanager
+def room(n_followers: int = 2):
+    """A lab in classroom mode with 1 + n tabs: (lab, presenter, followers) — the presenter claimed."""
+    with running_lab(presenter_token=TOKEN) as (lab, first, _):
+        clients = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(n_followers)]
+        try:
+            for c in clients:
+                c.start()
+            wait_until(lambda: len(lab.sessions) == 1 + n_followers)
+            others = [s for s in lab.sessions.values() if s is not first]
+            first.panel.classroom.token.value = TOKEN  # as typed: no other click
+            first.settle()
+            wait_until(lambda: first.role.presenting)
+            yield lab, first, others
+        finally:
+            for c in clients:
+                c.close()
+
+
+def settle(*sessions) -> None:
+    for s in sessions:
+        s.settle()
+
+
+def test_a_presenter_moves_and_every_follower_draws_the_same_snapshot():
+    with room() as (lab, presenter, followers):
+        wait_until(lambda: all(f.role.following for f in followers))
+        assert presenter.role.followers == 2
+        assert "2 tabs follow" in presenter.panel.classroom.status.content
+        computed = presenter.redraws
+        presenter.dispatch(SetJoint(2, -0.7))
+        settle(presenter)
+        wait_until(lambda: all(f.state.q[2] == pytest.approx(-0.7) for f in followers))
+        settle(*followers)
+        for f in followers:
+            # One computation per presenter change: the followers draw the presenter's own snapshot.
+            assert f.snapshot is presenter.snapshot
+            assert "read-only" in f.panel.classroom.status.content
+            assert_all_finite(f)
+        assert presenter.redraws == computed + 1
+
+
+def test_a_followers_own_input_is_read_only_and_undone():
+    with room(1) as (lab, presenter, (follower,)):
+        wait_until(lambda: follower.role.following)
+        q_before = np.array(follower.state.q)
+        slider = follower.panel.joints.sliders[1]
+        slider.value = float(slider.value) + 20.0  # the student drags a slider
+        settle(follower)
+        assert np.array(follower.state.q) == pytest.approx(q_before)
+        wait_until(lambda: float(slider.value) == pytest.approx(np.degrees(q_before[1]), abs=1e-6))
+
+
+def test_leave_explore_and_come_back():
+    with room(1) as (lab, presenter, (follower,)):
+        wait_until(lambda: follower.role.following)
+        settle(follower)  # what the tab shows (the button says what a click will do)
+        button = follower.panel.classroom.button
+        assert button.label == "Explore on my own"
+        button.value = True  # a click
+        wait_until(lambda: not follower.role.following)
+        settle(follower)
+        assert button.label == "Follow the presenter"
+        follower.dispatch(SetJoint(0, 0.4))  # its own inputs work again
+        presenter.dispatch(SetJoint(0, -0.3))
+        settle(presenter, follower)
+        assert follower.state.q[0] == pytest.approx(0.4)
+        button.value = True  # follow again: it jumps to what the presenter shows
+        wait_until(lambda: follower.role.following)
+        wait_until(lambda: follower.state.q[0] == pytest.approx(-0.3))
+
+
+def test_a_presenters_motion_plays_on_the_followers_without_their_clocks():
+    with room(1) as (lab, presenter, (follower,)):
+        wait_until(lambda: follower.role.following)
+        p = robots.motions("puma560")[0]
+        presenter.dispatch(ApplyPreset(p.name, tuple(p.q), tuple(p.twist), p.frame, 0.3))
+        presenter.dispatch(Play(True, "resolved_rate"))
+        settle(presenter)
+        wait_until(lambda: follower.state.playing and len(follower.state.motion.trace) > 5)
+        assert not follower.ticker.running  # moved by the presenter's clock only
+        assert (
+            follower.state.motion.trace is presenter.state.motion.trace
+            or len(follower.state.motion.trace) > 5
+        )
+        presenter.dispatch(Play(False))
+        settle(presenter)
+        wait_until(lambda: not follower.state.playing)
+
+
+def test_the_camera_follows_the_presenter():
+    with room(1) as (lab, presenter, (follower,)):
+        wait_until(lambda: follower.role.following)
+        lab.classroom.camera(presenter.key, (2.0, -1.0, 1.5), (0.1, 0.0, 0.3), (0.0, 0.0, 1.0))
+        assert np.asarray(follower.client.camera.position) == pytest.approx([2.0, -1.0, 1.5])
+        assert np.asarray(follower.client.camera.look_at) == pytest.approx([0.1, 0.0, 0.3])
+        lab.classroom.camera(follower.key, (9.0, 9.0, 9.0), (0, 0, 0), (0, 0, 1))  # not the presenter
+        assert np.asarray(presenter.client.camera.position) != pytest.approx([9.0, 9.0, 9.0])
+
+
+def test_wrong_tokens_change_nothing():
+    with room(1) as (lab, presenter, (follower,)):
+        wait_until(lambda: follower.role.following)
+        follower.panel.classroom.token.value = "lecture-8"
+        settle(follower)
+        assert presenter.role.presenting and not follower.role.presenting and follower.role.following
+
+
+def test_the_presenter_leaving_leaves_the_followers_where_they_were():
+    with running_lab(presenter_token=TOKEN) as (lab, _, _ws):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as presenter_ws:
+            wait_until(lambda: len(lab.sessions) == 2)
+            presenter = lab.session()
+            follower = next(s for s in lab.sessions.values() if s is not presenter)
+            presenter.panel.classroom.token.value = TOKEN
+            wait_until(lambda: follower.role.following)
+            presenter.dispatch(SetJoint(1, 0.9))
+            wait_until(lambda: follower.state.q[1] == pytest.approx(0.9))
+        presenter_ws.close()
+        wait_until(lambda: not follower.role.presenter)
+        settle(follower)
+        assert not follower.role.following and follower.state.q[1] == pytest.approx(0.9)
+        follower.dispatch(SetJoint(1, 0.2))  # explores on its own now
+        settle(follower)
+        assert follower.state.q[1] == pytest.approx(0.2)
+
+
+class FakeClock:
+    def __init__(self) -> None:
+        self.now = 1000.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_tokens_are_rate_limited_per_tab():
+    clock = FakeClock()
+    room_ = Classroom("right", clock=clock)
+
+    class Tab:
+        latest = (None, None)
+
+        def subscribe(self, fn):
+            return lambda: None
+
+        def mirror(self, state, snapshot):
+            pass
+
+        def mirror_camera(self, *pose):
+            pass
+
+        def role_changed(self, role):
+            self.role = role
+
+    a, b = Tab(), Tab()
+    room_.join(1, a)
+    room_.join(2, b)
+    for _ in range(TOKEN_TRIES):
+        assert room_.claim(1, "wrong") == "that is not the presenter token"
+    assert room_.claim(1, "right").startswith("too many wrong tokens")  # even the right one, for now
+    assert not room_.role(1).presenting
+    assert room_.claim(2, "right") == ""  # another tab is not held back
+    assert room_.role(2).presenting and room_.role(1).following
+    clock.now += TOKEN_WINDOW + 1
+    assert room_.claim(1, "right") == ""  # after the window: it takes over
+    assert room_.role(1).presenting and not room_.role(2).presenting
+    room_.closed(1)
+    assert b.role.note == PRESENTER_LEFT and not b.role.following
+    with pytest.raises(ValueError):
+        Classroom("")
