@@ -117,10 +117,10 @@ def test_column_arrows_travel_with_their_joint_colours(lab_client, session):
     per-instance colours only when the colour array matches the instance count, so a colour
     message ahead of a points message of a new length left arrows uncoloured."""
     _, _, ws = lab_client
-    session.dispatch(ChooseRobot("panda"))
-    session.settle()
     mark = ws.mark()
-    session.dispatch(SetJoint(3, -1.0))  # another set of columns long enough to draw
+    session.dispatch(ChooseRobot("panda"))  # a new arrows node: its first columns and colours
+    session.settle()
+    session.dispatch(SetJoint(3, -1.0))
     session.settle()
     J = session.snapshot.J_base
     node = scene_node(session, "/lab/jacobian/columns")
@@ -132,7 +132,12 @@ def test_column_arrows_travel_with_their_joint_colours(lab_client, session):
     expected = np.array([joint_color(int(i)) for i in drawn], np.uint8)
     np.testing.assert_array_equal(np.asarray(node.colors).reshape(-1, 3), expected)
     _, message = ws.wait_for(
-        lambda m: m.get("name") == "/lab/jacobian/columns" and "colors" in m.get("updates", {}), after=mark
+        lambda m: (
+            m.get("name") == "/lab/jacobian/columns"
+            and m["type"] == "SceneNodeUpdateMessage"
+            and "colors" in m["updates"]
+        ),
+        after=mark,
     )
     assert "points" in message["updates"]  # in the same message as the colours
     assert len(message["updates"]["points"]) == 6 * len(message["updates"]["colors"]) // 3
