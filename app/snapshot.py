@@ -59,8 +59,8 @@ class Snapshot:
         rank: Numerical rank of the task rows.
         cond_translational, cond_rotational: κ of the v rows and of the ω rows (``inf`` when
             singular); a planar arm has no rotational one (``None``).
-        velocity, rotational, force: Ellipsoids at the tool point (base axes); the force
-            ellipsoid only when it is drawn (``None`` otherwise).
+        velocity, rotational, force: Ellipsoids at the tool point (base axes); the rotational
+            and force ellipsoids only when they are drawn (``None`` otherwise).
         lost: The lost direction, ω rows weighed by ``length`` (``None`` when regular: not shown).
         length: Characteristic length L [m] (the arm's reach) weighing rad/s against m/s.
         twist: J_base q̇ (6,) [m/s; rad/s].
@@ -145,7 +145,9 @@ def compute(state: LabState) -> Snapshot:
         cond_translational=float(condition_number(J, translational_rows(planar))),
         cond_rotational=None if planar else float(condition_number(J, "angular")),
         velocity=velocity_ellipsoid(J, "linear"),
-        rotational=velocity_ellipsoid(J, "angular") if not planar else None,
+        rotational=velocity_ellipsoid(J, "angular")
+        if state.options.rotational_ellipsoid and not planar
+        else None,
         force=force_ellipsoid(J, "linear") if state.options.force_ellipsoid else None,
         lost=lost_direction(J, rows, length) if report.status != "regular" else None,
         length=length,

@@ -52,9 +52,11 @@ CLK_TCK = os.sysconf("SC_CLK_TCK")
 
 
 def start_server(
-    robot: str, limits: bool, port: int = 0, root: Path | None = None
+    robot: str, limits: bool, port: int = 0, root: Path | None = None, log: Path | None = None
 ) -> tuple[subprocess.Popen, int]:
-    """The app (from the checkout ``root``, default this one) in its own process on ``port``; its port."""
+    """The app (from the checkout ``root``, default this one) in its own process on ``port``; its port.
+
+    The server's log (stderr) goes to ``log`` (appended) when given, else nowhere."""
     pre = "from app.viser_adapter import install_message_limits; install_message_limits(); " if limits else ""
     code = (
         pre
@@ -65,7 +67,7 @@ def start_server(
     proc = subprocess.Popen(
         [sys.executable, "-u", "-c", code],
         stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
+        stderr=log.open("a") if log is not None else subprocess.DEVNULL,
         text=True,
         env=env,
     )
@@ -116,6 +118,7 @@ class Tab:
     sent: int = 0
     closed: bool = False
     measuring: bool = False
+    error: str = ""
 
     async def connect(self, url: str) -> None:
         self.ws = await websockets.connect(
@@ -144,6 +147,8 @@ class Tab:
                     self.pending.clear()
         except websockets.ConnectionClosed:
             pass
+        except Exception as exc:  # a frame this client cannot read: say so instead of waiting forever
+            self.error = f"{type(exc).__name__}: {exc}"
         self.closed = True
 
     async def change(self, value: float) -> None:
@@ -225,6 +230,12 @@ async def run(
     result: dict = {
         "changes": sum(t.sent for t in clients),
         "unanswered": sum(len(t.pending) for t in clients),
+        "silent": [  # tabs with changes left unanswered: why (no q2 slider seen, closed, unreadable frame)
+            f"tab {i}: {len(t.pending)} unanswered, slider {'seen' if t.slider else 'never seen'}, "
+            f"{'closed' if t.closed else 'open'}{', ' + t.error if t.error else ''}"
+            for i, t in enumerate(clients)
+            if t.pending
+        ],
         "samples": samples,
         "cpu": cpu,
         "client_cpu": own,
@@ -247,6 +258,7 @@ def main() -> int:
     parser.add_argument("--warmup", type=float, default=3.0, help="unmeasured exploring first [s]")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--port", type=int, default=0, help="the server's port (0: a free one)")
+    parser.add_argument("--server-log", type=Path, default=None, help="append the server's log to this file")
     parser.add_argument(
         "--app-root",
         type=Path,
@@ -264,7 +276,7 @@ def main() -> int:
     header = " ".join(f"{c:>{w}}" for c, w in zip(columns, (5, 8, 8, 10, 8, 8, 8, 6, 8), strict=True))
     print(header + ("   flood (sent, closed)" if args.hostile else ""))
     for n in args.tabs:
-        proc, port = start_server(args.robot, args.limits, args.port, args.app_root)
+        proc, port = start_server(args.robot, args.limits, args.port, args.app_root, args.server_log)
         try:
             r = asyncio.run(run(n, args.seconds, args.hostile, port, proc.pid, args.seed, args.warmup))
         finally:
@@ -284,6 +296,8 @@ def main() -> int:
             line
             + (f"   {r['flood_sent']}, {'closed' if r['flood_closed'] else 'open'}" if args.hostile else "")
         )
+        for note in r["silent"][:5]:
+            print(f"      {note}")
     return 0
 
 

@@ -27,9 +27,10 @@ from app.actions import (
     SetRate,
     SetWrench,
 )
-from app.palette import LOST_RGB
+from app.palette import LOST_RGB, joint_color
 from app.ranges import joint_ranges, to_display
 from app.scene.geometry import TINY, wxyz, wxyz_one
+from app.scene.overlays import LINEAR_SECONDS
 from app.viser_adapter import is_removed
 from kinematics import jacobian, joint_frames, link_frames
 from kinematics.analysis import task_rows
@@ -109,6 +110,37 @@ def test_links_axes_and_labels_are_where_the_kinematics_puts_them(session, robot
         k = next(k for k, ax in enumerate(robot.axes) if ax.joint_index == j)
         beyond = 0.17 * size * (1.0 + 0.1 * k) / 2 + 0.02 * size
         np.testing.assert_allclose(label.position, W[k, :3, 3] + W[k, :3, 2] * beyond, atol=1e-5)
+
+
+def test_column_arrows_travel_with_their_joint_colours(lab_client, session):
+    """The arrows' points and colours reach the browser in one message: its arrow meshes take
+    per-instance colours only when the colour array matches the instance count, so a colour
+    message ahead of a points message of a new length left arrows uncoloured."""
+    _, _, ws = lab_client
+    mark = ws.mark()
+    session.dispatch(ChooseRobot("panda"))  # a new arrows node: its first columns and colours
+    session.settle()
+    session.dispatch(SetJoint(3, -1.0))
+    session.settle()
+    J = session.snapshot.J_base
+    node = scene_node(session, "/lab/jacobian/columns")
+    lengths = np.linalg.norm(J[:3].T * LINEAR_SECONDS * session.state.options.scale, axis=1)
+    drawn = np.flatnonzero(lengths > max(1e-3, session.scene.overlays.columns.radius))
+    points = np.asarray(node.points).reshape(-1, 2, 3)
+    assert len(points) == len(drawn)
+    np.testing.assert_allclose(points[:, 1] - points[:, 0], (J[:3].T * LINEAR_SECONDS)[drawn], atol=1e-5)
+    expected = np.array([joint_color(int(i)) for i in drawn], np.uint8)
+    np.testing.assert_array_equal(np.asarray(node.colors).reshape(-1, 3), expected)
+    _, message = ws.wait_for(
+        lambda m: (
+            m.get("name") == "/lab/jacobian/columns"
+            and m["type"] == "SceneNodeUpdateMessage"
+            and "colors" in m["updates"]
+        ),
+        after=mark,
+    )
+    assert "points" in message["updates"]  # in the same message as the colours
+    assert len(message["updates"]["points"]) == 6 * len(message["updates"]["colors"]) // 3
 
 
 def test_one_quaternion_is_the_batched_one_up_to_sign():
