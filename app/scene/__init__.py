@@ -25,10 +25,18 @@ __all__ = ["SceneView", "ArmGeometry"]
 
 
 class SceneView:
-    """Scene nodes of one tab for one robot."""
+    """Scene nodes of one tab for one robot.
+
+    ``client``: the tab's client handle, or a whole server (its shared scene: what ``jacobian-lab
+    record`` draws and records).
+    """
 
     def __init__(
-        self, client: viser.ClientHandle, robot: Robot, dispatch: Dispatch | None = None, root: str = "/lab"
+        self,
+        client: viser.ClientHandle | viser.ViserServer,
+        robot: Robot,
+        dispatch: Dispatch | None = None,
+        root: str = "/lab",
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
         self.overlays = Overlays(client.scene, self.arm.geometry, robot.dof, robot.planar, f"{root}/jacobian")

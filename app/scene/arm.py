@@ -111,7 +111,7 @@ class ArmGeometry:
 class ArmView:
     """Scene nodes of the arm for one client; :meth:`update` moves them."""
 
-    def __init__(self, client: viser.ClientHandle, robot: Robot, root: str) -> None:
+    def __init__(self, client: viser.ClientHandle | viser.ViserServer, robot: Robot, root: str) -> None:
         scene = client.scene
         self.robot = robot
         self.geometry = g = ArmGeometry.of(robot)
@@ -289,7 +289,9 @@ class _UrdfMeshes:
         self._view.remove()
 
 
-def _load_urdf_meshes(target: viser.ClientHandle, robot: Robot, root: str) -> _UrdfMeshes | None:
+def _load_urdf_meshes(
+    target: viser.ClientHandle | viser.ViserServer, robot: Robot, root: str
+) -> _UrdfMeshes | None:
     """ViserUrdf for a URDF robot whose every visual geometry loads, else ``None`` (generated geometry)."""
     if not robot.urdf_path:
         return None
