@@ -41,6 +41,8 @@ __all__ = [
     "SelfMove",
     "FollowPath",
     "FindSingularity",
+    "EditRobot",
+    "UploadRobot",
     "COMMANDS",
 ]
 
@@ -223,7 +225,27 @@ class RequestDownload:
     label: str
 
 
-COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity)
+@dataclass(frozen=True, eq=False)
+class EditRobot:
+    """The Build tab's DH table became ``robot`` (listed as ``name``): show it, keeping the display
+    choices; ``keep[i]`` is the joint of the robot shown whose value row ``i`` keeps (``None``: a new
+    row, at home). See :func:`app.dh_table.edited_state`."""
+
+    name: str
+    robot: Robot
+    keep: tuple[int | None, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class UploadRobot:
+    """The tab uploaded the file ``filename`` with ``content`` (a command: the session reads it as a
+    URDF into the tab's own robot list, then switches to it)."""
+
+    filename: str
+    content: bytes
+
+
+COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity, UploadRobot)
 """Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
 
 Action = (
@@ -250,4 +272,6 @@ Action = (
     | SelfMove
     | FollowPath
     | FindSingularity
+    | EditRobot
+    | UploadRobot
 )

@@ -42,6 +42,7 @@ from .actions import (
     ChooseChain,
     ChooseRobot,
     DriveTool,
+    EditRobot,
     FindSingularity,
     FollowPath,
     GoTo,
@@ -50,10 +51,12 @@ from .actions import (
     SetConfiguration,
     SetJoint,
     SetRobot,
+    UploadRobot,
 )
 from .background import background, nearest_path
 from .camera import FROM_ABOVE, TabCamera, facing
 from .catalog import RobotCatalog
+from .dh_table import robot_file
 from .panel import PanelView
 from .reducer import reduce
 from .renderer import Renderer
@@ -62,6 +65,7 @@ from .snapshot import Snapshot, compute
 from .state import LabState
 from .symbolic import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable
 from .ticker import Ticker
+from .uploads import TabCatalog
 
 __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 
@@ -95,7 +99,7 @@ class ClientSession:
         renderer: Renderer | None = None,
     ) -> None:
         self.client = client
-        self.catalog = catalog
+        self.catalog = TabCatalog(catalog)  # the shared robots plus this tab's own (uploads, Build tab)
         self.symbolic = symbolic
         self.lock = threading.RLock()
         self.errors = 0
@@ -116,7 +120,7 @@ class ClientSession:
         self.scene: SceneView | None = None
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
-            self.panel = PanelView(client, self.dispatch, catalog.names(), self.state)
+            self.panel = PanelView(client, self.dispatch, self.catalog.names(), self.state)
             self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
 
@@ -181,6 +185,8 @@ class ClientSession:
                 return state
             robot = self.catalog.load_chain(state.robot_name, action.tip_link)
             return reduce(state, SetRobot(state.robot_name, robot, chain=action.tip_link))
+        if isinstance(action, (EditRobot, UploadRobot)):
+            return self._own_robot(state, action)
         if isinstance(action, RequestDownload):
             self._download(state, action.label)
             return state
@@ -188,6 +194,18 @@ class ClientSession:
             self._find_singularity(state)
             return state.replace(playing=False, stopped="looking for the nearest singularity…")
         return reduce(state, action)
+
+    def _own_robot(self, state: LabState, action: EditRobot | UploadRobot) -> LabState:
+        """A robot only this tab has: the Build tab's table, or an uploaded URDF (listed first in its
+        dropdown; :meth:`app.uploads.TabCatalog.share` would show it to every tab)."""
+        if isinstance(action, EditRobot):
+            self.catalog.remember_built(action.robot)
+            after = reduce(state, action)
+        else:
+            name = self.catalog.add_upload(action.filename, action.content)
+            after = reduce(state, SetRobot(name, self.catalog.load(name)))
+        self.panel.set_robot_names(self.catalog.names())
+        return after
 
     def _find_singularity(self, state: LabState) -> None:
         """Descend to the nearest singularity away from the drawing thread, then play the descent."""
@@ -361,6 +379,10 @@ class ClientSession:
 
     def _download(self, state: LabState, label: str) -> None:
         robot, frame = state.robot, state.options.jacobian_frame
+        file = robot_file(robot, label)  # the robot itself (robot file, URDF); else its symbolic J
+        if file is not None:
+            self.client.send_file_download(*file, save_immediately=True)
+            return
         note = self.client.add_notification(
             f"Preparing J(q) as {label}…",
             f"{robot.title or robot.name}, {frame} axes",
