@@ -239,10 +239,12 @@ class EditRobot:
 @dataclass(frozen=True, eq=False)
 class UploadRobot:
     """The tab uploaded the file ``filename`` with ``content`` (a command: the session reads it as a
-    URDF into the tab's own robot list, then switches to it)."""
+    URDF into the tab's own robot list, then switches to it). ``refused_size``: the size [bytes] of a
+    file refused as too large before it was sent (its content is then empty)."""
 
     filename: str
     content: bytes
+    refused_size: int = 0
 
 
 COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity, UploadRobot)

@@ -202,7 +202,7 @@ class ClientSession:
             self.catalog.remember_built(action.robot)
             after = reduce(state, action)
         else:
-            name = self.catalog.add_upload(action.filename, action.content)
+            name = self.catalog.add_upload(action.filename, action.content, action.refused_size)
             after = reduce(state, SetRobot(name, self.catalog.load(name)))
         self.panel.set_robot_names(self.catalog.names())
         return after

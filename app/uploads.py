@@ -27,11 +27,12 @@ from kinematics.urdf import ChainInfo, robot_from_urdf_string
 
 from .catalog import RobotCatalog
 from .dh_table import BUILT_NAME, robot_toml
+from .viser_adapter import MAX_UPLOAD_BYTES
 
 __all__ = ["TabCatalog", "MAX_UPLOAD_BYTES", "MAX_PRIVATE_ROBOTS", "display_name"]
 
-MAX_UPLOAD_BYTES = 2 * 1024 * 1024
-"""Largest URDF a tab may upload [bytes] (real arm URDFs are a few to a few hundred kB)."""
+# Largest URDF a tab may upload [bytes] (real arm URDFs are a few to a few hundred kB): checked
+# on the websocket before any part is buffered, and again here.
 MAX_PRIVATE_ROBOTS = 8
 """Uploads one tab keeps (the oldest is forgotten first)."""
 _SUFFIX = " (uploaded)"
@@ -40,8 +41,8 @@ _SUFFIX = " (uploaded)"
 def display_name(text: object, limit: int = 60) -> str:
     """``text`` as one printable line of at most ``limit`` characters (a file or robot name from a
     browser: lone surrogates and control characters replaced, so it can be logged and shown)."""
-    s = str(text).encode("utf-8", errors="replace").decode("utf-8", errors="replace")
-    s = "".join("�" if unicodedata.category(c)[0] == "C" else c for c in s).strip()
+    # Category C: control and format characters, and lone surrogates (undecodable bytes).
+    s = "".join("\ufffd" if unicodedata.category(c)[0] == "C" else c for c in str(text)).strip()
     return (s[: limit - 1] + "…" if len(s) > limit else s) or "unnamed"
 
 
@@ -98,7 +99,7 @@ class TabCatalog:
             self._private[BUILT_NAME] = robot
         return BUILT_NAME
 
-    def add_upload(self, filename: str, content: bytes) -> str:
+    def add_upload(self, filename: str, content: bytes, refused_size: int = 0) -> str:
         """Read the uploaded URDF ``content`` into this tab's list; returns the name it is listed under.
 
         Raises:
@@ -107,9 +108,10 @@ class TabCatalog:
         shown = display_name(filename)
         if not isinstance(content, (bytes, bytearray)):
             raise UrdfError(f"upload {shown!r}: expected the file's bytes")
-        if len(content) > MAX_UPLOAD_BYTES:
+        size = max(len(content), refused_size)
+        if size > MAX_UPLOAD_BYTES:
             raise UrdfError(
-                f"upload {shown!r} is {len(content) / 1e6:.1f} MB; a URDF upload may be at most "
+                f"upload {shown!r} is {size / 1e6:.1f} MB; a URDF upload may be at most "
                 f"{MAX_UPLOAD_BYTES // (1024 * 1024)} MB"
             )
         stem = Path(shown).stem or "upload"

@@ -30,8 +30,7 @@ from .. import dh_table as dt
 from .. import fmt
 from ..actions import EditRobot, RequestDownload, UploadRobot
 from ..symbolic import EXPORT_FORMATS
-from ..uploads import MAX_UPLOAD_BYTES
-from ..viser_adapter import is_removed
+from ..viser_adapter import MAX_UPLOAD_BYTES, is_removed, upload_too_large
 from .common import Dispatch
 
 __all__ = ["EditorPanel", "EMPTY", "DOWNLOADS"]
@@ -134,6 +133,10 @@ class EditorPanel:
                 fn(value)
 
     def _uploaded(self, file: object) -> None:
+        refused = upload_too_large(file)
+        if refused is not None:
+            self.dispatch(UploadRobot(refused[0], b"", refused[1]))
+            return
         name, content = getattr(file, "name", ""), getattr(file, "content", b"")
         data = bytes(content) if isinstance(content, (bytes, bytearray)) else b""
         self.dispatch(UploadRobot(str(name), data))
