@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinematics import Robot
+from kinematics import NamedConfiguration, Robot
 from kinematics.analysis import task_rows
 from kinematics.errors import RobotDefinitionError
 from kinematics.transforms import matrix_to_rpy
@@ -100,13 +100,18 @@ class Row:
 
 @dataclass(frozen=True, eq=False)
 class Table:
-    """A DH table as edited: rows, convention, and the base/tool transforms of the robot it started from."""
+    """A DH table as edited: rows, convention, and what it keeps of the robot it started from: the
+    base and tool transforms, and its named configurations while the rows keep their number and
+    joint types (only "home": the Puma starts at its home, not at the middle of its limits; the
+    singular configurations of the original would no longer be true once a number changes)."""
 
     rows: tuple[Row, ...]
     convention: str = "standard"
     base: np.ndarray | None = None
     tool: np.ndarray | None = None
     source: str = ""
+    configurations: tuple[NamedConfiguration, ...] = ()
+    kinds: tuple[str, ...] = ()
 
 
 def empty() -> Table:
@@ -128,7 +133,9 @@ def from_robot(robot: Robot) -> Table:
         lo, hi = r.qlim if r.qlim is not None else ((-math.pi, math.pi) if rev else (0.0, 1.0))
         lo, hi = (math.degrees(lo), math.degrees(hi)) if rev else (lo, hi)
         rows.append(Row(r.joint, r.a, math.degrees(r.alpha), r.d, math.degrees(r.theta), lo, hi, r.name))
-    return Table(tuple(rows), robot.convention, robot.base, robot.tool, robot.name)
+    kinds = tuple(r.joint for r in robot.dh)
+    home = tuple(c for c in robot.configurations if c.name == "home")  # a start; the others' claims
+    return Table(tuple(rows), robot.convention, robot.base, robot.tool, robot.name, home, kinds)
 
 
 def _number(value: object, row: int, field: str) -> float:
@@ -181,6 +188,7 @@ def build(table: Table) -> Robot:
     if table.convention not in ("standard", "modified"):
         raise TableError(0, "convention", f"expected standard or modified, got {table.convention!r}")
     rows = rows_si(table)
+    same_joints = tuple(r.joint for r in table.rows) == table.kinds
     try:
         return Robot.from_dh(
             rows,
@@ -192,6 +200,7 @@ def build(table: Table) -> Robot:
             description="A DH table edited in the Build tab"
             + (f" (from {table.source})." if table.source else "."),
             source="Jacobian Lab, Build tab",
+            configurations=table.configurations if same_joints else (),
         )
     except RobotDefinitionError as exc:
         text = str(exc)
@@ -246,6 +255,11 @@ def robot_toml(robot: Robot, name: str = FILE_STEM) -> str:
             lo, hi = (math.degrees(v) if rev else v for v in r.qlim)
             out.append(f"qlim = [{_num(lo)}, {_num(hi)}]")
         out.append("")
+    for c in robot.configurations:
+        values = zip(c.q, robot.joints, strict=True)
+        q = ", ".join(_num(math.degrees(v) if j.kind == "revolute" else v) for v, j in values)
+        out += ["[[configurations]]", f"name = {_toml_str(c.name)}", f"q = [{q}]"]
+        out += [f"description = {_toml_str(c.description)}", f"singular = {_toml_str(c.singular)}", ""]
     return "\n".join(out)
 
 

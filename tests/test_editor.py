@@ -131,7 +131,10 @@ def test_starting_from_the_puma_gives_the_pumas_jacobian(session):
     session.settle()
     assert editor.row.options == tuple("123456") and editor.convention.value == "standard"
     assert editor.alpha.value == pytest.approx(90.0)  # degrees on screen
-    _same_jacobian(session.state.robot, robots.load("puma560"), samples=8)
+    puma = robots.load("puma560")
+    _same_jacobian(session.state.robot, puma, samples=8)
+    np.testing.assert_allclose(session.state.q, puma.home)  # at the Puma's home, not mid-limits
+    assert session.state.configuration == "home"
     editor.start.value = "puma560_mdh"  # modified DH, with a tool transform
     session.settle()
     assert editor.convention.value == "modified"
@@ -206,6 +209,21 @@ def test_the_robot_file_download_loads_back_with_the_same_jacobian(session, monk
     (tmp_path / "built.urdf").write_bytes(urdf)
     _same_jacobian(Robot.from_urdf(str(tmp_path / "built.urdf")), built, samples=10)
     assert "alpha = 90.0" in toml.decode() or "alpha = -90.0" in toml.decode()  # degrees in the file
+    assert loaded.configurations == ()  # a row was added: the original's home no longer fits
+
+
+def test_a_robot_file_keeps_the_home_it_started_from(session, monkeypatch, tmp_path):
+    editor = _editor(session)
+    sent = _downloads(session, monkeypatch)
+    editor.start.value = "puma560"
+    editor.row.value = "3"
+    editor.a.value = 0.05
+    editor.download.value = "TOML"
+    session.settle()
+    (tmp_path / sent[0][0]).write_bytes(sent[0][1])
+    loaded = robots.load(tmp_path / sent[0][0])
+    np.testing.assert_allclose(loaded.home, robots.load("puma560").home, atol=1e-12)
+    _same_jacobian(loaded, session.state.robot, samples=10)
 
 
 def test_the_symbolic_j_buttons_use_the_existing_export(session, monkeypatch):

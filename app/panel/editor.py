@@ -195,7 +195,8 @@ class EditorPanel:
             i = j
         else:
             return
-        self.table, self.selected = dataclasses.replace(self.table, rows=tuple(rows)), i
+        self.table = dataclasses.replace(self.table, rows=tuple(rows), configurations=())
+        self.selected = i
         self._changed(tuple(order), inputs=True)
 
     # ------------------------------------------------------------------ table → robot
