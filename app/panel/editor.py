@@ -2,8 +2,9 @@
 
 The lower panel is ~400 × 280 px, so the table is not a grid of inputs: a compact read-only
 table shows every row (the selected one highlighted) with the message line under it, and one
-set of inputs edits the selected row (joint type, a, α, d, θ offset, limits). Buttons add a row
-after the selected one, remove it or move it up or down. Every change builds the robot with
+set of inputs under it edits the selected row (joint type, a, α, d, θ offset, limits; a bad
+value's message is repeated under them). Buttons add a row after the selected one, remove it or
+move it up or down. Every change builds the robot with
 :func:`app.dh_table.build` and dispatches :class:`~app.actions.EditRobot`; a bad value is named
 under the table (row and field) and nothing is dispatched, so the last good robot stays drawn.
 Widgets are made once: a change of the table only updates values and the row list.
@@ -42,12 +43,12 @@ DOWNLOADS = {"TOML": "Robot file (TOML)", "URDF": "URDF", **{f"J {k}": k for k i
 """Download button → :class:`~app.actions.RequestDownload` label."""
 
 _CSS = """<style>
-.jl-dh{width:100%;border-collapse:collapse;font:11.5px/1.35 ui-monospace,Menlo,Consolas,monospace;
-  font-variant-numeric:tabular-nums}
+.jl-dh{width:calc(100% - 12px);margin:0 6px;border-collapse:collapse;
+  font:11.5px/1.35 ui-monospace,Menlo,Consolas,monospace;font-variant-numeric:tabular-nums}
 .jl-dh th{font-weight:600;color:#495057;text-align:right;padding:0 4px;border-bottom:1px solid #ced4da}
 .jl-dh td{text-align:right;padding:0 4px;white-space:nowrap}
 .jl-dh tr.sel td{background:#e7ecfb;font-weight:600}
-.jl-dh-msg{font:12px/1.35 system-ui,sans-serif;margin-top:3px}
+.jl-dh-msg{font:12px/1.35 system-ui,sans-serif;margin:3px 8px 0 8px}
 .jl-dh-msg.bad{color:#b3261e}.jl-dh-msg.ok{color:#495057}
 </style>"""
 
@@ -91,13 +92,14 @@ class EditorPanel:
             )
             self.summary = gui.add_html("")
             self.row = gui.add_dropdown("Edit row", ("1",), hint="The row the inputs below edit.")
-            self.rows = gui.add_button_group("Rows", ROW_BUTTONS)
             self.kind = gui.add_dropdown("Joint", ("revolute", "prismatic"))
             self.a = gui.add_number("a [m]", 0.0, step=1e-5, hint="Link length: along x(i)")
             self.alpha = gui.add_number("α [°]", 0.0, step=0.01, hint="Link twist: about x(i)")
             self.d = gui.add_number("d [m]", 0.0, step=1e-5, hint="Link offset: along z(i-1)")
             self.theta = gui.add_number("θ offset [°]", 0.0, step=0.01, hint="Added to q (revolute)")
             self.limits = gui.add_vector2("Limits [°]", (-180.0, 180.0), step=0.01, hint="lower, upper")
+            self.problem = gui.add_html("")  # the message again, in sight of the inputs
+            self.rows = gui.add_button_group("Rows", ROW_BUTTONS)
             self.download = gui.add_button_group("Download", tuple(DOWNLOADS))
             self.upload = gui.add_upload_button(
                 f"Upload a URDF (at most {MAX_UPLOAD_BYTES // (1024 * 1024)} MB)",
@@ -266,6 +268,7 @@ class EditorPanel:
             state = "drawn live" if self.built is not None else "edit a value to draw it"
             msg = f'<div class="jl-dh-msg ok">{fmt.escape(what)}: {state}.</div>'
         self.summary.content = f'{_CSS}<table class="jl-dh">{head}{"".join(body)}</table>{msg}'
+        self.problem.content = msg if self.error else ""
 
     def remove(self) -> None:
         self.root.remove()
