@@ -213,7 +213,7 @@ async def _guarded_consumer(
             try:
                 raw = await websocket.recv()
             except wse.ConnectionClosedError as exc:
-                if exc.sent is not None and exc.sent.code == 1009:
+                if exc.sent is not None and exc.sent.code == 1009 and not closing:  # (else counted below)
                     limits.count("closed")
                     log.warning(
                         "closed the connection of %s: a message over %d bytes", peer, _frame_limit(limits)
