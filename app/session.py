@@ -56,7 +56,7 @@ from .actions import (
 from .background import background, nearest_path
 from .camera import FROM_ABOVE, TabCamera, facing
 from .catalog import RobotCatalog
-from .dh_table import robot_file
+from .dh_table import BUILT_NAME, robot_file
 from .panel import PanelView
 from .reducer import reduce
 from .renderer import Renderer
@@ -299,10 +299,11 @@ class ClientSession:
             self._request_symbolic()
         assert self.scene is not None
         pad = 0.18 * self.scene.size  # link meshes and labels reach beyond the points drawn
-        if rebuild:
+        edited = state.robot_name == old.robot_name == BUILT_NAME  # the Build tab: keep the user's view
+        if rebuild and not edited:
             direction = FROM_ABOVE if state.robot.planar else facing(self.scene.extent)
             self.camera.frame(self.scene.extent, pad, direction, glide=False)
-        elif jump:
+        elif jump or edited:
             self.camera.frame_if_needed(self.scene.extent, pad)
         for fn in list(self._subscribers):
             try:

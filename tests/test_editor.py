@@ -264,3 +264,17 @@ def _scene_names(session) -> set[str]:
     from app.viser_adapter import scene_handles
 
     return set(scene_handles(session.client.scene))
+
+
+def test_an_edit_keeps_the_users_view_a_new_robot_is_framed(session, monkeypatch):
+    editor = _editor(session)
+    framed: list[dict] = []
+    real = session.camera.frame
+    monkeypatch.setattr(session.camera, "frame", lambda *a, **k: framed.append(k) or real(*a, **k))
+    editor.a.value = 0.52  # the same built robot, edited: the camera is not re-aimed
+    session.settle()
+    assert session.state.robot.dh[0].a == pytest.approx(0.52)
+    assert not [k for k in framed if k.get("glide") is False]
+    session.panel.robot.value = "planar2"  # another robot: framed at once
+    session.settle()
+    assert [k for k in framed if k.get("glide") is False]
