@@ -48,6 +48,8 @@ __all__ = [
     "CLASSROOM",
     "Mirror",
     "Redraw",
+    "EditRobot",
+    "UploadRobot",
     "COMMANDS",
 ]
 
@@ -266,10 +268,32 @@ class RequestDownload:
     label: str
 
 
+@dataclass(frozen=True, eq=False)
+class EditRobot:
+    """The Build tab's DH table became ``robot`` (listed as ``name``): show it, keeping the display
+    choices; ``keep[i]`` is the joint of the robot shown whose value row ``i`` keeps (``None``: a new
+    row, at home). See :func:`app.dh_table.edited_state`."""
+
+    name: str
+    robot: Robot
+    keep: tuple[int | None, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class UploadRobot:
+    """The tab uploaded the file ``filename`` with ``content`` (a command: the session reads it as a
+    URDF into the tab's own robot list, then switches to it). ``refused_size``: the size [bytes] of a
+    file refused as too large before it was sent (its content is then empty)."""
+
+    filename: str
+    content: bytes
+    refused_size: int = 0
+
+
 CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
 """Classroom commands: a follower may always send these (its other inputs are read-only)."""
 
-COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity, *CLASSROOM)
+COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity, UploadRobot, *CLASSROOM)
 """Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
 
 Action = (
@@ -302,4 +326,6 @@ Action = (
     | FollowPresenter
     | Mirror
     | Redraw
+    | EditRobot
+    | UploadRobot
 )

@@ -78,7 +78,7 @@ def from_display(r: Range, value: float) -> float:
     return math.radians(value) if r.degrees else float(value)
 
 
-@functools.cache
+@functools.lru_cache(maxsize=64)  # bounded: every edit of a DH table makes a new robot
 def reach(robot: Robot) -> float:
     """The robot's characteristic length [m] (:func:`~kinematics.lost.characteristic_length`), cached."""
     return characteristic_length(robot)
@@ -89,7 +89,7 @@ def _outward(lo: float, hi: float, step: float) -> tuple[float, float]:
     return math.floor(lo / step + 1e-9) * step, math.ceil(hi / step - 1e-9) * step
 
 
-@functools.cache
+@functools.lru_cache(maxsize=64)  # bounded: every edit of a DH table makes a new robot
 def joint_ranges(robot: Robot) -> tuple[Range, ...]:
     """Slider range of every joint: its limits, widened to hold home and every named configuration.
 
@@ -118,7 +118,7 @@ def _prismatic_step(reach: float) -> float:
     return float(10 ** math.floor(math.log10(max(reach, 1e-3)) - 3 + 0.5))
 
 
-@functools.cache
+@functools.lru_cache(maxsize=64)  # bounded: every edit of a DH table makes a new robot
 def rate_ranges(robot: Robot) -> tuple[Range, ...]:
     """Joint-rate sliders: ±180 °/s for revolute joints, ±(slider span) per second for prismatic ones."""
     out = []
@@ -131,7 +131,7 @@ def rate_ranges(robot: Robot) -> tuple[Range, ...]:
     return tuple(out)
 
 
-@functools.cache
+@functools.lru_cache(maxsize=64)  # bounded: every edit of a DH table makes a new robot
 def twist_ranges(robot: Robot) -> tuple[Range, ...]:
     """Desired-twist sliders [vx vy vz ωx ωy ωz]: ±2 reach per second (at least 1 m/s) and ±180 °/s."""
     span = float(max(1.0, math.ceil(2.0 * reach(robot))))
@@ -141,7 +141,7 @@ def twist_ranges(robot: Robot) -> tuple[Range, ...]:
     return (linear,) * 3 + (angular,) * 3
 
 
-@functools.cache
+@functools.lru_cache(maxsize=64)  # bounded: every edit of a DH table makes a new robot
 def wrench_ranges(robot: Robot) -> tuple[Range, ...]:
     """Wrench sliders [Fx Fy Fz Mx My Mz]: ±20 N and ±10 N·m (scaled up for large arms)."""
     scale = float(max(1.0, 10 ** math.floor(math.log10(max(reach(robot), 1.0)))))

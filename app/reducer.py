@@ -28,6 +28,7 @@ from .actions import (
     ClaimPresenter,
     ClearWrench,
     DriveTool,
+    EditRobot,
     ExploreAlone,
     FindSingularity,
     FollowPath,
@@ -49,7 +50,9 @@ from .actions import (
     StepOnce,
     StopPresenting,
     StopRates,
+    UploadRobot,
 )
+from .dh_table import edited_state
 from .motion_reducer import FRAME_DT, MotionRefused
 from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
 from .state import LabState, Options, default_options, frozen
@@ -101,7 +104,7 @@ def named_configuration_at(state: LabState, q: np.ndarray) -> str:
     return names[hit[0]] if hit.size else ""
 
 
-@functools.cache
+@functools.lru_cache(maxsize=64)  # bounded: a table edited in the browser makes a robot per edit
 def _named_table(robot: Robot) -> tuple[tuple[str, ...], np.ndarray]:
     """The robot's named configurations and then home, as names and one (k, n) array."""
     names = (*(c.name for c in robot.configurations), "home")
@@ -169,6 +172,8 @@ def _reduce(state: LabState, action: Action) -> LabState:
             return state.replace(options=_option(state.options, name, value, n))
         case SetRobot(name=name, robot=new, chain=chain):
             return LabState.initial(name, new, default_options(new, state.options), chain)
+        case EditRobot(name=name, robot=new, keep=keep):
+            return edited_state(state, name, new, keep)
         case ReplaceState(state=other):
             return other
         case Play(playing=playing, kind=kind):
@@ -195,7 +200,7 @@ def _reduce(state: LabState, action: Action) -> LabState:
             return motion_reducer.self_move(state, _finite(s, "self-motion"))
         case FollowPath(path=path, found=found):
             return motion_reducer.follow_path(state, path, found)
-        case ChooseRobot() | ChooseChain() | RequestDownload() | FindSingularity():
+        case ChooseRobot() | ChooseChain() | RequestDownload() | FindSingularity() | UploadRobot():
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )

@@ -44,6 +44,7 @@ from .actions import (
     ChooseRobot,
     ClaimPresenter,
     DriveTool,
+    EditRobot,
     ExploreAlone,
     FindSingularity,
     FollowPath,
@@ -58,11 +59,13 @@ from .actions import (
     SetRobot,
     Step,
     StopPresenting,
+    UploadRobot,
 )
 from .background import background, nearest_path
 from .camera import FROM_ABOVE, TabCamera, facing
 from .catalog import RobotCatalog
 from .classroom import Classroom, Role
+from .dh_table import BUILT_NAME, robot_file
 from .panel import PanelView
 from .reducer import reduce
 from .renderer import Renderer
@@ -71,6 +74,7 @@ from .snapshot import Snapshot, compute
 from .state import LabState
 from .symbolic import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable
 from .ticker import Ticker
+from .uploads import TabCatalog
 
 __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 
@@ -109,7 +113,7 @@ class ClientSession:
         self.classroom = classroom
         self.role = Role()
         self._told_read_only = 0.0
-        self.catalog = catalog
+        self.catalog = TabCatalog(catalog)  # the shared robots plus this tab's own (uploads, Build tab)
         self.symbolic = symbolic
         self.lock = threading.RLock()
         self.errors = 0
@@ -130,7 +134,9 @@ class ClientSession:
         self.scene: SceneView | None = None
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
-            self.panel = PanelView(client, self.dispatch, catalog.names(), self.state, classroom is not None)
+            self.panel = PanelView(
+                client, self.dispatch, self.catalog.names(), self.state, classroom is not None
+            )
             self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
 
@@ -207,6 +213,8 @@ class ClientSession:
                 return state
             robot = self.catalog.load_chain(state.robot_name, action.tip_link)
             return reduce(state, SetRobot(state.robot_name, robot, chain=action.tip_link))
+        if isinstance(action, (EditRobot, UploadRobot)):
+            return self._own_robot(state, action)
         if isinstance(action, RequestDownload):
             self._download(state, action.label)
             return state
@@ -217,6 +225,18 @@ class ClientSession:
             self._find_singularity(state)
             return state.replace(playing=False, stopped="looking for the nearest singularity…")
         return reduce(state, action)
+
+    def _own_robot(self, state: LabState, action: EditRobot | UploadRobot) -> LabState:
+        """A robot only this tab has: the Build tab's table, or an uploaded URDF (listed first in its
+        dropdown; :meth:`app.uploads.TabCatalog.share` would show it to every tab)."""
+        if isinstance(action, EditRobot):
+            self.catalog.remember_built(action.robot)
+            after = reduce(state, action)
+        else:
+            name = self.catalog.add_upload(action.filename, action.content, action.refused_size)
+            after = reduce(state, SetRobot(name, self.catalog.load(name)))
+        self.panel.set_robot_names(self.catalog.names())
+        return after
 
     def _find_singularity(self, state: LabState) -> None:
         """Descend to the nearest singularity away from the drawing thread, then play the descent."""
@@ -313,10 +333,11 @@ class ClientSession:
             self._request_symbolic()
         assert self.scene is not None
         pad = 0.18 * self.scene.size  # link meshes and labels reach beyond the points drawn
-        if rebuild:
+        edited = state.robot_name == old.robot_name == BUILT_NAME  # the Build tab: keep the user's view
+        if rebuild and not edited:
             direction = FROM_ABOVE if state.robot.planar else facing(self.scene.extent)
             self.camera.frame(self.scene.extent, pad, direction, glide=False)
-        elif jump:
+        elif jump or edited:
             self.camera.frame_if_needed(self.scene.extent, pad)
         for fn in list(self._subscribers):
             try:
@@ -453,6 +474,10 @@ class ClientSession:
 
     def _download(self, state: LabState, label: str) -> None:
         robot, frame = state.robot, state.options.jacobian_frame
+        file = robot_file(robot, label)  # the robot itself (robot file, URDF); else its symbolic J
+        if file is not None:
+            self.client.send_file_download(*file, save_immediately=True)
+            return
         note = self.client.add_notification(
             f"Preparing J(q) as {label}…",
             f"{robot.title or robot.name}, {frame} axes",

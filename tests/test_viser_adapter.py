@@ -320,3 +320,34 @@ def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
             page.wait_for_function("document.title === 'Jacobian Lab'", timeout=10000)
         finally:
             browser.close()
+
+
+def test_only_an_upload_part_may_exceed_the_message_limit(limited):
+    """The browser uploads in 512 KiB parts: those pass; any other large message, decodable or not,
+    closes the connection (1009); an upload declared over the cap starts empty, marked as refused."""
+    server, limits = limited
+    button = server.gui.add_upload_button("up")
+    got = []
+    button.on_upload(lambda event: got.append(event.target.value))
+    start, part = va.message_class("FileTransferStartUpload"), va.message_class("FileTransferPart")
+    uuid = va.handle_uuid(button)
+    content = b"x" * (va.UPLOAD_PART_BYTES + 10)
+    with _raw_client(server.get_port()) as tab:
+        tab.send(_camera())
+        _poll(lambda: len(server.get_clients()) == 1)
+        tab.send(_encode(start(uuid, "t1", "a.urdf", "text/xml", 2, len(content))))
+        tab.send(_encode(part(uuid, "t1", 0, content[: va.UPLOAD_PART_BYTES])))
+        tab.send(_encode(part(uuid, "t1", 1, content[va.UPLOAD_PART_BYTES :])))
+        _poll(lambda: len(got) == 1)
+        assert got[0].content == content and va.upload_too_large(got[0]) is None
+        tab.send(_encode(start(uuid, "t2", "big.urdf", "text/xml", 100, 50 * 1024 * 1024)))
+        _poll(lambda: len(got) == 2)
+        assert got[1].content == b"" and va.upload_too_large(got[1]) == ("big.urdf", 50 * 1024 * 1024)
+        assert limits.closed == 0
+        update = va.message_class("GuiUpdateMessage")
+        with pytest.raises(websockets.exceptions.ConnectionClosed) as info:
+            tab.send(_encode(update(uuid, {"value": "y" * 20_000})))  # decodable, over 8 KiB
+            while True:
+                tab.recv(timeout=10)
+        assert info.value.rcvd is not None and info.value.rcvd.code == 1009
+    _poll(lambda: limits.closed == 1)

@@ -31,6 +31,7 @@ from ..state import LabState, Options
 from ..viser_adapter import handle_uuid, run_javascript, set_page_title
 from .classroom import ClassroomPanel
 from .common import Dispatch, bind, sync_value
+from .editor import EditorPanel, library_dh_robots
 from .explore import MapsPanel, MotionPanel, slider_ids
 from .joints import JointsPanel, configurations_html
 from .matrix import MatrixPanel
@@ -107,6 +108,7 @@ class PanelView:
         self.tab_motion = self.views.add_tab("Motion", viser.Icon.PLAYER_PLAY)
         self.tab_maps = self.views.add_tab("Maps", viser.Icon.MAP)
         self.tab_view = self.views.add_tab("View", viser.Icon.EYE)
+        self.tab_build = self.views.add_tab("Build", viser.Icon.TOOL)
         self.views.dock_below(gui.main_panel)
         with self.tab_view:
             self.toggles = {}
@@ -124,6 +126,8 @@ class PanelView:
             )
             bind(self.scale, dispatch, lambda v: SetOption("scale", float(v)))
             gui.add_markdown(_LEGEND)
+        with self.tab_build:
+            self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100)
         self.joints: JointsPanel | None = None
         self.forward: ForwardPanel | None = None
         self.inverse: InversePanel | None = None
@@ -189,6 +193,12 @@ class PanelView:
         if self.motion.self_slider is not None:
             sliders.append(self.motion.self_slider)
         run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
+
+    def set_robot_names(self, names: Sequence[str]) -> None:
+        """List ``names`` in the tab's robot dropdown (its own robots first, see app.uploads)."""
+        names = tuple(names)
+        if tuple(self.robot.options) != names:
+            self.robot.options = names
 
     def remove_robot(self) -> None:
         if self.chain is not None:

@@ -14,7 +14,9 @@ Wrapped:
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
   replaces ``viser.infra._infra._message_consumer`` (looked up by viser's connection
-  handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``.
+  handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``; only
+  an upload's parts (512 KiB, the browser's) may exceed the message limit, and an upload
+  declared over :data:`MAX_UPLOAD_BYTES` is never buffered (:func:`upload_too_large`).
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
   type aliases built once.
 * :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``
@@ -36,7 +38,14 @@ from .core import (
     scene_handles,
     set_page_title,
 )
-from .limits import MessageLimits, install_message_limits, uninstall_message_limits
+from .limits import (
+    MAX_UPLOAD_BYTES,
+    UPLOAD_PART_BYTES,
+    MessageLimits,
+    install_message_limits,
+    uninstall_message_limits,
+    upload_too_large,
+)
 from .props import install_fast_prop_casts, update_props
 
 __all__ = [
@@ -52,6 +61,9 @@ __all__ = [
     "MessageLimits",
     "install_message_limits",
     "uninstall_message_limits",
+    "upload_too_large",
+    "MAX_UPLOAD_BYTES",
+    "UPLOAD_PART_BYTES",
     "install_fast_prop_casts",
     "update_props",
     "clip",

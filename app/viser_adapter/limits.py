@@ -14,7 +14,21 @@ from typing import Any
 from ..ratelimit import TabLimiter
 from .core import ViserApiChanged, _private, clip
 
-__all__ = ["MessageLimits", "install_message_limits", "uninstall_message_limits"]
+__all__ = [
+    "MessageLimits",
+    "install_message_limits",
+    "uninstall_message_limits",
+    "UPLOAD_PART_BYTES",
+    "MAX_UPLOAD_BYTES",
+    "upload_too_large",
+]
+
+UPLOAD_PART_BYTES = 512 * 1024
+"""The browser sends an uploaded file in parts of this size (viser's ``UploadButton.tsx``)."""
+MAX_UPLOAD_BYTES = 2 * 1024 * 1024
+"""Largest file a tab may upload [bytes]; a larger one reaches its callback empty, marked (see
+:func:`upload_too_large`), and its parts are never buffered."""
+_TOO_LARGE = "\x00too-large\x00"
 
 log = logging.getLogger("app.viser_adapter")
 
@@ -124,10 +138,40 @@ def _infra_module() -> Any:
     return _infra
 
 
+def upload_too_large(file: Any) -> tuple[str, int] | None:
+    """(file name, declared size [bytes]) of an upload refused for its size, else ``None``.
+
+    An upload over :data:`MAX_UPLOAD_BYTES` reaches the upload button's callback as an empty
+    ``UploadedFile`` whose name carries this mark, so the tab can say why in words.
+    """
+    name = getattr(file, "name", "")
+    if not (isinstance(name, str) and name.startswith(_TOO_LARGE)):
+        return None
+    size, _, original = name[len(_TOO_LARGE) :].partition("\x00")
+    return original, int(size) if size.isdigit() else 0
+
+
+def _frame_limit(limits: MessageLimits) -> int:
+    """Largest websocket frame read: a message, or one part of an upload (checked after decoding)."""
+    return max(limits.max_message_bytes, UPLOAD_PART_BYTES + 4096)
+
+
+def _checked_upload(message: Any, size: int, limits: MessageLimits) -> tuple[Any, str]:
+    """``message`` as passed on, or why the connection is closed: only an upload's parts may exceed
+    the message limit, and an upload declared over :data:`MAX_UPLOAD_BYTES` starts as an empty file."""
+    kind = type(message).__name__
+    if size > limits.max_message_bytes and kind != "FileTransferPart":
+        return message, f"a message over {limits.max_message_bytes} bytes"
+    if kind == "FileTransferStartUpload" and message.size_bytes > MAX_UPLOAD_BYTES:
+        name = f"{_TOO_LARGE}{int(message.size_bytes)}\x00{message.filename}"
+        return dataclasses.replace(message, filename=name, part_count=0, size_bytes=0), ""
+    return message, ""
+
+
 def _serve_with_limit(*args: Any, **kwargs: Any) -> Any:
     """``websockets.asyncio.server.serve`` as viser calls it, with our ``max_size``."""
     if _limits is not None:
-        kwargs["max_size"] = _limits.max_message_bytes
+        kwargs["max_size"] = _frame_limit(_limits)
     return _original["websockets"].asyncio.server.serve(*args, **kwargs)
 
 
@@ -154,7 +198,7 @@ async def _guarded_consumer(
     loop = _bound_loop_logging(asyncio.get_running_loop())
     protocol = getattr(websocket, "protocol", None)
     if protocol is not None and hasattr(protocol, "max_message_size"):
-        protocol.max_message_size = limits.max_message_bytes  # for servers started before the install
+        protocol.max_message_size = _frame_limit(limits)  # for servers started before the install
     rate, burst = limits.max_messages_per_second, limits.burst
     gui_rate, gui_burst = limits.max_gui_updates_per_second, limits.gui_burst
     limiter = TabLimiter(rate, burst, gui_rate, gui_burst, limits.close_after_drops)
@@ -169,21 +213,34 @@ async def _guarded_consumer(
             try:
                 raw = await websocket.recv()
             except wse.ConnectionClosedError as exc:
-                if exc.sent is not None and exc.sent.code == 1009:
+                if exc.sent is not None and exc.sent.code == 1009 and not closing:  # (else counted below)
                     limits.count("closed")
                     log.warning(
-                        "closed the connection of %s: a message over %d bytes", peer, limits.max_message_bytes
+                        "closed the connection of %s: a message over %d bytes", peer, _frame_limit(limits)
                     )
                 raise
             if closing:
                 continue
+            refused = (
+                f"a message over {limits.max_message_bytes} bytes"
+                if len(raw) > limits.max_message_bytes
+                else ""
+            )
             try:
                 if not isinstance(raw, bytes):
                     raise TypeError(f"a text frame of {len(raw)} characters")
                 message = message_class.deserialize(raw)
+                message, refused = _checked_upload(message, len(raw), limits)
             except Exception as exc:  # a hostile or broken client must not end the server's loop
-                limits.count("malformed")
-                log.warning("dropped a message from %s: %s: %s", peer, type(exc).__name__, clip(exc))
+                if not refused:
+                    limits.count("malformed")
+                    log.warning("dropped a message from %s: %s: %s", peer, type(exc).__name__, clip(exc))
+                    continue
+            if refused:
+                closing = True
+                limits.count("closed")
+                log.warning("closed the connection of %s: %s", peer, refused)
+                await websocket.close(1009, "message too big")
                 continue
             verdict = limiter.offer(message)
             if verdict == "now":
