@@ -187,3 +187,24 @@ def test_tokens_are_rate_limited_per_tab():
     assert b.role.note == PRESENTER_LEFT and not b.role.following
     with pytest.raises(ValueError):
         Classroom("")
+
+
+def test_followers_draw_a_robot_only_the_presenter_has():
+    """A robot built in the presenter's Build tab (not in the followers' lists) still reaches them."""
+    from app.actions import EditRobot
+    from kinematics import Robot, jacobian
+
+    with room(1) as (lab, presenter, (follower,)):
+        wait_until(lambda: follower.role.following)
+        rows = [
+            {"joint": "revolute", "a": 0.4, "alpha": 0.0, "d": 0.0, "theta": 0.0},
+            {"joint": "revolute", "a": 0.3, "alpha": 0.0, "d": 0.0, "theta": 0.0},
+        ]
+        built = Robot.from_dh(rows, "standard", name="built")
+        presenter.dispatch(EditRobot("(built in the browser)", built, ()))
+        settle(presenter)
+        wait_until(lambda: follower.state.robot is built)
+        settle(follower)
+        assert follower.errors == 0
+        assert follower.snapshot.J_base == pytest.approx(jacobian(built, follower.state.q))
+        assert_all_finite(follower)
