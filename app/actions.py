@@ -48,6 +48,7 @@ __all__ = [
     "CLASSROOM",
     "Mirror",
     "Redraw",
+    "ToggleRecording",
     "EditRobot",
     "UploadRobot",
     "COMMANDS",
@@ -262,6 +263,12 @@ class Redraw:
 
 
 @dataclass(frozen=True)
+class ToggleRecording:
+    """Start recording what this tab shows, or stop and download it as a demo that needs no server
+    (a command)."""
+
+
+@dataclass(frozen=True)
 class RequestDownload:
     """Send J(q) exported as ``label`` ("LaTeX", "Python" or "JSON") to this tab (a command)."""
 
@@ -293,7 +300,15 @@ class UploadRobot:
 CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
 """Classroom commands: a follower may always send these (its other inputs are read-only)."""
 
-COMMANDS = (ChooseRobot, ChooseChain, RequestDownload, FindSingularity, UploadRobot, *CLASSROOM)
+COMMANDS = (
+    ChooseRobot,
+    ChooseChain,
+    RequestDownload,
+    FindSingularity,
+    UploadRobot,
+    ToggleRecording,
+    *CLASSROOM,
+)
 """Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
 
 Action = (
@@ -328,4 +343,5 @@ Action = (
     | Redraw
     | EditRobot
     | UploadRobot
+    | ToggleRecording
 )

@@ -42,6 +42,8 @@ from .state import LabState
 __all__ = [
     "Demo",
     "Recording",
+    "record_frames",
+    "demo_files",
     "UnknownPreset",
     "plan",
     "check_preset",
@@ -223,7 +225,17 @@ def record(
         raise ValueError("seconds and fps must be positive numbers")
     demo = plan(name, robot, preset, frames=max(int(round(seconds * fps)), 1) + 1)
     states = play(demo, seconds, fps)
-    snaps = [compute(s) for s in states]
+    return record_frames(demo.title, robot, states, [compute(s) for s in states], fps)
+
+
+def record_frames(
+    title: str, robot: Robot, states: Sequence[LabState], snaps: Sequence[Snapshot], fps: float
+) -> Recording:
+    """Record the 3-D scene of ``states`` (drawn from ``snaps``), one frame every 1/``fps`` seconds:
+    the demo of :func:`record`, or what a tab did (:class:`app.recorder.TabRecorder`). Every state
+    must be of ``robot``."""
+    if not states or len(states) != len(snaps):
+        raise ValueError("a recording needs one snapshot per state, and at least one state")
     quiet = contextlib.redirect_stdout(io.StringIO())  # viser prints its URL and "Server stopped"
     with quiet:
         server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
@@ -238,7 +250,7 @@ def record(
         size = view.size
         lo, hi = points.min(axis=0), points.max(axis=0)
         top = np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2] + 0.12 * size])
-        labels = _Labels(server.scene, demo.title, top)
+        labels = _Labels(server.scene, title, top)
         _frame_camera(server, np.vstack([points, top]), 0.18 * size, robot.planar)
         serializer = server.get_scene_serializer()
         # The file starts from the scene as the dry run left it (the last frame) and turns it into
@@ -252,7 +264,7 @@ def record(
     finally:
         with quiet:
             server.stop()
-    return Recording(data, demo.title, states, float(fps))
+    return Recording(data, title, tuple(states), float(fps))
 
 
 def _frame_camera(server: viser.ViserServer, points: np.ndarray, pad: float, planar: bool) -> None:
@@ -307,16 +319,21 @@ def write_demo(recording: Recording, out_dir: str | Path) -> Sequence[Path]:
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    target = f"{CLIENT_PAGE}?playbackPath={RECORDING}"
-    page = client_page().read_text(encoding="utf-8")
-    page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
-    files = {
-        out / RECORDING: recording.data,
-        out / CLIENT_PAGE: page.encode("utf-8"),
-        out / "index.html": _INDEX.format(
-            title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)
-        ).encode("utf-8"),
-    }
+    files = {out / name: data for name, data in demo_files(recording).items()}
     for path, data in files.items():
         path.write_bytes(data)
     return list(files)
+
+
+def demo_files(recording: Recording) -> dict[str, bytes]:
+    """The files of a demo folder by name: ``index.html``, the client page and ``recording.viser``."""
+    target = f"{CLIENT_PAGE}?playbackPath={RECORDING}"
+    page = client_page().read_text(encoding="utf-8")
+    page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
+    return {
+        RECORDING: recording.data,
+        CLIENT_PAGE: page.encode("utf-8"),
+        "index.html": _INDEX.format(
+            title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)
+        ).encode("utf-8"),
+    }

@@ -50,6 +50,7 @@ from .actions import (
     StepOnce,
     StopPresenting,
     StopRates,
+    ToggleRecording,
     UploadRobot,
 )
 from .dh_table import edited_state
@@ -204,7 +205,7 @@ def _reduce(state: LabState, action: Action) -> LabState:
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )
-        case ClaimPresenter() | StopPresenting() | ExploreAlone() | FollowPresenter():
+        case ClaimPresenter() | StopPresenting() | ExploreAlone() | FollowPresenter() | ToggleRecording():
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )

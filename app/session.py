@@ -59,6 +59,7 @@ from .actions import (
     SetRobot,
     Step,
     StopPresenting,
+    ToggleRecording,
     UploadRobot,
 )
 from .background import background, nearest_path
@@ -67,6 +68,7 @@ from .catalog import RobotCatalog
 from .classroom import Classroom, Role
 from .dh_table import BUILT_NAME, robot_file
 from .panel import PanelView
+from .recorder import TabRecorder, demo_zip
 from .reducer import reduce
 from .renderer import Renderer
 from .scene import SceneView
@@ -129,6 +131,7 @@ class ClientSession:
         self._subscribers: list[Callable[[LabState, Snapshot], None]] = []
         self._symbolic_wanted: tuple | None = None
         self.camera = TabCamera(client)
+        self.recorder = TabRecorder(self.subscribe)
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.snapshot: Snapshot | None = None
         self.scene: SceneView | None = None
@@ -179,7 +182,9 @@ class ClientSession:
                     if isinstance(action, Redraw):
                         force = True
                         continue
-                    if self.role.following and not isinstance(action, (*CLASSROOM, RequestDownload)):
+                    if self.role.following and not isinstance(
+                        action, (*CLASSROOM, RequestDownload, ToggleRecording)
+                    ):
                         force = force or not isinstance(action, Step)  # undo what the input shows
                         self._tell_read_only(action)
                         continue
@@ -220,6 +225,9 @@ class ClientSession:
             return state
         if isinstance(action, (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)):
             self._classroom_command(action)
+            return state
+        if isinstance(action, ToggleRecording):
+            self._toggle_recording(state)
             return state
         if isinstance(action, FindSingularity):
             self._find_singularity(state)
@@ -390,6 +398,36 @@ class ClientSession:
             self.classroom.explore_alone(self.key)
         elif isinstance(action, FollowPresenter):
             self.classroom.follow(self.key)
+
+    def _toggle_recording(self, state: LabState) -> None:
+        """Start recording this tab, or stop and send the demo (built away from the drawing thread)."""
+        if not self.recorder.recording:
+            self.recorder.start(state, self.snapshot)
+            self.panel.show_recording(True)
+            return
+        frames = self.recorder.stop()
+        self.panel.show_recording(False)
+        if len(frames) < 2:
+            self.notify("Nothing recorded", "Move something between starting and stopping the recording.")
+            return
+        title = f"{state.robot.title or state.robot.name} — recorded in Jacobian Lab"
+        note = self.client.add_notification(
+            "Preparing the demo…", f"{len(frames)} frames", loading=True, with_close_button=False
+        )
+
+        def done(future: Future[bytes]) -> None:
+            with contextlib.suppress(Exception):
+                note.remove()
+            if self._closed:
+                return
+            try:
+                self.client.send_file_download(
+                    "jacobian-lab-demo.zip", future.result(), save_immediately=True
+                )
+            except Exception as exc:
+                self.report_error(exc)
+
+        background().submit(demo_zip, frames, title).add_done_callback(done)
 
     def _tell_read_only(self, action: Action) -> None:
         """A follower moved an input: say once in a while that its inputs follow the presenter."""

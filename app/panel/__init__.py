@@ -24,7 +24,7 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ..actions import ChooseChain, ChooseRobot, SetOption
+from ..actions import ChooseChain, ChooseRobot, SetOption, ToggleRecording
 from ..classroom import Role
 from ..snapshot import Snapshot
 from ..state import LabState, Options
@@ -126,6 +126,12 @@ class PanelView:
             )
             bind(self.scale, dispatch, lambda v: SetOption("scale", float(v)))
             gui.add_markdown(_LEGEND)
+            self.record = gui.add_button("Record a demo", icon=viser.Icon.PLAYER_RECORD)
+            self.record.on_click(lambda _: dispatch(ToggleRecording()))
+            gui.add_html(
+                '<div class="jl-note">Records the 3-D view until you press again, then downloads it as a '
+                "folder (zip) that plays from any web server, with no Python behind it.</div>"
+            )
         with self.tab_build:
             self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100)
         self.joints: JointsPanel | None = None
@@ -241,6 +247,11 @@ class PanelView:
         self.force.update(snap, state)
         self.motion.draw(state, snap)
         self.maps.draw(state, snap)
+
+    def show_recording(self, recording: bool) -> None:
+        """The record button says what a click does next."""
+        self.record.label = "Stop and download the demo" if recording else "Record a demo"
+        self.record.color = "red" if recording else None
 
     def show_role(self, role: Role) -> None:
         """The tab's classroom role (nothing without a presenter mode)."""
