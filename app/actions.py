@@ -251,10 +251,13 @@ class FollowPresenter:
 @dataclass(frozen=True, eq=False)
 class Mirror:
     """Draw the presenter's ``state`` with the ``snapshot`` already computed for it (a follower's
-    session takes it as it is: one computation per presenter change, not one per follower)."""
+    session takes it as it is: one computation per presenter change, not one per follower); ``scene``:
+    the scene messages of the presenter's redraw, replayed instead of drawing the scene again (empty:
+    the follower draws its own)."""
 
     state: LabState
     snapshot: object
+    scene: tuple = ()
 
 
 @dataclass(frozen=True)

@@ -62,7 +62,10 @@ class Member(Protocol):
 
     def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]: ...
 
-    def mirror(self, state: LabState, snapshot: Snapshot) -> None: ...
+    def mirror(self, state: LabState, snapshot: Snapshot, scene: tuple = ()) -> None: ...
+
+    @property
+    def scene_messages(self) -> tuple: ...
 
     def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None: ...
 
@@ -212,11 +215,14 @@ class Classroom:
 
     # ---------------------------------------------------------------- relays
     def _relay(self, state: LabState, snapshot: Snapshot) -> None:
-        """The presenter committed ``state``: every follower draws it (no computation per follower)."""
+        """The presenter committed ``state``: every follower draws it (no computation per follower:
+        the presenter's snapshot, and the scene messages of the presenter's redraw replayed)."""
         with self._lock:
             targets = [self._members[k] for k in self._following_keys()]
+            presenter = self._members.get(self._presenter) if self._presenter is not None else None
+        scene = presenter.scene_messages if presenter is not None else ()
         for member in targets:
-            member.mirror(state, snapshot)
+            member.mirror(state, snapshot, scene)
             self.relayed += 1
 
     def camera(self, key: int, position: tuple, look_at: tuple, up: tuple) -> None:

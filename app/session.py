@@ -77,6 +77,7 @@ from .state import LabState
 from .symbolic import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable
 from .ticker import Ticker
 from .uploads import TabCatalog
+from .viser_adapter import capture_scene, replay_scene
 
 __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 
@@ -132,6 +133,8 @@ class ClientSession:
         self._symbolic_wanted: tuple | None = None
         self.camera = TabCamera(client)
         self.recorder = TabRecorder(self.subscribe)
+        self._scene_messages: tuple = ()
+        self._scene_foreign = False
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.snapshot: Snapshot | None = None
         self.scene: SceneView | None = None
@@ -175,9 +178,14 @@ class ClientSession:
             with self.lock:
                 state, jump, force = self.state, False, False
                 given: Mirror | None = None
+                replay: list | None = []  # the presenter's scene messages, in order (None: draw our own)
                 for action in actions:
                     if isinstance(action, Mirror):  # the presenter's state, drawn as it is
-                        state, given, jump = action.state, action, True
+                        state, given, jump = action.state, action, False  # the camera is the presenter's
+                        if replay is not None and action.scene and self.scene is not None:
+                            replay.extend(action.scene)
+                        else:
+                            replay = None
                         continue
                     if isinstance(action, Redraw):
                         force = True
@@ -195,9 +203,17 @@ class ClientSession:
                     except Exception as exc:  # one tab's bad input never reaches the server or other tabs
                         self.report_error(exc)
                 if state is not self.state or force:
-                    snap = given.snapshot if given is not None and given.state is state else None
+                    mirrored = given is not None and given.state is state
+                    snap = given.snapshot if given is not None and mirrored else None
+                    scene = replay if mirrored and replay else None
                     try:
-                        self._commit(state, rebuild=state.robot is not self.state.robot, jump=jump, snap=snap)
+                        self._commit(
+                            state,
+                            rebuild=state.robot is not self.state.robot,
+                            jump=jump,
+                            snap=snap,
+                            scene=scene,
+                        )
                     except Exception as exc:  # the tab keeps its last good state on screen
                         self.report_error(exc)
         with self._queue_lock:
@@ -304,18 +320,21 @@ class ClientSession:
         return unsubscribe
 
     # ------------------------------------------------------------------ commit and draw
-    def _commit(self, state: LabState, rebuild: bool, jump: bool, snap: object = None) -> None:
+    def _commit(
+        self, state: LabState, rebuild: bool, jump: bool, snap: object = None, scene: list | None = None
+    ) -> None:
         """Take ``state``: compute its snapshot once (unless given: the presenter's), redraw in one
-        batch, then run the effects."""
+        batch, then run the effects. ``scene``: the presenter's scene messages to replay instead of
+        drawing the scene (a follower's scene then shows the presenter's nodes)."""
         old = self.state
         snap = snap if isinstance(snap, Snapshot) else compute(state)
         self._drawing.active = True
+        capturing: contextlib.AbstractContextManager[list] = (
+            capture_scene(self.client) if self.role.presenting else contextlib.nullcontext([])
+        )
         try:
-            with self.client.atomic():
+            with self.client.atomic(), capturing as captured:
                 if rebuild or self.scene is None:
-                    if self.scene is not None:
-                        self.scene.remove()
-                    self.scene = SceneView(self.client, state.robot, self.dispatch)
                     name = state.robot_name
                     self.panel.build_robot(
                         state.robot,
@@ -325,9 +344,19 @@ class ClientSession:
                         self.catalog.meshes(name),
                         self.catalog.presets(name),
                     )
-                self.scene.update(snap, state)
+                if scene is not None and self.scene is not None:
+                    replay_scene(self.client, scene)  # the presenter's scene, drawn once for the room
+                    self._scene_foreign = True  # our SceneView no longer knows what the browser shows
+                else:
+                    if rebuild or self.scene is None or self._scene_foreign:
+                        if self.scene is not None:
+                            self.scene.remove()
+                        self.scene = SceneView(self.client, state.robot, self.dispatch)
+                        self._scene_foreign = False
+                    self.scene.update(snap, state)
                 self.panel.draw(state, snap)
                 self.panel.show_role(self.role)
+            self._scene_messages = tuple(captured)
         finally:
             self._drawing.active = False
         self.state, self.snapshot = state, snap
@@ -340,6 +369,8 @@ class ClientSession:
         if rebuild or state.options.jacobian_frame != old.options.jacobian_frame:
             self._request_symbolic()
         assert self.scene is not None
+        if self.role.following:
+            return self._tell_subscribers(state, snap)  # the camera is the presenter's
         pad = 0.18 * self.scene.size  # link meshes and labels reach beyond the points drawn
         edited = state.robot_name == old.robot_name == BUILT_NAME  # the Build tab: keep the user's view
         if rebuild and not edited:
@@ -347,6 +378,9 @@ class ClientSession:
             self.camera.frame(self.scene.extent, pad, direction, glide=False)
         elif jump or edited:
             self.camera.frame_if_needed(self.scene.extent, pad)
+        self._tell_subscribers(state, snap)
+
+    def _tell_subscribers(self, state: LabState, snap: Snapshot) -> None:
         for fn in list(self._subscribers):
             try:
                 fn(state, snap)
@@ -359,9 +393,15 @@ class ClientSession:
         """The state and snapshot on screen."""
         return self.state, self.snapshot
 
-    def mirror(self, state: LabState, snapshot: Snapshot) -> None:
-        """Draw the presenter's state (queued like any action; the latest of a burst wins)."""
-        self.dispatch(Mirror(state, snapshot))
+    def mirror(self, state: LabState, snapshot: Snapshot, scene: tuple = ()) -> None:
+        """Draw the presenter's state (queued like any action; the latest of a burst wins; the scene
+        messages of every one are replayed, in order)."""
+        self.dispatch(Mirror(state, snapshot, scene))
+
+    @property
+    def scene_messages(self) -> tuple:
+        """The scene messages of this tab's last redraw (collected only while it presents)."""
+        return self._scene_messages
 
     def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None:
         """Look where the presenter looks."""

@@ -11,7 +11,7 @@ from app_helpers import assert_all_finite, running_lab, wait_until
 from wsclient import ViserWsClient
 
 import robots
-from app.actions import ApplyPreset, Play, SetJoint
+from app.actions import ApplyPreset, ExploreAlone, Play, SetJoint
 from app.classroom import PRESENTER_LEFT, TOKEN_TRIES, TOKEN_WINDOW, Classroom
 
 TOKEN = "lecture-7"
@@ -208,3 +208,46 @@ def test_followers_draw_a_robot_only_the_presenter_has():
         assert follower.errors == 0
         assert follower.snapshot.J_base == pytest.approx(jacobian(built, follower.state.q))
         assert_all_finite(follower)
+
+
+def test_a_followers_browser_gets_the_presenters_scene():
+    """The scene messages of the presenter's redraw are replayed to the followers' browsers: what a
+    follower's websocket receives for the arm is what the presenter's scene holds."""
+    from app_helpers import scene_node
+
+    with running_lab(presenter_token=TOKEN) as (lab, presenter, _ws):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as student:
+            wait_until(lambda: len(lab.sessions) == 2)
+            follower = next(s for s in lab.sessions.values() if s is not presenter)
+            presenter.panel.classroom.token.value = TOKEN
+            wait_until(lambda: follower.role.following)
+            settle(presenter, follower)
+            for value in (-0.4, 0.3, 0.8):
+                mark = student.mark()
+                presenter.dispatch(SetJoint(1, value))
+                settle(presenter)
+                wait_until(lambda value=value: follower.state.q[1] == pytest.approx(value))
+                settle(follower)
+                arm = scene_node(presenter, "/lab/arm/cylinders")
+                want = np.asarray(arm.batched_positions, dtype=np.float32).ravel()
+
+                def got_it(m, want=want):
+                    positions = m.get("updates", {}).get("batched_positions")
+                    return (
+                        m["type"] == "SceneNodeUpdateMessage"
+                        and m["name"] == "/lab/arm/cylinders"
+                        and positions is not None
+                        and np.allclose(np.asarray(positions, dtype=np.float32).ravel(), want, atol=1e-6)
+                    )
+
+                student.wait_for(got_it, after=mark, timeout=10)
+            # Exploring alone again: the follower's own scene is rebuilt and drawn from its state.
+            follower.dispatch(ExploreAlone())
+            settle(follower)
+            wait_until(lambda: not follower.role.following)
+            follower.dispatch(SetJoint(0, 0.5))
+            settle(follower)
+            own = np.asarray(scene_node(follower, "/lab/arm/cylinders").batched_positions).reshape(-1, 3)
+            theirs = np.asarray(scene_node(presenter, "/lab/arm/cylinders").batched_positions).reshape(-1, 3)
+            assert not np.allclose(own, theirs)
+            assert_all_finite(follower)

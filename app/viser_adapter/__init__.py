@@ -17,12 +17,14 @@ Wrapped:
   handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``; only
   an upload's parts (512 KiB, the browser's) may exceed the message limit, and an upload
   declared over :data:`MAX_UPLOAD_BYTES` is never buffered (:func:`upload_too_large`).
+* :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
+  ``queue_message`` and the messages' ``owner``), for a presenter's followers.
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
   type aliases built once.
 * :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``
   (through ``handle._impl.props`` and the scene's ``_queue_scene_message``).
 
-A package of three modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`), so each stays short;
+A package of four modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`, :mod:`.mirror`), so each stays short;
 nothing outside this package touches viser's private API.
 """
 
@@ -46,6 +48,7 @@ from .limits import (
     uninstall_message_limits,
     upload_too_large,
 )
+from .mirror import capture_scene, replay_scene
 from .props import install_fast_prop_casts, update_props
 
 __all__ = [
@@ -65,6 +68,8 @@ __all__ = [
     "MAX_UPLOAD_BYTES",
     "UPLOAD_PART_BYTES",
     "install_fast_prop_casts",
+    "capture_scene",
+    "replay_scene",
     "update_props",
     "clip",
 ]
