@@ -182,6 +182,8 @@ class ClientSession:
                 for action in actions:
                     if isinstance(action, Mirror):  # the presenter's state, drawn as it is
                         state, given, jump = action.state, action, False  # the camera is the presenter's
+                        if self.catalog.keep_shown(state.robot_name, state.robot):  # built or uploaded there
+                            self.panel.set_robot_names(self.catalog.names())
                         if replay is not None and action.scene and self.scene is not None:
                             replay.extend(action.scene)
                         else:

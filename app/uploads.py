@@ -131,6 +131,18 @@ class TabCatalog:
             self._private[name] = robot
         return name
 
+    def keep_shown(self, name: str, robot: Robot) -> bool:
+        """List ``robot`` (shown by the presenter under ``name``) in this tab's own robots when the tab
+        does not know it, so a follower can go back to it after exploring; returns whether it was new."""
+        with self._lock:
+            if name in self._private or name in self.shared.names():
+                return False
+            uploads = [n for n in self._private if n != BUILT_NAME]
+            if len(uploads) >= MAX_PRIVATE_ROBOTS:
+                del self._private[uploads[0]]
+            self._private[name] = robot
+            return True
+
     def share(self, name: str, folder: str | Path | None = None) -> str:
         """Put the tab's robot ``name`` into the shared catalogue (every tab's dropdown) and return its
         shared name: a presenter's "show everyone this robot". Built robots are written as a robot

@@ -208,6 +208,9 @@ def test_followers_draw_a_robot_only_the_presenter_has():
         assert follower.errors == 0
         assert follower.snapshot.J_base == pytest.approx(jacobian(built, follower.state.q))
         assert_all_finite(follower)
+        # It is listed in the follower's own robots: after exploring, the student can go back to it.
+        assert "(built in the browser)" in follower.panel.robot.options
+        assert follower.catalog.load("(built in the browser)") is built
 
 
 def test_a_followers_browser_gets_the_presenters_scene():
