@@ -228,9 +228,12 @@ class FindSingularity:
 
 @dataclass(frozen=True)
 class ClaimPresenter:
-    """The tab typed ``token`` into "Presenter token" (a command: the classroom checks it)."""
+    """The tab typed ``token`` into "Presenter token" (a command: the classroom checks it once the
+    typing has paused, ``settled``; a browser sends every keystroke, and five half-typed tokens must
+    not use up the tab's tries)."""
 
     token: str
+    settled: bool = False
 
 
 @dataclass(frozen=True)

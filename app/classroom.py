@@ -157,6 +157,12 @@ class Classroom:
         self._tell_all()
         return ""
 
+    def wrong_tries(self, key: int) -> int:
+        """Wrong tokens tab ``key`` typed within the last :data:`TOKEN_WINDOW` seconds."""
+        now = self._clock()
+        with self._lock:
+            return sum(1 for t in self._tries.get(key, []) if now - t < TOKEN_WINDOW)
+
     def resign(self, key: int) -> None:
         """The presenter stops presenting (followers keep the last state)."""
         with self._lock:

@@ -83,6 +83,8 @@ __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 
 log = logging.getLogger(__name__)
 
+TOKEN_PAUSE = 0.6
+"""A typed presenter token is tried once the typing has paused this long [s]."""
 MAX_REDRAWS_PER_SECOND = 40.0
 """A tab is redrawn at most this often; faster input is coalesced (all of it is reduced, drawn once)."""
 _JUMP = 0.35
@@ -134,6 +136,8 @@ class ClientSession:
         self.camera = TabCamera(client)
         self.recorder = TabRecorder(self.subscribe)
         self._scene_messages: tuple = ()
+        self._typed_token = ""
+        self._token_timer: threading.Timer | None = None
         self._scene_foreign = False
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.snapshot: Snapshot | None = None
@@ -431,6 +435,17 @@ class ClientSession:
                 "this server has no presenter mode (start it with --presenter or --presenter-token)"
             )
         if isinstance(action, ClaimPresenter):
+            if not action.settled:  # wait until the typing pauses, then try the latest text once
+                self._typed_token = action.token
+                if self._token_timer is not None:
+                    self._token_timer.cancel()
+                settled = ClaimPresenter(action.token, settled=True)
+                self._token_timer = threading.Timer(TOKEN_PAUSE, self.dispatch, (settled,))
+                self._token_timer.daemon = True
+                self._token_timer.start()
+                return
+            if action.token != self._typed_token:
+                return  # typing went on: a later try comes
             why = self.classroom.claim(self.key, action.token)
             if why:
                 self.client.add_notification("Not the presenter", why, color="yellow", auto_close_seconds=6.0)
@@ -586,6 +601,8 @@ class ClientSession:
     def close(self) -> None:
         """Forget the tab (it has gone: its handles went with its connection). Stops its ticker."""
         self._closed = True
+        if self._token_timer is not None:
+            self._token_timer.cancel()
         self.ticker.close()
         if self._own_renderer:
             self.renderer.close()

@@ -44,6 +44,7 @@ def settle(*sessions) -> None:
 def test_a_presenter_moves_and_every_follower_draws_the_same_snapshot():
     with room() as (lab, presenter, followers):
         wait_until(lambda: all(f.role.following for f in followers))
+        settle(presenter)
         assert presenter.role.followers == 2
         assert "2 tabs follow" in presenter.panel.classroom.status.content
         computed = presenter.redraws
@@ -121,7 +122,7 @@ def test_wrong_tokens_change_nothing():
     with room(1) as (lab, presenter, (follower,)):
         wait_until(lambda: follower.role.following)
         follower.panel.classroom.token.value = "lecture-8"
-        settle(follower)
+        wait_until(lambda: lab.classroom.wrong_tries(follower.key) == 1)
         assert presenter.role.presenting and not follower.role.presenting and follower.role.following
 
 
@@ -254,3 +255,14 @@ def test_a_followers_browser_gets_the_presenters_scene():
             theirs = np.asarray(scene_node(presenter, "/lab/arm/cylinders").batched_positions).reshape(-1, 3)
             assert not np.allclose(own, theirs)
             assert_all_finite(follower)
+
+
+def test_typing_the_token_key_by_key_tries_it_once():
+    """A browser sends every keystroke: the half-typed token must not use up the tab's tries."""
+    with room(1) as (lab, presenter, (follower,)):
+        token = follower.panel.classroom.token
+        for k in range(1, len(TOKEN) + 1):
+            token.value = TOKEN[:k]  # as typed, key by key
+        wait_until(lambda: follower.role.presenting)
+        assert not presenter.role.presenting and presenter.role.following
+        assert lab.classroom.wrong_tries(follower.key) == 0
