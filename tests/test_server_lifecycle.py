@@ -97,8 +97,12 @@ def test_a_killed_worker_is_replaced_for_the_next_request(tmp_path):
             ws.wait_for(_has_mathml, timeout=60)
             mark = ws.mark()
             ws.set_value(frame["uuid"], "tool")
-            _, msg = ws.wait_for(_has_mathml, after=mark, timeout=120)
+            # The tool-frame J, which only a new worker can compute (the first one was killed).
+            _, msg = ws.wait_for(
+                lambda m: _has_mathml(m) and "in tool axes" in str(m), after=mark, timeout=120
+            )
             assert "could not start" not in str(ws.messages)
+        poll(lambda: len(server.workers()) == 1, 10, "one new worker")
         (new_worker,) = server.workers()
         assert new_worker != worker
         assert "the symbolic worker stopped and was restarted" in server.log.read_text()
