@@ -110,19 +110,17 @@ class Classroom:
 
     def closed(self, key: int) -> None:
         """A tab closed: forget it; if it presented, the followers keep the last state and are told."""
+        unsubscribe = None
         with self._lock:
             self._members.pop(key, None)
             self._alone.discard(key)
             self._tries.pop(key, None)
             was_presenter = key == self._presenter
             if was_presenter:
-                self._stop_relay()
-        note = (
-            "The presenter has left: you keep what was shown and can explore on your own."
-            if was_presenter
-            else ""
-        )
-        self._tell_all(note)
+                unsubscribe = self._stop_relay()
+        if unsubscribe is not None:  # never under our lock: it takes the session's
+            unsubscribe()
+        self._tell_all(PRESENTER_LEFT if was_presenter else "")
 
     # ---------------------------------------------------------------- the presenter
     def claim(self, key: int, token: str) -> str:
@@ -147,11 +145,20 @@ class Classroom:
             member = self._members.get(key)
             if member is None:
                 return "this tab is not connected"
-            self._stop_relay()
+            previous = self._stop_relay()
             self._presenter = key
             self._alone.discard(key)
-            self._unsubscribe = member.subscribe(self._relay)
-            state, snap = member.latest
+        # Sessions' locks are taken outside ours only: a presenter's redraw holds its session's lock
+        # and then asks for ours (to relay), so the other order would deadlock.
+        if previous is not None:
+            previous()
+        unsubscribe: Callable[[], None] | None = member.subscribe(self._relay)
+        with self._lock:
+            if self._presenter == key and self._unsubscribe is None:
+                self._unsubscribe, unsubscribe = unsubscribe, None
+        if unsubscribe is not None:  # it was replaced meanwhile
+            unsubscribe()
+        state, snap = member.latest
         if snap is not None:
             self._relay(state, snap)
         self._tell_all()
@@ -168,14 +175,15 @@ class Classroom:
         with self._lock:
             if key != self._presenter:
                 return
-            self._stop_relay()
+            unsubscribe = self._stop_relay()
+        if unsubscribe is not None:
+            unsubscribe()
         self._tell_all("The presenter stopped presenting: explore on your own.")
 
-    def _stop_relay(self) -> None:
-        if self._unsubscribe is not None:
-            self._unsubscribe()
-        self._unsubscribe = None
-        self._presenter = None
+    def _stop_relay(self) -> Callable[[], None] | None:
+        """No presenter any more (under our lock); returns the unsubscribe to call after releasing it."""
+        unsubscribe, self._unsubscribe, self._presenter = self._unsubscribe, None, None
+        return unsubscribe
 
     # ---------------------------------------------------------------- following
     def explore_alone(self, key: int) -> None:

@@ -266,3 +266,60 @@ def test_typing_the_token_key_by_key_tries_it_once():
         wait_until(lambda: follower.role.presenting)
         assert not presenter.role.presenting and presenter.role.following
         assert lab.classroom.wrong_tries(follower.key) == 0
+
+
+def test_the_presenter_closing_while_it_redraws_does_not_deadlock():
+    """A presenter's redraw holds its session's lock and asks the classroom to relay; its tab closing
+    at that moment makes the classroom unsubscribe, which needs the session's lock. The classroom never
+    holds its own lock while it calls into a session, so both finish."""
+    import threading
+
+    room_ = Classroom("t")
+    relays = []
+    session_lock = threading.RLock()
+    unsubscribing = threading.Event()
+
+    class Tab:
+        latest = (None, None)
+        scene_messages = ()
+
+        def subscribe(self, fn):
+            relays.append(fn)
+
+            def unsubscribe():
+                unsubscribing.set()
+                with session_lock:  # as ClientSession.subscribe's unsubscribe does
+                    pass
+
+            return unsubscribe
+
+        def mirror(self, *args):
+            pass
+
+        def mirror_camera(self, *pose):
+            pass
+
+        def role_changed(self, role):
+            pass
+
+    room_.join(1, Tab())
+    room_.join(2, Tab())
+    assert room_.claim(1, "t") == ""
+    done = []
+
+    def redraw():  # the presenter's commit: its session lock held, then the relay
+        with session_lock:
+            started.set()
+            unsubscribing.wait(5)
+            relays[-1](None, None)  # the subscriber the classroom gave the presenter's session
+        done.append("redraw")
+
+    started = threading.Event()
+    a = threading.Thread(target=redraw, daemon=True)
+    a.start()
+    started.wait(5)
+    b = threading.Thread(target=lambda: (room_.closed(1), done.append("closed")), daemon=True)
+    b.start()
+    a.join(10)
+    b.join(10)
+    assert sorted(done) == ["closed", "redraw"]
