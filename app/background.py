@@ -13,7 +13,7 @@ from kinematics import Robot
 from kinematics.singularity import nearest
 
 from .actions import FollowPath
-from .motion_reducer import FRAME_DT
+from .motion_reducer import FRAME_DT, resample
 
 __all__ = ["background", "nearest_path", "DESCENT_SECONDS"]
 
@@ -32,13 +32,8 @@ def nearest_path(robot: Robot, q: np.ndarray) -> FollowPath:
     with what was found said in words."""
     result = nearest(robot, q)
     path = np.asarray(result.path, dtype=float)
-    frames = max(2, round(DESCENT_SECONDS / FRAME_DT))
-    # Resample by arc length in joint space, so the playback moves at a steady pace.
-    seg = np.linalg.norm(np.diff(path, axis=0), axis=1) if len(path) > 1 else np.zeros(0)
-    s = np.r_[0.0, np.cumsum(seg)]
-    if s[-1] > 0:
-        u = np.linspace(0.0, s[-1], frames)
-        path = np.stack([np.interp(u, s, path[:, k]) for k in range(path.shape[1])], axis=1)
+    steady = resample(path, max(2, round(DESCENT_SECONDS / FRAME_DT)))
+    path = steady if steady is not None else path
     report = result.report
     kinds = " and ".join(report.kinds) if report.kinds else "a"
     found = (

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -30,6 +31,7 @@ __all__ = [
     "self_move",
     "follow_path",
     "redundancy_rows",
+    "resample",
     "FRAME_DT",
     "IK_DAMPING",
     "IK_ITERATIONS",
@@ -151,25 +153,39 @@ def _stop(state: LabState, why: str, **changes: object) -> LabState:
     return state.replace(playing=False, stopped=why, **changes)
 
 
-def _joints(state: LabState, dt: float) -> LabState:
-    """q ← q + q̇ dt, stopping at a slider end (saying which joint stopped)."""
+def _moved(
+    state: LabState,
+    q: np.ndarray,
+    t: float,
+    trace: Callable[[np.ndarray], Trace | None],
+    touching: bool = False,
+) -> tuple[LabState, bool]:
+    """The state with q (clamped to the sliders) at time t and ``trace(q)``; stopped, naming the joints,
+    when q passed a slider end (``touching``: or reached it). Returns it and whether it stopped."""
     lo, hi = _bounds(state)
-    q = np.array(state.q) + np.array(state.qd) * dt
-    hit = np.flatnonzero((q <= lo) | (q >= hi))
+    hit = np.flatnonzero((q <= lo) | (q >= hi) if touching else (q < lo) | (q > hi))
     q = np.clip(q, lo, hi)
-    t = state.time + dt
-    m = state.motion
-    trace = sample(state, q, np.array(state.qd), m.trace, t) if m.kind == "joints" else m.trace
     changes: dict[str, object] = {
         "q": frozen(q),
         "time": t,
         "configuration": "",
-        "motion": m.replace(trace=trace),
+        "motion": state.motion.replace(trace=trace(q)),
     }
     if hit.size:
         names = ", ".join(state.robot.joints[i].name for i in hit)
         changes.update(playing=False, stopped=f"stopped: {names} reached the end of its range")
-    return state.replace(**changes)
+    return state.replace(**changes), bool(hit.size)
+
+
+def _joints(state: LabState, dt: float) -> LabState:
+    """q ← q + q̇ dt, stopping at a slider end (saying which joint stopped)."""
+    m, qd = state.motion, np.array(state.qd)
+    t = state.time + dt
+
+    def trace(q: np.ndarray) -> Trace | None:
+        return sample(state, q, qd, m.trace, t) if m.kind == "joints" else m.trace
+
+    return _moved(state, np.array(state.q) + qd * dt, t, trace, touching=True)[0]
 
 
 def _resolved_rate(state: LabState, dt: float) -> LabState:
@@ -192,20 +208,8 @@ def _resolved_rate(state: LabState, dt: float) -> LabState:
     if stop is not None:
         trace = sample(state, np.array(state.q), np.asarray(qd, float), m.trace, t)
         return _stop(state, f"stopped: {stop.message}", motion=m.replace(trace=trace))
-    lo, hi = _bounds(state)
-    hit = np.flatnonzero((q_next < lo) | (q_next > hi))
-    q_next = np.clip(q_next, lo, hi)
-    trace = sample(state, q_next, np.asarray(qd, float), m.trace, t)
-    changes: dict[str, object] = {
-        "q": frozen(q_next),
-        "time": t,
-        "configuration": "",
-        "motion": m.replace(trace=trace),
-    }
-    if hit.size:
-        names = ", ".join(robot.joints[i].name for i in hit)
-        changes.update(playing=False, stopped=f"stopped: {names} reached the end of its range")
-    return state.replace(**changes)
+    rates = np.asarray(qd, float)
+    return _moved(state, q_next, t, lambda q: sample(state, q, rates, m.trace, t))[0]
 
 
 def _climb(state: LabState) -> LabState:
@@ -219,23 +223,14 @@ def _climb(state: LabState) -> LabState:
         state.robot, state.q, gain=CLIMB_GAIN, max_step=CLIMB_STEP, rows=rows, hold=anchor
     )
     w0 = float(m.trace.w[-1]) if m.trace is not None and len(m.trace) else 0.0
-    lo, hi = _bounds(state)
-    hit = np.flatnonzero((q_next < lo) | (q_next > hi))
-    q_next = np.clip(q_next, lo, hi)
     t = state.time + FRAME_DT
-    trace = sample(state, q_next, (q_next - np.array(state.q)) / FRAME_DT, m.trace, t, rows)
-    changes: dict[str, object] = {
-        "q": frozen(q_next),
-        "time": t,
-        "configuration": "",
-        "motion": m.replace(trace=trace),
-    }
-    if hit.size:
-        names = ", ".join(state.robot.joints[i].name for i in hit)
-        changes.update(playing=False, stopped=f"stopped: {names} reached the end of its range")
-    elif w1 - w0 <= 1e-6 * max(w0, 1e-12):
-        changes.update(playing=False, stopped=f"w reached a maximum with the tool held: w = {w1:.4g}")
-    return state.replace(**changes)
+    q0 = np.array(state.q)
+    moved, stopped = _moved(
+        state, q_next, t, lambda q: sample(state, q, (q - q0) / FRAME_DT, m.trace, t, rows)
+    )
+    if not stopped and w1 - w0 <= 1e-6 * max(w0, 1e-12):
+        return moved.replace(playing=False, stopped=f"w reached a maximum with the tool held: w = {w1:.4g}")
+    return moved
 
 
 def _path(state: LabState) -> LabState:
@@ -359,6 +354,18 @@ def self_move(state: LabState, s: float) -> LabState:
     trace = readonly(np.vstack([st, [[s, w]]])[-600:])
     motion_state = m.replace(s=float(s), anchor=anchor, self_trace=trace, direction=readonly(direction))
     return state.replace(q=frozen(q), configuration="", stopped="", motion=motion_state)
+
+
+def resample(path: np.ndarray, count: int, eased: bool = False) -> np.ndarray | None:
+    """``path`` (k, n) as ``count`` configurations evenly spaced in joint-space length (``eased``: slow
+    start and slow arrival), for playing it back at a steady pace; ``None`` when it has no length."""
+    path = np.asarray(path, dtype=float)
+    along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
+    if along[-1] <= 0.0:
+        return None
+    u = np.linspace(0.0, 1.0, count)
+    s = (0.5 - 0.5 * np.cos(np.pi * u) if eased else u) * along[-1]
+    return np.column_stack([np.interp(s, along, path[:, j]) for j in range(path.shape[1])])
 
 
 def follow_path(state: LabState, path: tuple[tuple[float, ...], ...], found: str) -> LabState:

@@ -33,6 +33,7 @@ from kinematics.singularity import nearest
 from .actions import ApplyPreset, FollowPath, Play, Step
 from .camera import FROM_ABOVE, View, facing, framing, in_view
 from .fmt import number
+from .motion_reducer import resample
 from .reducer import reduce
 from .scene import SceneView
 from .scene.geometry import finite
@@ -168,14 +169,8 @@ def _rows(path: np.ndarray) -> tuple[tuple[float, ...], ...]:
 def _eased(path: np.ndarray, steps: int) -> np.ndarray:
     """``path`` (k, n) resampled to ``steps`` + 1 configurations, evenly in joint-space length, eased in
     and out (slow start, slow arrival), so a path of a few Newton iterates plays smoothly."""
-    if len(path) == 1:
-        return np.repeat(path, steps + 1, axis=0)
-    along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
-    t = np.linspace(0.0, 1.0, steps + 1)
-    s = (0.5 - 0.5 * np.cos(np.pi * t)) * along[-1]
-    if along[-1] <= 0.0:
-        return np.repeat(path[:1], steps + 1, axis=0)
-    return np.column_stack([np.interp(s, along, path[:, j]) for j in range(path.shape[1])])
+    eased = resample(path, steps + 1, eased=True)
+    return eased if eased is not None else np.repeat(np.asarray(path, float)[:1], steps + 1, axis=0)
 
 
 def play(demo: Demo, seconds: float, fps: float) -> tuple[LabState, ...]:

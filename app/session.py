@@ -186,7 +186,8 @@ class ClientSession:
                 for action in actions:
                     if isinstance(action, Mirror):  # the presenter's state, drawn as it is
                         state, given, jump = action.state, action, False  # the camera is the presenter's
-                        if self.catalog.keep_shown(state.robot_name, state.robot):  # built or uploaded there
+                        new_robot = state.robot is not self.state.robot  # only then may it be unknown here
+                        if new_robot and self.catalog.keep_shown(state.robot_name, state.robot):
                             self.panel.set_robot_names(self.catalog.names())
                         if replay is not None and action.scene and self.scene is not None:
                             replay.extend(action.scene)
