@@ -53,6 +53,7 @@ from .actions import (
     ToggleRecording,
     UploadRobot,
 )
+from .derive import METHODS
 from .dh_table import edited_state
 from .motion_reducer import FRAME_DT, MotionRefused
 from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
@@ -66,6 +67,7 @@ _CHOICES = {
     "twist_frame": ("base", "tool"),
     "ik_method": ("dls", "newton"),
     "ik_mode": ("position", "pose"),
+    "derive": tuple(METHODS),
 }
 _JOINT_OPTIONS = ("map_i", "map_j")
 
@@ -221,6 +223,10 @@ def _option(options: Options, name: str, value: object, n: int) -> Options:
         value = min(max(_finite(value, name), lo), hi)
     elif name in _JOINT_OPTIONS:
         value = _index(value, n, "map joint")
+    elif name == "derive_step":  # the Derive tab's previous/next buttons: clamped, never refused
+        if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
+            raise InvalidAction(f"derive_step is a joint index (an integer), got {value!r}")
+        value = min(max(int(value), 0), n - 1)
     elif name in _CHOICES:
         if value not in _CHOICES[name]:
             raise InvalidAction(f"{name} must be one of {_CHOICES[name]}, got {value!r}")

@@ -29,6 +29,7 @@ from kinematics.inverse import solve_rates
 from kinematics.lost import LostDirection, lost_direction
 from kinematics.singularity import SingularityReport, assess
 
+from .derive import Derivation, derivation
 from .maps import Cloud, JointMap, joint_map, workspace_cloud
 from .ranges import reach
 from .state import LabState
@@ -70,6 +71,7 @@ class Snapshot:
         torques: Jᵀ F (n,) [N·m | N] balancing the applied wrench.
         joint_map: w over the two chosen joints (when the map is shown), else ``None``.
         cloud: The workspace cloud (when shown), else ``None``.
+        derive: The Derive tab's step as numbers (when it walks through a method), else ``None``.
         T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
     """
 
@@ -98,6 +100,7 @@ class Snapshot:
     torques: np.ndarray
     joint_map: JointMap | None = None
     cloud: Cloud | None = None
+    derive: Derivation | None = None
 
     @property
     def T_tool(self) -> np.ndarray:
@@ -158,6 +161,7 @@ def compute(state: LabState) -> Snapshot:
         torques=J.T @ state.wrench,
         joint_map=_map(state),
         cloud=workspace_cloud(robot) if state.options.workspace else None,
+        derive=derivation(state),
     )
 
 

@@ -61,6 +61,9 @@ class Options:
         workspace: Show the workspace cloud (tool points of random configurations coloured by w).
         joint_map: Compute and show the map of w over two joints.
         map_i, map_j: The two joints of the map (indices).
+        derive: The course derivation the Derive tab walks through ("" none, "dh", "whitney",
+            "differentiation", "propagation", "force"; see :mod:`app.derive`).
+        derive_step: Its step: joint i (0-based), row i + 1 of the DH table.
     """
 
     frames: bool = False
@@ -82,6 +85,8 @@ class Options:
     joint_map: bool = False
     map_i: int = 1
     map_j: int = 2
+    derive: str = ""
+    derive_step: int = 0
 
 
 GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")
@@ -106,6 +111,7 @@ def default_options(robot: Robot, keep: Options | None = None) -> Options:
         # q1 of most arms turns everything about the base axis and leaves w unchanged: map q2, q3.
         map_i=1 if robot.dof >= 3 else 0,
         map_j=2 if robot.dof >= 3 else min(1, robot.dof - 1),
+        derive_step=min(base.derive_step, robot.dof - 1),
     )
 
 

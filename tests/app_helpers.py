@@ -89,6 +89,8 @@ def gui_contents(session: ClientSession) -> list[str]:
     ]
     if p.motion is not None and p.maps is not None:
         handles += [p.motion.readout, p.motion.ik, p.motion.about, p.maps.map]
+    if p.derive is not None:
+        handles += [p.derive.table, p.derive.body]
     return [h.content for h in handles]
 
 

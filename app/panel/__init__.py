@@ -31,6 +31,7 @@ from ..state import LabState, Options
 from ..viser_adapter import handle_uuid, run_javascript, set_page_title
 from .classroom import ClassroomPanel
 from .common import Dispatch, bind, sync_value
+from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .explore import MapsPanel, MotionPanel, slider_ids
 from .joints import JointsPanel, configurations_html
@@ -107,6 +108,7 @@ class PanelView:
         self.tab_force = self.views.add_tab("τ = JᵀF", viser.Icon.WEIGHT)
         self.tab_motion = self.views.add_tab("Motion", viser.Icon.PLAYER_PLAY)
         self.tab_maps = self.views.add_tab("Maps", viser.Icon.MAP)
+        self.tab_derive = self.views.add_tab("Derive", viser.Icon.STAIRS)
         self.tab_view = self.views.add_tab("View", viser.Icon.EYE)
         self.tab_build = self.views.add_tab("Build", viser.Icon.TOOL)
         self.views.dock_below(gui.main_panel)
@@ -141,6 +143,7 @@ class PanelView:
         self.matrix: MatrixPanel | None = None
         self.motion: MotionPanel | None = None
         self.maps: MapsPanel | None = None
+        self.derive: DerivePanel | None = None
         self.about: viser.GuiHtmlHandle | None = None
 
     def build_robot(
@@ -192,10 +195,13 @@ class PanelView:
             self.motion = MotionPanel(self.gui, self.dispatch, robot, presets, order=100)
         with self.tab_maps:
             self.maps = MapsPanel(self.gui, self.dispatch, robot, slider_ids(self.joints.sliders), order=100)
+        with self.tab_derive:
+            self.derive = DerivePanel(self.gui, self.dispatch, robot, order=100)
         with self.tab_view:
             self.about = self.gui.add_html(configurations_html(robot), order=200)
         sliders = [*self.joints.sliders, *self.forward.sliders, *self.inverse.sliders.values()]
         sliders += [*self.force.sliders.values(), self.inverse.damping, self.scale, self.motion.speed]
+        sliders.append(self.derive.step)
         if self.motion.self_slider is not None:
             sliders.append(self.motion.self_slider)
         run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
@@ -218,18 +224,19 @@ class PanelView:
             self.matrix,
             self.motion,
             self.maps,
+            self.derive,
             self.about,
         )
         for part in parts:
             if part is not None:
                 part.remove()
         self.joints = self.forward = self.inverse = self.force = self.matrix = self.about = None
-        self.motion = self.maps = None
+        self.motion = self.maps = self.derive = None
 
     def draw(self, state: LabState, snap: Snapshot) -> None:
         """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes)."""
         assert self.joints and self.forward and self.inverse and self.force and self.matrix
-        assert self.motion and self.maps
+        assert self.motion and self.maps and self.derive
         sync_value(self.robot, state.robot_name)
         self.joints.show(state.q, state.configuration)
         self.forward.show(state)
@@ -247,6 +254,7 @@ class PanelView:
         self.force.update(snap, state)
         self.motion.draw(state, snap)
         self.maps.draw(state, snap)
+        self.derive.draw(state, snap)
 
     def show_recording(self, recording: bool) -> None:
         """The record button says what a click does next."""

@@ -67,6 +67,17 @@ BASE_CSS = """
 .jl-close-row { display: flex; justify-content: flex-end; margin: -8px 0 4px 0; }
 .jl-close-x { border: 1px solid #c4c8ce; border-radius: 6px; background: #f4f5f7; font-size: 18px;
   line-height: 1.2; padding: 2px 10px; cursor: pointer; color: #1f2328; }
+/* The Derive tab: DH table, one step of a derivation, small 4×4 transforms. */
+.jl-dh { border-collapse: collapse; width: 100%; font-size: 13px; font-variant-numeric: tabular-nums; }
+.jl-dh th { font-weight: 600; color: #3d434b; border-bottom: 1px solid #bbb; padding: 1px 3px; }
+.jl-dh td { text-align: center; padding: 2px 3px; white-space: nowrap; }
+.jl-dh tr.sel td { background: #eef2ff; outline: 2px solid #3b5bdb; outline-offset: -2px; }
+.jl-step-head { font-weight: 700; font-size: 14px; border-left: 5px solid; padding-left: 6px; margin: 2px 0 4px 0; }
+.jl-formula { font-size: 14px; margin: 2px 0 4px 0; color: #1f2328; }
+.jl-vec tr.res td, .jl-vec tr.res th { font-weight: 700; color: #1f2328; border-top: 1px solid #ccc; }
+.jl-t4s { display: flex; gap: 8px; justify-content: space-between; }
+.jl-t4-title { font-size: 12.5px; font-weight: 600; color: #3d434b; text-align: center; }
+.jl-br { border-left: 2px solid #555; border-right: 2px solid #555; font-size: 12px; }
 /* Slider labels and numbers readable from the back row. */
 .mantine-Slider-root { min-height: 1.9em; }
 label { font-size: 13px !important; }

@@ -39,7 +39,7 @@ from ..viser_adapter import update_props
 from .arm import ArmGeometry
 from .geometry import TINY, finite, set_if_changed, wxyz_one
 
-__all__ = ["Overlays", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE"]
+__all__ = ["Overlays", "Arrows", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE"]
 
 LINEAR_SECONDS = 0.5
 """Drawn length [m] per [m/s] of tool-point velocity (and per [m/rad] of a column)."""
@@ -51,7 +51,7 @@ SHOWN_SHARE = 0.1
 _MIN_LENGTH = 1e-3
 
 
-class _Arrows:
+class Arrows:
     """One batched arrows node: only the arrows long enough to see are sent."""
 
     def __init__(self, scene: viser.SceneApi, name: str, radius: float) -> None:
@@ -144,10 +144,10 @@ class Overlays:
         self.force = _Ellipsoid(scene, f"{root}/force_ellipsoid", FORCE_ELLIPSOID_RGB, 0.2)
         r = 0.009 * s
         self._joint_colors = np.array([joint_color(i) for i in range(dof)], np.uint8)
-        self.columns = _Arrows(scene, f"{root}/columns", r)
-        self.angular = _Arrows(scene, f"{root}/angular_columns", 0.75 * r)
-        self.motion = _Arrows(scene, f"{root}/twist_and_force", 1.2 * r)
-        self.lost_v = _Arrows(scene, f"{root}/lost_translation", 1.6 * r)
+        self.columns = Arrows(scene, f"{root}/columns", r)
+        self.angular = Arrows(scene, f"{root}/angular_columns", 0.75 * r)
+        self.motion = Arrows(scene, f"{root}/twist_and_force", 1.2 * r)
+        self.lost_v = Arrows(scene, f"{root}/lost_translation", 1.6 * r)
         self.lost_w = scene.add_line_segments(
             f"{root}/lost_rotation",
             points=np.zeros((1, 2, 3), np.float32),

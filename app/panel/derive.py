@@ -1,0 +1,97 @@
+"""The Derive tab: the DH table, then the course's derivations walked through joint by joint.
+
+The DH table always shows the current joint variables (θᵢ or dᵢ, in the joint's colour).
+A dropdown picks what to walk through (:data:`app.derive.METHODS`); a slider and
+Previous/Next buttons pick the step (joint i); the step's numbers at q are shown with the
+check against J, its vectors are drawn in the 3-D view (:mod:`app.scene.derive`) and, on
+demand, its formula in symbols (computed in the symbolic worker).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import viser
+
+from kinematics import Robot
+
+from ..actions import SetOption
+from ..derive import METHODS
+from ..snapshot import Snapshot
+from ..state import LabState
+from .common import Dispatch, bind, bind_click, sync_value
+from .derive_html import dh_table_html, step_html
+
+__all__ = ["DerivePanel"]
+
+_LABELS = {label: key for key, label in METHODS.items()}
+
+
+class DerivePanel:
+    """The Derive tab's handles for one robot."""
+
+    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+        self.robot = robot
+        self.dispatch = dispatch
+        self._step = 0
+        self.method = gui.add_dropdown(
+            "Walk through",
+            tuple(METHODS.values()),
+            initial_value=METHODS[""],
+            order=order,
+            hint="Pick one of the course's derivations of J and step through it joint by joint.",
+        )
+        bind(self.method, dispatch, lambda v: SetOption("derive", _LABELS[v]) if v in _LABELS else None)
+        self.step = gui.add_slider(
+            "Joint i",
+            min=1,
+            max=max(robot.dof, 2),
+            step=1,
+            initial_value=1,
+            order=order + 2,
+            disabled=robot.dof < 2,
+        )
+        bind(self.step, dispatch, lambda v: SetOption("derive_step", int(round(v)) - 1))
+        self.buttons = gui.add_button_group("Step", ("◀ Previous", "Next ▶"), order=order + 3)
+        self.buttons.on_click(self._clicked)
+        self.body = gui.add_html("", order=order + 4)
+        self.formula_button = gui.add_button("Show the step in symbols", order=order + 5, visible=False)
+        self.formula = gui.add_html("", order=order + 6, visible=False)
+        self.table = gui.add_html("", order=order + 7)
+        self._parts: list[Any] = [
+            self.table,
+            self.method,
+            self.step,
+            self.buttons,
+            self.body,
+            self.formula_button,
+            self.formula,
+        ]
+
+    def _clicked(self, event: viser.GuiEvent) -> None:
+        delta = -1 if str(event.target.value).startswith("◀") else 1
+        self.dispatch(SetOption("derive_step", self._step + delta))
+
+    def on_formula(self, callback: object) -> None:
+        """Call ``callback()`` when the user asks for the step in symbols (a session command)."""
+        bind_click(self.formula_button, self.dispatch, callback)  # type: ignore[arg-type]
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        options = state.options
+        self._step = options.derive_step
+        walking = bool(options.derive)
+        self.table.content = dh_table_html(self.robot, snap.q, options.derive_step if walking else None)
+        sync_value(self.method, METHODS.get(options.derive, METHODS[""]))
+        sync_value(self.step, float(options.derive_step + 1))
+        self.step.visible = self.buttons.visible = walking
+        self.body.visible = walking
+        if snap.derive is not None:
+            self.body.content = step_html(self.robot, snap.derive, snap)
+
+    def show_formula(self, html: str) -> None:
+        self.formula.content = html
+        self.formula.visible = bool(html)
+
+    def remove(self) -> None:
+        for part in self._parts:
+            part.remove()
