@@ -10,7 +10,17 @@ import time
 import numpy as np
 import pytest
 
-__all__ = ["CHROMIUM", "ARGS", "VIEWPORT", "require_browser", "image", "wait", "canvas", "steady_canvas"]
+__all__ = [
+    "CHROMIUM",
+    "ARGS",
+    "VIEWPORT",
+    "require_browser",
+    "image",
+    "wait",
+    "canvas",
+    "steady_canvas",
+    "close_notifications",
+]
 
 CHROMIUM = "/usr/bin/chromium"
 ARGS = [
@@ -73,3 +83,15 @@ def steady_canvas(page, timeout: float = 30.0) -> np.ndarray:
             return now
         last = now
     raise AssertionError("the 3-D view never settled")
+
+
+def close_notifications(page) -> None:
+    """Close the toasts shown at start (one may close itself meanwhile: that is fine)."""
+    from playwright.sync_api import Error
+
+    for button in page.query_selector_all(".mantine-Notification-closeButton"):
+        try:  # forced: a toast still sliding in is not "stable", and waiting for it is pointless
+            button.click(timeout=5000, force=True)
+        except Error:
+            if button.is_visible():
+                raise

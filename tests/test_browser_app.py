@@ -8,80 +8,26 @@ test; locally it is skipped. The final screenshot is saved to
 
 from __future__ import annotations
 
-import io
 import math
 import os
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
+from browser_helpers import (
+    ARGS,
+    CHROMIUM,
+    VIEWPORT,
+    close_notifications,
+    require_browser,
+    steady_canvas,
+    wait,
+)
 
 from app.server import Lab
 from app.viser_adapter import handle_uuid
 
-CHROMIUM = "/usr/bin/chromium"
-ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
-VIEWPORT = {"width": 1280, "height": 720}
-
 pytestmark = pytest.mark.browser
-
-
-def _require_browser():
-    """Playwright's sync API, or skip (fail in CI) when Chromium or Playwright is missing."""
-    missing = []
-    if not os.path.exists(CHROMIUM):
-        missing.append(CHROMIUM)
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        sync_playwright = None
-        missing.append("the playwright package")
-    if missing:
-        message = f"browser test needs {' and '.join(missing)} (python tests/install_test_deps.py)"
-        if os.environ.get("CI"):
-            pytest.fail(message)
-        pytest.skip(message)
-    return sync_playwright
-
-
-def _image(png: bytes) -> np.ndarray:
-    from PIL import Image
-
-    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
-
-
-def _wait(predicate, timeout: float = 30.0) -> None:
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        if predicate():
-            return
-        time.sleep(0.05)
-    raise AssertionError("condition not reached in time")
-
-
-def _canvas(page) -> np.ndarray:
-    return _image(page.locator("canvas").first.screenshot())
-
-
-def _steady_canvas(page, timeout: float = 30.0) -> np.ndarray:
-    """The 3-D view once two consecutive frames agree (rendering has caught up)."""
-    end = time.monotonic() + timeout
-    last = _canvas(page)
-    while time.monotonic() < end:
-        now = _canvas(page)
-        if (np.abs(now - last).max(axis=-1) > 30).mean() < 0.0005:
-            return now
-        last = now
-    raise AssertionError("the 3-D view never settled")
 
 
 def _modal_open(page) -> bool:
@@ -91,7 +37,7 @@ def _modal_open(page) -> bool:
 def test_app_in_chromium_at_1280x720(tmp_path):
     """Layout, keyboard sliders, the view changing, a singular configuration, and the enlarged J closing
     with Escape, its × and a click outside."""
-    sync_playwright = _require_browser()
+    sync_playwright = require_browser()
     out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out_dir.mkdir(parents=True, exist_ok=True)
     lab = Lab(port=0)
@@ -105,10 +51,9 @@ def test_app_in_chromium_at_1280x720(tmp_path):
                 page.goto(lab.url)
                 page.wait_for_selector("[role=slider]", timeout=120_000)
                 session = lab.session()
-                _wait(lambda: session.snapshot is not None and page.locator(".jl-matrix").count() > 0)
-                _wait(lambda: page.title() == "Jacobian Lab")
-                for button in page.query_selector_all(".mantine-Notification-closeButton"):
-                    button.click()
+                wait(lambda: session.snapshot is not None and page.locator(".jl-matrix").count() > 0)
+                wait(lambda: page.title() == "Jacobian Lab")
+                close_notifications(page)
 
                 # The 3-D view is the largest thing on screen, and joints and J are both in sight.
                 box = page.locator("canvas").first.bounding_box()
@@ -121,7 +66,7 @@ def test_app_in_chromium_at_1280x720(tmp_path):
                 assert "regular" in page.locator(".jl-status").first.inner_text()
 
                 # Arrow keys on a slider move the joint (1° a press; Shift: 0.1°), never the camera.
-                canvas_before = _steady_canvas(page)
+                canvas_before = steady_canvas(page)
                 matrix_before = page.locator(".jl-matrix").first.inner_text()
                 slider = session.panel.joints.sliders[1]
                 q_before = float(session.state.q[1])
@@ -130,11 +75,11 @@ def test_app_in_chromium_at_1280x720(tmp_path):
                 thumb.first.focus()
                 for _ in range(8):
                     page.keyboard.press("ArrowRight")
-                _wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.0), abs=1e-6))
+                wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.0), abs=1e-6))
                 page.keyboard.press("Shift+ArrowRight")
-                _wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.1), abs=1e-6))
-                _wait(lambda: page.locator(".jl-matrix").first.inner_text() != matrix_before)
-                canvas_after = _steady_canvas(page)
+                wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.1), abs=1e-6))
+                wait(lambda: page.locator(".jl-matrix").first.inner_text() != matrix_before)
+                canvas_after = steady_canvas(page)
                 np.testing.assert_allclose(session.client.camera.position, camera_before, atol=1e-6)
                 changed = np.abs(canvas_after - canvas_before).max(axis=-1) > 30
                 assert changed.mean() > 0.002, f"the 3-D view barely changed ({changed.mean():.4%} of pixels)"
@@ -142,11 +87,11 @@ def test_app_in_chromium_at_1280x720(tmp_path):
                 # A singular configuration reads out in words and as ∞.
                 page.get_by_label("Configuration", exact=True).first.click()
                 page.get_by_role("option", name="wrist singular (singular)", exact=True).click()
-                _wait(lambda: "singular: wrist" in page.locator(".jl-status").first.inner_text())
+                wait(lambda: "singular: wrist" in page.locator(".jl-status").first.inner_text())
                 assert "∞" in page.locator(".jl-status").first.inner_text()
                 body = page.locator("body").inner_text()
                 assert "NaN" not in body and "nan" not in body.split()
-                _steady_canvas(page)
+                steady_canvas(page)
                 shot = out_dir / "app_browser.png"
                 page.screenshot(path=str(shot))
                 print(f"screenshot: {shot}")
@@ -155,7 +100,7 @@ def test_app_in_chromium_at_1280x720(tmp_path):
                 enlarge = page.get_by_role("button", name="Enlarge J (Esc closes)")
                 for close in ("Escape", "x", "outside"):
                     enlarge.click()
-                    _wait(lambda: _modal_open(page))
+                    wait(lambda: _modal_open(page))
                     assert session.panel.matrix.enlarged
                     if close == "Escape":
                         page.keyboard.press("Escape")
@@ -163,8 +108,8 @@ def test_app_in_chromium_at_1280x720(tmp_path):
                         page.locator(".jl-close-x").click()
                     else:
                         page.mouse.click(8, VIEWPORT["height"] - 8)
-                    _wait(lambda: not _modal_open(page))
-                    _wait(lambda: not session.panel.matrix.enlarged)
+                    wait(lambda: not _modal_open(page))
+                    wait(lambda: not session.panel.matrix.enlarged)
             finally:
                 browser.close()
     finally:
@@ -176,7 +121,7 @@ def test_app_in_chromium_at_1280x720(tmp_path):
 def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
     """The Motion tab: a preset and Play move the arm by itself (the 3-D view changes with no input)
     and the charts appear; the Maps tab: a click on the joint map moves the two joints there."""
-    sync_playwright = _require_browser()
+    sync_playwright = require_browser()
     out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out_dir.mkdir(parents=True, exist_ok=True)
     lab = Lab(port=0)
@@ -190,34 +135,33 @@ def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
                 page.goto(lab.url)
                 page.wait_for_selector("[role=slider]", timeout=120_000)
                 session = lab.session()
-                _wait(lambda: session.snapshot is not None)
-                for button in page.query_selector_all(".mantine-Notification-closeButton"):
-                    button.click()
+                wait(lambda: session.snapshot is not None)
+                close_notifications(page)
 
                 page.get_by_role("tab", name="Motion").click()
                 page.get_by_label("Preset", exact=True).first.click()
                 page.get_by_role(
                     "option", name="straight line into the wrist singularity", exact=True
                 ).click()
-                _wait(lambda: session.state.motion.preset == "straight line into the wrist singularity")
-                before = _steady_canvas(page)
+                wait(lambda: session.state.motion.preset == "straight line into the wrist singularity")
+                before = steady_canvas(page)
                 page.get_by_role("button", name="Play", exact=True).click()
-                _wait(lambda: session.state.playing)
+                wait(lambda: session.state.playing)
                 # Nothing else is touched: the arm moves by itself until it stops, saying why.
-                _wait(lambda: not session.state.playing, timeout=60)
+                wait(lambda: not session.state.playing, timeout=60)
                 assert session.state.stopped.startswith("stopped:")
                 assert len(session.state.motion.trace) > 60
-                after = _steady_canvas(page)
+                after = steady_canvas(page)
                 changed = np.abs(after - before).max(axis=-1) > 30
                 assert changed.mean() > 0.01, f"the 3-D view barely changed ({changed.mean():.4%} of pixels)"
                 page.get_by_text("joint rates", exact=True).first.scroll_into_view_if_needed()
-                _wait(lambda: page.locator(".uplot").count() >= 3)
+                wait(lambda: page.locator(".uplot").count() >= 3)
                 assert page.locator(".uplot canvas").first.bounding_box()["width"] > 200
                 page.screenshot(path=str(out_dir / "app_motion.png"))
 
                 page.get_by_role("tab", name="Maps").click()
                 page.get_by_label("Joint-space map of w", exact=True).first.check()
-                _wait(lambda: page.locator(".jl-map img").count() > 0)
+                wait(lambda: page.locator(".jl-map img").count() > 0)
                 q_before = np.array(session.state.q)
                 image = page.locator(".jl-map img").first
                 image.scroll_into_view_if_needed()
@@ -226,8 +170,8 @@ def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
                 jm = session.snapshot.joint_map
                 want_i = jm.lo[0] + 0.25 * (jm.hi[0] - jm.lo[0])
                 want_j = jm.hi[1] - 0.5 * (jm.hi[1] - jm.lo[1])
-                _wait(lambda: abs(math.degrees(session.state.q[jm.i]) - want_i) < 1.0)
-                _wait(lambda: abs(math.degrees(session.state.q[jm.j]) - want_j) < 1.0)
+                wait(lambda: abs(math.degrees(session.state.q[jm.i]) - want_i) < 1.0)
+                wait(lambda: abs(math.degrees(session.state.q[jm.j]) - want_j) < 1.0)
                 others = [k for k in range(len(q_before)) if k not in (jm.i, jm.j)]
                 np.testing.assert_allclose(np.array(session.state.q)[others], q_before[others])
                 page.screenshot(path=str(out_dir / "app_maps.png"))

@@ -8,7 +8,15 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from browser_helpers import ARGS, CHROMIUM, VIEWPORT, require_browser, steady_canvas, wait
+from browser_helpers import (
+    ARGS,
+    CHROMIUM,
+    VIEWPORT,
+    close_notifications,
+    require_browser,
+    steady_canvas,
+    wait,
+)
 
 from app.fmt import fixed
 from app.server import Lab
@@ -33,8 +41,7 @@ def test_derive_tab_in_chromium_walks_whitney_on_the_puma(tmp_path):
                 page.wait_for_selector("[role=slider]", timeout=120_000)
                 session = lab.session()
                 wait(lambda: session.snapshot is not None)
-                for button in page.query_selector_all(".mantine-Notification-closeButton"):
-                    button.click()
+                close_notifications(page)
                 page.get_by_role("tab", name="Derive").click()
                 page.get_by_text("θᵢ", exact=True).first.wait_for()  # the DH table
                 before = steady_canvas(page)

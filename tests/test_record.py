@@ -9,7 +9,6 @@ marked like the app's browser tests (skipped locally without Chromium, failing u
 from __future__ import annotations
 
 import html
-import io
 import math
 import os
 import socket
@@ -23,6 +22,7 @@ import msgspec
 import numpy as np
 import pytest
 import zstandard
+from browser_helpers import ARGS, CHROMIUM, close_notifications, image, require_browser
 
 import robots
 from app.actions import ApplyPreset, Play, Step
@@ -231,35 +231,6 @@ def test_record_into_a_folder_that_cannot_be_written_fails_clearly(tmp_path, cap
 
 
 # ------------------------------------------------------------------ in a real browser
-CHROMIUM = "/usr/bin/chromium"
-ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
-
-
-def _require_browser():
-    missing = []
-    if not os.path.exists(CHROMIUM):
-        missing.append(CHROMIUM)
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        sync_playwright = None
-        missing.append("the playwright package")
-    if missing:
-        message = f"browser test needs {' and '.join(missing)} (python tests/install_test_deps.py)"
-        if os.environ.get("CI"):
-            pytest.fail(message)
-        pytest.skip(message)
-    return sync_playwright
-
-
 def _free_port(lo: int = 8600, hi: int = 8699) -> int:
     for port in range(lo, hi + 1):
         with socket.socket() as s:
@@ -289,15 +260,9 @@ def _answers(url: str) -> bool:
         return False
 
 
-def _image(png: bytes) -> np.ndarray:
-    from PIL import Image
-
-    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
-
-
 @pytest.mark.browser
 def test_the_recorded_demo_plays_from_a_static_server_in_chromium(tmp_path):
-    sync_playwright = _require_browser()
+    sync_playwright = require_browser()
     shots = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     shots.mkdir(parents=True, exist_ok=True)
     out = tmp_path / "demo"
@@ -329,18 +294,17 @@ def test_the_recorded_demo_plays_from_a_static_server_in_chromium(tmp_path):
                 assert page.url.endswith(f"?playbackPath={RECORDING}")
                 page.wait_for_selector("canvas", timeout=120_000)
                 assert page.title().startswith(robots.load("puma560").title)
-                for button in page.query_selector_all(".mantine-Notification-closeButton"):
-                    button.click()
+                close_notifications(page)
                 canvas = page.locator("canvas").first
 
                 def drawn():  # the recording loaded and drawn: the arm, its glyphs, the labels
-                    shot = _image(canvas.screenshot())
+                    shot = image(canvas.screenshot())
                     return shot if (np.abs(shot - shot[5, 5]).max(axis=-1) > 60).mean() > 0.01 else None
 
                 first = _poll(drawn, 120, "the scene drawn on the canvas")
 
                 def moved() -> bool:
-                    now = _image(canvas.screenshot())
+                    now = image(canvas.screenshot())
                     return bool((np.abs(now - first).max(axis=-1) > 40).mean() > 0.002)
 
                 _poll(moved, 120, "the arm moving while the demo plays")
