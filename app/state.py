@@ -61,6 +61,12 @@ class Options:
         workspace: Show the workspace cloud (tool points of random configurations coloured by w).
         joint_map: Compute and show the map of w over two joints.
         map_i, map_j: The two joints of the map (indices).
+        representation: What the J(q) tab shows: "geometric" J, or the analytic J_A with
+            roll-pitch-yaw ("zyx") or Euler ZYZ ("zyz") angles.
+        jdot_arrow: Draw J̇ q̇ (the tool's acceleration when the joints turn at constant rate) at the
+            tool while joint rates are set.
+        course_letters: Write the symbolic J, det J and J⁻¹ with the DH parameters as letters (l₁, a₂, d₄ …).
+        symbolic_inverse: Show the symbolic J⁻¹ = adj(J) / det J (asked for with a button: it takes seconds).
     """
 
     frames: bool = False
@@ -82,6 +88,10 @@ class Options:
     joint_map: bool = False
     map_i: int = 1
     map_j: int = 2
+    representation: Literal["geometric", "zyx", "zyz"] = "geometric"
+    jdot_arrow: bool = True
+    course_letters: bool = False
+    symbolic_inverse: bool = False
 
 
 GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")

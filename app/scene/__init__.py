@@ -17,6 +17,7 @@ from kinematics import Robot
 from ..panel.common import Dispatch
 from ..snapshot import Snapshot
 from ..state import LabState
+from .accel import AccelArrow
 from .arm import ArmGeometry, ArmView
 from .drive import DriveView
 from .overlays import Overlays
@@ -40,6 +41,7 @@ class SceneView:
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
         self.overlays = Overlays(client.scene, self.arm.geometry, robot.dof, robot.planar, f"{root}/jacobian")
+        self.accel = AccelArrow(client.scene, self.size, f"{root}/jacobian")
         self.drive = DriveView(
             client.scene, dispatch or (lambda action: None), self.size, robot.planar, f"{root}/drive"
         )
@@ -52,17 +54,19 @@ class SceneView:
     @property
     def extent(self) -> np.ndarray:
         """Points (N, 3) [m] of everything drawn at the last update: arm, ellipsoids, arrow tips."""
-        extra = self.drive.extent
+        extra = np.concatenate([self.drive.extent, self.accel.extent])
         return np.concatenate([self.overlays.extent, extra]) if len(extra) else self.overlays.extent
 
     def update(self, snap: Snapshot, state: LabState) -> None:
         """Move every node to ``snap`` (call inside ``client.atomic()``)."""
         self.arm.update(snap, state.options)
         self.overlays.update(snap, state)
+        self.accel.update(snap, state)
         self.drive.update(snap, state)
 
     def remove(self) -> None:
         """Remove every node (on robot switch or disconnect)."""
         self.drive.remove()
+        self.accel.remove()
         self.overlays.remove()
         self.arm.remove()
