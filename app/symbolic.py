@@ -309,9 +309,9 @@ def _mathml(robot: Robot, frame: str, timeout: float, letters: bool = False) -> 
     out = jacobian_mathml(robot, frame=frame, timeout=timeout, symbolic_params=True)
     parts = mathml_parts(robot, frame, symbolic_params=True, with_det=True, timeout=timeout, wrap=True)
     blocks = ([parts.det] if parts.det else []) + list(parts.singular)
-    return out + "".join(
-        f'\n<math display="block" style="{MATH_STYLE}"><mrow>{b}</mrow></math>' for b in blocks
-    )
+    extra = "".join(f'\n<math display="block" style="{MATH_STYLE}"><mrow>{b}</mrow></math>' for b in blocks)
+    at = out.find('\n<p class="jl-legend">')  # det J under J, before the legend of both
+    return out + extra if at < 0 else out[:at] + extra + out[at:]
 
 
 def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:

@@ -186,6 +186,10 @@ def test_analytic_jacobian_against_finite_differences_of_the_euler_angles(sessio
 
 def test_representation_singular_at_a_pitch_of_90_degrees(session):
     choose(session, "puma560")
+    q0 = np.array(session.state.q) + np.array([0.0, 0.0, 0.0, 0.4, -0.5, 0.3])  # away from pitch ±90°
+    session.dispatch(SetConfiguration(tuple(q0)))
+    session.settle()
+    assert abs(abs(euler_angles(fk(session.state.robot, q0), "zyx")[1]) - math.pi / 2) > 0.1
     session.dispatch(GoToRepresentationSingularity("zyx"))
     session.settle()
     state, snap = session.state, session.snapshot
@@ -197,7 +201,15 @@ def test_representation_singular_at_a_pitch_of_90_degrees(session):
     assert snap.rank == 6 and snap.report.status == "regular"  # the geometric J is fine
     assert "representation singular" in session.panel.status.content
     assert "does not exist here" in session.panel.matrix.analytic.content
-    # The arm is drawn there: the scene's tool follows the new q.
+    # The tool kept its position; the arm is drawn there (the scene's tool frame is at the new q).
+    np.testing.assert_allclose(fk(state.robot, state.q)[:3, 3], fk(state.robot, q0)[:3, 3], atol=1e-8)
+    np.testing.assert_allclose(snap.tool_point, fk(state.robot, state.q)[:3, 3], atol=1e-12)
+    # ZYZ: θ = 0 or 180°, the tool's z axis along the base's.
+    session.dispatch(GoToRepresentationSingularity("zyz"))
+    session.settle()
+    R = fk(state.robot, session.state.q)[:3, :3]
+    assert abs(R[2, 2]) == pytest.approx(1.0, abs=1e-9)
+    assert session.snapshot.analytic.singular and session.state.options.representation == "zyz"
     assert_all_finite(session)
 
 

@@ -67,12 +67,8 @@ def inverse_html(
     table = grid_html(view.matrix, _joint_heads(robot), cols)
     if view.kind == "inverse":
         det = view.det or 0.0
-        big = float(np.max(np.abs(view.matrix)))
         head = f"<b>{name}</b> at q ({axes} axes) &nbsp; det J = <b>{fmt.number(det, 4)}</b>"
-        note = (
-            f"q̇ = {J_INV} v. {J_INV} = adj J / det J: its entries grow as 1/det J "
-            f"(largest here {fmt.number(big, 3)})."
-        )
+        note = f"q̇ = {J_INV} v, and {J_INV} = adj J / det J: its entries grow as 1/det J as det J → 0."
         if status != "regular":
             note += ' <span class="jl-warn">det J is near 0: J⁻¹ is blowing up.</span>'
     else:
@@ -160,7 +156,7 @@ def accel_html(jdot_qd: np.ndarray | None) -> str:
     """J̇ q̇ (6,) as the tool's acceleration at constant joint rates: the course's ẍ = J q̈ + J̇ q̇, q̈ = 0."""
     if jdot_qd is None:
         return ""
-    head = "".join(f"<th>{ROW_NAMES[r]}̇</th>" for r in range(6))
+    head = "".join(f"<th>{n}̇<sub>{a}</sub></th>" for n in ("v", "ω") for a in "xyz")
     shown = fmt.cleaned([jdot_qd[r] if r < 3 else math.degrees(jdot_qd[r]) for r in range(6)])
     cells = "".join(f"<td>{fmt.number(x)}</td>" for x in shown)
     return (
@@ -168,5 +164,5 @@ def accel_html(jdot_qd: np.ndarray | None) -> str:
         f'<tr class="accel"><th class="rowname">J̇ q̇</th>{cells}</tr></table>'
         '<div class="jl-note">ẍ = J q̈ + J̇ q̇; here q̈ = 0 (constant rates), so ẍ = J̇ q̇: the tool '
         "accelerates although every joint turns steadily. v̇ in m/s², ω̇ in °/s², base axes; "
-        "violet arrow at the tool (drawn 0.25 m per m/s²).</div></div>"
+        "violet arrow at the tool (drawn 0.5 m per m/s²).</div></div>"
     )

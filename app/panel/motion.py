@@ -225,7 +225,7 @@ class InversePanel:
         """Show the symbolic J⁻¹ (``None``: only the note)."""
         if not self._asked:
             return
-        body = f'<div class="jl-mathml">{mathml}</div>' if mathml else ""
+        body = f'<div class="jl-mathml" style="overflow-x:auto">{mathml}</div>' if mathml else ""
         self.symbolic.content = f'<div class="jl">{body}<div class="jl-note">{fmt.escape(note)}</div></div>'
 
     def update(self, snap: Snapshot, state: LabState) -> None:

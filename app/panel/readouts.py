@@ -85,9 +85,9 @@ def status_html(snap: Snapshot, state: LabState) -> str:
     lost = lost_text(snap, robot.planar)
     a = snap.analytic
     representation = (
-        f"<b>representation singular</b>: {a.convention.upper()} angles at "
-        f"{'pitch ±90°' if a.convention == 'zyx' else 'θ = 0 or 180°'}, J<sub>A</sub> does not exist; "
-        f"the geometric J is {r.status} (rank {snap.rank})"
+        f"<b>representation singular</b> ({a.convention.upper()}, "
+        f"{'pitch ±90°' if a.convention == 'zyx' else 'θ = 0 or 180°'}): no J<sub>A</sub>; "
+        f"J {r.status}, rank {snap.rank}"
         if a is not None and a.singular
         else ""
     )

@@ -1,8 +1,8 @@
 """The J̇ q̇ arrow at the tool: the tool's acceleration when the joints turn at constant rates.
 
 The course's ẍ = J q̈ + J̇ q̇ with q̈ = 0: the linear part of J̇ q̇ drawn from the
-tool point, :data:`ACCEL_SECONDS`² metres per m/s² (the change of the tool's
-velocity over ACCEL_SECONDS, drawn at the velocity arrows' scale), in its own
+tool point, :data:`ACCEL_SCALE` metres per m/s² (the change of the tool's
+velocity over one second, drawn at the velocity arrows' scale), in its own
 colour (:data:`app.palette.ACCEL_RGB`). Shown while joint rates are set and the
 option is on; never a non-finite point (the arrow's length is capped).
 """
@@ -19,10 +19,10 @@ from ..viser_adapter import update_props
 from .geometry import finite, set_if_changed
 from .overlays import LINEAR_SECONDS
 
-__all__ = ["AccelArrow", "ACCEL_SECONDS"]
+__all__ = ["AccelArrow", "ACCEL_SCALE"]
 
-ACCEL_SECONDS = LINEAR_SECONDS
-"""Drawn length [m] per [m/s²] is ACCEL_SECONDS² (0.25 m): Δv over ACCEL_SECONDS, drawn like a velocity."""
+ACCEL_SCALE = LINEAR_SECONDS * 1.0
+"""Drawn length [m] per [m/s²]: the velocity gained in 1 s, drawn like a velocity (0.5 m per m/s)."""
 _CAP = 3.0
 """Longest arrow, in robot sizes (× scale)."""
 
@@ -32,7 +32,7 @@ class AccelArrow:
 
     def __init__(self, scene: viser.SceneApi, size: float, root: str) -> None:
         self.size = size
-        r = 0.011 * size
+        r = 0.012 * size
         self.node = scene.add_arrows(
             f"{root}/jdot_qd",
             points=np.zeros((1, 2, 3), np.float32),
@@ -48,7 +48,7 @@ class AccelArrow:
     def update(self, snap: Snapshot, state: LabState) -> None:
         a = snap.jdot_qd
         k = state.options.scale
-        vector = np.zeros(3) if a is None else np.nan_to_num(np.asarray(a[:3], float)) * ACCEL_SECONDS**2 * k
+        vector = np.zeros(3) if a is None else np.nan_to_num(np.asarray(a[:3], float)) * ACCEL_SCALE * k
         length = float(np.linalg.norm(vector))
         cap = _CAP * self.size * k
         if length > cap:

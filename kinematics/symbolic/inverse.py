@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from ..analysis import task_rows
 from ..model import Robot
 from .core import DEFAULT_TIMEOUT, derive
 from .escape import NOTE_CHARS, xml_text
@@ -62,7 +63,7 @@ class SymbolicInverse:
 def inverse(
     robot: Robot, *, symbolic_params: bool = False, timeout: float | None = DEFAULT_TIMEOUT
 ) -> SymbolicInverse:
-    """adj(J) and det J of the robot's square task Jacobian (base axes).
+    """adj(J) and det J of the robot's square task Jacobian (its task rows, base axes).
 
     Raises:
         SymbolicError: the task rows are not square (use J⁺), det J is identically zero,
@@ -73,13 +74,14 @@ def inverse(
             f"J⁻¹ is worked out symbolically for up to {MAX_JOINTS} joints; "
             f"{robot.name} has {robot.dof} (its numeric J⁻¹ is shown)"
         )
-    deadline = Deadline(timeout)
-    det = determinant(robot, symbolic_params=symbolic_params, deadline=deadline)
-    if det.gram or len(det.rows) != robot.dof:
+    rows = task_rows(robot)
+    if len(rows) != robot.dof:
         raise SymbolicError(
-            f"{robot.name}'s task J has {len(det.rows)} rows and {robot.dof} columns: "
+            f"{robot.name}'s task J has {len(rows)} rows and {robot.dof} columns: "
             "it has no inverse, only the pseudo-inverse J⁺"
         )
+    deadline = Deadline(timeout)
+    det = determinant(robot, rows, symbolic_params=symbolic_params, deadline=deadline)
     if det.identically_zero:
         raise SymbolicError(f"det J of {robot.name} is identically zero: J⁻¹ never exists")
     d = derive(robot, "base", symbolic_params=symbolic_params, deadline=deadline)
@@ -92,7 +94,7 @@ def inverse(
 def inverse_mathml(
     robot: Robot, *, symbolic_params: bool = False, timeout: float | None = DEFAULT_TIMEOUT
 ) -> str:
-    """``<math>J⁻¹ = adj(J) / det J = (1 / det J) […]</math>``, det J factored, where it does not exist,
+    """``<math>J⁻¹ = adj J / det J</math>``, ``adj J = […]``, det J factored, where J⁻¹ does not exist,
     the legend and notes (for the browser; see :func:`inverse`)."""
     inv = inverse(robot, symbolic_params=symbolic_params, timeout=timeout)
     d = derive(robot, "base", symbolic_params=symbolic_params, timeout=timeout)  # cached by inverse()
@@ -107,10 +109,9 @@ def inverse_mathml(
         "<mfrac><mrow><mi>adj</mi><mo>&#x2061;</mo><mi>J</mi></mrow>"
         "<mrow><mi>det</mi><mo>&#x2061;</mo><mi>J</mi></mrow></mfrac>"
     )
-    scalar = f"<mfrac><mn>1</mn><mrow>{N.mathml(expr)}</mrow></mfrac>"
     parts = [
-        f"{j_inv}{eq}{over}",
-        f"{j_inv}{eq}{scalar}<mo>&#x2062;</mo>{adj}",
+        f"{j_inv}{eq}{over}",  # adj J on a line of its own: the panel is narrow
+        f"<mi>adj</mi><mo>&#x2061;</mo><mi>J</mi>{eq}{adj}",
         f"<mi>det</mi><mo>&#x2061;</mo><mi>J</mi>{eq}{N.mathml(expr)}",
     ]
     for s in inv.det.singular_sets:
