@@ -543,7 +543,8 @@ class ClientSession:
         request), and the symbolic J⁻¹ when the tab asked for it."""
         robot, frame = self.state.robot, self.state.options.jacobian_frame
         letters = self.state.options.course_letters and robot.dh is not None
-        self._request_inverse(robot, letters)
+        # J⁻¹ in the course's letters whenever the robot file names them ([symbols]: the TRR's l1, l2, l3).
+        self._request_inverse(robot, letters or bool(robot.param_names and robot.dh is not None))
         if self._symbolic_wanted == (robot, frame, letters):
             return
         self._release_symbolic()

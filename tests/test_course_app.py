@@ -17,7 +17,7 @@ import pytest
 from app_helpers import assert_all_finite, scene_node, wait_until
 
 import robots
-from app.actions import ChooseRobot, GoTo, GoToRepresentationSingularity, SetConfiguration, SetOption, SetRate
+from app.actions import ChooseRobot, GoTo, GoToRepresentationSingularity, SetConfiguration, SetRate
 from app.palette import ACCEL_RGB
 from app.viser_adapter import node_props
 from kinematics import fk, jacobian
@@ -259,21 +259,30 @@ def test_course_letters_in_the_symbolic_j(session):
     wait_until(lambda: "letters" in shown(), timeout=120)
     html = shown()
     assert "<msub><mi>l</mi><mn>2</mn></msub>" in html and "<msub><mi>l</mi><mn>3</mn></msub>" in html
-    assert "det" in html  # det J = −l2 l3 s3 and its singular set under J
-    # The symbolic J⁻¹, on demand.
-    session.dispatch(SetOption("symbolic_inverse", True))
+    assert "<mi>det</mi>" in html  # det J = −l2 l3 s3 and its singular set under J
+    letters.value = False
     session.settle()
+    wait_until(lambda: "letters" not in shown() and "<math" in shown(), timeout=120)
+    assert "<msub><mi>l</mi><mn>3</mn></msub>" not in shown()  # numbers again: 5, 8
+    # The symbolic J⁻¹, on demand: the TRR's file names its letters, so J⁻¹ is in them.
+    session.panel.inverse.symbolic_button.value = True
+    session.settle()
+    assert session.state.options.symbolic_inverse
     wait_until(lambda: "<math" in session.panel.inverse.symbolic.content, timeout=120)
     inv = session.panel.inverse.symbolic.content
     assert "<msub><mi>l</mi><mn>3</mn></msub>" in inv and "<mi>adj</mi>" in inv
-    letters.value = False
-    session.dispatch(SetOption("symbolic_inverse", False))
+    session.panel.inverse.symbolic_button.value = True  # hides it
     session.settle()
+    assert not session.state.options.symbolic_inverse and session.panel.inverse.symbolic.content == ""
 
 
-def test_no_letters_box_without_a_dh_table(session):
-    robot_files = robots.names()
-    assert "trr" in robot_files
+def test_the_buttons_are_shown_where_they_apply(session):
+    assert "trr" in robots.names()
     choose(session, "trr")
-    assert session.panel.matrix.letters is not None
+    assert session.panel.matrix.letters is not None  # a DH table: letters
     assert session.panel.matrix.go_singular is None  # three joints: no orientation to choose
+    assert session.panel.inverse.example_button is not None  # a [[motions]] preset in base axes
+    assert session.panel.inverse.symbolic_button is not None  # square task J
+    choose(session, "panda")
+    assert session.panel.matrix.go_singular is not None
+    assert session.panel.inverse.symbolic_button is None  # 6×7: J⁺ only

@@ -68,7 +68,7 @@ def inverse_html(
     if view.kind == "inverse":
         det = view.det or 0.0
         head = f"<b>{name}</b> at q ({axes} axes) &nbsp; det J = <b>{fmt.number(det, 4)}</b>"
-        note = f"q̇ = {J_INV} v, and {J_INV} = adj J / det J: its entries grow as 1/det J as det J → 0."
+        note = f"q̇ = {J_INV} v; {J_INV} = adj J / det J grows as 1/det J."
         if status != "regular":
             note += ' <span class="jl-warn">det J is near 0: J⁻¹ is blowing up.</span>'
     else:
