@@ -170,11 +170,21 @@ class InversePanel:
         self.root = gui.add_folder(None, order=order)
         # The course's worked example: the first preset in base axes (a twist held from a configuration).
         self.example = next((p for p in presets if p.frame == "base"), None)
+        self._example_start = next(
+            (
+                c.name
+                for c in robot.configurations
+                if self.example is not None and np.allclose(c.q, self.example.q)
+            ),
+            "",
+        )
         self.example_button: viser.GuiButtonHandle | None = None
         with self.root:
             if self.example is not None:
                 p = self.example
-                self.example_button = gui.add_button("Course example", icon=viser.Icon.SCHOOL)
+                # The course's worked example carries its joint rates; another robot's preset is an example.
+                label = "Course example" if p.rates is not None else f"Example: {p.name}"[:60]
+                self.example_button = gui.add_button(label, icon=viser.Icon.SCHOOL)
                 bind_click(
                     self.example_button,
                     dispatch,
@@ -232,9 +242,8 @@ class InversePanel:
         self.inverse.content = inverse_html(snap.inverse, self.robot, snap.rows, state, snap.report.status)
         p = self.example
         if p is not None:
-            start = next((c.name for c in self.robot.configurations if np.allclose(c.q, p.q, atol=1e-9)), "")
             question = state.configuration == "course_question"
-            self.course.content = example_html(snap, state, p.rates, start, question)
+            self.course.content = example_html(snap, state, p.rates, self._example_start, question)
         idle = ("idle", state.options.damping) if not np.any(state.v_desired[list(self.rows)]) else None
         if idle is not None and idle == self._shown:
             return
