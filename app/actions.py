@@ -41,6 +41,7 @@ __all__ = [
     "SelfMove",
     "FollowPath",
     "FindSingularity",
+    "GoToRepresentationSingularity",
     "ClaimPresenter",
     "StopPresenting",
     "ExploreAlone",
@@ -227,6 +228,14 @@ class FindSingularity:
 
 
 @dataclass(frozen=True)
+class GoToRepresentationSingularity:
+    """Move the arm (inverse kinematics from q, tool position kept) to where the Euler angles of
+    ``convention`` are singular: ZYX pitch = ±90°, ZYZ θ = 0 or 180°."""
+
+    convention: str
+
+
+@dataclass(frozen=True)
 class ClaimPresenter:
     """The tab typed ``token`` into "Presenter token" (a command: the classroom checks it once the
     typing has paused, ``settled``; a browser sends every keystroke, and five half-typed tokens must
@@ -341,6 +350,7 @@ Action = (
     | SelfMove
     | FollowPath
     | FindSingularity
+    | GoToRepresentationSingularity
     | ClaimPresenter
     | StopPresenting
     | ExploreAlone

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from kinematics import Robot
+from kinematics import Robot, fk
 
 from . import motion_reducer
 from .actions import (
@@ -34,6 +34,7 @@ from .actions import (
     FollowPath,
     FollowPresenter,
     GoTo,
+    GoToRepresentationSingularity,
     Play,
     ReplaceState,
     RequestDownload,
@@ -53,6 +54,7 @@ from .actions import (
     ToggleRecording,
     UploadRobot,
 )
+from .course import representation_singular_q
 from .derive import METHODS
 from .dh_table import edited_state
 from .motion_reducer import FRAME_DT, MotionRefused
@@ -68,6 +70,7 @@ _CHOICES = {
     "ik_method": ("dls", "newton"),
     "ik_mode": ("position", "pose"),
     "derive": tuple(METHODS),
+    "representation": ("geometric", "zyx", "zyz"),
 }
 _JOINT_OPTIONS = ("map_i", "map_j")
 
@@ -196,7 +199,10 @@ def _reduce(state: LabState, action: Action) -> LabState:
             return motion_reducer.reset(state)
         case ApplyPreset(name=name, q=q, twist=twist, frame=frame, speed=speed):
             speed = min(max(_finite(speed, "preset speed"), 0.05), 2.0)
-            return motion_reducer.apply_preset(state, name, q, twist, frame, speed)
+            after = motion_reducer.apply_preset(state, name, q, twist, frame, speed)
+            return after.replace(configuration=named_configuration_at(after, after.q))
+        case GoToRepresentationSingularity(convention=convention):
+            return _representation_singularity(state, convention)
         case DriveTool(T_base_target=values):
             return motion_reducer.drive_tool(state, values)
         case SelfMove(s=s):
@@ -212,6 +218,31 @@ def _reduce(state: LabState, action: Action) -> LabState:
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )
     raise InvalidAction(f"unknown action {action!r}")
+
+
+def _representation_singularity(state: LabState, convention: object) -> LabState:
+    if convention not in ("zyx", "zyz"):
+        raise InvalidAction(f"the Euler convention must be 'zyx' or 'zyz', got {convention!r}")
+    robot = state.robot
+    if robot.dof < 6:
+        raise InvalidAction(
+            f"{robot.name} has {robot.dof} joints: it cannot turn its tool to any orientation"
+        )
+    ranges = joint_ranges(robot)
+    lo = np.array([r.clamp_si(-math.inf) for r in ranges])
+    hi = np.array([r.clamp_si(math.inf) for r in ranges])
+    try:
+        q = representation_singular_q(robot, np.array(state.q), fk(robot, state.q), str(convention), lo, hi)
+    except ValueError as exc:
+        raise InvalidAction(str(exc)) from None
+    options = dataclasses.replace(state.options, representation=convention)
+    return state.replace(
+        q=frozen(q),
+        configuration=named_configuration_at(state, q),
+        playing=False,
+        stopped="",
+        options=options,
+    )
 
 
 def _option(options: Options, name: str, value: object, n: int) -> Options:

@@ -133,6 +133,7 @@ class ClientSession:
         self._last_redraw = 0.0
         self._subscribers: list[Callable[[LabState, Snapshot], None]] = []
         self._symbolic_wanted: tuple | None = None
+        self._inverse_wanted: tuple | None = None
         self.camera = TabCamera(client)
         self.recorder = TabRecorder(self.subscribe)
         self._scene_messages: tuple = ()
@@ -373,7 +374,12 @@ class ClientSession:
             self.ticker.start()
         else:
             self.ticker.stop()
-        if rebuild or state.options.jacobian_frame != old.options.jacobian_frame:
+        o, before = state.options, old.options
+        if rebuild or (o.jacobian_frame, o.course_letters, o.symbolic_inverse) != (
+            before.jacobian_frame,
+            before.course_letters,
+            before.symbolic_inverse,
+        ):
             self._request_symbolic()
         assert self.scene is not None
         if self.role.following:
@@ -533,31 +539,66 @@ class ClientSession:
 
     # ------------------------------------------------------------------ symbolic J and downloads
     def _request_symbolic(self) -> None:
-        """Ask for the symbolic J(q) of the current robot and frame (releasing the previous request)."""
+        """Ask for the symbolic J(q) of the current robot, frame and notation (releasing the previous
+        request), and the symbolic J⁻¹ when the tab asked for it."""
         robot, frame = self.state.robot, self.state.options.jacobian_frame
-        if self._symbolic_wanted == (robot, frame):
+        letters = self.state.options.course_letters and robot.dh is not None
+        # J⁻¹ in the course's letters whenever the robot file names them ([symbols]: the TRR's l1, l2, l3).
+        self._request_inverse(robot, letters or bool(robot.param_names and robot.dh is not None))
+        if self._symbolic_wanted == (robot, frame, letters):
             return
         self._release_symbolic()
-        self._symbolic_wanted = (robot, frame)
-        future = self.symbolic.mathml(robot, frame)
+        self._symbolic_wanted = (robot, frame, letters)
+        future = self.symbolic.mathml(robot, frame, letters)
         if not future.done() and self.panel.matrix is not None:
             self.panel.matrix.show_symbolic(
                 None, "computing the symbolic form… (the numeric J above is live)"
             )
-        future.add_done_callback(lambda f: self._symbolic_ready(f, robot, frame))
+        future.add_done_callback(lambda f: self._symbolic_ready(f, robot, frame, letters))
+
+    def _request_inverse(self, robot, letters: bool) -> None:
+        """The symbolic J⁻¹ = adj(J) / det J (asked for with the q̇ = J⁺v tab's button), or none."""
+        wanted = (robot, letters) if self.state.options.symbolic_inverse else None
+        if wanted == self._inverse_wanted:
+            return
+        if self._inverse_wanted is not None:
+            self.symbolic.release_inverse(*self._inverse_wanted)
+        self._inverse_wanted = wanted
+        if wanted is None or self.panel.inverse is None:
+            return
+        future = self.symbolic.inverse(robot, letters)
+        if not future.done():
+            self.panel.inverse.show_symbolic(None, "computing J⁻¹ = adj J / det J …")
+
+        def ready(f: Future[str]) -> None:
+            with self.lock:
+                if self._closed or self._inverse_wanted != wanted or self.panel.inverse is None:
+                    return
+                try:
+                    self.panel.inverse.show_symbolic(f.result(), "J⁻¹ = adj J / det J, base axes, task rows.")
+                except Exception as exc:
+                    self.panel.inverse.show_symbolic(None, f"symbolic J⁻¹ not available: {exc}")
+
+        future.add_done_callback(ready)
 
     def _release_symbolic(self) -> None:
         if self._symbolic_wanted is not None:
             self.symbolic.release(*self._symbolic_wanted)
             self._symbolic_wanted = None
 
-    def _symbolic_ready(self, future: Future[str], robot, frame: str) -> None:
+    def _symbolic_ready(self, future: Future[str], robot, frame: str, letters: bool = False) -> None:
         try:
             with self.lock:
-                if self._closed or self._symbolic_wanted != (robot, frame) or self.panel.matrix is None:
+                if (
+                    self._closed
+                    or self._symbolic_wanted != (robot, frame, letters)
+                    or self.panel.matrix is None
+                ):
                     return
                 try:
-                    mathml, note = future.result(), f"J(q) in {frame} axes, from kinematics.symbolic."
+                    notation = " with the DH parameters as letters" if letters else ""
+                    mathml = future.result()
+                    note = f"J(q) in {frame} axes{notation}, from kinematics.symbolic."
                     if getattr(future, "restarted", False):
                         note += f" ({WORKER_RESTARTED}: this result was computed again.)"
                 except SymbolicUnavailable as exc:
@@ -610,6 +651,9 @@ class ClientSession:
         self.camera.close()
         with self.lock:
             self._release_symbolic()
+            if self._inverse_wanted is not None:
+                self.symbolic.release_inverse(*self._inverse_wanted)
+                self._inverse_wanted = None
             self._subscribers.clear()
 
 

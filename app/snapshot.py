@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinematics import jacobian, joint_frames, link_frames
+from kinematics import jacobian, jacobian_dot, joint_frames, link_frames
 from kinematics.analysis import (
     Ellipsoid,
     condition_number,
@@ -29,6 +29,7 @@ from kinematics.inverse import solve_rates
 from kinematics.lost import LostDirection, lost_direction
 from kinematics.singularity import SingularityReport, assess
 
+from .course import AnalyticView, InverseView, analytic_view, inverse_view
 from .derive import Derivation, derivation
 from .maps import Cloud, JointMap, joint_map, workspace_cloud
 from .ranges import reach
@@ -72,6 +73,10 @@ class Snapshot:
         joint_map: w over the two chosen joints (when the map is shown), else ``None``.
         cloud: The workspace cloud (when shown), else ``None``.
         derive: The Derive tab's step as numbers (when it walks through a method), else ``None``.
+        inverse: J⁻¹ (or J⁺) of the task J the q̇ = J⁺ v tab uses (``None`` only for a hand-built one).
+        analytic: φ, M(φ) and J_A when the J(q) tab shows an analytic Jacobian, else ``None``.
+        jdot_qd: J̇ q̇ (6,) [m/s²; rad/s²], base axes: the tool's acceleration at constant joint rates
+            (zero when q̇ = 0).
         T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
     """
 
@@ -101,6 +106,9 @@ class Snapshot:
     joint_map: JointMap | None = None
     cloud: Cloud | None = None
     derive: Derivation | None = None
+    inverse: InverseView | None = None
+    analytic: AnalyticView | None = None
+    jdot_qd: np.ndarray | None = None
 
     @property
     def T_tool(self) -> np.ndarray:
@@ -131,6 +139,9 @@ def compute(state: LabState) -> Snapshot:
     rates = solve_rates(J_twist, v_task, state.options.damping) if np.any(v_task) else np.zeros(n)
     produced = np.zeros(6)
     produced[list(rows)] = J_twist @ rates
+    rank_task = int(rank(J, rows))
+    moving = bool(np.any(state.qd))
+    representation = state.options.representation
     shortfall = np.zeros(6)
     shortfall[list(rows)] = state.v_desired[list(rows)] - produced[list(rows)]
     return Snapshot(
@@ -144,7 +155,7 @@ def compute(state: LabState) -> Snapshot:
         sigma=singular_values(J, rows),
         manipulability=float(manipulability(J, rows)),
         det=float(np.linalg.det(J_task)) if square else None,
-        rank=int(rank(J, rows)),
+        rank=rank_task,
         cond_translational=float(condition_number(J, translational_rows(planar))),
         cond_rotational=None if planar else float(condition_number(J, "angular")),
         velocity=velocity_ellipsoid(J, "linear"),
@@ -162,6 +173,9 @@ def compute(state: LabState) -> Snapshot:
         joint_map=_map(state),
         cloud=workspace_cloud(robot) if state.options.workspace else None,
         derive=derivation(state),
+        inverse=inverse_view(J_twist, rank_task),
+        analytic=analytic_view(L[-1], J, representation) if representation != "geometric" else None,
+        jdot_qd=jacobian_dot(robot, q, state.qd) @ state.qd if moving else np.zeros(6),
     )
 
 

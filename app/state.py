@@ -64,6 +64,12 @@ class Options:
         derive: The course derivation the Derive tab walks through ("" none, "dh", "whitney",
             "differentiation", "propagation", "force"; see :mod:`app.derive`).
         derive_step: Its step: joint i (0-based), row i + 1 of the DH table.
+        representation: What the J(q) tab shows: "geometric" J, or the analytic J_A with
+            roll-pitch-yaw ("zyx") or Euler ZYZ ("zyz") angles.
+        jdot_arrow: Draw J̇ q̇ (the tool's acceleration when the joints turn at constant rate) at the
+            tool while joint rates are set.
+        course_letters: Write the symbolic J, det J and J⁻¹ with the DH parameters as letters (l₁, a₂, d₄ …).
+        symbolic_inverse: Show the symbolic J⁻¹ = adj(J) / det J (asked for with a button: it takes seconds).
     """
 
     frames: bool = False
@@ -87,6 +93,10 @@ class Options:
     map_j: int = 2
     derive: str = ""
     derive_step: int = 0
+    representation: Literal["geometric", "zyx", "zyz"] = "geometric"
+    jdot_arrow: bool = True
+    course_letters: bool = False
+    symbolic_inverse: bool = False
 
 
 GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")

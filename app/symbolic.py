@@ -7,9 +7,9 @@ sliders. :class:`SymbolicService` therefore runs
 in worker processes (one for the panel's MathML, one for downloads, so a
 download never waits behind a long simplification). A worker that dies is
 restarted and its computations are retried once; a worker whose server is
-gone exits by itself. MathML is cached per
-(robot, frame) — a class of students asking for the Puma's J triggers one
-computation — and a request nobody waits for any more (every client moved
+gone exits by itself. MathML is cached per (robot, frame, letters) and
+the symbolic J⁻¹ per (robot, letters) — a class of students asking for the
+Puma's J triggers one computation — and a request nobody waits for any more (every client moved
 on to another robot) is cancelled before it starts. The symbolic modules are
 imported lazily in the workers and may be missing; then the panel shows a
 plain note.
@@ -206,8 +206,8 @@ class SymbolicService:
     def __init__(self, timeout: float = 60.0) -> None:
         self.timeout = timeout
         self._lock = threading.Lock()
-        self._mathml: dict[tuple[str, str], SymbolicFuture] = {}
-        self._interest: dict[tuple[str, str], int] = {}
+        self._mathml: dict[tuple, SymbolicFuture] = {}
+        self._interest: dict[tuple, int] = {}
         self._listeners: list[Callable[[str], None]] = []
         self.last_notice: str | None = None
         self._panel_worker = WorkerPool(self._restarted)
@@ -234,8 +234,11 @@ class SymbolicService:
         """Process ids of the running worker processes (for diagnostics and tests)."""
         return self._panel_worker.pids() + self._export_worker.pids()
 
-    def mathml(self, robot: Robot, frame: str) -> SymbolicFuture:
+    def mathml(self, robot: Robot, frame: str, letters: bool = False) -> SymbolicFuture:
         """A future of the ``<math>`` element of J(q) for ``robot`` in ``frame`` ("base" or "tool").
+
+        ``letters``: the DH lengths and offsets as the course's letters (l₁, a₂, d₄ …), with det J,
+        its factors and singular sets under J (``kinematics.symbolic`` with ``symbolic_params=True``).
 
         Call :meth:`release` with the same arguments when no longer interested. The future
         fails with :class:`SymbolicUnavailable` when the symbolic module is missing, or with
@@ -243,18 +246,35 @@ class SymbolicService:
         before it started. If the worker dies, the computation is run once more on a new
         worker (``future.restarted`` is then True).
         """
-        key = (robot.fingerprint(), frame)
+        return self._want(
+            (robot.fingerprint(), frame, bool(letters)), _mathml, robot, frame, self.timeout, letters
+        )
+
+    def inverse(self, robot: Robot, letters: bool = False) -> SymbolicFuture:
+        """A future of the MathML of J⁻¹ = adj(J) / det J of ``robot``'s square task J (base axes);
+        release with :meth:`release_inverse`. Fails with the symbolic module's error for a J that is
+        not square or too large."""
+        key = (robot.fingerprint(), "inverse", bool(letters))
+        return self._want(key, _inverse_mathml, robot, bool(letters), self.timeout)
+
+    def _want(self, key: tuple, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
         with self._lock:
             self._interest[key] = self._interest.get(key, 0) + 1
             future = self._mathml.get(key)
             if future is None or future.cancelled() or (future.done() and future.exception() is not None):
-                future = self._panel_worker.submit(_mathml, robot, frame, self.timeout)
+                future = self._panel_worker.submit(fn, *args)
                 self._mathml[key] = future
             return future
 
-    def release(self, robot: Robot, frame: str) -> None:
+    def release(self, robot: Robot, frame: str, letters: bool = False) -> None:
         """One client no longer waits for J(q) of ``robot`` in ``frame`` (unwanted work is dropped)."""
-        key = (robot.fingerprint(), frame)
+        self._release((robot.fingerprint(), frame, bool(letters)))
+
+    def release_inverse(self, robot: Robot, letters: bool = False) -> None:
+        """One client no longer waits for the symbolic J⁻¹ of ``robot``."""
+        self._release((robot.fingerprint(), "inverse", bool(letters)))
+
+    def _release(self, key: tuple) -> None:
         with self._lock:
             left = self._interest.get(key, 0) - 1
             if left > 0:
@@ -277,13 +297,30 @@ class SymbolicService:
         self._export_worker.close()
 
 
-def _mathml(robot: Robot, frame: str, timeout: float) -> str:
-    """In the worker process: the MathML of J(q)."""
+def _mathml(robot: Robot, frame: str, timeout: float, letters: bool = False) -> str:
+    """In the worker process: the MathML of J(q) (with letters: and det J, its factors, singular sets)."""
     try:
-        from kinematics.symbolic import jacobian_mathml
+        from kinematics.symbolic import jacobian_mathml, mathml_parts
+        from kinematics.symbolic.render import MATH_STYLE
     except ImportError as exc:
         raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
-    return jacobian_mathml(robot, frame=frame, timeout=timeout)
+    if not letters:
+        return jacobian_mathml(robot, frame=frame, timeout=timeout)
+    out = jacobian_mathml(robot, frame=frame, timeout=timeout, symbolic_params=True)
+    parts = mathml_parts(robot, frame, symbolic_params=True, with_det=True, timeout=timeout, wrap=True)
+    blocks = ([parts.det] if parts.det else []) + list(parts.singular)
+    extra = "".join(f'\n<math display="block" style="{MATH_STYLE}"><mrow>{b}</mrow></math>' for b in blocks)
+    at = out.find('\n<p class="jl-legend">')  # det J under J, before the legend of both
+    return out + extra if at < 0 else out[:at] + extra + out[at:]
+
+
+def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:
+    """In the worker process: the MathML of J⁻¹ = adj(J) / det J."""
+    try:
+        from kinematics.symbolic.inverse import inverse_mathml
+    except ImportError as exc:
+        raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
+    return inverse_mathml(robot, symbolic_params=letters, timeout=timeout)
 
 
 def _export(robot: Robot, fmt: str, frame: str, timeout: float, name: str) -> tuple[str, bytes]:

@@ -48,7 +48,7 @@ _CONF = {"name": str, "q": list}
 _CONF_OPTIONAL = {"description": str, "singular": str}
 _FRAME_OPTIONAL = {"xyz": list, "rpy": list}
 _MOTION = {"name": str, "start": str, "twist": list}
-_MOTION_OPTIONAL = {"frame": str, "description": str, "speed": float}
+_MOTION_OPTIONAL = {"frame": str, "description": str, "speed": float, "rates": list}
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,6 +63,8 @@ class MotionPreset:
         frame: Axes of the twist: "base" or "tool".
         speed: Playback speed to watch it at (1: real time; the course's TRR example runs into its
             singularity in a tenth of a second, so it is shown at 0.1).
+        rates: The joint rates of the worked example this twist comes from (n,) [rad/s | m/s] (the
+            file gives revolute rates in deg/s), or ``None``: the course's q̇ for v = J q̇.
     """
 
     name: str
@@ -71,6 +73,7 @@ class MotionPreset:
     twist: np.ndarray
     frame: str
     speed: float = 1.0
+    rates: np.ndarray | None = None
 
 
 def names() -> list[str]:
@@ -128,7 +131,12 @@ def motions(name_or_path: str | Path) -> tuple[MotionPreset, ...]:
         twist = [float(v) for v in m["twist"][:3]] + [math.radians(v) for v in m["twist"][3:]]
         text = _text(m.get("description", ""))
         frame, speed = m.get("frame", "base"), float(m.get("speed", 1.0))
-        out.append(MotionPreset(m["name"], text, np.array(q), np.array(twist), frame, speed))
+        rates = None
+        if "rates" in m:
+            rates = np.array(
+                [math.radians(v) if rev else float(v) for v, rev in zip(m["rates"], revolute, strict=True)]
+            )
+        out.append(MotionPreset(m["name"], text, np.array(q), np.array(twist), frame, speed, rates))
     return tuple(out)
 
 
@@ -288,6 +296,8 @@ def _validated(path: Path, doc: dict) -> dict:
         _one_of(m["start"], tuple(seen), f"{where}, key 'start' (a configuration name)")
         _numbers(m["twist"], 6, f"{where}, key 'twist' (vx vy vz in m/s, ωx ωy ωz in deg/s)")
         _one_of(m.get("frame", "base"), ("base", "tool"), f"{where}, key 'frame'")
+        if "rates" in m:
+            _numbers(m["rates"], len(doc["joints"]), f"{where}, key 'rates' (m/s or deg/s, one per joint)")
         if not 0.05 <= m.get("speed", 1.0) <= 2.0:
             raise RobotDefinitionError(f"{where}, key 'speed': expected 0.05 to 2, got {m['speed']!r}")
     return doc

@@ -86,6 +86,11 @@ def gui_contents(session: ClientSession) -> list[str]:
         p.inverse.rates,
         p.inverse.result,
         p.force.torques,
+        p.inverse.inverse,
+        p.inverse.course,
+        p.inverse.symbolic,
+        p.matrix.analytic,
+        p.forward.accel,
     ]
     if p.motion is not None and p.maps is not None:
         handles += [p.motion.readout, p.motion.ik, p.motion.about, p.maps.map]

@@ -69,7 +69,8 @@ _LEGEND = (
     "Ellipsoid and links: blue regular, amber near singular, red singular. "
     "Lost direction (dark crimson): an arrow for a lost translation, "
     "an axis with a ring for a lost rotation. "
-    "Black arrow: v = J q̇; umber: ω; light grey: the desired v; navy: the applied force and moment."
+    "Black arrow: v = J q̇; umber: ω; light grey: the desired v; navy: the applied force and moment; "
+    "violet: J̇ q̇, the tool's acceleration at constant joint rates."
 )
 
 
@@ -188,7 +189,7 @@ class PanelView:
         with self.tab_forward:
             self.forward = ForwardPanel(self.gui, self.dispatch, robot, order=100)
         with self.tab_inverse:
-            self.inverse = InversePanel(self.gui, self.dispatch, robot, rows, order=100)
+            self.inverse = InversePanel(self.gui, self.dispatch, robot, rows, order=100, presets=presets)
         with self.tab_force:
             self.force = ForcePanel(self.gui, self.dispatch, robot, order=100)
         with self.tab_motion:
@@ -243,6 +244,7 @@ class PanelView:
         self.inverse.show(state)
         self.force.show(state)
         self.matrix.show(state.options.jacobian_frame)
+        self.matrix.show_course(state, snap)
         self._show_options(state.options)
         status = status_html(snap, state)
         self.status.content = status

@@ -18,10 +18,14 @@ import viser
 from kinematics import Robot
 
 from .. import fmt
-from ..actions import RequestDownload, SetOption
+from ..actions import GoToRepresentationSingularity, RequestDownload, SetOption
+from ..course import REPRESENTATIONS
 from ..palette import joint_hex, joint_text_hex
+from ..snapshot import Snapshot
+from ..state import LabState
 from ..symbolic import EXPORT_FORMATS
-from .common import Dispatch, bind, sync_value
+from .common import Dispatch, bind, bind_click, sync_value
+from .course import analytic_html
 from .readouts import ROW_NAMES
 
 __all__ = ["matrix_html", "MatrixPanel"]
@@ -85,17 +89,53 @@ class MatrixPanel:
                 "Frame of J", ("base", "tool"), initial_value="base", hint="Axes in which J is written"
             )
             bind(self.frame, dispatch, lambda v: SetOption("jacobian_frame", str(v)))
+            self.representation = gui.add_dropdown(
+                "Representation",
+                tuple(REPRESENTATIONS.values()),
+                initial_value=REPRESENTATIONS["geometric"],
+                hint="Geometric J (rows [v; ω]) or the analytic J_A (rows [v; φ̇], φ: Euler angles)",
+            )
+            keys = {label: key for key, label in REPRESENTATIONS.items()}
+            bind(self.representation, dispatch, lambda v: SetOption("representation", keys[str(v)]))
             self.numeric = gui.add_html("")
+            self.analytic = gui.add_html("")
+            self.go_singular: viser.GuiButtonHandle | None = None
+            self._convention = "zyx"
+            if robot.dof >= 6:
+                self.go_singular = gui.add_button(
+                    "Go to a representation singularity", icon=viser.Icon.TARGET
+                )
+                bind_click(
+                    self.go_singular, dispatch, lambda: GoToRepresentationSingularity(self._convention)
+                )
             enlarge = gui.add_button("Enlarge J (Esc closes)", icon=viser.Icon.ARROWS_MAXIMIZE)
             enlarge.on_click(lambda _event: self.open_large())
             self.measures = gui.add_html("")
             with gui.add_folder("Symbolic J(q)", expand_by_default=False):
+                self.letters: viser.GuiCheckboxHandle | None = None
+                if robot.dh is not None:
+                    self.letters = gui.add_checkbox(
+                        "Course letters (l₁, a₂, d₄ …)",
+                        initial_value=False,
+                        hint="DH lengths and offsets as letters; det J, its factors, singular sets below J",
+                    )
+                    bind(self.letters, dispatch, lambda v: SetOption("course_letters", bool(v)))
                 self.symbolic = gui.add_html(_mathml_html("", "computing the symbolic form…"))
                 self.download = gui.add_button_group("Download J(q)", tuple(EXPORT_FORMATS))
                 self.download.on_click(lambda event: dispatch(RequestDownload(event.target.value)))
 
     def show(self, frame: str) -> None:
         sync_value(self.frame, frame)
+
+    def show_course(self, state: LabState, snap: Snapshot) -> None:
+        """The representation chosen, φ, M(φ) and J_A (or why J_A does not exist), the letters box."""
+        o = state.options
+        sync_value(self.representation, REPRESENTATIONS[o.representation])
+        if o.representation != "geometric":
+            self._convention = o.representation
+        if self.letters is not None:
+            sync_value(self.letters, bool(o.course_letters))
+        self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows)
 
     def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:
         """Show the numeric J and measures, and in the enlarged view (if open) J under the status."""

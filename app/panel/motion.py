@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -22,13 +23,14 @@ import viser
 from kinematics import Robot
 
 from .. import fmt
-from ..actions import ClearWrench, Play, SetDesired, SetOption, SetRate, SetWrench, StopRates
+from ..actions import ApplyPreset, ClearWrench, Play, SetDesired, SetOption, SetRate, SetWrench, StopRates
 from ..palette import joint_hex, joint_text_hex
 from ..ranges import Range, from_display, rate_ranges, to_display, twist_ranges, wrench_ranges
 from ..snapshot import Snapshot
 from ..state import LabState
 from ..viser_adapter import handle_uuid
 from .common import Dispatch, bind, bind_click, sync_value
+from .course import accel_html, example_html, inverse_html
 from .readouts import ROW_NAMES
 from .style import slider_css
 
@@ -103,6 +105,7 @@ class ForwardPanel:
         css = []
         with self.root:
             self.twist = gui.add_html("")  # the result first: in sight while the sliders move
+            self.accel = gui.add_html("")  # J̇ q̇: the tool's acceleration at constant rates
             self.sliders = []
             for i, (joint, r) in enumerate(zip(robot.joints, self.ranges, strict=True)):
                 slider = _slider(gui, f"q̇{i + 1}", r, f"rate of {joint.name}")
@@ -116,10 +119,17 @@ class ForwardPanel:
             bind_click(self.play, dispatch, lambda: Play(not self._playing))
             stop = gui.add_button("Stop (q̇ = 0)", icon=viser.Icon.PLAYER_STOP)
             bind_click(stop, dispatch, StopRates)
+            self.jdot = gui.add_checkbox(
+                "J̇ q̇ arrow at the tool",
+                initial_value=True,
+                hint="The tool's acceleration when the joints turn at constant rate (ẍ = J̇ q̇ when q̈ = 0)",
+            )
+            bind(self.jdot, dispatch, lambda v: SetOption("jdot_arrow", bool(v)))
 
     def show(self, state: LabState) -> None:
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(to_display(r, state.qd[i]), 6))
+        sync_value(self.jdot, bool(state.options.jdot_arrow))
         if self._playing != state.playing:
             self._playing = state.playing
             self.play.label = "Pause" if state.playing else "Play: move at these rates"
@@ -130,6 +140,7 @@ class ForwardPanel:
         if idle is not None and idle == self._shown:
             return
         self._shown = idle
+        self.accel.content = accel_html(snap.jdot_qd) if idle is None else ""
         note = f'<div class="jl-warn">{fmt.escape(state.stopped)}</div>' if state.stopped else ""
         self.twist.content = (
             vector_table_html(tuple(range(6)), [("J q̇", snap.twist, "")])
@@ -145,15 +156,46 @@ class InversePanel:
     """Desired tool twist → joint rates J⁺ v (or damped), with what they produce and what is lost."""
 
     def __init__(
-        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, rows: tuple[int, ...], order: float
+        self,
+        gui: viser.GuiApi,
+        dispatch: Dispatch,
+        robot: Robot,
+        rows: tuple[int, ...],
+        order: float,
+        presets: Sequence[Any] = (),
     ):
         self.robot = robot
         self.rows = rows
         self.ranges = twist_ranges(robot)
         self.root = gui.add_folder(None, order=order)
+        # The course's worked example: the first preset in base axes (a twist held from a configuration).
+        self.example = next((p for p in presets if p.frame == "base"), None)
+        self._example_start = next(
+            (
+                c.name
+                for c in robot.configurations
+                if self.example is not None and np.allclose(c.q, self.example.q)
+            ),
+            "",
+        )
+        self.example_button: viser.GuiButtonHandle | None = None
         with self.root:
+            if self.example is not None:
+                p = self.example
+                # The course's worked example carries its joint rates; another robot's preset is an example.
+                label = "Course example" if p.rates is not None else f"Example: {p.name}"[:60]
+                self.example_button = gui.add_button(label, icon=viser.Icon.SCHOOL)
+                bind_click(
+                    self.example_button,
+                    dispatch,
+                    lambda: ApplyPreset(
+                        p.name, tuple(map(float, p.q)), tuple(map(float, p.twist)), p.frame, p.speed
+                    ),
+                )
             self.rates = gui.add_html("")  # the results first: in sight while the sliders move
             self.result = gui.add_html("")
+            self.inverse = gui.add_html("")  # J⁻¹ (or J⁺) at q, live
+            self.course = gui.add_html("")
             self.sliders = {}
             for r in rows:
                 slider = _slider(gui, _TWIST_ROWS[r], self.ranges[r], "desired tool velocity, base axes")
@@ -169,13 +211,39 @@ class InversePanel:
             )
             bind(self.damping, dispatch, lambda v: SetOption("damping", float(v)))
             self._shown: tuple | None = None
+            self.symbolic_button: viser.GuiButtonHandle | None = None
+            self.symbolic = gui.add_html("")
+            if len(rows) == robot.dof:  # a square task J: its inverse, symbolically, on demand
+                self.symbolic_button = gui.add_button("Symbolic J⁻¹ = adj J / det J", icon=viser.Icon.MATH)
+                bind_click(
+                    self.symbolic_button, dispatch, lambda: SetOption("symbolic_inverse", not self._asked)
+                )
+            self._asked = False
 
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():
             sync_value(slider, round(to_display(self.ranges[r], state.v_desired[r]), 6))
         sync_value(self.damping, float(state.options.damping))
+        asked = state.options.symbolic_inverse
+        if asked != self._asked and self.symbolic_button is not None:
+            self.symbolic_button.label = "Hide the symbolic J⁻¹" if asked else "Symbolic J⁻¹ = adj J / det J"
+            if not asked:
+                self.symbolic.content = ""
+        self._asked = asked
+
+    def show_symbolic(self, mathml: str | None, note: str) -> None:
+        """Show the symbolic J⁻¹ (``None``: only the note)."""
+        if not self._asked:
+            return
+        body = f'<div class="jl-mathml" style="overflow-x:auto">{mathml}</div>' if mathml else ""
+        self.symbolic.content = f'<div class="jl">{body}<div class="jl-note">{fmt.escape(note)}</div></div>'
 
     def update(self, snap: Snapshot, state: LabState) -> None:
+        self.inverse.content = inverse_html(snap.inverse, self.robot, snap.rows, state, snap.report.status)
+        p = self.example
+        if p is not None:
+            question = state.configuration == "course_question"
+            self.course.content = example_html(snap, state, p.rates, self._example_start, question)
         idle = ("idle", state.options.damping) if not np.any(state.v_desired[list(self.rows)]) else None
         if idle is not None and idle == self._shown:
             return

@@ -83,8 +83,18 @@ def status_html(snap: Snapshot, state: LabState) -> str:
             f": {fmt.escape(text)}" if text else ""
         )
     lost = lost_text(snap, robot.planar)
+    a = snap.analytic
+    representation = (
+        f"<b>representation singular</b> ({a.convention.upper()}, "
+        f"{'pitch ±90°' if a.convention == 'zyx' else 'θ = 0 or 180°'}): no J<sub>A</sub>; "
+        f"J {r.status}, rank {snap.rank}"
+        if a is not None and a.singular
+        else ""
+    )
     lines = "".join(
-        f'<div class="jl-sub" title="{fmt.escape(_plain(x))}">{x}</div>' for x in (sub, lost) if x
+        f'<div class="jl-sub" title="{fmt.escape(_plain(x))}">{x}</div>'
+        for x in (representation, sub, lost)
+        if x
     )
     return f'<div class="jl">{banner}{lines}</div>'
 

@@ -17,6 +17,7 @@ from kinematics import Robot
 from ..panel.common import Dispatch
 from ..snapshot import Snapshot
 from ..state import LabState
+from .accel import AccelArrow
 from .arm import ArmGeometry, ArmView
 from .derive import DeriveScene
 from .drive import DriveView
@@ -42,6 +43,7 @@ class SceneView:
         self.arm = ArmView(client, robot, f"{root}/arm")
         self.overlays = Overlays(client.scene, self.arm.geometry, robot.dof, robot.planar, f"{root}/jacobian")
         self.derive = DeriveScene(client.scene, robot, self.arm.geometry, f"{root}/derive")
+        self.accel = AccelArrow(client.scene, self.size, f"{root}/jacobian")
         self.drive = DriveView(
             client.scene, dispatch or (lambda action: None), self.size, robot.planar, f"{root}/drive"
         )
@@ -54,13 +56,14 @@ class SceneView:
     @property
     def extent(self) -> np.ndarray:
         """Points (N, 3) [m] of everything drawn at the last update: arm, ellipsoids, arrow tips."""
-        parts = [self.overlays.extent, self.drive.extent, self.derive.extent]
+        parts = [self.overlays.extent, self.drive.extent, self.accel.extent, self.derive.extent]
         return np.concatenate([x for x in parts if len(x)]) if any(len(x) for x in parts[1:]) else parts[0]
 
     def update(self, snap: Snapshot, state: LabState) -> None:
         """Move every node to ``snap`` (call inside ``client.atomic()``)."""
         self.arm.update(snap, state.options)
         self.overlays.update(snap, state)
+        self.accel.update(snap, state)
         self.drive.update(snap, state)
         self.derive.update(snap, state)
 
@@ -68,5 +71,6 @@ class SceneView:
         """Remove every node (on robot switch or disconnect)."""
         self.drive.remove()
         self.derive.remove()
+        self.accel.remove()
         self.overlays.remove()
         self.arm.remove()
