@@ -171,19 +171,20 @@ def _build(robot: Robot, method: str, frame: str, symbolic_params: bool, deadlin
     steps = _transform_steps(ctx)
     own, J, axes = METHOD_STEPS[method](ctx)
     steps += own
-    if axes != frame:  # Whitney and differentiation give J in the base axes
-        steps.append(
-            ctx.step("J_base", "J in the base axes: the columns side by side", "J_{\\mathrm{base}}", J, None, "result")
-        )
-        J = rotate_rows(J, F.tool[:3, :3].T)
+    if axes != frame:  # Whitney and differentiation give J in the base axes, force propagation in the tool's
+        what = {"base": "the base axes: the columns side by side", "tool": "the tool axes"}[axes]
+        lhs = {"base": "J_{\\mathrm{base}}", "tool": "J_{\\mathrm{tool}}"}[axes]
+        steps.append(ctx.step(f"J_{axes}", f"J in {what}", lhs, J, None, "result"))
+        R = F.tool[:3, :3]
+        J = rotate_rows(J, R.T if frame == "tool" else R)
     title = {
         "base": "J: the columns side by side, rows [v; ω] in the base axes (v the velocity of the tool origin)",
         "tool": "J in the tool axes: blockdiag(Rᵀ, Rᵀ) J_base, R the tool's rotation",
     }[frame]
     if method == "propagation":
         title = "J: the coefficients of q̇ in [v; ω]" + (" (base axes)" if frame == "base" else " (tool axes)")
-    if method == "force":
-        title = "J = (Jᵀ)ᵀ: the transpose of the coefficients of the wrench in τ"
+    if method == "force" and frame == "base":
+        title = "J = blockdiag(R, R) J_tool, R the tool's rotation: rows [v; ω] in the base axes"
     steps.append(ctx.step("J", title, "J" if frame == "base" else "J_{\\mathrm{tool}}", J, None, "result"))
     det = _det_step(ctx, robot, symbolic_params) if frame == "base" else None
     if det is not None:

@@ -30,7 +30,7 @@ def _s(i: int) -> str:
 
 def rotate_rows(J: sp.Matrix, R: sp.Matrix) -> sp.Matrix:
     """blockdiag(R, R) · J (J with rows [v; ω])."""
-    return sp.Matrix.vstack(R * J[:3, :], R * J[3:, :]).applyfunc(sp.expand)
+    return sp.Matrix.vstack(R * J[:3, :], R * J[3:, :])
 
 
 def rate_symbols(model: SymbolicModel) -> tuple[tuple[sp.Symbol, ...], dict]:
@@ -201,13 +201,10 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
 
 
 def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
-    """Craig's inward iteration of a tool wrench [f; n] to the joint torques τ = Jᵀ [f; n]."""
+    """Craig's inward iteration of a tool wrench [f; n] (tool axes) to the joint torques τ = J_toolᵀ [f; n]."""
     m = ctx.model
     W, names = wrench_symbols()
-    f, n = sp.Matrix(W[:3]), sp.Matrix(W[3:])
-    if ctx.frame == "base":  # the wrench is given in the base axes: into the tool's
-        Rt = ctx.F.tool[:3, :3].T
-        f, n = (Rt * f).applyfunc(sp.expand), (Rt * n).applyfunc(sp.expand)
+    f, n = sp.Matrix(W[:3]), sp.Matrix(W[3:])  # the wrench at the tool origin, in the tool axes
     mk = lambda key, title, lhs, e, j: ctx.step(key, title, lhs, e, j, "force", inputs=W, names=names)  # noqa: E731
     out: list[Step] = []
     tau: dict[int, sp.Expr] = {}
@@ -233,10 +230,10 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             f, n = M[:3, :3] * f, M[:3, :3] * n + M[:3, 3].cross(M[:3, :3] * f)
         f, n = f.applyfunc(sp.expand), n.applyfunc(sp.expand)
     JT = sp.Matrix([taus[j].expr[0, 0] for j in range(m.dof)]).jacobian(sp.Matrix(W))
-    lhs = "J^{T}" if ctx.frame == "base" else "J_{\\mathrm{tool}}^{T}"
-    jt = ctx.step("force.JT", "Jᵀ: the coefficients of the wrench in τ (τ = Jᵀ [f; n])", lhs, JT, None, "force")
+    title = "Jᵀ in the tool axes: the coefficients of the tool wrench in τ (τ = Jᵀ [f; n])"
+    jt = ctx.step("force.JT", title, "J_{\\mathrm{tool}}^{T}", JT, None, "force")
     out.append(jt)
-    return out, jt.expr.T, ctx.frame
+    return out, jt.expr.T, "tool"
 
 
 METHOD_STEPS: dict[str, Callable[[Context], tuple[list[Step], sp.Matrix, str]]] = {
