@@ -25,7 +25,7 @@ from .singular import SingularSet
 
 __all__ = ["Step", "DHRow", "DH_COLUMNS", "step_notation", "PX_PER_CHAR"]
 
-PX_PER_CHAR = 11.0
+PX_PER_CHAR = 10.0
 """Rough width of one character of typeset MathML [px] at the default font size (16 px)."""
 
 DH_COLUMNS = {
