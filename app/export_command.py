@@ -39,8 +39,9 @@ def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
 class _StderrProgress:
     """Shows the current step on stderr, only once the whole job has taken more than ``after`` seconds."""
 
-    def __init__(self, stream=None, after: float = 1.0) -> None:
+    def __init__(self, stream=None, after: float = 1.0, command: str = "export") -> None:
         self.stream = stream if stream is not None else sys.stderr
+        self.command = command
         self.after = after
         self.message = "working"
         self.shown = ""
@@ -58,7 +59,7 @@ class _StderrProgress:
         with self.lock:
             message = "done" if final else self.message
         if final or message != self.shown:
-            self.stream.write(f"jacobian-lab export: [{elapsed:5.1f} s] {message}\n")
+            self.stream.write(f"jacobian-lab {self.command}: [{elapsed:5.1f} s] {message}\n")
             self.stream.flush()
             self.shown = message
 
