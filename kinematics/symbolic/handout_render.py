@@ -14,10 +14,11 @@ from .handout import INTRO, ROW_NAMES, TITLES, Example, Handout, angle_parts, de
 from .printing import Notation
 from .render import KIND_TEXT, MATH_STYLE
 from .step import DH_COLUMNS, Step, lhs_mathml, step_notation
+from .step_layout import OMITTED
 
 __all__ = ["render_html", "render_tex", "HTML_MATH_PX", "TEX_MATH_CHARS"]
 
-HTML_MATH_PX = 860
+HTML_MATH_PX = 780
 """Width [px] the HTML handout gives a formula (the page's text column is 60rem)."""
 TEX_MATH_CHARS = 72
 """Width [characters] the LaTeX handout gives a formula (A4 with 2 cm margins)."""
@@ -239,7 +240,8 @@ def render_html(h: Handout) -> str:
     items = N.mathml_legend_items()
     if items:
         out.append("<p>where " + ", ".join(f"<math>{i}</math>" for i in items) + "</p>")
-    out += [f'<p class="note">Note: {xml_text(n, NOTE_CHARS)}</p>' for n in h.notes]
+    notes = h.notes + ([OMITTED] if any("<mo>∗</mo>" in x for x in out) else [])
+    out += [f'<p class="note">Note: {xml_text(n, NOTE_CHARS)}</p>' for n in notes]
     title = xml_text(_title(h))
     head = (
         f'<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
@@ -361,7 +363,8 @@ def render_tex(h: Handout) -> str:
             out += ["\\[", formula, "\\]"]
     out.append("\\section*{Notation}")
     out += ["\\[", N.latex_legend(), "\\]"]
-    out += [f"Note: {tex_text(n)}\n" for n in h.notes]
+    notes = h.notes + ([OMITTED] if any("\\ast" in x for x in out) else [])
+    out += [f"Note: {tex_text(n)}\n" for n in notes]
     out.append("\\end{document}")
     return "\n".join(out) + "\n"
 

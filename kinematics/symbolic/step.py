@@ -17,11 +17,12 @@ import numpy as np
 import sympy as sp
 
 from .escape import latex_text, xml_text
-from .layout import MATHML_WIDTH, latex_matrix, mathml_lines, mathml_matrix, text_width, too_long
+from .layout import MATHML_WIDTH, mathml_lines, text_width, too_long
 from .model import SymbolicModel
 from .printing import Notation
 from .render import MATH_STYLE
 from .singular import SingularSet
+from .step_layout import latex_cells, mathml_cells
 
 __all__ = ["Step", "DHRow", "DH_COLUMNS", "step_notation", "PX_PER_CHAR"]
 
@@ -120,16 +121,21 @@ class Step:
         return self.latex_blocks(None, notation)[0]
 
     def latex_blocks(self, width_chars: float | None = None, notation: Notation | None = None) -> list[str]:
-        """``lhs = expr`` as one LaTeX formula, or one per group of columns when wider than ``width_chars``."""
+        """``lhs = expr`` as one LaTeX formula, or, given a width, one per group of columns that fit
+        it, long entries broken into ``aligned`` lines and any still too wide shown as ``\\ast``."""
         N = notation or self.notation()
+        wrap = None if width_chars is None else min(MATHML_WIDTH, max(width_chars - 10.0, 16.0))
+        budget = None if width_chars is None else max(width_chars - text_width(self.lhs) - 6.0, 16.0)
         if self._scalar():
-            e = self.expr[0, 0]
-            value = "\\ast" if too_long(e) else N.latex(e)
-            return [f"{self.lhs} = {value}"]
+            cells, _ = latex_cells(N, self.expr, wrap, budget)
+            return [f"{self.lhs} = {cells[0][0]}"]
         groups = [(0, self.expr.cols)] if width_chars is None else self.column_groups(width_chars)
-        return [
-            f"{self.lhs}{self._label(a, b, True)} = {latex_matrix(N, self.expr[:, a:b])[0]}" for a, b in groups
-        ]
+        out = []
+        for a, b in groups:
+            cells, _ = latex_cells(N, self.expr[:, a:b], wrap, budget)
+            body = "\\\\".join(" & ".join(row) for row in cells)
+            out.append(f"{self.lhs}{self._label(a, b, True)} = \\begin{{bmatrix}}{body}\\end{{bmatrix}}")
+        return out
 
     def mathml_lhs(self) -> str:
         """The left-hand side as MathML (a small translation of :attr:`lhs`)."""
@@ -145,14 +151,15 @@ class Step:
         chars = width_px / PX_PER_CHAR
         wrap = min(MATHML_WIDTH, max(chars - 10.0, 16.0))
         lhs = self.mathml_lhs()
+        budget = max(chars - text_width(lhs) - 6.0, 16.0)
         if self._scalar():
-            e = self.expr[0, 0]
-            lines = ["<mo>∗</mo>"] if too_long(e) else mathml_lines(N, e, wrap)
-            body = lines[0] if len(lines) == 1 else _stack(lines)
-            return _block(f"{lhs}<mo>=</mo>{body}")
+            cells, _ = mathml_cells(N, self.expr, wrap, budget)
+            return _block(f"{lhs}<mo>=</mo>{cells[0][0]}")
         out = []
         for a, b in self.column_groups(chars):
-            M = mathml_matrix(N, self.expr[:, a:b], None, wrap)[0]
+            cells, _ = mathml_cells(N, self.expr[:, a:b], wrap, budget)
+            body = "".join("<mtr>" + "".join(f"<mtd>{e}</mtd>" for e in row) + "</mtr>" for row in cells)
+            M = f"<mrow><mo>[</mo><mtable>{body}</mtable><mo>]</mo></mrow>"
             out.append(_block(f"{lhs}{self._label(a, b, False)}<mo>=</mo>{M}"))
         return "\n".join(out)
 
