@@ -58,7 +58,11 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     sub.add_parser("robots", help="list the library robots")
     sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
-    sub.add_parser("handout", help="the derivation of J step by step, as an HTML page or a LaTeX document", add_help=False)
+    sub.add_parser(
+        "handout",
+        help="the derivation of J step by step, as an HTML page or a LaTeX document",
+        add_help=False,
+    )
     sub.add_parser("record", help="record a demo that plays from any static web server", add_help=False)
     return parser
 

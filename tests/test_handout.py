@@ -106,7 +106,9 @@ def _matrices(tex: str) -> dict[str, np.ndarray]:
 
 def test_trr_worked_example_is_the_courses(tmp_path):
     out = tmp_path / "trr.tex"
-    assert cli_main(["handout", "trr", "--method", "whitney", "--rates", "0.5", "90", "45", "-o", str(out)]) == 0
+    assert (
+        cli_main(["handout", "trr", "--method", "whitney", "--rates", "0.5", "90", "45", "-o", str(out)]) == 0
+    )
     M = _matrices(out.read_text(encoding="utf-8"))
     J_course = np.array([[0, 8.157, 5.657], [0, -9.987, -5.657], [1, 0, 0]])
     assert np.array_equal(M["J(q)"], J_course)
@@ -161,7 +163,10 @@ def test_html_fits_1280_px_in_chromium(tmp_path):
     sync_playwright = _require_browser()
     pages = []
     # puma560: long simplified entries; panda at a short time limit: unsimplified ones as well
-    for args in (["puma560", "--method", "whitney"], ["panda", "--method", "differentiation", "--timeout", "3"]):
+    for args in (
+        ["puma560", "--method", "whitney"],
+        ["panda", "--method", "differentiation", "--timeout", "3"],
+    ):
         out = tmp_path / f"{args[0]}.html"
         assert cli_main(["handout", *args, "-o", str(out)]) == 0
         pages.append(out)
@@ -179,7 +184,9 @@ def test_html_fits_1280_px_in_chromium(tmp_path):
                 assert too_wide == 0, path.name
                 # MathML is laid out as math (Chromium's MathML Core), not as unknown inline elements
                 assert page.evaluate("document.querySelectorAll('math').length") > 50
-                shown = page.evaluate("getComputedStyle(document.querySelector('math[display=block]')).display")
+                shown = page.evaluate(
+                    "getComputedStyle(document.querySelector('math[display=block]')).display"
+                )
                 assert shown == "block math"
         finally:
             browser.close()
@@ -231,7 +238,11 @@ def test_handout_function_refuses_bad_requests():
     from kinematics.errors import JacobianLabError
 
     robot = robots.load("planar2")
-    for kwargs in (dict(fmt="pdf"), dict(fmt="html", method="newton"), dict(fmt="html", configuration="nowhere")):
+    for kwargs in (
+        dict(fmt="pdf"),
+        dict(fmt="html", method="newton"),
+        dict(fmt="html", configuration="nowhere"),
+    ):
         with pytest.raises(JacobianLabError):
             handout(robot, **kwargs)  # type: ignore[arg-type]
     assert cli_main(["handout", "planar2", "-o", "x.pdf"]) == 2

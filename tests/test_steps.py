@@ -128,7 +128,11 @@ def test_a_urdf_chain_has_no_symbolic_parameters():
 
 def test_bad_arguments_are_refused():
     robot = robots.load("planar2")
-    for bad in (dict(method="newton"), dict(method="whitney", frame="world"), dict(method="whitney", timeout=-1)):
+    for bad in (
+        dict(method="newton"),
+        dict(method="whitney", frame="world"),
+        dict(method="whitney", timeout=-1),
+    ):
         with pytest.raises(kinematics.JacobianLabError):
             derivation_steps(robot, **bad)  # type: ignore[arg-type]
     step = derivation_steps(robot, "propagation")[-3]
@@ -164,7 +168,11 @@ def test_transforms_and_whitney_vectors_numerically(name):
         if "detJ" in S:
             rows = list(det_rows(robot))
             Jr = J[rows]
-            expected = np.linalg.det(Jr) if len(rows) == robot.dof else np.linalg.det(Jr @ Jr.T if len(rows) < robot.dof else Jr.T @ Jr)
+            expected = (
+                np.linalg.det(Jr)
+                if len(rows) == robot.dof
+                else np.linalg.det(Jr @ Jr.T if len(rows) < robot.dof else Jr.T @ Jr)
+            )
             assert S["detJ"].numeric(q)[0, 0] == pytest.approx(expected, abs=1e-6)
 
 

@@ -28,7 +28,15 @@ from .steps import METHODS, derivation_steps, dh_rows
 from .steps_methods import rate_symbols, wrench_symbols
 from .trig import Deadline
 
-__all__ = ["HANDOUT_FORMATS", "HANDOUT_METHODS", "HandoutError", "Handout", "Example", "handout", "build_handout"]
+__all__ = [
+    "HANDOUT_FORMATS",
+    "HANDOUT_METHODS",
+    "HandoutError",
+    "Handout",
+    "Example",
+    "handout",
+    "build_handout",
+]
 
 HANDOUT_FORMATS = ("html", "tex")
 HANDOUT_METHODS = (*METHODS, "all")
@@ -122,9 +130,7 @@ class Handout:
     same_J: bool = True
 
 
-def _example(
-    robot: Robot, frame: str, configuration: str | None, rates: object, twist: object
-) -> Example:
+def _example(robot: Robot, frame: str, configuration: str | None, rates: object, twist: object) -> Example:
     if configuration is None:
         named = next((c for c in robot.configurations if c.name == "home"), None)
         q = np.asarray(robot.home, dtype=float)
@@ -135,7 +141,7 @@ def _example(
             raise HandoutError(f"robot has no configuration {configuration!r}; available: {available}")
         q = np.asarray(named.q, dtype=float)
     rows = tuple(task_rows(robot))
-    J = numeric_jacobian(robot, q, frame)[list(rows)]
+    J = numeric_jacobian(robot, q, check_frame(frame))[list(rows)]
     square = J.shape[0] == J.shape[1]
     det = float(np.linalg.det(J)) if square else float(np.sqrt(max(np.linalg.det(J @ J.T), 0.0)))
     ex = Example(named.name if named else "", named.description if named else "", q, rows, J, det, square)
@@ -186,7 +192,10 @@ def build_handout(
     first = per[methods[0]]
     transforms = [s for s in first if s.section == "transforms"]
     result = [s for s in first if s.section == "result" and s.key in ("J", "detJ")]
-    method_steps = {m: [s for s in steps if s.section not in ("transforms",) and s.key not in ("J", "detJ")] for m, steps in per.items()}
+    method_steps = {
+        m: [s for s in steps if s.section not in ("transforms",) and s.key not in ("J", "detJ")]
+        for m, steps in per.items()
+    }
     _, rate_names = rate_symbols(model)
     _, wrench_names = wrench_symbols()
     notes = [model.snap_note] if model.snaps else []
@@ -256,7 +265,8 @@ def handout(
         HandoutError: unknown format, method or configuration, wrong rates or twist.
         SymbolicError: bad frame or timeout, symbolic parameters for a robot without a DH table.
     """
-    from .handout_render import render_html, render_tex
+    from .handout_render import render_html
+    from .handout_tex import render_tex
 
     if fmt not in HANDOUT_FORMATS:
         raise HandoutError(f"format must be one of {', '.join(HANDOUT_FORMATS)}, got {fmt!r}")

@@ -182,7 +182,8 @@ def _generic_latex(name: str) -> str:
 
 
 def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list, list] | None:
-    """(parent_joint, joint_child, offsets, (theta, d, a, alpha) per row) rebuilt from the DH table; None if it does not match the axes."""
+    """(parent_joint, joint_child, offsets, (theta, d, a, alpha) per row) rebuilt from the DH table;
+    None if it does not match the axes."""
     if robot.dh is None or len(robot.axes) != len(robot.dh):
         return None
     modified = robot.convention == "modified"

@@ -36,8 +36,10 @@ DH_COLUMNS = {
 """LaTeX headers of the DH table's four columns per convention, in the order :meth:`DHRow.cells` gives."""
 
 
-def step_notation(model: SymbolicModel, inputs: Sequence[sp.Symbol] = (), names: dict | None = None) -> Notation:
-    """A :class:`Notation` for the symbols of ``model`` plus the step ``inputs`` (q̇, wrench) and their names."""
+def step_notation(
+    model: SymbolicModel, inputs: Sequence[sp.Symbol] = (), names: dict | None = None
+) -> Notation:
+    """A :class:`Notation` for the symbols of ``model`` and the display ``names`` of step inputs."""
     display = {**model.display, **(names or {})}
     robot = model.robot
     return Notation(model.q, display, robot.joint_types, model.params, robot.joint_names)
@@ -185,12 +187,12 @@ class Step:
         """
         qa = np.asarray(q, dtype=float).reshape(-1)
         if qa.shape != (self.model.dof,):
-            raise ValueError(f"q must have shape ({self.model.dof},), got {np.shape(q)}")
+            raise ValueError(f"q must have shape ({self.model.dof},), got {qa.shape}")
         if self.inputs and inputs is None:
             raise ValueError(f"step {self.key!r} needs the values of {', '.join(map(str, self.inputs))}")
         xa = np.asarray(inputs if inputs is not None else [], dtype=float).reshape(-1)
         if xa.shape != (len(self.inputs),):
-            raise ValueError(f"inputs must have shape ({len(self.inputs)},), got {np.shape(inputs)}")
+            raise ValueError(f"inputs must have shape ({len(self.inputs)},), got {xa.shape}")
         out = np.asarray(self._function(qa, xa), dtype=float)
         return np.broadcast_to(out, self.expr.shape).copy() if out.shape != self.expr.shape else out
 
@@ -201,7 +203,9 @@ def _block(inner: str) -> str:
 
 def _stack(lines: list[str]) -> str:
     indent = '<mspace width="1em"/>'
-    rows = "".join(f"<mtr><mtd>{line if k == 0 else indent + line}</mtd></mtr>" for k, line in enumerate(lines))
+    rows = "".join(
+        f"<mtr><mtd>{line if k == 0 else indent + line}</mtd></mtr>" for k, line in enumerate(lines)
+    )
     return f'<mtable columnalign="left" rowspacing="0.1em">{rows}</mtable>'
 
 
@@ -285,11 +289,12 @@ class _LhsParser:
     def atom_with_scripts(self) -> str:
         if self.s.startswith("{}^", self.i):  # a left superscript: {}^{0}T_{2}
             self.i += 3
-            sup = self.group()
+            pre = self.group()
             base = self.atom_with_scripts()
-            return f"<mmultiscripts>{_strip(base)}<mprescripts/><none/>{sup}</mmultiscripts>"
+            return f"<mmultiscripts>{_strip(base)}<mprescripts/><none/>{pre}</mmultiscripts>"
         base = self.atom()
-        sub = sup = None
+        sub: str | None = None
+        sup: str | None = None
         while self.i < len(self.s) and self.s[self.i] in "_^":
             mark = self.s[self.i]
             self.i += 1

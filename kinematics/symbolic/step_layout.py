@@ -124,13 +124,17 @@ def mathml_cells(N: Notation, M: sp.Matrix, wrap: float, budget: float | None) -
                 row.append(lines[0])
             else:
                 indent = '<mspace width="1em"/>'
-                rows = "".join(f"<mtr><mtd>{x if k == 0 else indent + x}</mtd></mtr>" for k, x in enumerate(lines))
+                rows = "".join(
+                    f"<mtr><mtd>{x if k == 0 else indent + x}</mtd></mtr>" for k, x in enumerate(lines)
+                )
                 row.append(f'<mtable columnalign="left" rowspacing="0.1em">{rows}</mtable>')
         out.append(row)
     return out, omitted
 
 
-def latex_cells(N: Notation, M: sp.Matrix, wrap: float | None, budget: float | None) -> tuple[list[list[str]], int]:
+def latex_cells(
+    N: Notation, M: sp.Matrix, wrap: float | None, budget: float | None
+) -> tuple[list[list[str]], int]:
     """LaTeX of every entry (broken into ``aligned`` lines at ``wrap`` characters, if given) and how
     many were shown as ``\\ast``."""
     out, omitted = [], 0

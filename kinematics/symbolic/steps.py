@@ -43,7 +43,6 @@ from ..model import Robot
 from .chain import frames_within, multiply
 from .core import DEFAULT_TIMEOUT, check_timeout
 from .model import SymbolicError, build_model, check_frame
-from .render import _det_label
 from .singular import determinant
 from .step import DHRow, Step
 from .steps_methods import METHOD_STEPS, Context, rotate_rows
@@ -71,7 +70,7 @@ def dh_rows(robot: Robot, symbolic_params: bool = False) -> tuple[DHRow, ...]:
     if not model.dh:
         return ()
     return tuple(
-        DHRow(i + 1, kind, robot.joints[j].name, *values, model.q[j], robot.convention)
+        DHRow(i + 1, kind, robot.joints[j].name, *values, model.q[j], robot.convention or "standard")
         for i, (kind, j, values) in enumerate(zip(model.kinds, model.axis_joint, model.dh, strict=True))
     )
 
@@ -86,25 +85,68 @@ def _transform_steps(ctx: Context) -> list[Step]:
     dh = bool(m.dh)
     what = "DH link transform" if dh else "link transform of the chain"
     if not _is_identity(m.base):
-        out.append(ctx.step("base", "The robot's base transform: frame 0 seen from the base", "T_{\\mathrm{base}}", m.base, None))
+        out.append(
+            ctx.step(
+                "base",
+                "The robot's base transform: frame 0 seen from the base",
+                "T_{\\mathrm{base}}",
+                m.base,
+                None,
+            )
+        )
     for k, (kind, value) in enumerate(zip(m.kinds, m.axis_value, strict=True)):
         A = multiply(multiply(m.parent_joint[k], _axis(kind, value)), m.joint_child[k])
         formula = ""
         if dh:
             formula = (
-                ": Rz(θ) Tz(d) Tx(a) Rx(α)" if m.robot.convention == "standard" else ": Rx(α) Tx(a) Rz(θ) Tz(d)"
+                ": Rz(θ) Tz(d) Tx(a) Rx(α)"
+                if m.robot.convention == "standard"
+                else ": Rx(α) Tx(a) Rz(θ) Tz(d)"
             )
-        out.append(ctx.step(f"A{k + 1}", f"A{_sub(k + 1)} = {_sup(k)}T{_sub(k + 1)}, the {what} of joint {k + 1}{formula}", f"A_{{{k + 1}}}", A, m.axis_joint[k]))
+        out.append(
+            ctx.step(
+                f"A{k + 1}",
+                f"A{_sub(k + 1)} = {_sup(k)}T{_sub(k + 1)}, the {what} of joint {k + 1}{formula}",
+                f"A_{{{k + 1}}}",
+                A,
+                m.axis_joint[k],
+            )
+        )
     if not _is_identity(m.tool):
         n = len(m.kinds)
-        out.append(ctx.step("Atool", f"The tool transform: the tool frame seen from frame {n}", f"{{}}^{{{n}}}T_{{\\mathrm{{tool}}}}", m.tool, None))
+        out.append(
+            ctx.step(
+                "Atool",
+                f"The tool transform: the tool frame seen from frame {n}",
+                f"{{}}^{{{n}}}T_{{\\mathrm{{tool}}}}",
+                m.tool,
+                None,
+            )
+        )
     for k in range(len(m.kinds)):
         title = f"⁰T{_sub(k + 1)} = " + (" ".join(f"A{_sub(i + 1)}" for i in range(k + 1)) if k else "A₁")
         if not _is_identity(m.base):
             title = title.replace("= ", "= T_base ", 1)
-        out.append(ctx.step(f"T0_{k + 1}", title + f": frame {k + 1} in the base frame", f"{{}}^{{0}}T_{{{k + 1}}}", F.link[k], m.axis_joint[k]))
+        out.append(
+            ctx.step(
+                f"T0_{k + 1}",
+                title + f": frame {k + 1} in the base frame",
+                f"{{}}^{{0}}T_{{{k + 1}}}",
+                F.link[k],
+                m.axis_joint[k],
+            )
+        )
     if not _is_identity(m.tool):
-        out.append(ctx.step("T0_tool", f"⁰T_tool = ⁰T{_sub(len(m.kinds))} · {_sup(len(m.kinds))}T_tool: the tool pose (pₙ is its origin)", "{}^{0}T_{\\mathrm{tool}}", F.tool, None))
+        out.append(
+            ctx.step(
+                "T0_tool",
+                f"⁰T_tool = ⁰T{_sub(len(m.kinds))} · {_sup(len(m.kinds))}T_tool: the tool pose "
+                "(pₙ is its origin)",
+                "{}^{0}T_{\\mathrm{tool}}",
+                F.tool,
+                None,
+            )
+        )
     return out
 
 
@@ -131,7 +173,7 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
     if det.expr is None:
         ctx.notes.extend(det.notes or ("det J was not computed within the time limit",))
         return None
-    names = {(0, 1, 2): "the position rows", (3, 4, 5): "the orientation rows"}
+    names: dict[tuple[int, ...], str] = {(0, 1, 2): "the position rows", (3, 4, 5): "the orientation rows"}
     rows = "all six rows" if len(det.rows) == 6 else names.get(det.rows, "the task rows")
     words = "; ".join(_set_words(s) for s in det.singular_sets) or "none: J never loses rank"
     kind = "det(J Jᵀ)" if det.gram else "det J"
@@ -139,7 +181,7 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
     return Step(
         "detJ",
         title,
-        _det_label(det, True),
+        det_latex_label(det.rows, det.gram, robot.dof),
         sp.Matrix([[det.expr]]),
         None,
         ctx.model,
@@ -147,6 +189,21 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
         notes=tuple(det.notes),
         singular=det.singular_sets,
     )
+
+
+_ROW_LATEX = ("v_{x}", "v_{y}", "v_{z}", "\\omega_{x}", "\\omega_{y}", "\\omega_{z}")
+
+
+def det_latex_label(rows: tuple[int, ...], gram: bool, dof: int) -> str:
+    """The LaTeX label of a determinant: ``\\det J``, ``\\det J_{v}``, ``\\det(J J^{T})`` …"""
+    blocks: dict[tuple[int, ...], str] = {(0, 1, 2): "v", (3, 4, 5): "\\omega"}
+    if len(rows) == 6:
+        J = "J"
+    else:
+        J = "J_{" + blocks.get(tuple(rows), "(" + ", ".join(_ROW_LATEX[r] for r in rows) + ")") + "}"
+    if not gram:
+        return f"\\det {J}"
+    return f"\\det({J} {J}^{{T}})" if len(rows) < dof else f"\\det({J}^{{T}} {J})"
 
 
 def _set_words(s) -> str:
@@ -164,7 +221,9 @@ def _cached(
     return _build(robot, method, frame, symbolic_params, Deadline(timeout))
 
 
-def _build(robot: Robot, method: str, frame: str, symbolic_params: bool, deadline: Deadline) -> tuple[Step, ...]:
+def _build(
+    robot: Robot, method: str, frame: str, symbolic_params: bool, deadline: Deadline
+) -> tuple[Step, ...]:
     model = build_model(robot, symbolic_params)
     F, _ = frames_within(model, deadline)
     ctx = Context(model, F, deadline, frame)
@@ -178,7 +237,7 @@ def _build(robot: Robot, method: str, frame: str, symbolic_params: bool, deadlin
         R = F.tool[:3, :3]
         J = rotate_rows(J, R.T if frame == "tool" else R)
     title = {
-        "base": "J: the columns side by side, rows [v; ω] in the base axes (v the velocity of the tool origin)",
+        "base": "J: the columns side by side, rows [v; ω] in the base axes (v: velocity of the tool origin)",
         "tool": "J in the tool axes: blockdiag(Rᵀ, Rᵀ) J_base, R the tool's rotation",
     }[frame]
     if method == "propagation":

@@ -75,16 +75,20 @@ class Context:
         names: dict | None = None,
     ) -> Step:
         """A :class:`Step` with ``expr`` simplified within the deadline."""
-        S = simplify_matrix(sp.Matrix(expr), self.model.q, self.deadline, None, key, self.shift, values=self.values)
+        S = simplify_matrix(
+            sp.Matrix(expr), self.model.q, self.deadline, None, key, self.shift, values=self.values
+        )
         if S.pending:
             self.notes.append(
                 "time limit reached: some steps are shown unsimplified (exact, but long); raise the timeout"
             )
-        return Step(key, title, lhs, S.matrix, joint, self.model, section, inputs, names or {}, tuple(S.notes))
+        return Step(
+            key, title, lhs, S.matrix, joint, self.model, section, inputs, names or {}, tuple(S.notes)
+        )
 
 
 def _labels(model: SymbolicModel) -> list[int]:
-    """The frame index the convention gives the axis of each joint: i−1 (standard DH, URDF) or i (modified)."""
+    """The frame index of each joint's axis in the convention: i−1 (standard DH, URDF) or i (modified)."""
     shift = 1 if model.dh and model.robot.convention == "modified" else 0
     return [k + shift for k in range(len(model.kinds))]
 
@@ -106,21 +110,42 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         for k in _axes_of(m, j):
             i, W = lab[k], F.joint[k]
             zs = ctx.step(
-                f"whitney.z{k}", f"z{_s(i)}: the axis of joint {k + 1}, in the base axes", f"z_{{{i}}}", W[:3, 2], j, "whitney"
+                f"whitney.z{k}",
+                f"z{_s(i)}: the axis of joint {k + 1}, in the base axes",
+                f"z_{{{i}}}",
+                W[:3, 2],
+                j,
+                "whitney",
             )
             out.append(zs)
             z = zs.expr
             rate = sp.diff(m.axis_value[k], qj)
             if m.kinds[k] == "revolute":
-                p = ctx.step(f"whitney.p{k}", f"p{_s(i)}: a point of joint {k + 1}'s axis (its frame's origin)", f"p_{{{i}}}", W[:3, 3], j, "whitney")
-                r = ctx.step(f"whitney.r{k}", f"pₙ − p{_s(i)}: from joint {k + 1}'s axis to the tool origin", f"p_{{n}} - p_{{{i}}}", p_n - W[:3, 3], j, "whitney")
+                p = ctx.step(
+                    f"whitney.p{k}",
+                    f"p{_s(i)}: a point of joint {k + 1}'s axis (its frame's origin)",
+                    f"p_{{{i}}}",
+                    W[:3, 3],
+                    j,
+                    "whitney",
+                )
+                r = ctx.step(
+                    f"whitney.r{k}",
+                    f"pₙ − p{_s(i)}: from joint {k + 1}'s axis to the tool origin",
+                    f"p_{{n}} - p_{{{i}}}",
+                    p_n - W[:3, 3],
+                    j,
+                    "whitney",
+                )
                 out += [p, r]
                 col += rate * sp.Matrix.vstack(z.cross(r.expr), z)
                 formula = f"z{_s(i)} × (pₙ − p{_s(i)}), z{_s(i)}"
             else:
                 col += rate * sp.Matrix.vstack(z, sp.zeros(3, 1))
                 formula = f"z{_s(i)}, 0 (prismatic: the tool slides along the axis, no rotation)"
-        step = ctx.step(f"whitney.col{j + 1}", f"Column {j + 1} = {formula}", f"J_{{{j + 1}}}", col, j, "whitney")
+        step = ctx.step(
+            f"whitney.col{j + 1}", f"Column {j + 1} = {formula}", f"J_{{{j + 1}}}", col, j, "whitney"
+        )
         out.append(step)
         cols.append(step.expr)
     return out, sp.Matrix.hstack(*cols), "base"
@@ -134,7 +159,14 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     cols = []
     for j, qj in enumerate(m.q):
         name = m.display[qj]
-        dp = ctx.step(f"diff.dp{j + 1}", f"∂p/∂q{_s(j + 1)}: the v part of column {j + 1}", f"\\frac{{\\partial p}}{{\\partial {name}}}", p.diff(qj), j, "differentiation")
+        dp = ctx.step(
+            f"diff.dp{j + 1}",
+            f"∂p/∂q{_s(j + 1)}: the v part of column {j + 1}",
+            f"\\frac{{\\partial p}}{{\\partial {name}}}",
+            p.diff(qj),
+            j,
+            "differentiation",
+        )
         S = ctx.step(
             f"diff.S{j + 1}",
             f"(∂R/∂q{_s(j + 1)}) Rᵀ = [ω]×: a skew matrix; the ω part of column {j + 1} is (S₃₂, S₁₃, S₂₁)",
@@ -144,7 +176,14 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             "differentiation",
         )
         s = S.expr
-        col = ctx.step(f"diff.col{j + 1}", f"Column {j + 1} = ∂p/∂q{_s(j + 1)}, (S₃₂, S₁₃, S₂₁)", f"J_{{{j + 1}}}", sp.Matrix([*dp.expr, s[2, 1], s[0, 2], s[1, 0]]), j, "differentiation")
+        col = ctx.step(
+            f"diff.col{j + 1}",
+            f"Column {j + 1} = ∂p/∂q{_s(j + 1)}, (S₃₂, S₁₃, S₂₁)",
+            f"J_{{{j + 1}}}",
+            sp.Matrix([*dp.expr, s[2, 1], s[0, 2], s[1, 0]]),
+            j,
+            "differentiation",
+        )
         out += [dp, S, col]
         cols.append(col.expr)
     return out, sp.Matrix.hstack(*cols), "base"
@@ -172,7 +211,7 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             R, p = X[:3, :3], X[:3, 3]  # type: ignore[index]
             w, v = R.T * w, R.T * (v + w.cross(p))
         elif kind == "revolute":
-            Rt = axis_motion(kind, X)[:3, :3].T  # type: ignore[arg-type]
+            Rt = axis_motion(kind, X)[:3, :3].T
             w, v = Rt * (w + rate(X) * _EZ), Rt * v
         else:
             v = v + w.cross(X * _EZ) + rate(X) * _EZ
@@ -181,27 +220,65 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         if last_of_link:
             j, i = m.axis_joint[k], k + 1
             extra = " plus ḋ along the axis" if m.kinds[k] == "prismatic" else ""
-            ws = mk(f"prop.w{i}", f"ω of link {i} in its own axes: link {i - 1}'s ω carried into frame {i}" + (f", plus θ̇{_s(j + 1)} about joint {i}'s axis" if m.kinds[k] == "revolute" else ""), f"{{}}^{{{i}}}\\omega_{{{i}}}", w, j)
-            vs = mk(f"prop.v{i}", f"Velocity of link {i}'s origin in its own axes: link {i - 1}'s origin velocity plus ω × (the offset between the origins){extra}", f"{{}}^{{{i}}}v_{{{i}}}", v, j)
+            ws = mk(
+                f"prop.w{i}",
+                f"ω of link {i} in its own axes: link {i - 1}'s ω carried into frame {i}"
+                + (f", plus θ̇{_s(j + 1)} about joint {i}'s axis" if m.kinds[k] == "revolute" else ""),
+                f"{{}}^{{{i}}}\\omega_{{{i}}}",
+                w,
+                j,
+            )
+            vs = mk(
+                f"prop.v{i}",
+                f"Velocity of link {i}'s origin in its own axes: link {i - 1}'s origin velocity plus "
+                f"ω × (the offset between the origins){extra}",
+                f"{{}}^{{{i}}}v_{{{i}}}",
+                v,
+                j,
+            )
             out += [ws, vs]
             w, v = ws.expr, vs.expr
     if m.tool != sp.eye(4):
-        ws = mk("prop.wtool", "ω of the tool in the tool axes", "{}^{\\mathrm{tool}}\\omega_{\\mathrm{tool}}", w, None)
-        vs = mk("prop.vtool", "Velocity of the tool origin in the tool axes: v + ω × (the tool offset)", "{}^{\\mathrm{tool}}v_{\\mathrm{tool}}", v, None)
+        ws = mk(
+            "prop.wtool",
+            "ω of the tool in the tool axes",
+            "{}^{\\mathrm{tool}}\\omega_{\\mathrm{tool}}",
+            w,
+            None,
+        )
+        vs = mk(
+            "prop.vtool",
+            "Velocity of the tool origin in the tool axes: v + ω × (the tool offset)",
+            "{}^{\\mathrm{tool}}v_{\\mathrm{tool}}",
+            v,
+            None,
+        )
         out += [ws, vs]
         w, v = ws.expr, vs.expr
     if ctx.frame == "base":
         R = ctx.F.tool[:3, :3]
         end = "\\mathrm{tool}" if m.tool != sp.eye(4) else "n"
-        ws = mk("prop.w_base", "ω of the tool rotated to the base axes: ⁰R_tool ω", f"{{}}^{{0}}\\omega_{{{end}}}", R * w, None)
-        vs = mk("prop.v_base", "Velocity of the tool origin rotated to the base axes: ⁰R_tool v", f"{{}}^{{0}}v_{{{end}}}", R * v, None)
+        ws = mk(
+            "prop.w_base",
+            "ω of the tool rotated to the base axes: ⁰R_tool ω",
+            f"{{}}^{{0}}\\omega_{{{end}}}",
+            R * w,
+            None,
+        )
+        vs = mk(
+            "prop.v_base",
+            "Velocity of the tool origin rotated to the base axes: ⁰R_tool v",
+            f"{{}}^{{0}}v_{{{end}}}",
+            R * v,
+            None,
+        )
         out += [ws, vs]
         w, v = ws.expr, vs.expr
     return out, sp.Matrix.vstack(v, w).jacobian(qd), ctx.frame
 
 
 def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
-    """Craig's inward iteration of a tool wrench [f; n] (tool axes) to the joint torques τ = J_toolᵀ [f; n]."""
+    """Craig's inward iteration of a tool wrench [f; n] (tool axes) to the torques τ = J_toolᵀ [f; n]."""
     m = ctx.model
     W, names = wrench_symbols()
     f, n = sp.Matrix(W[:3]), sp.Matrix(W[3:])  # the wrench at the tool origin, in the tool axes
@@ -216,17 +293,41 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             n = R * n + p.cross(f)
         else:
             j, i = m.axis_joint[k], k + 1
-            fs = mk(f"force.f{i}", f"Force on link {i} at joint {i}, in the axes of joint {i}'s frame (z along its axis): link {i + 1}'s force carried inward", f"f_{{{i}}}", f, j)
-            ns = mk(f"force.n{i}", f"Moment on link {i} about joint {i}'s frame origin: link {i + 1}'s moment carried inward plus p × f", f"n_{{{i}}}", n, j)
+            fs = mk(
+                f"force.f{i}",
+                f"Force on link {i} at joint {i}, in the axes of joint {i}'s frame (z along its axis): "
+                f"link {i + 1}'s force carried inward",
+                f"f_{{{i}}}",
+                f,
+                j,
+            )
+            ns = mk(
+                f"force.n{i}",
+                f"Moment on link {i} about joint {i}'s frame origin: link {i + 1}'s moment carried inward "
+                "plus p × f",
+                f"n_{{{i}}}",
+                n,
+                j,
+            )
             out += [fs, ns]
             f, n = fs.expr, ns.expr
             torque = (n if kind == "revolute" else f)[2]
-            tau[j] = tau.get(j, sp.Integer(0)) + sp.diff(X, m.q[j]) * torque  # type: ignore[arg-type]
+            tau[j] = tau.get(j, sp.Integer(0)) + sp.diff(X, m.q[j]) * torque
             if k == min(_axes_of(m, j)):
-                what = "n · z: the moment about the axis" if kind == "revolute" else "f · z: the force along the axis"
-                taus[j] = mk(f"force.tau{j + 1}", f"τ{_s(j + 1)} = {what}", f"\\tau_{{{j + 1}}}", sp.Matrix([[tau[j]]]), j)
+                what = (
+                    "n · z: the moment about the axis"
+                    if kind == "revolute"
+                    else "f · z: the force along the axis"
+                )
+                taus[j] = mk(
+                    f"force.tau{j + 1}",
+                    f"τ{_s(j + 1)} = {what}",
+                    f"\\tau_{{{j + 1}}}",
+                    sp.Matrix([[tau[j]]]),
+                    j,
+                )
                 out.append(taus[j])
-            M = axis_motion(kind, X)  # type: ignore[arg-type]
+            M = axis_motion(kind, X)
             f, n = M[:3, :3] * f, M[:3, :3] * n + M[:3, 3].cross(M[:3, :3] * f)
         f, n = f.applyfunc(sp.expand), n.applyfunc(sp.expand)
     JT = sp.Matrix([taus[j].expr[0, 0] for j in range(m.dof)]).jacobian(sp.Matrix(W))
