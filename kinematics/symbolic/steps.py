@@ -34,6 +34,7 @@ kept in memory per (robot, method, frame, symbolic_params).
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from typing import Literal
 
@@ -250,7 +251,7 @@ def _build(
         steps.append(det)
     if ctx.notes:
         last = steps[-1]
-        steps[-1] = Step(**{**last.__dict__, "notes": tuple(dict.fromkeys((*last.notes, *ctx.notes)))})
+        steps[-1] = dataclasses.replace(last, notes=tuple(dict.fromkeys((*last.notes, *ctx.notes))))
     return tuple(steps)
 
 
