@@ -197,6 +197,7 @@ HOSTILE_TOML = """
 name = "hostile"
 title = "<script>alert(1)</script> \\\\input{/etc/passwd}"
 description = "</math><script>x</script> & \\\\input{/etc/passwd} % # $"
+source = "<img src=x onerror=alert(3)> \\\\include{x}"
 convention = "standard"
 planar = true
 
@@ -226,7 +227,7 @@ def test_hostile_names_are_escaped(katex, tmp_path):  # noqa: F811
     assert cli_main(["handout", str(robot_file), "-o", str(html_out)]) == 0
     assert cli_main(["handout", str(robot_file), "-o", str(tex_out)]) == 0
     html = html_out.read_text(encoding="utf-8")
-    assert "<script" not in html and "&lt;script&gt;alert(2)&lt;/script&gt;" in html
+    assert "<script" not in html and "<img" not in html and "&lt;script&gt;alert(2)&lt;/script&gt;" in html
     assert "\\input{/etc/passwd}" in html  # as text: harmless in HTML
     tex = tex_out.read_text(encoding="utf-8")
     assert "\\input{" not in tex and "\\textbackslash{}input\\{/etc/passwd\\}" in tex
