@@ -1,4 +1,4 @@
-"""Jacobian Lab command line: ``jacobian-lab serve``, ``robots``, ``export`` and ``record``.
+"""Jacobian Lab command line: ``jacobian-lab serve``, ``robots``, ``export``, ``handout`` and ``record``.
 
 Examples::
 
@@ -6,6 +6,7 @@ Examples::
     jacobian-lab serve --robot panda --port 8081
     jacobian-lab serve --urdf my_arm.urdf --tip tool0
     jacobian-lab export puma560 --format latex -o puma_J.tex
+    jacobian-lab handout trr --symbolic-params -o trr.html  # the derivation, step by step
     jacobian-lab record puma560 -o puma_demo     # a demo any static web server can play
 
 Every mistake on the command line (an unknown robot, a URDF that cannot be read, a link that is
@@ -57,6 +58,11 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     sub.add_parser("robots", help="list the library robots")
     sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
+    sub.add_parser(
+        "handout",
+        help="the derivation of J step by step, as an HTML page or a LaTeX document",
+        add_help=False,
+    )
     sub.add_parser("record", help="record a demo that plays from any static web server", add_help=False)
     return parser
 
@@ -114,6 +120,10 @@ def main(argv: list[str] | None = None) -> int:
         from .export_command import main as export_main
 
         return export_main(argv[1:])
+    if argv and argv[0] == "handout":
+        from .handout_command import main as handout_main
+
+        return handout_main(argv[1:])
     if argv and argv[0] == "record":
         from .record_command import main as record_main
 

@@ -7,6 +7,9 @@
 * The course's four derivations (:mod:`.derivations`) and
   :func:`check_derivations`, which shows they agree exactly and numerically.
 * :func:`determinant`: det J (or det(J Jᵀ)) factored, and its singular sets.
+* :func:`derivation_steps`: each derivation step by step (:class:`Step`: Aᵢ, ⁰Tᵢ, Whitney's
+  vectors, ∂p/∂qᵢ, ωᵢ and vᵢ link by link, fᵢ, nᵢ, τᵢ, J, det J), :func:`dh_rows` the DH table as
+  symbols, and :func:`handout`: all of it as an HTML or LaTeX handout.
 * :func:`analytic_jacobian`: J_A for ZYX or ZYZ Euler angles, with its
   representation singularity.
 * Printing in the course's compact notation (cᵢ, sᵢ, cᵢⱼ, …):
@@ -36,11 +39,13 @@ from .derivations import (
     jacobian_velocity_propagation,
     jacobian_whitney,
 )
+from .handout import handout
 from .model import SymbolicError, SymbolicModel, build_model
 from .printing import Notation
 from .render import jacobian_latex, jacobian_mathml, latex_parts, mathml_parts
 from .singular import Determinant, SingularSet, det_rows, determinant, singular_sets
 from .snap import SNAP_TOL, Snap
+from .steps import METHODS, Step, derivation_steps, dh_rows
 from .trig import is_zero, normal_form
 
 __all__ = [
@@ -79,4 +84,9 @@ __all__ = [
     "is_zero",
     "Snap",
     "SNAP_TOL",
+    "derivation_steps",
+    "dh_rows",
+    "Step",
+    "METHODS",
+    "handout",
 ]

@@ -68,6 +68,8 @@ class SymbolicModel:
         display: LaTeX display names of the joint and parameter symbols.
         symbolic_params: Whether DH lengths and offsets are symbols.
         snaps: Rounded values of the robot replaced by exact ones (:mod:`.snap`).
+        dh: (θ, d, a, α) of each DH row as the model holds them (θ or d includes the joint
+            symbol); empty for a robot without a DH table.
     """
 
     robot: Robot
@@ -83,6 +85,7 @@ class SymbolicModel:
     display: dict[sp.Symbol, str] = field(default_factory=dict)
     symbolic_params: bool = False
     snaps: tuple[Snap, ...] = ()
+    dh: tuple[tuple[sp.Expr, sp.Expr, sp.Expr, sp.Expr], ...] = ()
 
     @property
     def snap_note(self) -> str:
@@ -178,12 +181,13 @@ def _generic_latex(name: str) -> str:
     return f"{head}_{{{digits}}}" if digits else head
 
 
-def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list] | None:
-    """(parent_joint, joint_child, offsets) rebuilt from the DH table; None if it does not match the axes."""
+def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list, list] | None:
+    """(parent_joint, joint_child, offsets, (theta, d, a, alpha) per row) rebuilt from the DH table;
+    None if it does not match the axes."""
     if robot.dh is None or len(robot.axes) != len(robot.dh):
         return None
     modified = robot.convention == "modified"
-    pj, jc, offsets = [], [], []
+    pj, jc, offsets, table = [], [], [], []
     for i, (row, ax) in enumerate(zip(robot.dh, robot.axes, strict=True), start=1):
         k = i - 1 if modified else i  # Craig's a_{i-1}, alpha_{i-1}
         at = f"DH row {i}:"
@@ -205,9 +209,10 @@ def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list] | None:
         pj.append(T_pj)
         jc.append(T_jc)
         offsets.append(theta if revolute else d)
+        table.append((theta, d, a, alpha))
         if ax.kind != row.joint or ax.joint_index != i - 1 or ax.multiplier != 1.0:
             return None
-    return pj, jc, offsets
+    return pj, jc, offsets, table
 
 
 def _frame(T: np.ndarray, P: _Params, side: str) -> sp.Matrix:
@@ -258,9 +263,14 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
             f"robot {robot.name!r}: symbolic parameters need a robot built from a DH table "
             "(this one is a URDF or hand-built chain); use symbolic_params=False"
         )
+    table: tuple = ()
     if dh is not None:
-        pj, jc, offsets = dh
+        pj, jc, offsets, rows = dh
         values = [q[ax.joint_index] + off for ax, off in zip(robot.axes, offsets, strict=True)]
+        table = tuple(
+            (v, d, a, alpha) if kind == "revolute" else (theta, v, a, alpha)
+            for v, kind, (theta, d, a, alpha) in zip(values, kinds, rows, strict=True)
+        )
     else:
         pj = [P.snap.transform(ax.T_parent_joint, f"joint {plain(ax.name, 60)!r}") for ax in robot.axes]
         jc = [
@@ -295,6 +305,7 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
         {**display, **P.display},
         symbolic_params,
         tuple(P.snap.snaps),
+        table,
     )
     if dh is not None and _numeric_mismatch(model):  # a DH table that does not describe the axes
         raise SymbolicError(f"robot {robot.name!r}: its DH table does not reproduce its axes")

@@ -195,16 +195,22 @@ def _natural(name: str) -> tuple:
 
 
 _GREEK = {"alpha": "α", "theta": "θ", "beta": "β", "gamma": "γ"}
+_DOT = re.compile(r"^\\dot\{(\\?[A-Za-z]+)\}(.*)$")
 _DISPLAY = re.compile(r"^\\?([A-Za-z]+)(?:_\{(?:\\mathrm\{)?([A-Za-z0-9]+)\}?\})?(?:\^\{(\w+)\})?$")
 
 
 def _mathml_name(latex: str) -> str:
     """MathML of one of our display names (``\\theta_{2}``, ``a_{3}``, ``x_{\\mathrm{t}}``, ``d_{3}^{0}``)."""
+    dot = _DOT.match(latex)  # a rate: \dot{\theta}_{2}
+    if dot is not None:
+        latex = dot.group(1) + dot.group(2)
     m = _DISPLAY.match(latex)
     if m is None:
         return f"<mi>{xml_text(latex)}</mi>"
     name, sub, sup = m.groups()
     head = f"<mi>{_GREEK.get(name, name)}</mi>"
+    if dot is not None:
+        head = f'<mover accent="true">{head}<mo>&#x2D9;</mo></mover>'
     sub_el = (
         f"<mn>{sub}</mn>" if sub and sub.isdigit() else f'<mi mathvariant="normal">{sub}</mi>' if sub else ""
     )
