@@ -134,6 +134,7 @@ class ClientSession:
         self._subscribers: list[Callable[[LabState, Snapshot], None]] = []
         self._symbolic_wanted: tuple | None = None
         self._inverse_wanted: tuple | None = None
+        self._steps_wanted: tuple | None = None
         self.camera = TabCamera(client)
         self.recorder = TabRecorder(self.subscribe)
         self._scene_messages: tuple = ()
@@ -381,6 +382,8 @@ class ClientSession:
             before.symbolic_inverse,
         ):
             self._request_symbolic()
+        if rebuild or o.derive != before.derive:
+            self._request_steps()
         assert self.scene is not None
         if self.role.following:
             return self._tell_subscribers(state, snap)  # the camera is the presenter's
@@ -581,6 +584,34 @@ class ClientSession:
 
         future.add_done_callback(ready)
 
+    def _request_steps(self) -> None:
+        """The symbols of the derivation the Derive tab walks through (the DH frames: Whitney's A and T)."""
+        derive, robot = self.state.options.derive, self.state.robot
+        wanted = (robot, "whitney" if derive == "dh" else derive) if derive else None
+        if wanted == self._steps_wanted:
+            return
+        if self._steps_wanted is not None:
+            self.symbolic.release_steps(*self._steps_wanted)
+        self._steps_wanted = wanted
+        if wanted is None or self.panel.derive is None:
+            return
+        future = self.symbolic.steps(*wanted)
+        if not future.done():
+            self.panel.derive.show_formulas(
+                None, "working out the step in symbols… (the numbers above are live)"
+            )
+
+        def ready(f: Future) -> None:
+            with self.lock:
+                if self._closed or self._steps_wanted != wanted or self.panel.derive is None:
+                    return
+                try:
+                    self.panel.derive.show_formulas(f.result(), "")
+                except Exception as exc:
+                    self.panel.derive.show_formulas(None, f"the step in symbols is not available: {exc}")
+
+        future.add_done_callback(ready)
+
     def _release_symbolic(self) -> None:
         if self._symbolic_wanted is not None:
             self.symbolic.release(*self._symbolic_wanted)
@@ -654,6 +685,9 @@ class ClientSession:
             if self._inverse_wanted is not None:
                 self.symbolic.release_inverse(*self._inverse_wanted)
                 self._inverse_wanted = None
+            if self._steps_wanted is not None:
+                self.symbolic.release_steps(*self._steps_wanted)
+                self._steps_wanted = None
             self._subscribers.clear()
 
 

@@ -50,6 +50,9 @@ class SymbolicUnavailable(RuntimeError):
     """The symbolic module (or the export module) is not installed in this build."""
 
 
+STEP_WIDTH_PX = 370
+"""Width [px] the Derive tab's formulas are typeset for (the docked panel, less its padding)."""
+
 WORKER_RESTARTED = "the symbolic worker stopped and was restarted"
 """The notice given to :meth:`SymbolicService.on_restart` listeners when a worker was restarted."""
 
@@ -257,6 +260,16 @@ class SymbolicService:
         key = (robot.fingerprint(), "inverse", bool(letters))
         return self._want(key, _inverse_mathml, robot, bool(letters), self.timeout)
 
+    def steps(self, robot: Robot, method: str) -> SymbolicFuture:
+        """A future of the steps of one derivation of J (``method``: "whitney", "differentiation",
+        "propagation" or "force") as (joint, key, caption HTML, MathML) tuples, for the Derive tab;
+        release with :meth:`release_steps`."""
+        return self._want((robot.fingerprint(), "steps", method), _steps_mathml, robot, method, self.timeout)
+
+    def release_steps(self, robot: Robot, method: str) -> None:
+        """One client no longer waits for the steps of ``method`` for ``robot``."""
+        self._release((robot.fingerprint(), "steps", method))
+
     def _want(self, key: tuple, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
         with self._lock:
             self._interest[key] = self._interest.get(key, 0) + 1
@@ -321,6 +334,18 @@ def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:
     except ImportError as exc:
         raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
     return inverse_mathml(robot, symbolic_params=letters, timeout=timeout)
+
+
+def _steps_mathml(robot: Robot, method: str, timeout: float) -> tuple[tuple[int | None, str, str, str], ...]:
+    """In the worker process: every step of one derivation, its caption and its MathML (panel width)."""
+    try:
+        from kinematics.symbolic import derivation_steps
+    except ImportError as exc:
+        raise SymbolicUnavailable("symbolic steps not available (kinematics.symbolic is missing)") from exc
+    return tuple(
+        (s.joint, s.key, s.title_html(), s.mathml(STEP_WIDTH_PX))
+        for s in derivation_steps(robot, method, timeout=timeout)  # type: ignore[arg-type]
+    )
 
 
 def _export(robot: Robot, fmt: str, frame: str, timeout: float, name: str) -> tuple[str, bytes]:

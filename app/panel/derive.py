@@ -3,8 +3,9 @@
 The DH table always shows the current joint variables (θᵢ or dᵢ, in the joint's colour).
 A dropdown picks what to walk through (:data:`app.derive.METHODS`); a slider and
 Previous/Next buttons pick the step (joint i); the step's numbers at q are shown with the
-check against J, its vectors are drawn in the 3-D view (:mod:`app.scene.derive`) and, on
-demand, its formula in symbols (computed in the symbolic worker).
+check against J, its vectors are drawn in the 3-D view (:mod:`app.scene.derive`) and, below,
+the same step in symbols (:func:`kinematics.symbolic.derivation_steps`, typeset in the symbolic
+worker process).
 """
 
 from __future__ import annotations
@@ -19,8 +20,8 @@ from ..actions import SetOption
 from ..derive import METHODS
 from ..snapshot import Snapshot
 from ..state import LabState
-from .common import Dispatch, bind, bind_click, sync_value
-from .derive_html import dh_table_html, step_html
+from .common import Dispatch, bind, sync_value
+from .derive_html import dh_table_html, formulas_html, step_html
 
 __all__ = ["DerivePanel"]
 
@@ -34,6 +35,7 @@ class DerivePanel:
         self.robot = robot
         self.dispatch = dispatch
         self._step = 0
+        self._method = ""
         self.method = gui.add_dropdown(
             "Walk through",
             tuple(METHODS.values()),
@@ -55,8 +57,10 @@ class DerivePanel:
         self.buttons = gui.add_button_group("Step", ("◀ Previous", "Next ▶"), order=order + 3)
         self.buttons.on_click(self._clicked)
         self.body = gui.add_html("", order=order + 4)
-        self.formula_button = gui.add_button("Show the step in symbols", order=order + 5, visible=False)
         self.formula = gui.add_html("", order=order + 6, visible=False)
+        self._formulas: tuple | None = None
+        self._formula_note = ""
+        self._walking = False
         self.table = gui.add_html("", order=order + 7)
         self._parts: list[Any] = [
             self.table,
@@ -64,7 +68,6 @@ class DerivePanel:
             self.step,
             self.buttons,
             self.body,
-            self.formula_button,
             self.formula,
         ]
 
@@ -72,13 +75,10 @@ class DerivePanel:
         delta = -1 if str(event.target.value).startswith("◀") else 1
         self.dispatch(SetOption("derive_step", self._step + delta))
 
-    def on_formula(self, callback: object) -> None:
-        """Call ``callback()`` when the user asks for the step in symbols (a session command)."""
-        bind_click(self.formula_button, self.dispatch, callback)  # type: ignore[arg-type]
-
     def draw(self, state: LabState, snap: Snapshot) -> None:
         options = state.options
         self._step = options.derive_step
+        self._method = options.derive
         walking = bool(options.derive)
         self.table.content = dh_table_html(self.robot, snap.q, options.derive_step if walking else None)
         sync_value(self.method, METHODS.get(options.derive, METHODS[""]))
@@ -87,10 +87,21 @@ class DerivePanel:
         self.body.visible = walking
         if snap.derive is not None:
             self.body.content = step_html(self.robot, snap.derive, snap)
+        self._walking = walking
+        self._show_formula()
 
-    def show_formula(self, html: str) -> None:
-        self.formula.content = html
-        self.formula.visible = bool(html)
+    def show_formulas(self, steps: tuple | None, note: str) -> None:
+        """The steps of the derivation in symbols, (joint, key, caption HTML, MathML) each (from the
+        symbolic worker), or ``None`` with a note while they are worked out or when they cannot be."""
+        self._formulas, self._formula_note = steps, note
+        self._show_formula()
+
+    def _show_formula(self) -> None:
+        self.formula.visible = self._walking
+        if self._walking:
+            self.formula.content = formulas_html(
+                self._formulas, self._formula_note, self._method, self._step, self._step == self.robot.dof - 1
+            )
 
     def remove(self) -> None:
         for part in self._parts:

@@ -19,7 +19,7 @@ from ..derive import Derivation, axis_names, sub, tool_name
 from ..palette import joint_text_hex
 from ..snapshot import Snapshot
 
-__all__ = ["dh_table_html", "step_html", "matrix4_html"]
+__all__ = ["dh_table_html", "step_html", "matrix4_html", "formulas_html", "STEP_KEYS"]
 
 
 def _vec(values: np.ndarray, unit: str = "") -> str:
@@ -249,3 +249,36 @@ def _force(robot: Robot, d: Derivation, snap: Snapshot) -> str:
             "Set a force there to use yours.</div>"
         )
     return out
+
+
+STEP_KEYS = {
+    "dh": ("A", "T0_"),
+    "whitney": ("whitney.",),
+    "differentiation": ("diff.",),
+    "propagation": ("prop.",),
+    "force": ("force.",),
+}
+"""Which symbolic steps (by key prefix) each walk-through shows for its joint."""
+
+
+def formulas_html(steps: tuple | None, note: str, method: str, joint: int, last: bool = False) -> str:
+    """The symbolic steps of ``method`` that belong to ``joint``, each caption over its MathML.
+
+    ``steps``: (joint, key, caption HTML, MathML) tuples from the symbolic worker (captions and
+    MathML are escaped there), or ``None`` (then ``note`` says why). At the ``last`` step the
+    assembled J and det J (factored, singular sets named) follow.
+    """
+    head = '<div class="jl-t4-title" style="text-align:left">In symbols</div>'
+    if steps is None:
+        return head + f'<div class="jl-note">{fmt.escape(note)}</div>'
+    prefixes = STEP_KEYS.get(method, ())
+    chosen = [s for s in steps if s[0] == joint and s[1].startswith(prefixes)]
+    if last and method != "dh":
+        chosen += [s for s in steps if s[0] is None and s[1] in ("J", "detJ")]
+    if not chosen:
+        return head + '<div class="jl-note">No symbolic step for this joint.</div>'
+    body = "".join(
+        f'<div class="jl-note">{caption}</div><div class="jl-mathml">{ml}</div>'
+        for _, _, caption, ml in chosen
+    )
+    return head + body
