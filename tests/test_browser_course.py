@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_browser_app import ARGS, CHROMIUM, VIEWPORT, _require_browser, _wait
+from browser_helpers import ARGS, CHROMIUM, VIEWPORT, close_notifications, require_browser, wait
 
 from app.server import Lab
 
@@ -22,7 +22,7 @@ pytestmark = pytest.mark.browser
 
 
 def test_trr_course_example_in_three_clicks(tmp_path):
-    sync_playwright = _require_browser()
+    sync_playwright = require_browser()
     out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out_dir.mkdir(parents=True, exist_ok=True)
     lab = Lab(port=0)
@@ -36,21 +36,20 @@ def test_trr_course_example_in_three_clicks(tmp_path):
                 page.goto(lab.url)
                 page.wait_for_selector("[role=slider]", timeout=120_000)
                 session = lab.session()
-                _wait(lambda: session.snapshot is not None)
-                for button in page.query_selector_all(".mantine-Notification-closeButton"):
-                    button.click()
+                wait(lambda: session.snapshot is not None)
+                close_notifications(page)
 
                 # Click 1: the robot.
                 page.get_by_label("Robot", exact=True).first.click()
                 page.get_by_role("option", name="trr", exact=True).click()
-                _wait(lambda: session.state.robot_name == "trr")
+                wait(lambda: session.state.robot_name == "trr")
                 # Click 2: the tab. Click 3: the course's example.
                 page.get_by_role("tab", name="q̇ = J⁺v").click()
                 page.get_by_role("button", name="Course example").click()
-                _wait(lambda: float(session.state.v_desired[0]) == pytest.approx(17.256))
+                wait(lambda: float(session.state.v_desired[0]) == pytest.approx(17.256))
 
                 inverse = page.locator(".jl-matrix").filter(has_text="q̇1")
-                _wait(lambda: "0.9647" in page.locator("body").inner_text())
+                wait(lambda: "0.9647" in page.locator("body").inner_text())
                 text = page.locator("body").inner_text()
                 for figure in ("−0.5464", "0.9647", "0.7879", "10.35"):
                     assert figure in text, figure

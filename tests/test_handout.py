@@ -18,7 +18,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 import sympy as sp
-from test_browser_app import ARGS, CHROMIUM, _require_browser
+from browser_helpers import ARGS, CHROMIUM, require_browser
 from test_export_latex import display_formulas, katex  # noqa: F401  (katex is a fixture)
 
 import robots
@@ -160,7 +160,7 @@ def test_html_is_self_contained_mathml(tmp_path):
 
 @pytest.mark.browser
 def test_html_fits_1280_px_in_chromium(tmp_path):
-    sync_playwright = _require_browser()
+    sync_playwright = require_browser()
     pages = []
     # puma560: long simplified entries; panda at a short time limit: unsimplified ones as well
     for args in (

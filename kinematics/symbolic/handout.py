@@ -41,7 +41,7 @@ __all__ = [
 HANDOUT_FORMATS = ("html", "tex")
 HANDOUT_METHODS = (*METHODS, "all")
 
-ROW_NAMES = ("v_x", "v_y", "v_z", "ω_x", "ω_y", "ω_z")
+ROW_NAMES = ("vx", "vy", "vz", "ωx", "ωy", "ωz")
 
 INTRO = {
     "whitney": (

@@ -84,7 +84,9 @@ def render_html(h: Handout) -> str:
         out += _html_steps(steps, N)
     number = 4
     for m in h.methods:
-        out.append(f"<h2>{number}. {xml_text(TITLES[m])}</h2><p>{xml_text(INTRO[m])}</p>")
+        # ᵀ as a superscript T: the bold serif of headings draws the modifier letter like an ˢ.
+        title = xml_text(TITLES[m]).replace("ᵀ", "<sup>T</sup>")
+        out.append(f"<h2>{number}. {title}</h2><p>{xml_text(INTRO[m])}</p>")
         out += _html_steps(h.method_steps[m], N)
         number += 1
     out.append(f"<h2>{number}. The Jacobian and its singularities</h2>")
