@@ -15,6 +15,7 @@ from app_helpers import assert_all_finite, running_lab, scene_node, wait_until
 from app.actions import ChooseRobot, SetJoint, SetRate, SetWrench
 from app.derive import METHODS
 from app.fmt import fixed
+from app.palette import joint_color
 from app.scene.overlays import LINEAR_SECONDS
 from kinematics import fk, jacobian, link_frames
 
@@ -75,6 +76,11 @@ def test_whitney_step_shows_and_draws_the_column(session):
     np.testing.assert_allclose(arrows.points[0, 1] - arrows.points[0, 0], column * LINEAR_SECONDS, atol=1e-5)
     labels = {scene_node(session, f"/lab/derive/label_{k}").text for k in range(3)}
     assert labels == {"z₂", "pₙ − p₂", "z₂ × (pₙ − p₂)"}
+    assert tuple(arrows.colors[0]) == joint_color(2)
+    lever = scene_node(session, "/lab/derive/thin_arrows")
+    np.testing.assert_allclose(lever.points[0], [p2, pn], atol=1e-5)
+    walk(session, "whitney", 1)  # the next joint's arrows take its colour
+    assert tuple(scene_node(session, "/lab/derive/arrows").colors[0]) == joint_color(1)
     assert_all_finite(session)
 
 

@@ -1,8 +1,7 @@
 """The Derive tab's step drawn in the 3-D view: the vectors the course's formula combines, named.
 
 * DH frames: frames i−1 (thin) and i (thick), axes xᵢ red, yᵢ green, zᵢ blue, each named;
-* Whitney: the axis zᵢ₋₁ at pᵢ₋₁, the arm pₙ − pᵢ₋₁ (a line) and the column zᵢ₋₁ × (pₙ − pᵢ₋₁)
-  at the tool;
+* Whitney: the axis zᵢ₋₁ at pᵢ₋₁, the lever pₙ − pᵢ₋₁ and the column zᵢ₋₁ × (pₙ − pᵢ₋₁) at the tool;
 * differentiation: the path the tool traces when qᵢ alone moves and its tangent ∂p/∂qᵢ;
 * velocity propagation: ωₖ (umber) and vₖ (black) at every link frame up to frame i;
 * force propagation: the force at the tool, the lever from the axis, the axis turned by τᵢ.
@@ -32,7 +31,7 @@ __all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB"]
 AXIS_RGB = ((214, 40, 40), (30, 150, 60), (35, 80, 220))
 """Colours of drawn frame axes x, y, z."""
 LEVER_RGB = (60, 64, 72)
-"""The arm from a joint axis to the tool point (pₙ − pᵢ₋₁): dark, to read against the floor grid."""
+"""The lever from a joint axis to the tool point (pₙ − pᵢ₋₁): dark, to read against the floor grid."""
 _LABELS = 6
 
 
@@ -49,7 +48,7 @@ class DeriveScene:
             f"{root}/lines",
             points=np.zeros((1, 2, 3), np.float32),
             colors=LEVER_RGB,
-            thickness=3.0,
+            thickness=4.0,
             thickness_units="screen",
             visible=False,
         )
@@ -80,6 +79,8 @@ class DeriveScene:
         self._set(self.thin, thin)
         if lines:
             pts = np.array([[a, b] for a, b, _ in lines])
+            if self.robot.planar:  # lifted off the floor grid the planar arm lies on (no depth fight)
+                pts[..., 2] += 0.004 * self.geometry.size
             update_props(
                 self.lines, points=finite(pts), colors=np.array([[c, c] for _, _, c in lines], np.uint8)
             )
@@ -139,14 +140,14 @@ class DeriveScene:
         tool = c.p + c.r
         thick = [(tool, c.linear * lin, rgb), (c.p, c.z * 1.5 * unit, rgb)]
         labels = [(z, c.p + c.z * 1.5 * unit)]
-        lines = []
-        if c.kind == "revolute":
-            lines.append((c.p, tool, LEVER_RGB))
+        thin = []
+        if c.kind == "revolute":  # the lever pₙ − pᵢ₋₁ is a vector too: an arrow from the axis to the tool
+            thin.append((c.p, c.r, LEVER_RGB))
             labels.append((f"{pn} − {p}", (c.p + tool) / 2))
             labels.append((f"{z} × ({pn} − {p})", tool + c.linear * lin))
         else:
             labels.append((f"{z} (slide)", tool + c.linear * lin))
-        return thick, [], lines, labels
+        return thick, thin, [], labels
 
     def _differentiation(self, d: Derivation, snap: Snapshot, unit: float, lin: float) -> tuple:
         assert d.derivative is not None
@@ -179,9 +180,12 @@ class DeriveScene:
         rgb = joint_color(d.joint)
         z, p = axis_names(self.robot, d.joint)
         thin = [(load.p, load.z * unit * np.sign(load.load or 1.0), rgb)]
-        lines = [(load.p, tool, LEVER_RGB)] if load.kind == "revolute" else []
-        labels = [("F", tool + f * scale), (f"τ{sub(d.joint + 1)} about {z}", load.p + load.z * unit)]
-        return thick, thin, lines, labels
+        if load.kind == "revolute":
+            thin.append((load.p, tool - load.p, LEVER_RGB))
+        # Beside the axis, a quarter of the way along the lever: clear of the joint's own label.
+        where = load.p + 0.25 * (tool - load.p) + 0.5 * unit * load.z
+        labels = [("F", tool + f * scale), (f"τ{sub(d.joint + 1)} about {z}", where)]
+        return thick, thin, [], labels
 
     def remove(self) -> None:
         for node in (self.arrows.node, self.thin.node, self.lines, *self.labels):

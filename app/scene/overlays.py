@@ -66,6 +66,7 @@ class Arrows:
             visible=False,
         )
         self._mask: tuple = ()
+        self._colors: np.ndarray = np.zeros((0, 3), np.uint8)
         self.tips: np.ndarray = np.zeros((0, 3))
 
     def set(self, starts: np.ndarray, vectors: np.ndarray, colors: np.ndarray, show: bool = True) -> None:
@@ -84,9 +85,10 @@ class Arrows:
         head = round(float(min(6 * self.radius, 0.4 * shortest)), 4)
         change: dict = {"points": points, "head_length": head}
         mask = tuple(np.flatnonzero(keep))
-        if mask != self._mask:
-            change["colors"] = np.asarray(colors[keep], np.uint8)
-            self._mask = mask
+        kept = np.asarray(colors[keep], np.uint8)
+        if mask != self._mask or not np.array_equal(kept, self._colors):  # colours sent only when they change
+            change["colors"] = kept
+            self._mask, self._colors = mask, kept
         update_props(self.node, **change)  # points, colours and head together: one message
         set_if_changed(self.node, "visible", True)
 
