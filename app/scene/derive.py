@@ -17,7 +17,7 @@ import viser
 
 from kinematics import Robot
 
-from ..derive import Derivation, axis_names, sub, tool_name
+from ..derive import PATH_POINTS, Derivation, axis_names, sub, tool_name
 from ..palette import FORCE_RGB, TWIST_ANGULAR_RGB, TWIST_RGB, joint_color
 from ..snapshot import Snapshot
 from ..state import LabState
@@ -33,6 +33,7 @@ AXIS_RGB = ((214, 40, 40), (30, 150, 60), (35, 80, 220))
 LEVER_RGB = (60, 64, 72)
 """The lever from a joint axis to the tool point (pₙ − pᵢ₋₁): dark, to read against the floor grid."""
 _LABELS = 6
+_SEGMENTS = PATH_POINTS - 1
 
 
 class DeriveScene:
@@ -46,7 +47,7 @@ class DeriveScene:
         self.thin = Arrows(scene, f"{root}/thin_arrows", 0.004 * s)
         self.lines = scene.add_line_segments(
             f"{root}/lines",
-            points=np.zeros((1, 2, 3), np.float32),
+            points=np.zeros((_SEGMENTS, 2, 3), np.float32),  # always this many: the page keeps the count
             colors=LEVER_RGB,
             thickness=4.0,
             thickness_units="screen",
@@ -81,9 +82,10 @@ class DeriveScene:
             pts = np.array([[a, b] for a, b, _ in lines])
             if self.robot.planar:  # lifted off the floor grid the planar arm lies on (no depth fight)
                 pts[..., 2] += 0.004 * self.geometry.size
-            update_props(
-                self.lines, points=finite(pts), colors=np.array([[c, c] for _, _, c in lines], np.uint8)
-            )
+            pad = _SEGMENTS - len(pts)  # unused segments: zero length at the first point
+            pts = np.concatenate([pts, np.repeat(pts[:1, :1], pad, axis=0).repeat(2, axis=1)])
+            rgb = np.array([c for _, _, c in lines] + [lines[0][2]] * pad, np.uint8)
+            update_props(self.lines, points=finite(pts), colors=np.repeat(rgb[:, None], 2, axis=1))
         set_if_changed(self.lines, "visible", bool(lines))
         for k, label in enumerate(self.labels):
             show = k < len(labels)
