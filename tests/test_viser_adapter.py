@@ -193,6 +193,39 @@ def test_update_props_sends_the_changed_props_in_one_message(connected):
         va.update_props(node, batched_positions=three)
 
 
+def test_set_pose_sends_only_a_changed_position_or_orientation(connected):
+    _, client, ws = connected
+    node = client.scene.add_icosphere("/probe/pose", radius=1.0)
+    label = client.scene.add_label("/probe/pose_label", "q1")
+    ws.wait_for(lambda m: m.get("name") == "/probe/pose_label")
+    mark = ws.mark()
+    va.set_pose(node, (0.5, -1.0, 2.0), (0.0, 1.0, 0.0, 0.0))
+    va.set_pose(label, (1.0, 2.0, 3.0))
+    va.set_pose(label, (1.0, 2.0, 3.0 + 1e-9))  # within viser's own tolerance: nothing sent
+    va.update_props(node, scale=(0.3, 0.2, 0.1))
+    va.update_props(node, scale=(0.3, 0.2, 0.1))  # unchanged: nothing sent
+    ws.wait_for(lambda m: m.get("name") == "/probe/pose" and "scale" in m.get("updates", {}), after=mark)
+    sent = [m for _, m in ws.messages[mark:] if str(m.get("name", "")).startswith("/probe/pose")]
+    assert [(m["type"], m["name"]) for m in sent] == [
+        ("SetPositionMessage", "/probe/pose"),
+        ("SetOrientationMessage", "/probe/pose"),
+        ("SetPositionMessage", "/probe/pose_label"),
+        ("SceneNodeUpdateMessage", "/probe/pose"),
+    ]
+    np.testing.assert_allclose(sent[0]["position"], (0.5, -1.0, 2.0))
+    np.testing.assert_allclose(sent[1]["wxyz"], (0.0, 1.0, 0.0, 0.0))
+    np.testing.assert_allclose(sent[3]["updates"]["scale"], (0.3, 0.2, 0.1))
+    np.testing.assert_allclose(node.position, (0.5, -1.0, 2.0))  # the handle holds what was sent
+    np.testing.assert_allclose(node.wxyz, (0.0, 1.0, 0.0, 0.0))
+    np.testing.assert_allclose(label.position, (1.0, 2.0, 3.0))
+    assert va.node_props(node)["scale"] == (0.3, 0.2, 0.1)
+    with pytest.raises(ValueError, match="3 numbers"):
+        va.set_pose(label, (1.0, 2.0))
+    label.remove()
+    with pytest.raises(RuntimeError, match="removed"):
+        va.set_pose(label, (0.0, 0.0, 0.0))
+
+
 # ----------------------------------------------------------------------------- message limits
 @pytest.fixture
 def limited():

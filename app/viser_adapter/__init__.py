@@ -23,6 +23,8 @@ Wrapped:
   type aliases built once.
 * :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``
   (through ``handle._impl.props`` and the scene's ``_queue_scene_message``).
+* :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
+  ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
 A package of four modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`, :mod:`.mirror`), so each stays short;
 nothing outside this package touches viser's private API.
@@ -49,7 +51,7 @@ from .limits import (
     upload_too_large,
 )
 from .mirror import capture_scene, replay_scene
-from .props import install_fast_prop_casts, update_props
+from .props import install_fast_prop_casts, set_pose, update_props
 
 __all__ = [
     "TESTED_VISER",
@@ -71,5 +73,6 @@ __all__ = [
     "capture_scene",
     "replay_scene",
     "update_props",
+    "set_pose",
     "clip",
 ]
