@@ -122,6 +122,7 @@ class Tab:
     pending: list[float] = field(default_factory=list)
     samples: list[float] = field(default_factory=list)
     sent_at: list[float] = field(default_factory=list)  # when each sample's change was sent
+    symbolic_at: float = 0.0  # when the symbolic J (MathML) arrived
     sent: int = 0
     closed: bool = False
     measuring: bool = False
@@ -143,12 +144,19 @@ class Tab:
             async for frame in self.ws:
                 now = time.perf_counter()
                 scene = False
-                for m in decode(frame):
+                msgs = decode(frame)
+                for m in msgs:
                     if m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith("q2 "):
                         self.slider = m["uuid"]
                     scene = scene or str(m.get("name", "")).startswith("/")
-                if scene:
-                    self.drawn.set()
+                    if not self.symbolic_at and "<math" in str(m.get("updates", {}).get("content", "")):
+                        self.symbolic_at = now
+                if (
+                    scene
+                    and self.slider is not None
+                    and any(str(m.get("name", "")).startswith("/lab/") for m in msgs)
+                ):
+                    self.drawn.set()  # its own scene (not only the server's shared nodes) and its slider
                     if self.measuring:
                         self.samples += [(now - t) * 1e3 for t in self.pending]
                         self.sent_at += self.pending
@@ -210,6 +218,7 @@ async def run(
     seed: int,
     warmup: float,
     profile: Path | None = None,
+    together: bool = False,
 ) -> dict:
     url = f"ws://127.0.0.1:{port}"
     rng = random.Random(seed)
@@ -219,9 +228,18 @@ async def run(
         out, go = ctx.Queue(), ctx.Event()
         flooder = ctx.Process(target=flood_process, args=(url, seconds, out, go))
         flooder.start()
-    for tab in clients:  # one after another, as a class arriving
+    start = time.perf_counter()
+
+    async def arrive(tab: Tab) -> None:
         await tab.connect(url)
-        await asyncio.wait_for(tab.drawn.wait(), 120)
+        await asyncio.wait_for(tab.drawn.wait(), 300)
+
+    if together:  # every tab opens the page at the same moment (a class told "open the link now")
+        await asyncio.gather(*(arrive(tab) for tab in clients))
+    else:  # one after another, each once the previous one is drawn
+        for tab in clients:
+            await arrive(tab)
+    connected = time.perf_counter()
     # Warm up (unmeasured): the first changes also meet one-off work (the symbolic J arriving).
     await asyncio.gather(*(explore(tab, time.perf_counter() + warmup, rng) for tab in clients))
     await asyncio.sleep(0.3)
@@ -229,6 +247,7 @@ async def run(
         assert await asyncio.to_thread(out.get, True, 120) == "ready"
     for tab in clients:
         tab.pending.clear()
+        tab.sent = 0  # count the measured changes only
         tab.measuring = True
     spy = start_profile(pid, seconds, profile, tabs) if profile is not None else None
     cpu0, t0, own0 = cpu_seconds(pid), time.perf_counter(), time.process_time()
@@ -258,6 +277,9 @@ async def run(
         ],
         "samples": samples,
         "when": when,
+        "connected": connected - t0,
+        "first": start - t0,
+        "symbolic": [t.symbolic_at - t0 for t in clients if t.symbolic_at],
         "cpu": cpu,
         "cpu_per_change": cpu_s / max(sum(t.sent for t in clients), 1) * 1e3,
         "client_cpu": own,
@@ -304,6 +326,9 @@ def main() -> int:
         "--profile", type=Path, default=None, help="py-spy the server over the window into this folder"
     )
     parser.add_argument("--timeline", action="store_true", help="print p95 per second of the window")
+    parser.add_argument(
+        "--together", action="store_true", help="all tabs connect at once (else one after another)"
+    )
     parser.add_argument("--server-log", type=Path, default=None, help="append the server's log to this file")
     parser.add_argument(
         "--app-root",
@@ -327,7 +352,17 @@ def main() -> int:
         proc, port = start_server(args.robot, args.limits, args.port, args.app_root, args.server_log)
         try:
             r = asyncio.run(
-                run(n, args.seconds, args.hostile, port, proc.pid, args.seed, args.warmup, args.profile)
+                run(
+                    n,
+                    args.seconds,
+                    args.hostile,
+                    port,
+                    proc.pid,
+                    args.seed,
+                    args.warmup,
+                    args.profile,
+                    args.together,
+                )
             )
         finally:
             proc.terminate()
@@ -351,6 +386,12 @@ def main() -> int:
             print(f"      {note}")
         if args.timeline and len(s):
             print(f"      p95 per second: {timeline(r['when'], s, args.seconds)}")
+            got = r["symbolic"]
+            print(
+                f"      (s from the window's start) first tab {r['first']:.1f}, "
+                f"all drawn {r['connected']:.1f}, "
+                + (f"symbolic J at {min(got):.1f} … {max(got):.1f}" if got else "no symbolic J")
+            )
     return 0
 
 
