@@ -226,6 +226,40 @@ def test_set_pose_sends_only_a_changed_position_or_orientation(connected):
         va.set_pose(label, (0.0, 0.0, 0.0))
 
 
+def test_install_icon_cache_reads_each_icon_once_and_gives_viser_the_same_svg(connected, monkeypatch):
+    import zipfile
+
+    from viser import _gui_api, _gui_handles, _icons
+
+    expected = _icons.svg_from_icon(viser.Icon.MATH)  # viser's own reading (the cache may be installed)
+    with zipfile.ZipFile(_icons.ICONS_DIR / "tabler-icons.zip") as archive:
+        assert archive.read("math.svg").decode("utf-8") == expected
+    va.install_icon_cache()
+    va.install_icon_cache()  # idempotent
+    assert _gui_api.svg_from_icon is _gui_handles.svg_from_icon is _icons.svg_from_icon
+    opened = []
+    real = zipfile.ZipFile
+    monkeypatch.setattr(zipfile, "ZipFile", lambda *a, **k: opened.append(a) or real(*a, **k))
+    icons = ("arrow-left", "arrow-right", "arrow-left")
+    results: list[str] = []
+    threads = [threading.Thread(target=lambda i=i: results.append(_icons.svg_from_icon(i))) for i in icons * 4]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 12 and all(r.startswith("<svg") for r in results)
+    assert len(opened) <= 1  # opened once per process: here, or before by the first icon read
+    before = len(opened)
+    assert _icons.svg_from_icon("arrow-up").startswith("<svg") and _icons.svg_from_icon("arrow-down")
+    assert len(opened) == before  # new icons come from the archive already open
+    assert _icons.svg_from_icon(viser.Icon.MATH) == expected
+    _, client, ws = connected
+    mark = ws.mark()
+    client.gui.add_button("probe", icon=viser.Icon.MATH)  # viser's own path uses it
+    _, message = ws.wait_for(lambda m: m["type"] == "GuiButtonMessage", after=mark)
+    assert message["props"]["_icon_html"] == expected
+
+
 # ----------------------------------------------------------------------------- message limits
 @pytest.fixture
 def limited():
