@@ -242,7 +242,9 @@ def test_install_icon_cache_reads_each_icon_once_and_gives_viser_the_same_svg(co
     monkeypatch.setattr(zipfile, "ZipFile", lambda *a, **k: opened.append(a) or real(*a, **k))
     icons = ("arrow-left", "arrow-right", "arrow-left")
     results: list[str] = []
-    threads = [threading.Thread(target=lambda i=i: results.append(_icons.svg_from_icon(i))) for i in icons * 4]
+    threads = [
+        threading.Thread(target=lambda i=i: results.append(_icons.svg_from_icon(i))) for i in icons * 4
+    ]
     for t in threads:
         t.start()
     for t in threads:

@@ -11,6 +11,7 @@ and keeps every icon read.
 
 from __future__ import annotations
 
+import importlib
 import threading
 import zipfile
 from typing import Any
@@ -30,18 +31,17 @@ def install_icon_cache() -> None:
     """
     if _installed:
         return
-    icons = _private("install_icon_cache", "viser._icons", lambda: __import__("viser._icons", fromlist=["x"]))
+
+    def module(name: str) -> Any:
+        return _private(
+            "install_icon_cache", f"viser.{name}", lambda: importlib.import_module(f"viser.{name}")
+        )
+
+    icons = module("_icons")
     path = _private(
         "install_icon_cache", "viser._icons.ICONS_DIR", lambda: icons.ICONS_DIR / "tabler-icons.zip"
     )
-    users = [
-        _private(
-            "install_icon_cache",
-            f"viser.{name}",
-            lambda name=name: __import__(f"viser.{name}", fromlist=["x"]),
-        )
-        for name in ("_gui_api", "_gui_handles")
-    ]
+    users = [module("_gui_api"), module("_gui_handles")]
     if not path.is_file() or not all(callable(getattr(m, "svg_from_icon", None)) for m in (icons, *users)):
         raise ViserApiChanged("install_icon_cache", f"svg_from_icon or {path.name} is gone")
     lock = threading.Lock()
@@ -60,6 +60,6 @@ def install_icon_cache() -> None:
                     cache[icon_name] = file.read().decode("utf-8")
             return cache[icon_name]
 
-    for module in (icons, *users):
-        module.svg_from_icon = svg_from_icon
+    for user in (icons, *users):
+        user.svg_from_icon = svg_from_icon
     _installed.append(svg_from_icon)
