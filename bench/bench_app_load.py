@@ -24,7 +24,8 @@ Usage::
     python bench/bench_app_load.py --tabs 30 --timeline --profile /tmp/prof   # where the time goes
 
 Printed per run: p50/p95/p99/max latency, the server's CPU (% of one core) and its CPU per slider
-change [ms] (what one change costs the server: the number to bring down); ``--timeline`` adds the
+change [ms] (what one change costs the server: the number to bring down) and its threads' voluntary
+context switches per change (thread hand-offs, which cost most on a busy machine); ``--timeline`` adds the
 p95 of every second of the window, ``--profile`` samples the server with py-spy (see
 ``bench/profile_stacks.py``).
 
@@ -90,6 +91,18 @@ def cpu_seconds(pid: int) -> float:
     """User + system CPU time of process ``pid`` so far [s]."""
     fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / CLK_TCK
+
+
+def switches(pid: int) -> int:
+    """Voluntary context switches of every thread of process ``pid`` so far (a thread hand-off each)."""
+    total = 0
+    for status in Path(f"/proc/{pid}/task").glob("*/status"):
+        try:
+            text = status.read_text()
+        except OSError:  # a thread that just ended
+            continue
+        total += int(re.search(r"^voluntary_ctxt_switches:\s*(\d+)", text, re.M).group(1))
+    return total
 
 
 def decode(frame: bytes) -> list[dict]:
@@ -250,7 +263,7 @@ async def run(
         tab.sent = 0  # count the measured changes only
         tab.measuring = True
     spy = start_profile(pid, seconds, profile, tabs) if profile is not None else None
-    cpu0, t0, own0 = cpu_seconds(pid), time.perf_counter(), time.process_time()
+    cpu0, t0, own0, sw0 = cpu_seconds(pid), time.perf_counter(), time.process_time(), switches(pid)
     end = t0 + seconds
     if hostile:
         go.set()
@@ -260,7 +273,7 @@ async def run(
     while any(t.pending for t in clients) and time.perf_counter() < deadline:
         await asyncio.sleep(0.02)
     wall = time.perf_counter() - t0
-    cpu_s = cpu_seconds(pid) - cpu0
+    cpu_s, switched = cpu_seconds(pid) - cpu0, switches(pid) - sw0
     cpu, own = cpu_s / wall * 100, (time.process_time() - own0) / wall * 100
     if spy is not None:
         await asyncio.to_thread(spy.wait, 60)
@@ -282,6 +295,7 @@ async def run(
         "symbolic": [t.symbolic_at - t0 for t in clients if t.symbolic_at],
         "cpu": cpu,
         "cpu_per_change": cpu_s / max(sum(t.sent for t in clients), 1) * 1e3,
+        "switches_per_change": switched / max(sum(t.sent for t in clients), 1),
         "client_cpu": own,
     }
     if hostile:
@@ -344,8 +358,8 @@ def main() -> int:
     print(f"app {app}; robot {args.robot}, {args.seconds:g} s per run, {os.cpu_count()} CPUs; slider → scene")
     print(f"load average before: {Path('/proc/loadavg').read_text().split()[:3]}")
     columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "p99 ms", "max ms")
-    columns += ("CPU %", "ms/change", "client %")
-    widths = (5, 8, 8, 10, 8, 8, 8, 8, 6, 9, 8)
+    columns += ("CPU %", "ms/change", "switches", "client %")
+    widths = (5, 8, 8, 10, 8, 8, 8, 8, 6, 9, 8, 8)
     header = " ".join(f"{c:>{w}}" for c, w in zip(columns, widths, strict=True))
     print(header + ("   flood (sent, closed)" if args.hostile else ""))
     for n in args.tabs:
@@ -376,6 +390,7 @@ def main() -> int:
         line = (
             f"{n:>5} {('yes' if args.hostile else 'no'):>8} {r['changes']:>8} {r['unanswered']:>10} "
             f"{p50:>8.1f} {p95:>8.1f} {p99:>8.1f} {mx:>8.1f} {r['cpu']:>6.0f} {r['cpu_per_change']:>9.2f} "
+            f"{r['switches_per_change']:>8.1f} "
             f"{r['client_cpu']:>8.0f}"
         )
         print(
