@@ -26,7 +26,7 @@ from .lifecycle import check_listen_address, wait_for_stop
 from .renderer import Renderer
 from .session import ClientSession
 from .symbolic import SymbolicService
-from .viser_adapter import install_fast_prop_casts, install_message_limits
+from .viser_adapter import install_fast_prop_casts, install_icon_cache, install_message_limits
 
 __all__ = ["serve", "Lab"]
 
@@ -70,6 +70,7 @@ class Lab:
         check_listen_address(host, port)  # a clear error now, instead of a server that never listens
         install_message_limits()  # what one websocket message and one tab may cost
         install_fast_prop_casts()
+        install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
         self.symbolic = SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host

@@ -21,6 +21,13 @@ Usage::
 
     python bench/bench_app_load.py                       # 10, 30, 60 tabs, 20 s each
     python bench/bench_app_load.py --tabs 60 --seconds 10 --hostile --limits
+    python bench/bench_app_load.py --tabs 30 --timeline --profile /tmp/prof   # where the time goes
+
+Printed per run: p50/p95/p99/max latency, the server's CPU (% of one core) and its CPU per slider
+change [ms] (what one change costs the server: the number to bring down) and its threads' voluntary
+context switches per change (thread hand-offs, which cost most on a busy machine); ``--timeline`` adds the
+p95 of every second of the window, ``--profile`` samples the server with py-spy (see
+``bench/profile_stacks.py``).
 
 Target (issue 7): 60 tabs, p95 < 50 ms on a 2-core machine.
 """
@@ -86,6 +93,18 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / CLK_TCK
 
 
+def switches(pid: int) -> int:
+    """Voluntary context switches of every thread of process ``pid`` so far (a thread hand-off each)."""
+    total = 0
+    for status in Path(f"/proc/{pid}/task").glob("*/status"):
+        try:
+            text = status.read_text()
+        except OSError:  # a thread that just ended
+            continue
+        total += int(re.search(r"^voluntary_ctxt_switches:\s*(\d+)", text, re.M).group(1))
+    return total
+
+
 def decode(frame: bytes) -> list[dict]:
     """The messages of one server frame (binary buffers left out: only types and names are needed)."""
     raw_size = int.from_bytes(frame[:8], "little")
@@ -115,6 +134,8 @@ class Tab:
     drawn: asyncio.Event = field(default_factory=asyncio.Event)
     pending: list[float] = field(default_factory=list)
     samples: list[float] = field(default_factory=list)
+    sent_at: list[float] = field(default_factory=list)  # when each sample's change was sent
+    symbolic_at: float = 0.0  # when the symbolic J (MathML) arrived
     sent: int = 0
     closed: bool = False
     measuring: bool = False
@@ -136,14 +157,22 @@ class Tab:
             async for frame in self.ws:
                 now = time.perf_counter()
                 scene = False
-                for m in decode(frame):
+                msgs = decode(frame)
+                for m in msgs:
                     if m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith("q2 "):
                         self.slider = m["uuid"]
                     scene = scene or str(m.get("name", "")).startswith("/")
-                if scene:
-                    self.drawn.set()
+                    if not self.symbolic_at and "<math" in str(m.get("updates", {}).get("content", "")):
+                        self.symbolic_at = now
+                if (
+                    scene
+                    and self.slider is not None
+                    and any(str(m.get("name", "")).startswith("/lab/") for m in msgs)
+                ):
+                    self.drawn.set()  # its own scene (not only the server's shared nodes) and its slider
                     if self.measuring:
                         self.samples += [(now - t) * 1e3 for t in self.pending]
+                        self.sent_at += self.pending
                     self.pending.clear()
         except websockets.ConnectionClosed:
             pass
@@ -194,7 +223,15 @@ def flood_process(url: str, seconds: float, out: multiprocessing.Queue, go) -> N
 
 
 async def run(
-    tabs: int, seconds: float, hostile: bool, port: int, pid: int, seed: int, warmup: float
+    tabs: int,
+    seconds: float,
+    hostile: bool,
+    port: int,
+    pid: int,
+    seed: int,
+    warmup: float,
+    profile: Path | None = None,
+    together: bool = False,
 ) -> dict:
     url = f"ws://127.0.0.1:{port}"
     rng = random.Random(seed)
@@ -204,9 +241,18 @@ async def run(
         out, go = ctx.Queue(), ctx.Event()
         flooder = ctx.Process(target=flood_process, args=(url, seconds, out, go))
         flooder.start()
-    for tab in clients:  # one after another, as a class arriving
+    start = time.perf_counter()
+
+    async def arrive(tab: Tab) -> None:
         await tab.connect(url)
-        await asyncio.wait_for(tab.drawn.wait(), 120)
+        await asyncio.wait_for(tab.drawn.wait(), 300)
+
+    if together:  # every tab opens the page at the same moment (a class told "open the link now")
+        await asyncio.gather(*(arrive(tab) for tab in clients))
+    else:  # one after another, each once the previous one is drawn
+        for tab in clients:
+            await arrive(tab)
+    connected = time.perf_counter()
     # Warm up (unmeasured): the first changes also meet one-off work (the symbolic J arriving).
     await asyncio.gather(*(explore(tab, time.perf_counter() + warmup, rng) for tab in clients))
     await asyncio.sleep(0.3)
@@ -214,8 +260,10 @@ async def run(
         assert await asyncio.to_thread(out.get, True, 120) == "ready"
     for tab in clients:
         tab.pending.clear()
+        tab.sent = 0  # count the measured changes only
         tab.measuring = True
-    cpu0, t0, own0 = cpu_seconds(pid), time.perf_counter(), time.process_time()
+    spy = start_profile(pid, seconds, profile, tabs) if profile is not None else None
+    cpu0, t0, own0, sw0 = cpu_seconds(pid), time.perf_counter(), time.process_time(), switches(pid)
     end = t0 + seconds
     if hostile:
         go.set()
@@ -225,8 +273,12 @@ async def run(
     while any(t.pending for t in clients) and time.perf_counter() < deadline:
         await asyncio.sleep(0.02)
     wall = time.perf_counter() - t0
-    cpu, own = (cpu_seconds(pid) - cpu0) / wall * 100, (time.process_time() - own0) / wall * 100
+    cpu_s, switched = cpu_seconds(pid) - cpu0, switches(pid) - sw0
+    cpu, own = cpu_s / wall * 100, (time.process_time() - own0) / wall * 100
+    if spy is not None:
+        await asyncio.to_thread(spy.wait, 60)
     samples = np.array([s for t in clients for s in t.samples])
+    when = np.array([w - t0 for t in clients for w in t.sent_at])
     result: dict = {
         "changes": sum(t.sent for t in clients),
         "unanswered": sum(len(t.pending) for t in clients),
@@ -237,7 +289,13 @@ async def run(
             if t.pending
         ],
         "samples": samples,
+        "when": when,
+        "connected": connected - t0,
+        "first": start - t0,
+        "symbolic": [t.symbolic_at - t0 for t in clients if t.symbolic_at],
         "cpu": cpu,
+        "cpu_per_change": cpu_s / max(sum(t.sent for t in clients), 1) * 1e3,
+        "switches_per_change": switched / max(sum(t.sent for t in clients), 1),
         "client_cpu": own,
     }
     if hostile:
@@ -246,6 +304,26 @@ async def run(
     for tab in clients:
         await tab.ws.close()
     return result
+
+
+def start_profile(pid: int, seconds: float, folder: Path, tabs: int) -> subprocess.Popen:
+    """py-spy sampling the server ``pid`` for ``seconds`` (idle threads left out), writing collapsed
+    stacks to ``folder/server-<tabs>.txt`` (``pip install py-spy``; read them with
+    ``bench/profile_stacks.py``). Sampling costs the server a little CPU of its own."""
+    folder.mkdir(parents=True, exist_ok=True)
+    out = folder / f"server-{tabs}.txt"
+    cmd = ["py-spy", "record", "-p", str(pid), "-d", str(int(seconds)), "-r", "100", "-f", "raw"]
+    cmd += ["--gil", "--nonblocking", "-o", str(out)]  # only the thread holding the GIL: what queues
+    return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def timeline(when: np.ndarray, samples: np.ndarray, seconds: float) -> str:
+    """p95 [ms] of the changes sent in each second of the window (where the slow ones are)."""
+    cells = []
+    for k in range(int(np.ceil(seconds))):
+        s = samples[(when >= k) & (when < k + 1)]
+        cells.append(f"{np.percentile(s, 95):.0f}" if len(s) else "-")
+    return " ".join(cells)
 
 
 def main() -> int:
@@ -258,6 +336,13 @@ def main() -> int:
     parser.add_argument("--warmup", type=float, default=3.0, help="unmeasured exploring first [s]")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--port", type=int, default=0, help="the server's port (0: a free one)")
+    parser.add_argument(
+        "--profile", type=Path, default=None, help="py-spy the server over the window into this folder"
+    )
+    parser.add_argument("--timeline", action="store_true", help="print p95 per second of the window")
+    parser.add_argument(
+        "--together", action="store_true", help="all tabs connect at once (else one after another)"
+    )
     parser.add_argument("--server-log", type=Path, default=None, help="append the server's log to this file")
     parser.add_argument(
         "--app-root",
@@ -272,13 +357,27 @@ def main() -> int:
     app = args.app_root or "this checkout"
     print(f"app {app}; robot {args.robot}, {args.seconds:g} s per run, {os.cpu_count()} CPUs; slider → scene")
     print(f"load average before: {Path('/proc/loadavg').read_text().split()[:3]}")
-    columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "max ms", "CPU %", "client %")
-    header = " ".join(f"{c:>{w}}" for c, w in zip(columns, (5, 8, 8, 10, 8, 8, 8, 6, 8), strict=True))
+    columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "p99 ms", "max ms")
+    columns += ("CPU %", "ms/change", "switches", "client %")
+    widths = (5, 8, 8, 10, 8, 8, 8, 8, 6, 9, 8, 8)
+    header = " ".join(f"{c:>{w}}" for c, w in zip(columns, widths, strict=True))
     print(header + ("   flood (sent, closed)" if args.hostile else ""))
     for n in args.tabs:
         proc, port = start_server(args.robot, args.limits, args.port, args.app_root, args.server_log)
         try:
-            r = asyncio.run(run(n, args.seconds, args.hostile, port, proc.pid, args.seed, args.warmup))
+            r = asyncio.run(
+                run(
+                    n,
+                    args.seconds,
+                    args.hostile,
+                    port,
+                    proc.pid,
+                    args.seed,
+                    args.warmup,
+                    args.profile,
+                    args.together,
+                )
+            )
         finally:
             proc.terminate()
             try:
@@ -286,11 +385,13 @@ def main() -> int:
             except subprocess.TimeoutExpired:
                 proc.kill()
         s = r["samples"]
-        p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)
+        p50, p95, p99 = np.percentile(s, [50, 95, 99]) if len(s) else (np.nan,) * 3
         mx = s.max() if len(s) else np.nan
         line = (
             f"{n:>5} {('yes' if args.hostile else 'no'):>8} {r['changes']:>8} {r['unanswered']:>10} "
-            f"{p50:>8.1f} {p95:>8.1f} {mx:>8.1f} {r['cpu']:>6.0f} {r['client_cpu']:>8.0f}"
+            f"{p50:>8.1f} {p95:>8.1f} {p99:>8.1f} {mx:>8.1f} {r['cpu']:>6.0f} {r['cpu_per_change']:>9.2f} "
+            f"{r['switches_per_change']:>8.1f} "
+            f"{r['client_cpu']:>8.0f}"
         )
         print(
             line
@@ -298,6 +399,14 @@ def main() -> int:
         )
         for note in r["silent"][:5]:
             print(f"      {note}")
+        if args.timeline and len(s):
+            print(f"      p95 per second: {timeline(r['when'], s, args.seconds)}")
+            got = r["symbolic"]
+            print(
+                f"      (s from the window's start) first tab {r['first']:.1f}, "
+                f"all drawn {r['connected']:.1f}, "
+                + (f"symbolic J at {min(got):.1f} … {max(got):.1f}" if got else "no symbolic J")
+            )
     return 0
 
 

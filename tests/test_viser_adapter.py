@@ -193,6 +193,75 @@ def test_update_props_sends_the_changed_props_in_one_message(connected):
         va.update_props(node, batched_positions=three)
 
 
+def test_set_pose_sends_only_a_changed_position_or_orientation(connected):
+    _, client, ws = connected
+    node = client.scene.add_icosphere("/probe/pose", radius=1.0)
+    label = client.scene.add_label("/probe/pose_label", "q1")
+    ws.wait_for(lambda m: m.get("name") == "/probe/pose_label")
+    mark = ws.mark()
+    va.set_pose(node, (0.5, -1.0, 2.0), (0.0, 1.0, 0.0, 0.0))
+    va.set_pose(label, (1.0, 2.0, 3.0))
+    va.set_pose(label, (1.0, 2.0, 3.0 + 1e-9))  # within viser's own tolerance: nothing sent
+    va.update_props(node, scale=(0.3, 0.2, 0.1))
+    va.update_props(node, scale=(0.3, 0.2, 0.1))  # unchanged: nothing sent
+    ws.wait_for(lambda m: m.get("name") == "/probe/pose" and "scale" in m.get("updates", {}), after=mark)
+    sent = [m for _, m in ws.messages[mark:] if str(m.get("name", "")).startswith("/probe/pose")]
+    assert [(m["type"], m["name"]) for m in sent] == [
+        ("SetPositionMessage", "/probe/pose"),
+        ("SetOrientationMessage", "/probe/pose"),
+        ("SetPositionMessage", "/probe/pose_label"),
+        ("SceneNodeUpdateMessage", "/probe/pose"),
+    ]
+    np.testing.assert_allclose(sent[0]["position"], (0.5, -1.0, 2.0))
+    np.testing.assert_allclose(sent[1]["wxyz"], (0.0, 1.0, 0.0, 0.0))
+    np.testing.assert_allclose(sent[3]["updates"]["scale"], (0.3, 0.2, 0.1))
+    np.testing.assert_allclose(node.position, (0.5, -1.0, 2.0))  # the handle holds what was sent
+    np.testing.assert_allclose(node.wxyz, (0.0, 1.0, 0.0, 0.0))
+    np.testing.assert_allclose(label.position, (1.0, 2.0, 3.0))
+    assert va.node_props(node)["scale"] == (0.3, 0.2, 0.1)
+    with pytest.raises(ValueError, match="3 numbers"):
+        va.set_pose(label, (1.0, 2.0))
+    label.remove()
+    with pytest.raises(RuntimeError, match="removed"):
+        va.set_pose(label, (0.0, 0.0, 0.0))
+
+
+def test_install_icon_cache_reads_each_icon_once_and_gives_viser_the_same_svg(connected, monkeypatch):
+    import zipfile
+
+    from viser import _gui_api, _gui_handles, _icons
+
+    expected = _icons.svg_from_icon(viser.Icon.MATH)  # viser's own reading (the cache may be installed)
+    with zipfile.ZipFile(_icons.ICONS_DIR / "tabler-icons.zip") as archive:
+        assert archive.read("math.svg").decode("utf-8") == expected
+    va.install_icon_cache()
+    va.install_icon_cache()  # idempotent
+    assert _gui_api.svg_from_icon is _gui_handles.svg_from_icon is _icons.svg_from_icon
+    opened = []
+    real = zipfile.ZipFile
+    monkeypatch.setattr(zipfile, "ZipFile", lambda *a, **k: opened.append(a) or real(*a, **k))
+    icons = ("arrow-left", "arrow-right", "arrow-left")
+    results: list[str] = []
+    threads = [
+        threading.Thread(target=lambda i=i: results.append(_icons.svg_from_icon(i))) for i in icons * 4
+    ]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 12 and all(r.startswith("<svg") for r in results)
+    assert len(opened) <= 1  # opened once per process: here, or before by the first icon read
+    before = len(opened)
+    assert _icons.svg_from_icon("arrow-up").startswith("<svg") and _icons.svg_from_icon("arrow-down")
+    assert len(opened) == before  # new icons come from the archive already open
+    assert _icons.svg_from_icon(viser.Icon.MATH) == expected
+    _, client, ws = connected
+    mark = ws.mark()
+    client.gui.add_button("probe", icon=viser.Icon.MATH)  # viser's own path uses it
+    _, message = ws.wait_for(lambda m: m["type"] == "GuiButtonMessage", after=mark)
+    assert message["props"]["_icon_html"] == expected
+
+
 # ----------------------------------------------------------------------------- message limits
 @pytest.fixture
 def limited():
@@ -306,9 +375,9 @@ def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
 
 @pytest.mark.browser
 def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
-    from test_browser_app import ARGS, CHROMIUM, _require_browser
+    from browser_helpers import ARGS, CHROMIUM, require_browser
 
-    sync_playwright = _require_browser()
+    sync_playwright = require_browser()
     server.on_client_connect(lambda client: va.set_page_title(client, "Jacobian Lab"))
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)

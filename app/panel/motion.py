@@ -136,7 +136,7 @@ class ForwardPanel:
             self.play.icon = viser.Icon.PLAYER_PAUSE if state.playing else viser.Icon.PLAYER_PLAY
 
     def update(self, snap: Snapshot, state: LabState) -> None:
-        idle = ("idle", state.stopped) if not np.any(state.qd) else None  # nothing moves: nothing to redo
+        idle = ("idle", state.stopped) if not state.qd.any() else None  # nothing moves: nothing to redo
         if idle is not None and idle == self._shown:
             return
         self._shown = idle
@@ -166,6 +166,7 @@ class InversePanel:
     ):
         self.robot = robot
         self.rows = rows
+        self._rows = list(rows)
         self.ranges = twist_ranges(robot)
         self.root = gui.add_folder(None, order=order)
         # The course's worked example: the first preset in base axes (a twist held from a configuration).
@@ -244,7 +245,7 @@ class InversePanel:
         if p is not None:
             question = state.configuration == "course_question"
             self.course.content = example_html(snap, state, p.rates, self._example_start, question)
-        idle = ("idle", state.options.damping) if not np.any(state.v_desired[list(self.rows)]) else None
+        idle = ("idle", state.options.damping) if not state.v_desired[self._rows].any() else None
         if idle is not None and idle == self._shown:
             return
         self._shown = idle
@@ -297,20 +298,23 @@ class ForcePanel:
         with self.root:
             self.torques = gui.add_html("")  # the result first: in sight while the sliders move
             self.sliders = {}
+            self._bounds: dict[int, tuple[float, float]] = {}
             for r in rows:
                 slider = _slider(gui, _WRENCH_ROWS[r], self.ranges[r], "applied at the tool point, base axes")
                 bind(slider, dispatch, functools.partial(_set_wrench, r))
                 self.sliders[r] = slider
+                self._bounds[r] = (float(slider.min), float(slider.max))
             zero = gui.add_button("Remove the force (F = 0)")
             bind_click(zero, dispatch, ClearWrench)
             self._idle = False
 
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():
-            sync_value(slider, min(max(float(state.wrench[r]), slider.min), slider.max))  # np.clip: 5 µs
+            lo, hi = self._bounds[r]  # the slider's range (reading slider.min and .max costs more)
+            sync_value(slider, min(max(float(state.wrench[r]), lo), hi))
 
     def update(self, snap: Snapshot, state: LabState) -> None:
-        idle = not np.any(state.wrench)
+        idle = not state.wrench.any()
         if idle and self._idle:
             return
         self._idle = idle

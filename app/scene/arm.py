@@ -25,7 +25,7 @@ from kinematics.urdf import mesh_filename_handler
 from ..palette import LINK_RGB, STATUS_RGB, joint_color
 from ..snapshot import Snapshot
 from ..state import Options
-from ..viser_adapter import update_props
+from ..viser_adapter import set_pose, update_props
 from .geometry import finite, segment_instances, set_if_changed, unit_box, unit_cylinder, wxyz
 
 __all__ = ["ArmGeometry", "ArmView"]
@@ -241,8 +241,9 @@ class ArmView:
             set_if_changed(label, "visible", options.labels)
         if options.labels:
             k = g.first_axis
-            for label, position in zip(self.labels, finite(o[k] + z[k] * self._label_offset), strict=True):
-                label.position = position
+            at = finite(o[k] + z[k] * self._label_offset).tolist()  # plain floats: viser's setter is cheaper
+            for label, position in zip(self.labels, at, strict=True):
+                set_pose(label, position)
 
     def remove(self) -> None:
         """Remove every node of this arm."""

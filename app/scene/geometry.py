@@ -18,6 +18,7 @@ import viser.transforms as vtf
 __all__ = [
     "set_if_changed",
     "finite",
+    "finite_tuple",
     "wxyz",
     "wxyz_one",
     "segment_instances",
@@ -34,10 +35,18 @@ _LIMIT = 1e3
 def finite(a: object, limit: float = _LIMIT) -> np.ndarray:
     """``a`` as float32 with NaN → 0 and values clipped to ±``limit``: safe to send to the scene."""
     arr = np.asarray(a, dtype=np.float64)
-    if np.isfinite(arr).all() and (arr.size == 0 or float(np.abs(arr).max()) <= limit):
+    # One reduction decides: the largest |value| is NaN when any value is, so only finite, bounded
+    # arrays take the fast path.
+    if arr.size == 0 or float(abs(arr).max()) <= limit:
         return arr.astype(np.float32)
     arr = np.nan_to_num(arr, nan=0.0, posinf=limit, neginf=-limit)
     return np.clip(arr, -limit, limit).astype(np.float32)
+
+
+def finite_tuple(v: object, limit: float = _LIMIT) -> tuple[float, ...]:
+    """A short vector as a tuple of floats with NaN → 0 and values clipped to ±``limit`` (what viser's
+    pose setters take, without NumPy's per-call cost)."""
+    return tuple(min(max(x, -limit), limit) if x == x else 0.0 for x in np.asarray(v, float).tolist())
 
 
 def wxyz(R: np.ndarray) -> np.ndarray:
@@ -82,17 +91,25 @@ def segment_instances(p0: np.ndarray, p1: np.ndarray, radius: np.ndarray | float
     """
     p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
     d = p1 - p0
-    length = np.linalg.norm(d, axis=1)
-    u = d / np.where(length > TINY, length, 1.0)[:, None]
-    u[length <= TINY] = (0.0, 0.0, 1.0)
-    q = np.column_stack([1.0 + u[:, 2], -u[:, 1], u[:, 0], np.zeros(len(u))])
-    norm = np.linalg.norm(q, axis=1)
+    length = np.sqrt(np.einsum("ij,ij->i", d, d))  # one call instead of np.linalg.norm's several
+    short = length <= TINY
+    u = d / np.where(short, 1.0, length)[:, None]
+    if short.any():
+        u[short] = (0.0, 0.0, 1.0)
+    q = np.zeros((len(u), 4))
+    q[:, 0] = 1.0 + u[:, 2]
+    q[:, 1] = -u[:, 1]
+    q[:, 2] = u[:, 0]
+    norm = np.sqrt(np.einsum("ij,ij->i", q, q))
     flipped = norm < 1e-9  # pointing along -z: half a turn about x
-    q[flipped] = (0.0, 1.0, 0.0, 0.0)
     q /= np.where(flipped, 1.0, norm)[:, None]
-    r = np.broadcast_to(np.asarray(radius, float), length.shape)
-    scales = np.column_stack([r, r, np.maximum(length, TINY)])
-    return (p0 + p1) / 2.0, q, scales
+    if flipped.any():
+        q[flipped] = (0.0, 1.0, 0.0, 0.0)
+    scales = np.empty((len(u), 3))
+    scales[:, 0] = radius
+    scales[:, 1] = radius
+    scales[:, 2] = np.maximum(length, TINY)
+    return (p0 + p1) * 0.5, q, scales
 
 
 @functools.cache

@@ -35,9 +35,9 @@ from ..palette import (
 )
 from ..snapshot import Snapshot
 from ..state import LabState
-from ..viser_adapter import update_props
+from ..viser_adapter import set_pose, update_props
 from .arm import ArmGeometry
-from .geometry import TINY, finite, set_if_changed, wxyz_one
+from .geometry import TINY, finite, finite_tuple, set_if_changed, wxyz_one
 
 __all__ = ["Overlays", "Arrows", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE"]
 
@@ -49,6 +49,13 @@ FORCE_SIGMA_REF = 0.4
 SHOWN_SHARE = 0.1
 """A lost translation (rotation) is drawn when it carries at least this share of the lost direction."""
 _MIN_LENGTH = 1e-3
+
+
+_NO_POINTS = np.zeros((0, 3))
+_EYE, _ZERO3 = np.eye(3), np.zeros(3)
+_LOST_COLORS = np.array([LOST_RGB], np.uint8)
+for _a in (_NO_POINTS, _EYE, _ZERO3, _LOST_COLORS):
+    _a.flags.writeable = False
 
 
 class Arrows:
@@ -65,26 +72,32 @@ class Arrows:
             head_length=6 * radius,
             visible=False,
         )
-        self._mask: tuple = ()
+        self._mask = b""
         self._colors: np.ndarray = np.zeros((0, 3), np.uint8)
-        self.tips: np.ndarray = np.zeros((0, 3))
+        self.tips: np.ndarray = _NO_POINTS
+
+    def hide(self) -> None:
+        self.tips = _NO_POINTS
+        set_if_changed(self.node, "visible", False)
 
     def set(self, starts: np.ndarray, vectors: np.ndarray, colors: np.ndarray, show: bool = True) -> None:
-        if not show:  # hidden: nothing to work out
-            self.tips = np.zeros((0, 3))
-            set_if_changed(self.node, "visible", False)
-            return
-        lengths = np.linalg.norm(vectors, axis=1) if len(vectors) else np.zeros(0)
-        keep = np.isfinite(lengths) & (lengths > max(_MIN_LENGTH, self.radius))
-        self.tips = (starts + vectors)[keep]
+        """Arrows from ``starts`` (N, 3), or one start (3,) shared by all, along ``vectors`` (N, 3)."""
+        if not show or not len(vectors):  # hidden: nothing to work out
+            return self.hide()
+        lengths = np.sqrt(np.einsum("ij,ij->i", vectors, vectors))  # NaN stays NaN, so it is not kept
+        keep = (lengths > max(_MIN_LENGTH, self.radius)) & (lengths < np.inf)
         if not keep.any():
-            set_if_changed(self.node, "visible", False)
-            return
-        points = finite(np.stack([starts[keep], starts[keep] + vectors[keep]], axis=1))
-        shortest = float(lengths[keep].min())
-        head = round(float(min(6 * self.radius, 0.4 * shortest)), 4)
-        change: dict = {"points": points, "head_length": head}
-        mask = tuple(np.flatnonzero(keep))
+            return self.hide()
+        ends = starts + vectors
+        points = np.empty((len(vectors), 2, 3))
+        points[:, 0] = starts
+        points[:, 1] = ends
+        mask = keep.tobytes()
+        if not keep.all():
+            points, ends, lengths = points[keep], ends[keep], lengths[keep]
+        self.tips = ends
+        head = round(min(6 * self.radius, 0.4 * float(lengths.min())), 4)
+        change: dict = {"points": finite(points), "head_length": head}
         kept = np.asarray(colors[keep], np.uint8)
         if mask != self._mask or not np.array_equal(kept, self._colors):  # colours sent only when they change
             change["colors"] = kept
@@ -107,17 +120,26 @@ class _Ellipsoid:
             cast_shadow=False,
             receive_shadow=False,
         )
-        self.extent: np.ndarray = np.zeros((0, 3))
+        self._drawn: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    @property
+    def extent(self) -> np.ndarray:
+        """The ends of the drawn semi-axes (6, 3) [m] (none when hidden)."""
+        if self._drawn is None:
+            return _NO_POINTS
+        center, axes, r = self._drawn
+        return center + np.concatenate([axes * r, -(axes * r)], axis=1).T
 
     def set(self, center: np.ndarray, axes: np.ndarray, radii: np.ndarray, show: bool, cap: float) -> None:
         set_if_changed(self.node, "visible", bool(show))
-        self.extent = np.zeros((0, 3))
-        if show:
-            r = np.clip(np.nan_to_num(radii, nan=0.0, posinf=cap), TINY, cap)
-            self.node.scale = (float(r[0]), float(r[1]), float(r[2]))
-            self.node.wxyz = wxyz_one(axes)
-            self.node.position = finite(center).astype(float)
-            self.extent = center + np.concatenate([axes * r, -(axes * r)], axis=1).T
+        if not show:
+            self._drawn = None
+            return
+        # NaN → TINY, +inf → cap, in plain Python (three numbers: cheaper than NumPy's nan_to_num and clip)
+        r = tuple(min(max(x, TINY), cap) if x == x else TINY for x in np.asarray(radii, float).tolist())
+        update_props(self.node, scale=r)
+        set_pose(self.node, finite_tuple(center), wxyz_one(axes))
+        self._drawn = (np.asarray(center, float), np.asarray(axes, float), np.array(r))
 
 
 def _ring(center: np.ndarray, axis: np.ndarray, radius: float, segments: int = 28) -> np.ndarray:
@@ -165,7 +187,26 @@ class Overlays:
         self._nodes: list = [e.node for e in (self.velocity, self.rotational, self.force)]
         self._nodes += [a.node for a in (self.columns, self.angular, self.motion, self.lost_v)]
         self._nodes += [self.lost_w, *self.lost_labels.values()]
-        self.extent: np.ndarray = np.zeros((0, 3))
+        self._links: np.ndarray = _NO_POINTS
+        self._motion_colors = np.array(
+            [TWIST_RGB, TWIST_ANGULAR_RGB, DESIRED_RGB, FORCE_RGB, FORCE_RGB], np.uint8
+        )
+
+    @property
+    def extent(self) -> np.ndarray:
+        """Points (N, 3) [m] of everything drawn at the last update: arm, ellipsoids, arrow tips
+        (gathered only when asked: the camera needs them after a jump, not on every redraw)."""
+        parts = [
+            self._links,
+            self.velocity.extent,
+            self.rotational.extent,
+            self.force.extent,
+            self.columns.tips,
+            self.angular.tips,
+            self.motion.tips,
+            self.lost_v.tips,
+        ]
+        return np.concatenate([x for x in parts if len(x)])
 
     def update(self, snap: Snapshot, state: LabState) -> None:
         """Redraw every glyph for ``snap``."""
@@ -183,58 +224,56 @@ class Overlays:
         if status != self._status:
             self.velocity.node.color = STATUS_RGB[status]
             self._status = status
-        if snap.rotational is not None:
-            rot = snap.rotational
-            self.rotational.set(p, rot.axes, rot.radii * 0.6 * unit, options.rotational_ellipsoid, cap)
+        rot = snap.rotational
+        if rot is not None and options.rotational_ellipsoid:
+            self.rotational.set(p, rot.axes, rot.radii * 0.6 * unit, True, cap)
         else:
-            self.rotational.set(p, np.eye(3), np.zeros(3), False, 1.0)
+            self.rotational.set(p, _EYE, _ZERO3, False, 1.0)
         force = snap.force
-        if force is not None:
+        if force is not None and options.force_ellipsoid:
             radii = force.radii * (lin * FORCE_SIGMA_REF**2 * s * s)
             if self.planar:  # a planar arm's force ellipse lies in the plane: flatten the out-of-plane axis
                 radii = np.where(np.abs(force.axes[2]) > 0.99, 0.0, radii)
-            self.force.set(p, force.axes, radii, options.force_ellipsoid, cap)
+            self.force.set(p, force.axes, radii, True, cap)
         else:
-            self.force.set(p, np.eye(3), np.zeros(3), False, cap)
+            self.force.set(p, _EYE, _ZERO3, False, cap)
 
-        n = J.shape[1]
-        self.columns.set(np.tile(p, (n, 1)), J[:3].T * lin, self._joint_colors, options.columns)
-        origins = snap.joint_frames[g.first_axis, :3, 3]
-        self.angular.set(origins, J[3:].T * unit, self._joint_colors, options.angular_columns)
+        if options.columns:
+            self.columns.set(p, J[:3].T * lin, self._joint_colors)
+        else:
+            self.columns.hide()
+        if options.angular_columns:
+            origins = snap.joint_frames[g.first_axis, :3, 3]
+            self.angular.set(origins, J[3:].T * unit, self._joint_colors)
+        else:
+            self.angular.hide()
 
         rows = list(snap.rows)
-        desired = np.zeros(6)
-        desired[rows] = state.v_desired[rows]
-        vectors = np.array(
-            [
-                snap.twist[:3] * lin,
-                snap.twist[3:] * unit,
-                desired[:3] * lin,
-                wrench[:3] * 0.04 * s * k,
-                wrench[3:] * 0.04 * s * k,
-            ]
-        )
-        colors = np.array([TWIST_RGB, TWIST_ANGULAR_RGB, DESIRED_RGB, FORCE_RGB, FORCE_RGB], np.uint8)
-        self.motion.set(np.tile(p, (5, 1)), vectors, colors)
+        moving = state.qd.any() or state.v_desired[rows].any() or wrench.any()
+        if moving:  # else every arrow is zero: nothing to work out
+            desired = np.zeros(6)
+            desired[rows] = state.v_desired[rows]
+            vectors = np.array(
+                [
+                    snap.twist[:3] * lin,
+                    snap.twist[3:] * unit,
+                    desired[:3] * lin,
+                    wrench[:3] * 0.04 * s * k,
+                    wrench[3:] * 0.04 * s * k,
+                ]
+            )
+            self.motion.set(p, vectors, self._motion_colors)
+        else:
+            self.motion.hide()
 
         self._lost(snap, p, unit)
-        parts = [
-            snap.link_frames[:, :3, 3],
-            self.velocity.extent,
-            self.rotational.extent,
-            self.force.extent,
-            self.columns.tips,
-            self.angular.tips,
-            self.motion.tips,
-            self.lost_v.tips,
-        ]
-        self.extent = np.concatenate([x for x in parts if len(x)])
+        self._links = snap.link_frames[:, :3, 3]
 
     def _lost(self, snap: Snapshot, p: np.ndarray, unit: float) -> None:
         """The lost direction: an arrow for its translation, an axis with a ring for its rotation."""
         lost = snap.lost
         if lost is None:  # regular: nothing is lost
-            self.lost_v.set(p[None], np.zeros((1, 3)), np.array([LOST_RGB], np.uint8), show=False)
+            self.lost_v.hide()
             for node in (self.lost_w, *self.lost_labels.values()):
                 set_if_changed(node, "visible", False)
             return
@@ -242,11 +281,11 @@ class Overlays:
         show_w = lost.rotation_share >= SHOWN_SHARE and not self.planar
         length = 2.0 * unit
         vector = lost.translation * length * np.sqrt(lost.translation_share)
-        self.lost_v.set(p[None], vector[None], np.array([LOST_RGB], np.uint8), show=show_v)
+        self.lost_v.set(p, vector[None], _LOST_COLORS, show=show_v)
         label_v = self.lost_labels["v"]
         set_if_changed(label_v, "visible", bool(show_v))
         if show_v:
-            label_v.position = finite(self.lost_v.tips[0]).astype(float)
+            set_pose(label_v, finite_tuple(self.lost_v.tips[0]))
         label_w = self.lost_labels["w"]
         set_if_changed(self.lost_w, "visible", bool(show_w))
         set_if_changed(label_w, "visible", bool(show_w))
@@ -257,7 +296,7 @@ class Overlays:
             update_props(
                 self.lost_w, points=finite(np.concatenate([axis, _ring(p + a * 0.6 * half, a, 0.25 * half)]))
             )
-            label_w.position = finite(p + a * half).astype(float)
+            set_pose(label_w, finite_tuple(p + a * half))
 
     def remove(self) -> None:
         for node in self._nodes:

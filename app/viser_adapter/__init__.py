@@ -23,9 +23,13 @@ Wrapped:
   type aliases built once.
 * :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``
   (through ``handle._impl.props`` and the scene's ``_queue_scene_message``).
+* :func:`install_icon_cache` — viser's ``_icons.svg_from_icon`` (also as imported by ``_gui_api`` and
+  ``_gui_handles``), reading its icon archive once instead of once per icon and thread.
+* :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
+  ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of four modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`, :mod:`.mirror`), so each stays short;
-nothing outside this package touches viser's private API.
+A package of five modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`, :mod:`.mirror`, :mod:`.icons`),
+so each stays short; nothing outside this package touches viser's private API.
 """
 
 from .core import (
@@ -40,6 +44,7 @@ from .core import (
     scene_handles,
     set_page_title,
 )
+from .icons import install_icon_cache
 from .limits import (
     MAX_UPLOAD_BYTES,
     UPLOAD_PART_BYTES,
@@ -49,7 +54,7 @@ from .limits import (
     upload_too_large,
 )
 from .mirror import capture_scene, replay_scene
-from .props import install_fast_prop_casts, update_props
+from .props import install_fast_prop_casts, set_pose, update_props
 
 __all__ = [
     "TESTED_VISER",
@@ -68,8 +73,10 @@ __all__ = [
     "MAX_UPLOAD_BYTES",
     "UPLOAD_PART_BYTES",
     "install_fast_prop_casts",
+    "install_icon_cache",
     "capture_scene",
     "replay_scene",
     "update_props",
+    "set_pose",
     "clip",
 ]
