@@ -140,8 +140,8 @@ class DeriveScene:
         c = d.whitney[d.axes[0]]
         rgb = joint_color(d.joint)
         tool = c.p + c.r
-        thick = [(tool, c.linear * lin, rgb), (c.p, c.z * 1.5 * unit, rgb)]
-        labels = [(z, c.p + c.z * 1.5 * unit)]
+        thick = [(tool, c.linear * lin, rgb), (c.p, c.z * unit, rgb)]
+        labels = [(z, c.p + c.z * unit)]
         thin = []
         if c.kind == "revolute":  # the lever pₙ − pᵢ₋₁ is a vector too: an arrow from the axis to the tool
             thin.append((c.p, c.r, LEVER_RGB))
