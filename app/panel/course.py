@@ -7,7 +7,9 @@ never ``inf``; where J⁻¹ does not exist the panel says so in words.
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -27,7 +29,7 @@ J_PLUS = "J<sup>+</sup>"
 _ANGLE_NAMES = {"zyx": ("yaw α", "pitch β", "roll γ"), "zyz": ("φ", "θ", "ψ")}
 
 
-def grid_html(M: np.ndarray, row_heads: list[str], col_heads: list[str], digits: int = 4) -> str:
+def grid_html(M: np.ndarray, row_heads: Sequence[str], col_heads: Sequence[str], digits: int = 4) -> str:
     """A small numeric matrix as a ``jl-matrix`` table (``digits`` significant digits, ×10ⁿ when large)."""
     values = fmt.cleaned(np.asarray(M, float).ravel().tolist(), rel=1e-12)
     cols = len(col_heads)
@@ -41,12 +43,13 @@ def grid_html(M: np.ndarray, row_heads: list[str], col_heads: list[str], digits:
     return f'<table class="jl-matrix"><tr><th></th>{head}</tr>{body}</table>'
 
 
-def _joint_heads(robot: Robot) -> list[str]:
-    return [
+@functools.lru_cache(maxsize=64)
+def _joint_heads(robot: Robot) -> tuple[str, ...]:
+    return tuple(
         f'<span style="color:{joint_text_hex(i)};border-bottom:3px solid {joint_hex(i)}" '
         f'title="{fmt.escape(j.name)}">q̇{i + 1}</span>'
         for i, j in enumerate(robot.joints)
-    ]
+    )
 
 
 def inverse_html(

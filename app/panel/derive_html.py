@@ -8,6 +8,7 @@ about zᵢ through pᵢ; a URDF robot's joint i turns about its own joint frame'
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -56,34 +57,50 @@ def dh_table_html(robot: Robot, q: np.ndarray, selected: int | None) -> str:
             "&lt;origin&gt; of each joint, not by a DH table. Frame i is the URDF joint frame "
             "of joint i; its z axis is the joint axis.</div>"
         )
+    head, rows, tail = _dh_parts(robot)
+    out = [head]
+    for j, (row, (before, after)) in enumerate(zip(robot.dh, rows, strict=True)):
+        if row.joint == "revolute":
+            value = _angle(q[j] + row.theta)
+        else:
+            value = fmt.quantity(q[j] + row.d, "m", 4)
+        cls = ' class="sel"' if selected == j else ""
+        out.append(f"<tr{cls}>{before}{value}{after}</tr>")
+    return "".join(out) + tail
+
+
+@functools.lru_cache(maxsize=64)
+def _dh_parts(robot: Robot) -> tuple[str, tuple[tuple[str, str], ...], str]:
+    """What the DH table of ``robot`` keeps whatever q is: the head, each row's cells before and after
+    the joint variable's value, the tail (built once per robot: the table is redrawn on every move)."""
     standard = robot.convention == "standard"
-    head = ("i", "θᵢ", "dᵢ", "aᵢ", "αᵢ") if standard else ("i", "αᵢ₋₁", "aᵢ₋₁", "θᵢ", "dᵢ")
-    out = [f'<table class="jl-dh"><tr>{"".join(f"<th>{h}</th>" for h in head)}</tr>']
+    names = ("i", "θᵢ", "dᵢ", "aᵢ", "αᵢ") if standard else ("i", "αᵢ₋₁", "aᵢ₋₁", "θᵢ", "dᵢ")
+    head = f'<table class="jl-dh"><tr>{"".join(f"<th>{h}</th>" for h in names)}</tr>'
+    mark = "\x00"  # where the variable's value goes
+    rows = []
+    assert robot.dh is not None
     for j, row in enumerate(robot.dh):
-        revolute = row.joint == "revolute"
         color = joint_text_hex(j)
         var = f"q{sub(j + 1)}"
-        if revolute:
-            value = q[j] + row.theta
+        if row.joint == "revolute":
             theta = f"{var} + {_angle(row.theta)}" if abs(row.theta) > 1e-12 else var
-            theta = f'<b style="color:{color}">{theta} = {_angle(value)}</b>'
+            theta = f'<b style="color:{color}">{theta} = {mark}</b>'
             d = fmt.quantity(row.d, "m", 4)
         else:
-            value = q[j] + row.d
             d = f"{var} + {fmt.quantity(row.d, 'm', 4)}" if abs(row.d) > 1e-12 else var
-            d = f'<b style="color:{color}">{d} = {fmt.quantity(value, "m", 4)}</b>'
+            d = f'<b style="color:{color}">{d} = {mark}</b>'
             theta = _angle(row.theta)
         a, alpha = fmt.quantity(row.a, "m", 4), _angle(row.alpha)
         cells = (str(j + 1), theta, d, a, alpha) if standard else (str(j + 1), alpha, a, theta, d)
-        cls = ' class="sel"' if selected == j else ""
-        out.append(f"<tr{cls}>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    out.append("</table>")
+        before, after = "".join(f"<td>{c}</td>" for c in cells).split(mark)
+        rows.append((before, after))
     rule = (
         "Standard DH: Aᵢ = Rz(θᵢ) Tz(dᵢ) Tx(aᵢ) Rx(αᵢ); joint i turns about zᵢ₋₁."
         if standard
         else "Modified DH (Craig): Aᵢ = Rx(αᵢ₋₁) Tx(aᵢ₋₁) Rz(θᵢ) Tz(dᵢ); joint i turns about zᵢ."
     )
-    return "".join(out) + f'<div class="jl-note">{rule} The joint variable is in its joint colour.</div>'
+    tail = f'</table><div class="jl-note">{rule} The joint variable is in its joint colour.</div>'
+    return head, tuple(rows), tail
 
 
 def _row(name: str, value: str, cls: str = "") -> str:
