@@ -14,19 +14,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinematics import jacobian, jacobian_dot, joint_frames, link_frames
+from kinematics import jacobian, jacobian_dot
 from kinematics.analysis import (
     Ellipsoid,
     condition_number,
+    condition_of,
     force_ellipsoid,
-    manipulability,
-    rank,
-    singular_values,
+    measures,
     task_rows,
     velocity_ellipsoid,
 )
 from kinematics.inverse import solve_rates
 from kinematics.lost import LostDirection, lost_direction
+from kinematics.numeric import frames_and_jacobian
 from kinematics.singularity import SingularityReport, assess
 
 from .course import AnalyticView, InverseView, analytic_view, inverse_view
@@ -125,9 +125,7 @@ def compute(state: LabState) -> Snapshot:
     """Evaluate everything the views draw for ``state`` (one call per event)."""
     robot, q = state.robot, state.q
     planar, n = robot.planar, robot.dof
-    L = link_frames(robot, q)
-    W = joint_frames(robot, q)
-    J = jacobian(robot, q, "base")
+    L, W, J = frames_and_jacobian(robot, q)  # one evaluation of the chain
     J_shown = jacobian(robot, q, "tool") if state.options.jacobian_frame == "tool" else J
     rows = task_rows(robot)
     report = assess(robot, q, J)
@@ -139,7 +137,12 @@ def compute(state: LabState) -> Snapshot:
     rates = solve_rates(J_twist, v_task, state.options.damping) if np.any(v_task) else np.zeros(n)
     produced = np.zeros(6)
     produced[list(rows)] = J_twist @ rates
-    rank_task = int(rank(J, rows))
+    m = measures(J, rows)  # σ, w, rank and κ of the task rows: one SVD
+    rank_task = m.rank
+    velocity = velocity_ellipsoid(J, "linear")
+    t_rows = translational_rows(planar)
+    # κ of the v rows: the velocity ellipsoid's radii are their singular values (zero-padded when n < 3).
+    cond_v = condition_of(velocity.radii) if len(t_rows) == 3 else condition_number(J, t_rows)
     moving = bool(np.any(state.qd))
     representation = state.options.representation
     shortfall = np.zeros(6)
@@ -152,13 +155,13 @@ def compute(state: LabState) -> Snapshot:
         J_shown=J_shown,
         rows=rows,
         report=report,
-        sigma=singular_values(J, rows),
-        manipulability=float(manipulability(J, rows)),
+        sigma=m.sigma,
+        manipulability=m.manipulability,
         det=float(np.linalg.det(J_task)) if square else None,
         rank=rank_task,
-        cond_translational=float(condition_number(J, translational_rows(planar))),
+        cond_translational=float(cond_v),
         cond_rotational=None if planar else float(condition_number(J, "angular")),
-        velocity=velocity_ellipsoid(J, "linear"),
+        velocity=velocity,
         rotational=velocity_ellipsoid(J, "angular")
         if state.options.rotational_ellipsoid and not planar
         else None,

@@ -33,6 +33,9 @@ __all__ = [
     "select_rows",
     "task_rows",
     "singular_values",
+    "Measures",
+    "measures",
+    "condition_of",
     "manipulability",
     "condition_number",
     "inverse_condition_number",
@@ -162,12 +165,54 @@ def condition_number(
     """
     Js = select_rows(J, part)
     s = np.linalg.svd(Js, compute_uv=False)
-    k_missing = Js.shape[-2] > Js.shape[-1]
+    return condition_of(s, rtol, missing=Js.shape[-2] > Js.shape[-1])
+
+
+def condition_of(sigma: np.ndarray, rtol: float = DEFAULT_RTOL, missing: bool = False) -> np.ndarray | float:
+    """σmax / σmin of singular values ``sigma`` (descending, (k,) or (N, k)); ``inf`` when σmin is below
+    ``rtol · max(σmax, 1)`` or when ``missing`` (fewer joints than rows: a direction has no σ at all).
+
+    For singular values already at hand, e.g. the radii of a velocity ellipsoid (zero-padded to 3).
+    """
+    s = np.asarray(sigma, dtype=float)
     smin = s[..., -1]
-    singular = (smin <= _zero_tol(s, rtol)[..., 0]) | k_missing
+    singular = (smin <= _zero_tol(s, rtol)[..., 0]) | missing
     with np.errstate(divide="ignore", invalid="ignore"):
         c = np.where(singular, np.inf, s[..., 0] / np.where(singular, 1.0, smin))
     return float(c) if np.ndim(c) == 0 else c
+
+
+@dataclass(frozen=True)
+class Measures:
+    """Every measure of the selected rows of one Jacobian, from one SVD.
+
+    Attributes:
+        sigma: Singular values, descending (k,), k = min(rows, n).
+        manipulability: Π σᵢ (0 with more rows than joints), as :func:`manipulability`.
+        rank: Numerical rank, as :func:`rank`.
+        condition: σmax / σmin (``inf`` when singular), as :func:`condition_number`.
+    """
+
+    sigma: np.ndarray
+    manipulability: float
+    rank: int
+    condition: float
+
+
+def measures(J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL) -> Measures:
+    """:func:`singular_values`, :func:`manipulability`, :func:`rank` and :func:`condition_number` of one
+    Jacobian at the price of one SVD (what an app redrawing on every slider move needs)."""
+    Js = select_rows(J, part)
+    if Js.ndim != 2:
+        raise ArrayError(f"measures takes one Jacobian (6, n), not a batch {Js.shape}")
+    s = np.linalg.svd(Js, compute_uv=False)
+    missing = Js.shape[0] > Js.shape[1]
+    return Measures(
+        sigma=s,
+        manipulability=0.0 if missing else float(np.prod(s)),
+        rank=int(np.sum(s > _zero_tol(s, rtol))),
+        condition=float(condition_of(s, rtol, missing)),
+    )
 
 
 def inverse_condition_number(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray | float:

@@ -31,6 +31,7 @@ __all__ = [
     "joint_frames",
     "link_frames",
     "chain_frames",
+    "frames_and_jacobian",
     "jacobian",
     "jacobian_dot",
     "as_configuration",
@@ -180,6 +181,24 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
             f"link_frames takes one configuration of shape ({robot.dof},), got {q.shape}"
         )
     W, T = chain_single(c, q)
+    return _link_frames(robot, q, W, T)
+
+
+def frames_and_jacobian(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`link_frames`, :func:`joint_frames` and the base-frame :func:`jacobian` of one
+    configuration (n,) from one evaluation of the chain (an app redrawing on every move needs all three).
+    """
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
+    if q.ndim != 1:
+        raise ConfigurationError(
+            f"frames_and_jacobian takes one configuration of shape ({robot.dof},), got {q.shape}"
+        )
+    W, T = chain_single(c, q)
+    return _link_frames(robot, q, W, T), W, jacobian_from_frames(c, W, T)
+
+
+def _link_frames(robot: Robot, q: np.ndarray, W: np.ndarray, T: np.ndarray) -> np.ndarray:
     out = np.empty((len(robot.axes) + 2, 4, 4))
     out[0] = robot.base
     for k, ax in enumerate(robot.axes):

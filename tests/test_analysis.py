@@ -23,6 +23,8 @@ from kinematics import (
     euler_rate_matrix,
     force_ellipsoid,
     jacobian,
+    joint_frames,
+    link_frames,
     manipulability,
     null_space,
     nullspace_projector,
@@ -284,3 +286,38 @@ def test_bad_arguments_raise_project_errors_naming_them(call, error, message):
 def test_rows_given_as_indices_select_those_rows():
     np.testing.assert_array_equal(select_rows(J_PUMA, (5, 0)), J_PUMA[[5, 0]])
     np.testing.assert_array_equal(select_rows(J_PUMA, np.array([3, 4, 5])), J_PUMA[3:])
+
+
+@pytest.mark.parametrize("name", robots.names())
+def test_measures_from_one_svd_equal_the_separate_measures(name):
+    """measures() (one SVD) gives what singular_values, manipulability, rank and condition_number give,
+    regular and singular; condition_of on a velocity ellipsoid's radii is condition_number of its rows."""
+    from kinematics.analysis import condition_of, measures
+
+    robot = robots.load(name)
+    configurations = [c.q for c in robot.configurations] + list(
+        np.random.default_rng(7).uniform(-2, 2, size=(4, robot.dof))
+    )
+    for q in configurations:
+        J = jacobian(robot, q)
+        for part in (task_rows(robot), "linear", "angular", "full"):
+            m = measures(J, part)
+            np.testing.assert_array_equal(m.sigma, singular_values(J, part))
+            assert m.manipulability == pytest.approx(manipulability(J, part), rel=1e-12, abs=0)
+            assert m.rank == rank(J, part)
+            assert m.condition == pytest.approx(condition_number(J, part), rel=1e-12)
+        assert condition_of(velocity_ellipsoid(J, "linear").radii) == pytest.approx(
+            condition_number(J, "linear"), rel=1e-12
+        )
+
+
+@pytest.mark.parametrize("name", robots.names())
+def test_frames_and_jacobian_is_the_three_calls(name):
+    from kinematics.numeric import frames_and_jacobian
+
+    robot = robots.load(name)
+    for q in np.random.default_rng(8).uniform(-2, 2, size=(3, robot.dof)):
+        L, W, J = frames_and_jacobian(robot, q)
+        np.testing.assert_array_equal(L, link_frames(robot, q))
+        np.testing.assert_array_equal(W, joint_frames(robot, q))
+        np.testing.assert_array_equal(J, jacobian(robot, q))
