@@ -74,7 +74,8 @@ from .renderer import Renderer
 from .scene import SceneView
 from .snapshot import Snapshot, compute
 from .state import LabState
-from .symbolic import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable
+from .symbolic import SymbolicService, SymbolicUnavailable
+from .tab_symbols import TabSymbols
 from .ticker import Ticker
 from .uploads import TabCatalog
 from .viser_adapter import capture_scene, replay_scene
@@ -132,9 +133,9 @@ class ClientSession:
         self._closed = False
         self._last_redraw = 0.0
         self._subscribers: list[Callable[[LabState, Snapshot], None]] = []
-        self._symbolic_wanted: tuple | None = None
-        self._inverse_wanted: tuple | None = None
-        self._steps_wanted: tuple | None = None
+        self.symbols = TabSymbols(
+            symbolic, lambda: self.panel, self.lock, lambda: self._closed, self.report_error
+        )
         self.camera = TabCamera(client)
         self.recorder = TabRecorder(self.subscribe)
         self._scene_messages: tuple = ()
@@ -375,15 +376,7 @@ class ClientSession:
             self.ticker.start()
         else:
             self.ticker.stop()
-        o, before = state.options, old.options
-        if rebuild or (o.jacobian_frame, o.course_letters, o.symbolic_inverse) != (
-            before.jacobian_frame,
-            before.course_letters,
-            before.symbolic_inverse,
-        ):
-            self._request_symbolic()
-        if rebuild or o.derive != before.derive:
-            self._request_steps()
+        self.symbols.update(state, None if rebuild else old)
         assert self.scene is not None
         if self.role.following:
             return self._tell_subscribers(state, snap)  # the camera is the presenter's
@@ -540,106 +533,7 @@ class ClientSession:
         except Exception as exc:
             self.report_error(exc)
 
-    # ------------------------------------------------------------------ symbolic J and downloads
-    def _request_symbolic(self) -> None:
-        """Ask for the symbolic J(q) of the current robot, frame and notation (releasing the previous
-        request), and the symbolic J⁻¹ when the tab asked for it."""
-        robot, frame = self.state.robot, self.state.options.jacobian_frame
-        letters = self.state.options.course_letters and robot.dh is not None
-        # J⁻¹ in the course's letters whenever the robot file names them ([symbols]: the TRR's l1, l2, l3).
-        self._request_inverse(robot, letters or bool(robot.param_names and robot.dh is not None))
-        if self._symbolic_wanted == (robot, frame, letters):
-            return
-        self._release_symbolic()
-        self._symbolic_wanted = (robot, frame, letters)
-        future = self.symbolic.mathml(robot, frame, letters)
-        if not future.done() and self.panel.matrix is not None:
-            self.panel.matrix.show_symbolic(
-                None, "computing the symbolic form… (the numeric J above is live)"
-            )
-        future.add_done_callback(lambda f: self._symbolic_ready(f, robot, frame, letters))
-
-    def _request_inverse(self, robot, letters: bool) -> None:
-        """The symbolic J⁻¹ = adj(J) / det J (asked for with the q̇ = J⁺v tab's button), or none."""
-        wanted = (robot, letters) if self.state.options.symbolic_inverse else None
-        if wanted == self._inverse_wanted:
-            return
-        if self._inverse_wanted is not None:
-            self.symbolic.release_inverse(*self._inverse_wanted)
-        self._inverse_wanted = wanted
-        if wanted is None or self.panel.inverse is None:
-            return
-        future = self.symbolic.inverse(robot, letters)
-        if not future.done():
-            self.panel.inverse.show_symbolic(None, "computing J⁻¹ = adj J / det J …")
-
-        def ready(f: Future[str]) -> None:
-            with self.lock:
-                if self._closed or self._inverse_wanted != wanted or self.panel.inverse is None:
-                    return
-                try:
-                    self.panel.inverse.show_symbolic(f.result(), "J⁻¹ = adj J / det J, base axes, task rows.")
-                except Exception as exc:
-                    self.panel.inverse.show_symbolic(None, f"symbolic J⁻¹ not available: {exc}")
-
-        future.add_done_callback(ready)
-
-    def _request_steps(self) -> None:
-        """The symbols of the derivation the Derive tab walks through (the DH frames: Whitney's A and T)."""
-        derive, robot = self.state.options.derive, self.state.robot
-        wanted = (robot, "whitney" if derive == "dh" else derive) if derive else None
-        if wanted == self._steps_wanted:
-            return
-        if self._steps_wanted is not None:
-            self.symbolic.release_steps(*self._steps_wanted)
-        self._steps_wanted = wanted
-        if wanted is None or self.panel.derive is None:
-            return
-        future = self.symbolic.steps(*wanted)
-        if not future.done():
-            self.panel.derive.show_formulas(
-                None, "working out the step in symbols… (the numbers above are live)"
-            )
-
-        def ready(f: Future) -> None:
-            with self.lock:
-                if self._closed or self._steps_wanted != wanted or self.panel.derive is None:
-                    return
-                try:
-                    self.panel.derive.show_formulas(f.result(), "")
-                except Exception as exc:
-                    self.panel.derive.show_formulas(None, f"the step in symbols is not available: {exc}")
-
-        future.add_done_callback(ready)
-
-    def _release_symbolic(self) -> None:
-        if self._symbolic_wanted is not None:
-            self.symbolic.release(*self._symbolic_wanted)
-            self._symbolic_wanted = None
-
-    def _symbolic_ready(self, future: Future[str], robot, frame: str, letters: bool = False) -> None:
-        try:
-            with self.lock:
-                if (
-                    self._closed
-                    or self._symbolic_wanted != (robot, frame, letters)
-                    or self.panel.matrix is None
-                ):
-                    return
-                try:
-                    notation = " with the DH parameters as letters" if letters else ""
-                    mathml = future.result()
-                    note = f"J(q) in {frame} axes{notation}, from kinematics.symbolic."
-                    if getattr(future, "restarted", False):
-                        note += f" ({WORKER_RESTARTED}: this result was computed again.)"
-                except SymbolicUnavailable as exc:
-                    mathml, note = None, str(exc)
-                except Exception as exc:
-                    mathml, note = None, f"symbolic form not available: {type(exc).__name__}: {exc}"
-                self.panel.matrix.show_symbolic(mathml, note)
-        except Exception as exc:
-            self.report_error(exc)
-
+    # ------------------------------------------------------------------ downloads
     def _download(self, state: LabState, label: str) -> None:
         robot, frame = state.robot, state.options.jacobian_frame
         file = robot_file(robot, label)  # the robot itself (robot file, URDF); else its symbolic J
@@ -681,13 +575,7 @@ class ClientSession:
             self.renderer.close()
         self.camera.close()
         with self.lock:
-            self._release_symbolic()
-            if self._inverse_wanted is not None:
-                self.symbolic.release_inverse(*self._inverse_wanted)
-                self._inverse_wanted = None
-            if self._steps_wanted is not None:
-                self.symbolic.release_steps(*self._steps_wanted)
-                self._steps_wanted = None
+            self.symbols.release()
             self._subscribers.clear()
 
 
