@@ -7,21 +7,18 @@ reducer), cheap enough for every redraw:
   exist: rank lost, det J = 0), J⁺ of a non-square one;
 * :func:`analytic_view`: the tool's Euler angles φ, the course's M(φ)
   (``kinematics.analytic`` calls it B(φ): ω = M(φ) φ̇) and
-  J_A = diag(I, M(φ)⁻¹) J, or "does not exist" at the representation's singularity;
-* :func:`representation_singular_q`: a configuration near ``q`` where the chosen
-  Euler angles are singular (ZYX pitch ±90°, ZYZ θ = 0), by inverse kinematics.
+  J_A = diag(I, M(φ)⁻¹) J, or "does not exist" at the representation's singularity
+  (:func:`kinematics.analytic.analytic_parts`, named as the course names them).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
-from kinematics import ik
-from kinematics.analytic import EULER_TOL, euler_angles, euler_rate_matrix
+from kinematics.analytic import analytic_parts
 from kinematics.inverse import pinv
 
 __all__ = [
@@ -30,7 +27,6 @@ __all__ = [
     "REPRESENTATIONS",
     "inverse_view",
     "analytic_view",
-    "representation_singular_q",
 ]
 
 REPRESENTATIONS = {
@@ -102,56 +98,5 @@ class AnalyticView:
 def analytic_view(T_tool: np.ndarray, J_base: np.ndarray, convention: str) -> AnalyticView:
     """φ, M(φ) and J_A for the tool pose ``T_tool`` (4, 4) and the base-frame J (6, n)."""
     conv: Literal["zyx", "zyz"] = "zyz" if convention == "zyz" else "zyx"
-    phi = euler_angles(T_tool[:3, :3], conv)
-    M = euler_rate_matrix(phi, conv)
-    det = float(np.linalg.det(M))
-    if abs(det) < EULER_TOL:
-        return AnalyticView(conv, phi, M, det, None)
-    J_A = np.array(J_base, dtype=float)
-    J_A[3:] = np.linalg.solve(M, J_base[3:])
-    return AnalyticView(conv, phi, M, det, J_A if np.isfinite(J_A).all() else None)
-
-
-def _rotation(convention: str, a: float, b: float, c: float) -> np.ndarray:
-    def rz(t: float) -> np.ndarray:
-        return np.array([[math.cos(t), -math.sin(t), 0], [math.sin(t), math.cos(t), 0], [0, 0, 1.0]])
-
-    def ry(t: float) -> np.ndarray:
-        return np.array([[math.cos(t), 0, math.sin(t)], [0, 1.0, 0], [-math.sin(t), 0, math.cos(t)]])
-
-    def rx(t: float) -> np.ndarray:
-        return np.array([[1.0, 0, 0], [0, math.cos(t), -math.sin(t)], [0, math.sin(t), math.cos(t)]])
-
-    return rz(a) @ ry(b) @ (rx(c) if convention == "zyx" else rz(c))
-
-
-def representation_singular_q(
-    robot, q: np.ndarray, T_tool: np.ndarray, convention: str, lo: np.ndarray, hi: np.ndarray
-) -> np.ndarray:
-    """Joint values near ``q`` (within [lo, hi]) where the tool keeps its position and its Euler angles
-    are singular: ZYX pitch = ±90° (the tool's x axis along ∓z of the base), ZYZ θ = 0 or 180°
-    (the tool's z axis along ±z of the base).
-
-    Raises:
-        ValueError: the arm reaches no such orientation from here (the message says so).
-    """
-    conv: Literal["zyx", "zyz"] = "zyz" if convention == "zyz" else "zyx"
-    a, _, c = euler_angles(T_tool[:3, :3], conv)
-    middles = (math.pi / 2, -math.pi / 2) if conv == "zyx" else (0.0, math.pi)
-    best: np.ndarray | None = None
-    for b in middles:
-        T = np.array(T_tool, dtype=float)
-        T[:3, :3] = _rotation(conv, float(a), b, float(c))
-        result = ik.solve(robot, T, q, method="newton", rows=(0, 1, 2, 3, 4, 5), max_iterations=200)
-        x = np.asarray(result.q, dtype=float)
-        if not result.converged or not np.isfinite(x).all() or (x < lo - 1e-9).any() or (x > hi + 1e-9).any():
-            continue
-        if best is None or np.linalg.norm(x - q) < np.linalg.norm(best - q):
-            best = x
-    if best is None:
-        which = "pitch = ±90°" if conv == "zyx" else "θ = 0 or 180°"
-        raise ValueError(
-            f"no configuration within the joint limits puts the tool at {which} here; "
-            "move the arm elsewhere and try again"
-        )
-    return best
+    parts = analytic_parts(T_tool[:3, :3], J_base, conv)
+    return AnalyticView(conv, parts.phi, parts.B, parts.det_B, parts.J_A)

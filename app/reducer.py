@@ -17,7 +17,9 @@ from typing import Any
 
 import numpy as np
 
-from kinematics import Robot, fk
+from kinematics import Robot
+from kinematics.analytic import representation_singularity
+from kinematics.errors import ConfigurationError
 
 from . import motion_reducer
 from .actions import (
@@ -54,7 +56,6 @@ from .actions import (
     ToggleRecording,
     UploadRobot,
 )
-from .course import representation_singular_q
 from .derive import METHODS
 from .dh_table import edited_state
 from .motion_reducer import FRAME_DT, MotionRefused
@@ -232,8 +233,8 @@ def _representation_singularity(state: LabState, convention: object) -> LabState
     lo = np.array([r.clamp_si(-math.inf) for r in ranges])
     hi = np.array([r.clamp_si(math.inf) for r in ranges])
     try:
-        q = representation_singular_q(robot, np.array(state.q), fk(robot, state.q), str(convention), lo, hi)
-    except ValueError as exc:
+        q = representation_singularity(robot, state.q, convention, lo, hi)
+    except ConfigurationError as exc:
         raise InvalidAction(str(exc)) from None
     options = dataclasses.replace(state.options, representation=convention)
     return state.replace(

@@ -18,16 +18,29 @@ Conventions (angles in the order of the rotations in the name):
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Literal, cast
 
 import numpy as np
 
 from .errors import ArrayError, ConfigurationError, OptionError, RepresentationSingularityError
+from .ik import solve
 from .model import Robot
 from .numeric import as_configuration, fk, jacobian
+from .transforms import rot_x, rot_y, rot_z
 from .validation import show
 
-__all__ = ["EulerConvention", "euler_angles", "euler_rate_matrix", "analytic_jacobian", "EULER_TOL"]
+__all__ = [
+    "EulerConvention",
+    "euler_angles",
+    "euler_rate_matrix",
+    "euler_rotation",
+    "analytic_jacobian",
+    "analytic_parts",
+    "AnalyticParts",
+    "representation_singularity",
+    "EULER_TOL",
+]
 
 EulerConvention = Literal["zyx", "zyz"]
 EULER_TOL = 1e-6
@@ -90,6 +103,50 @@ def euler_rate_matrix(angles: np.ndarray, convention: EulerConvention = "zyx") -
     return np.array([[0.0, -sa, ca * sb], [0.0, ca, sa * sb], [1.0, 0.0, cb]])
 
 
+def euler_rotation(angles: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
+    """The rotation matrix (3, 3) of Euler angles (3,) [rad]: the inverse of :func:`euler_angles`.
+
+    ZYX: Rz(yaw) Ry(pitch) Rx(roll); ZYZ: Rz(φ) Ry(θ) Rz(ψ).
+    """
+    convention = _check(convention)
+    a, b, c = (float(v) for v in _finite_array(angles, ((3,),), "angles"))
+    last = rot_x(c) if convention == "zyx" else rot_z(c)
+    return (rot_z(a) @ rot_y(b) @ last)[:3, :3]
+
+
+@dataclass(frozen=True, eq=False)
+class AnalyticParts:
+    """The analytic Jacobian's pieces at one tool orientation.
+
+    Attributes:
+        phi: The tool's Euler angles (3,) [rad].
+        B: B(φ) (3, 3), ω = B(φ) φ̇ (the course's M(φ)).
+        det_B: det B(φ).
+        J_A: blockdiag(I, B(φ)⁻¹) J (6, n), rows [v; φ̇]; ``None`` at the representation singularity.
+    """
+
+    phi: np.ndarray
+    B: np.ndarray
+    det_B: float
+    J_A: np.ndarray | None
+
+
+def analytic_parts(
+    R_base_tool: np.ndarray, J: np.ndarray, convention: EulerConvention = "zyx", tol: float = EULER_TOL
+) -> AnalyticParts:
+    """φ, B(φ), det B and J_A for a tool orientation and its base-frame Jacobian J (6, n) already at
+    hand (an app redrawing on every move has both); ``J_A`` is ``None`` where |det B| < ``tol``."""
+    convention = _check(convention)
+    phi = euler_angles(R_base_tool, convention)
+    B = euler_rate_matrix(phi, convention)
+    det = float(np.linalg.det(B))
+    if abs(det) < tol:
+        return AnalyticParts(phi, B, det, None)
+    JA = np.array(J, dtype=float)
+    JA[3:] = np.linalg.solve(B, JA[3:])
+    return AnalyticParts(phi, B, det, JA if np.isfinite(JA).all() else None)
+
+
 def analytic_jacobian(
     robot: Robot, q: object, convention: EulerConvention = "zyx", tol: float = EULER_TOL
 ) -> np.ndarray:
@@ -103,17 +160,46 @@ def analytic_jacobian(
     q = as_configuration(robot, q)
     if q.ndim != 1:
         raise ConfigurationError(f"analytic_jacobian takes one configuration ({robot.dof},), got {q.shape}")
-    phi = euler_angles(fk(robot, q)[:3, :3], convention)
-    B = euler_rate_matrix(phi, convention)
-    det = float(np.linalg.det(B))
-    if abs(det) < tol:
+    parts = analytic_parts(fk(robot, q)[:3, :3], jacobian(robot, q), convention, tol)
+    if parts.J_A is None:
         which = "pitch = ±90°" if convention == "zyx" else "θ = 0 or 180°"
         raise RepresentationSingularityError(
             f"{convention.upper()} Euler angles are singular at this tool orientation ({which}, "
-            f"det B = {det:.2e}): no Euler-angle rate represents every angular velocity; "
+            f"det B = {parts.det_B:.2e}): no Euler-angle rate represents every angular velocity; "
             "use the geometric Jacobian or another convention"
         )
-    J = jacobian(robot, q)
-    JA = J.copy()
-    JA[3:] = np.linalg.solve(B, J[3:])
-    return JA
+    return parts.J_A
+
+
+def representation_singularity(
+    robot: Robot, q: object, convention: EulerConvention, lo: np.ndarray, hi: np.ndarray
+) -> np.ndarray:
+    """Joint values near ``q`` (within [lo, hi]) where the tool keeps its position and its Euler angles
+    are singular: ZYX pitch = ±90° (the tool's x axis along ∓z of the base), ZYZ θ = 0 or 180°
+    (the tool's z axis along ±z of the base). Newton's method from ``q``; the closer solution wins.
+
+    Raises:
+        ConfigurationError: the arm reaches no such orientation from here within [lo, hi].
+    """
+    convention = _check(convention)
+    q = as_configuration(robot, q)
+    T_tool = fk(robot, q)
+    a, _, c = euler_angles(T_tool[:3, :3], convention)
+    middles = (math.pi / 2, -math.pi / 2) if convention == "zyx" else (0.0, math.pi)
+    best: np.ndarray | None = None
+    for b in middles:
+        T = np.array(T_tool, dtype=float)
+        T[:3, :3] = euler_rotation(np.array([a, b, c]), convention)
+        result = solve(robot, T, q, method="newton", rows=(0, 1, 2, 3, 4, 5), max_iterations=200)
+        x = np.asarray(result.q, dtype=float)
+        if not result.converged or not np.isfinite(x).all() or (x < lo - 1e-9).any() or (x > hi + 1e-9).any():
+            continue
+        if best is None or np.linalg.norm(x - q) < np.linalg.norm(best - q):
+            best = x
+    if best is None:
+        which = "pitch = ±90°" if convention == "zyx" else "θ = 0 or 180°"
+        raise ConfigurationError(
+            f"no configuration within the joint limits puts the tool at {which} here; "
+            "move the arm elsewhere and try again"
+        )
+    return best

@@ -21,6 +21,7 @@ from kinematics import (
     dls,
     euler_angles,
     euler_rate_matrix,
+    fk,
     force_ellipsoid,
     jacobian,
     joint_frames,
@@ -321,3 +322,11 @@ def test_frames_and_jacobian_is_the_three_calls(name):
         np.testing.assert_array_equal(L, link_frames(robot, q))
         np.testing.assert_array_equal(W, joint_frames(robot, q))
         np.testing.assert_array_equal(J, jacobian(robot, q))
+
+
+@pytest.mark.parametrize("convention", ["zyx", "zyz"])
+def test_euler_rotation_inverts_euler_angles(convention):
+    from kinematics.analytic import euler_rotation
+
+    for R in (fk(ROBOTS["puma560"], q)[:3, :3] for q in np.random.default_rng(9).uniform(-2, 2, (8, 6))):
+        np.testing.assert_allclose(euler_rotation(euler_angles(R, convention), convention), R, atol=1e-12)
