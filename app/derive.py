@@ -22,7 +22,7 @@ from typing import Literal
 
 import numpy as np
 
-from kinematics import Robot, fk, link_frames
+from kinematics import Robot, fk
 from kinematics.steps import (
     DerivativeColumn,
     JointLoad,
@@ -34,6 +34,7 @@ from kinematics.steps import (
     whitney,
 )
 
+from .ranges import reach
 from .state import LabState
 
 __all__ = [
@@ -90,10 +91,10 @@ class Derivation:
         method: Which walk-through ("dh", "whitney", …).
         joint: The step: joint i (0-based); row i + 1 of the DH table.
         axes: The axes of that joint (more than one only for URDF mimic joints).
-        T_0: ⁰Tᵢ of every link frame (m + 2, 4, 4): frame 0 … m, then the tool, in frame 0's axes.
+        T0: ⁰Tᵢ of the step's link frame (4, 4), in frame 0's axes.
         A: Aᵢ = ⁱ⁻¹Tᵢ of the step's link frame (4, 4).
         frames: T_base_frame of frames i−1 and i (2, 4, 4), for drawing.
-        whitney: Whitney's columns of every axis.
+        whitney: Whitney's columns of every axis (Whitney only).
         derivative: ∂/∂qᵢ of the forward kinematics for the step's joint (differentiation only).
         path: Tool points (PATH_POINTS, 3) as qᵢ alone sweeps around its value (differentiation).
         links: Link velocities outward (propagation), the tool last.
@@ -106,7 +107,7 @@ class Derivation:
     method: Method
     joint: int
     axes: tuple[int, ...]
-    T_0: np.ndarray
+    T0: np.ndarray
     A: np.ndarray
     frames: np.ndarray
     whitney: tuple[WhitneyColumn, ...] = ()
@@ -121,44 +122,44 @@ class Derivation:
 
 def _sweep(robot: Robot, q: np.ndarray, j: int) -> np.ndarray:
     """Tool points as joint j alone moves ±30° (±a tenth of the arm's reach for a slide) about q."""
-    half = np.radians(30.0) if robot.joints[j].kind == "revolute" else 0.1 * max(_reach(robot, q), 0.1)
+    half = np.radians(30.0) if robot.joints[j].kind == "revolute" else 0.1 * max(reach(robot), 0.1)
     Q = np.repeat(q[None], PATH_POINTS, axis=0)
     Q[:, j] += np.linspace(-half, half, PATH_POINTS)
     return fk(robot, Q)[:, :3, 3]
 
 
-def _reach(robot: Robot, q: np.ndarray) -> float:
-    pts = link_frames(robot, q)[:, :3, 3]
-    return float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
-
-
-def derivation(state: LabState) -> Derivation | None:
-    """The Derive tab's numbers for ``state`` (``None`` when it walks through nothing)."""
+def derivation(state: LabState, L: np.ndarray) -> Derivation | None:
+    """The Derive tab's numbers for ``state`` (``None`` when it walks through nothing); ``L``: its link
+    frames (the snapshot has them)."""
     method = state.options.derive
     if not method:
         return None
     robot, q = state.robot, np.array(state.q)
     j = min(state.options.derive_step, robot.dof - 1)
     axes = tuple(k for k, ax in enumerate(robot.axes) if ax.joint_index == j)
-    L = link_frames(robot, q)
-    T_0 = np.linalg.inv(L[0]) @ L
     k = axes[0]  # the step's link frame is k + 1, the one before it k
-    A = np.linalg.inv(L[k]) @ L[k + 1]
-    common = dict(method=method, joint=j, axes=axes, T_0=T_0, A=A, frames=L[[k, k + 1]])
-    cols = whitney(robot, q)
-    if method in ("dh", "whitney"):
-        return Derivation(**common, whitney=cols)
+    common = dict(
+        method=method,
+        joint=j,
+        axes=axes,
+        T0=np.linalg.inv(L[0]) @ L[k + 1],
+        A=np.linalg.inv(L[k]) @ L[k + 1],
+        frames=L[[k, k + 1]],
+    )
+    if method == "dh":
+        return Derivation(**common)
+    if method == "whitney":
+        return Derivation(**common, whitney=whitney(robot, q))
     if method == "differentiation":
-        d = differentiation(robot, q)[j]
-        return Derivation(**common, whitney=cols, derivative=d, path=_sweep(robot, q, j))
+        d = differentiation(robot, q, joints=(j,))[0]
+        return Derivation(**common, derivative=d, path=_sweep(robot, q, j))
     if method == "propagation":
         qd = np.array(state.qd)
         assumed = not np.any(qd)
         qd = np.ones(robot.dof) if assumed else qd
-        links = propagation(robot, q, qd)
-        return Derivation(**common, whitney=cols, links=links, qd=qd, assumed=assumed)
+        return Derivation(**common, links=propagation(robot, q, qd), qd=qd, assumed=assumed)
     wrench = np.array(state.wrench)
     assumed = not np.any(wrench)
     wrench = UNIT_WRENCH if assumed else wrench
     loads = force_propagation(robot, q, wrench)
-    return Derivation(**common, whitney=cols, loads=loads, wrench=wrench, assumed=assumed)
+    return Derivation(**common, loads=loads, wrench=wrench, assumed=assumed)

@@ -20,7 +20,7 @@ from kinematics.errors import JacobianLabError
 from kinematics.export import FORMATS, export
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 
-__all__ = ["main", "add_chain_arguments", "StderrProgress"]
+__all__ = ["main", "add_chain_arguments", "StderrProgress", "write_output"]
 
 
 def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
@@ -129,13 +129,19 @@ def main(argv: list[str] | None = None) -> int:
     except JacobianLabError as exc:
         print(f"jacobian-lab export: error: {exc}", file=sys.stderr)
         return 1
-    if args.output is None:
+    return write_output(text, args.output, "export")
+
+
+def write_output(text: str, output: str | None, command: str) -> int:
+    """Write ``text`` to the file ``output`` (standard output when ``None``); the exit status, with
+    ``jacobian-lab COMMAND: error: cannot write …`` on stderr when the file cannot be written."""
+    if output is None:
         sys.stdout.write(text)
         return 0
     try:
-        Path(args.output).write_text(text, encoding="utf-8")
+        Path(output).write_text(text, encoding="utf-8")
     except OSError as exc:
-        print(f"jacobian-lab export: error: cannot write {args.output}: {exc.strerror}", file=sys.stderr)
+        print(f"jacobian-lab {command}: error: cannot write {output}: {exc.strerror}", file=sys.stderr)
         return 1
     return 0
 

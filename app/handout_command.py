@@ -24,7 +24,7 @@ from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.handout import HANDOUT_METHODS, handout
 
-from .export_command import StderrProgress, add_chain_arguments
+from .export_command import StderrProgress, add_chain_arguments, write_output
 
 __all__ = ["main"]
 
@@ -146,15 +146,7 @@ def main(argv: list[str] | None = None) -> int:
     except JacobianLabError as exc:
         print(f"jacobian-lab handout: error: {exc}", file=sys.stderr)
         return 1
-    if args.output is None:
-        sys.stdout.write(text)
-        return 0
-    try:
-        Path(args.output).write_text(text, encoding="utf-8")
-    except OSError as exc:
-        print(f"jacobian-lab handout: error: cannot write {args.output}: {exc.strerror}", file=sys.stderr)
-        return 1
-    return 0
+    return write_output(text, args.output, "handout")
 
 
 if __name__ == "__main__":

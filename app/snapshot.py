@@ -175,7 +175,7 @@ def compute(state: LabState) -> Snapshot:
         torques=J.T @ state.wrench,
         joint_map=_map(state),
         cloud=workspace_cloud(robot) if state.options.workspace else None,
-        derive=derivation(state),
+        derive=derivation(state, L),
         inverse=inverse_view(J_twist, rank_task),
         analytic=analytic_view(L[-1], J, representation) if representation != "geometric" else None,
         jdot_qd=jacobian_dot(robot, q, state.qd) @ state.qd if moving else np.zeros(6),

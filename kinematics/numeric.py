@@ -174,13 +174,7 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
 
     For a DH robot these are the DH frames 0 … n of its convention, then the tool frame.
     """
-    c = kernel(robot)
-    q = _configuration(robot, c, q)
-    if q.ndim != 1:
-        raise ConfigurationError(
-            f"link_frames takes one configuration of shape ({robot.dof},), got {q.shape}"
-        )
-    W, T = chain_single(c, q)
+    _, q, W, T = _one_chain(robot, q, "link_frames")
     return _link_frames(robot, q, W, T)
 
 
@@ -188,14 +182,19 @@ def frames_and_jacobian(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray
     """:func:`link_frames`, :func:`joint_frames` and the base-frame :func:`jacobian` of one
     configuration (n,) from one evaluation of the chain (an app redrawing on every move needs all three).
     """
-    c = kernel(robot)
-    q = _configuration(robot, c, q)
-    if q.ndim != 1:
-        raise ConfigurationError(
-            f"frames_and_jacobian takes one configuration of shape ({robot.dof},), got {q.shape}"
-        )
-    W, T = chain_single(c, q)
+    c, q, W, T = _one_chain(robot, q, "frames_and_jacobian")
     return _link_frames(robot, q, W, T), W, jacobian_from_frames(c, W, T)
+
+
+def _one_chain(robot: Robot, q: object, who: str) -> tuple[Kernel, np.ndarray, np.ndarray, np.ndarray]:
+    """The kernel, the checked configuration (n,) and its joint frames and tool pose; ``who`` names
+    the caller when ``q`` is a batch."""
+    c = kernel(robot)
+    qc = _configuration(robot, c, q)
+    if qc.ndim != 1:
+        raise ConfigurationError(f"{who} takes one configuration of shape ({robot.dof},), got {qc.shape}")
+    W, T = chain_single(c, qc)
+    return c, qc, W, T
 
 
 def _link_frames(robot: Robot, q: np.ndarray, W: np.ndarray, T: np.ndarray) -> np.ndarray:

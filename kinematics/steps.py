@@ -21,6 +21,7 @@ With mimic axes (URDF) one joint drives several axes: every step is per axis, an
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -128,12 +129,15 @@ class DerivativeColumn:
         return np.concatenate([self.dp, self.omega])
 
 
-def differentiation(robot: Robot, q: object, h: float = DIFF_STEP) -> tuple[DerivativeColumn, ...]:
-    """Every column of J as the derivative of the forward kinematics (central differences, step ``h``)."""
+def differentiation(
+    robot: Robot, q: object, h: float = DIFF_STEP, joints: Sequence[int] | None = None
+) -> tuple[DerivativeColumn, ...]:
+    """Columns of J as the derivative of the forward kinematics (central differences, step ``h``):
+    every joint's, or those of ``joints``, in that order."""
     q = as_configuration(robot, q)
     R = fk(robot, q)[:3, :3]
     out = []
-    for j in range(robot.dof):
+    for j in range(robot.dof) if joints is None else joints:
         dq = np.zeros(robot.dof)
         dq[j] = h
         Tp, Tm = fk(robot, q + dq), fk(robot, q - dq)

@@ -124,11 +124,10 @@ def step_html(robot: Robot, d: Derivation, snap: Snapshot) -> str:
     col = snap.J_base[:, j]
     body: list[str] = []
     if d.method == "dh":
-        k = d.axes[0]
         body.append(
             '<div class="jl-t4s">'
             + matrix4_html(d.A, f"A{sub(i)} = {sub(i - 1)}T{sub(i)} at q")
-            + matrix4_html(d.T_0[k + 1], f"⁰T{sub(i)} = A₁ ⋯ A{sub(i)}")
+            + matrix4_html(d.T0, f"⁰T{sub(i)} = A₁ ⋯ A{sub(i)}")
             + "</div>"
         )
         body.append(
