@@ -3,9 +3,12 @@ missing), polling waits and canvas captures."""
 
 from __future__ import annotations
 
+import contextlib
 import io
 import os
 import time
+from collections.abc import Iterator
+from typing import Any
 
 import numpy as np
 import pytest
@@ -20,6 +23,7 @@ __all__ = [
     "canvas",
     "steady_canvas",
     "close_notifications",
+    "app_page",
 ]
 
 CHROMIUM = "/usr/bin/chromium"
@@ -89,3 +93,29 @@ def close_notifications(page) -> None:
     """Keep the start-up toasts out of the way: hidden by a style sheet, so no click on a toast that is
     sliding in (or away) can time out on a busy machine, and React keeps its own nodes."""
     page.add_style_tag(content=".mantine-Notifications-root { display: none !important; }")
+
+
+@contextlib.contextmanager
+def app_page(lab) -> Iterator[tuple[Any, Any, list[str]]]:
+    """A 1280×720 headless-Chromium page on ``lab``'s app, once its tab is drawn and its toasts are
+    hidden: ``(page, session, errors)``, ``errors`` collecting the page's script errors. The browser
+    closes and the lab stops on the way out (also when the browser is missing: skipped, or failed in CI).
+    """
+    errors: list[str] = []
+    try:
+        sync_playwright = require_browser()
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            try:
+                page = browser.new_page(viewport=VIEWPORT)
+                page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
+                page.goto(lab.url)
+                page.wait_for_selector("[role=slider]", timeout=120_000)
+                session = lab.session()
+                wait(lambda: session.snapshot is not None)
+                close_notifications(page)
+                yield page, session, errors
+            finally:
+                browser.close()
+    finally:
+        lab.stop()

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from browser_helpers import ARGS, CHROMIUM, VIEWPORT, close_notifications, require_browser, wait
+from browser_helpers import VIEWPORT, app_page, wait
 
 from app.server import Lab
 
@@ -22,47 +22,30 @@ pytestmark = pytest.mark.browser
 
 
 def test_trr_course_example_in_three_clicks(tmp_path):
-    sync_playwright = require_browser()
     out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out_dir.mkdir(parents=True, exist_ok=True)
     lab = Lab(port=0)
-    errors: list[str] = []
-    try:
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                page = browser.new_page(viewport=VIEWPORT)
-                page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
-                page.goto(lab.url)
-                page.wait_for_selector("[role=slider]", timeout=120_000)
-                session = lab.session()
-                wait(lambda: session.snapshot is not None)
-                close_notifications(page)
+    with app_page(lab) as (page, session, errors):
+        # Click 1: the robot.
+        page.get_by_label("Robot", exact=True).first.click()
+        page.get_by_role("option", name="trr", exact=True).click()
+        wait(lambda: session.state.robot_name == "trr")
+        # Click 2: the tab. Click 3: the course's example.
+        page.get_by_role("tab", name="q̇ = J⁺v").click()
+        page.get_by_role("button", name="Course example").click()
+        wait(lambda: float(session.state.v_desired[0]) == pytest.approx(17.256))
 
-                # Click 1: the robot.
-                page.get_by_label("Robot", exact=True).first.click()
-                page.get_by_role("option", name="trr", exact=True).click()
-                wait(lambda: session.state.robot_name == "trr")
-                # Click 2: the tab. Click 3: the course's example.
-                page.get_by_role("tab", name="q̇ = J⁺v").click()
-                page.get_by_role("button", name="Course example").click()
-                wait(lambda: float(session.state.v_desired[0]) == pytest.approx(17.256))
-
-                inverse = page.locator(".jl-matrix").filter(has_text="q̇1")
-                wait(lambda: "0.9647" in page.locator("body").inner_text())
-                text = page.locator("body").inner_text()
-                for figure in ("−0.5464", "0.9647", "0.7879", "10.35"):
-                    assert figure in text, figure
-                # The rates: the course's (0.5 m/s, 90°/s, 45°/s).
-                assert re.search(r"90°/s", text) and re.search(r"45°/s", text)
-                expected = np.linalg.inv(session.snapshot.J_base[:3])
-                np.testing.assert_allclose(session.snapshot.inverse.matrix, expected, atol=1e-12)
-                box = inverse.first.bounding_box()
-                assert box is not None and box["x"] + box["width"] <= VIEWPORT["width"]
-                inverse.first.scroll_into_view_if_needed()
-                page.screenshot(path=str(out_dir / "course_trr_inverse.png"))
-            finally:
-                browser.close()
-    finally:
-        lab.stop()
+        inverse = page.locator(".jl-matrix").filter(has_text="q̇1")
+        wait(lambda: "0.9647" in page.locator("body").inner_text())
+        text = page.locator("body").inner_text()
+        for figure in ("−0.5464", "0.9647", "0.7879", "10.35"):
+            assert figure in text, figure
+        # The rates: the course's (0.5 m/s, 90°/s, 45°/s).
+        assert re.search(r"90°/s", text) and re.search(r"45°/s", text)
+        expected = np.linalg.inv(session.snapshot.J_base[:3])
+        np.testing.assert_allclose(session.snapshot.inverse.matrix, expected, atol=1e-12)
+        box = inverse.first.bounding_box()
+        assert box is not None and box["x"] + box["width"] <= VIEWPORT["width"]
+        inverse.first.scroll_into_view_if_needed()
+        page.screenshot(path=str(out_dir / "course_trr_inverse.png"))
     assert not errors, errors
