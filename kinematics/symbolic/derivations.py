@@ -36,6 +36,9 @@ __all__ = [
     "jacobian_differentiation",
     "jacobian_whitney",
     "whitney_columns",
+    "chain_elements",
+    "carry_outward",
+    "carry_inward",
     "jacobian_velocity_propagation",
     "jacobian_force_propagation",
     "DERIVATIONS",
@@ -109,14 +112,42 @@ def jacobian_differentiation(robot: Robot, frame: str = "base", symbolic_params:
     return _in_frame(sp.Matrix.hstack(*cols), model, frame)
 
 
-def _fixed_steps(model: SymbolicModel) -> list[tuple[str, sp.Matrix | sp.Expr]]:
-    """The chain as ("fixed", T) and ("revolute"/"prismatic", axis value) steps."""
-    steps: list = [("fixed", model.base)]
-    for kind, value, pj, jc in zip(
-        model.kinds, model.axis_value, model.parent_joint, model.joint_child, strict=True
+def chain_elements(model: SymbolicModel) -> list[tuple[str, sp.Matrix | sp.Expr, int]]:
+    """The chain as ("fixed", T, axis) and ("revolute"/"prismatic", axis value, axis) elements, base to
+    tool; ``axis`` is the index of the axis the element belongs to (−1: the base, m: the tool)."""
+    steps: list = [("fixed", model.base, -1)]
+    for k, (kind, value, pj, jc) in enumerate(
+        zip(model.kinds, model.axis_value, model.parent_joint, model.joint_child, strict=True)
     ):
-        steps += [("fixed", pj), (kind, value), ("fixed", jc)]
-    return steps + [("fixed", model.tool)]
+        steps += [("fixed", pj, k), (kind, value, k), ("fixed", jc, k)]
+    return steps + [("fixed", model.tool, len(model.kinds))]
+
+
+def carry_outward(
+    kind: str, X: sp.Matrix | sp.Expr, w: sp.Matrix, v: sp.Matrix, rate: Callable[[sp.Expr], sp.Expr]
+) -> tuple[sp.Matrix, sp.Matrix]:
+    """One element of Craig's outward iteration: ω and the origin velocity v (in the element's
+    incoming axes) carried through it, in its outgoing axes; ``rate(value)`` is d(value)/dt."""
+    if kind == "fixed":
+        R, p = X[:3, :3], X[:3, 3]
+        w, v = R.T * w, R.T * (v + w.cross(p))
+    elif kind == "revolute":
+        Rt = axis_motion(kind, X)[:3, :3].T
+        w, v = Rt * (w + rate(X) * _EZ), Rt * v
+    else:
+        v = v + w.cross(X * _EZ) + rate(X) * _EZ
+    return w.applyfunc(sp.expand), v.applyfunc(sp.expand)
+
+
+def carry_inward(
+    kind: str, X: sp.Matrix | sp.Expr, f: sp.Matrix, n: sp.Matrix
+) -> tuple[sp.Matrix, sp.Matrix]:
+    """One element of Craig's inward iteration: a force f and moment n (outgoing axes) carried to the
+    element's incoming axes (f = R f', n = R n' + p × f)."""
+    M = X if kind == "fixed" else axis_motion(kind, X)
+    R, p = M[:3, :3], M[:3, 3]
+    f = R * f
+    return f.applyfunc(sp.expand), (R * n + p.cross(f)).applyfunc(sp.expand)
 
 
 def jacobian_velocity_propagation(
@@ -134,16 +165,8 @@ def jacobian_velocity_propagation(
     qd = [sp.Dummy(f"qd{i + 1}") for i in range(model.dof)]
     rate = lambda value: sum(sp.diff(value, qj) * d for qj, d in zip(model.q, qd, strict=True))
     w, v = sp.zeros(3, 1), sp.zeros(3, 1)
-    for kind, X in _fixed_steps(model):
-        if kind == "fixed":
-            R, p = X[:3, :3], X[:3, 3]
-            w, v = R.T * w, R.T * (v + w.cross(p))
-        elif kind == "revolute":
-            Rt = axis_motion(kind, X)[:3, :3].T
-            w, v = Rt * (w + rate(X) * _EZ), Rt * v
-        else:
-            v = v + w.cross(X * _EZ) + rate(X) * _EZ
-        w, v = w.applyfunc(sp.expand), v.applyfunc(sp.expand)
+    for kind, X, _ in chain_elements(model):
+        w, v = carry_outward(kind, X, w, v, rate)
     J_tool = sp.Matrix.vstack(v, w).jacobian(qd)
     return J_tool if frame == "tool" else _rotate(J_tool, frames(model).tool[:3, :3])
 
@@ -160,18 +183,12 @@ def jacobian_force_propagation(robot: Robot, frame: str = "base", symbolic_param
     F = sp.Matrix(sp.symbols("fx fy fz nx ny nz", cls=sp.Dummy))
     f, n = F[:3, :], F[3:, :]
     tau = [sp.Integer(0)] * model.dof
-    for kind, X in reversed(_fixed_steps(model)):
-        if kind == "fixed":
-            R, p = X[:3, :3], X[:3, 3]
-            f = R * f
-            n = R * n + p.cross(f)
-        else:
-            M = axis_motion(kind, X)
+    for kind, X, _ in reversed(chain_elements(model)):
+        if kind != "fixed":
             torque = (n if kind == "revolute" else f)[2]
             for j, qj in enumerate(model.q):
                 tau[j] += sp.diff(X, qj) * torque
-            f, n = M[:3, :3] * f, M[:3, :3] * n + M[:3, 3].cross(M[:3, :3] * f)
-        f, n = f.applyfunc(sp.expand), n.applyfunc(sp.expand)
+        f, n = carry_inward(kind, X, f, n)
     J_tool = sp.Matrix(tau).jacobian(F).T
     return J_tool if frame == "tool" else _rotate(J_tool, frames(model).tool[:3, :3])
 

@@ -12,7 +12,8 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from .chain import Frames, axis_motion
+from .chain import Frames
+from .derivations import carry_inward, carry_outward, chain_elements
 from .model import SymbolicModel
 from .simplify import simplify_matrix
 from .step import Step
@@ -20,7 +21,6 @@ from .trig import AngleShift, Deadline
 
 __all__ = ["Context", "METHOD_STEPS", "rotate_rows", "rate_symbols", "wrench_symbols"]
 
-_EZ = sp.Matrix([0, 0, 1])
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
@@ -189,14 +189,6 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     return out, sp.Matrix.hstack(*cols), "base"
 
 
-def _chain(model: SymbolicModel) -> list[tuple[str, object, int]]:
-    """The chain as ("fixed", T, axis) and (kind, axis value, axis) elements; axis −1: base, m: tool."""
-    out: list[tuple[str, object, int]] = [("fixed", model.base, -1)]
-    for k, (kind, value) in enumerate(zip(model.kinds, model.axis_value, strict=True)):
-        out += [("fixed", model.parent_joint[k], k), (kind, value, k), ("fixed", model.joint_child[k], k)]
-    return out + [("fixed", model.tool, len(model.kinds))]
-
-
 def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     """Craig's outward iteration: ω and the origin velocity of each link, in the link's own axes."""
     m = ctx.model
@@ -205,17 +197,9 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     w, v = sp.zeros(3, 1), sp.zeros(3, 1)
     out: list[Step] = []
     mk = lambda key, title, lhs, e, j: ctx.step(key, title, lhs, e, j, "propagation", inputs=qd, names=names)  # noqa: E731
-    chain = _chain(m)
+    chain = chain_elements(m)
     for idx, (kind, X, k) in enumerate(chain):
-        if kind == "fixed":
-            R, p = X[:3, :3], X[:3, 3]  # type: ignore[index]
-            w, v = R.T * w, R.T * (v + w.cross(p))
-        elif kind == "revolute":
-            Rt = axis_motion(kind, X)[:3, :3].T
-            w, v = Rt * (w + rate(X) * _EZ), Rt * v
-        else:
-            v = v + w.cross(X * _EZ) + rate(X) * _EZ
-        w, v = w.applyfunc(sp.expand), v.applyfunc(sp.expand)
+        w, v = carry_outward(kind, X, w, v, rate)
         last_of_link = 0 <= k < len(m.kinds) and idx + 1 < len(chain) and chain[idx + 1][2] != k
         if last_of_link:
             j, i = m.axis_joint[k], k + 1
@@ -286,12 +270,8 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     out: list[Step] = []
     tau: dict[int, sp.Expr] = {}
     taus: dict[int, Step] = {}
-    for kind, X, k in reversed(_chain(m)):
-        if kind == "fixed":
-            R, p = X[:3, :3], X[:3, 3]  # type: ignore[index]
-            f = R * f
-            n = R * n + p.cross(f)
-        else:
+    for kind, X, k in reversed(chain_elements(m)):
+        if kind != "fixed":
             j, i = m.axis_joint[k], k + 1
             fs = mk(
                 f"force.f{i}",
@@ -327,9 +307,7 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
                     j,
                 )
                 out.append(taus[j])
-            M = axis_motion(kind, X)
-            f, n = M[:3, :3] * f, M[:3, :3] * n + M[:3, 3].cross(M[:3, :3] * f)
-        f, n = f.applyfunc(sp.expand), n.applyfunc(sp.expand)
+        f, n = carry_inward(kind, X, f, n)
     JT = sp.Matrix([taus[j].expr[0, 0] for j in range(m.dof)]).jacobian(sp.Matrix(W))
     title = "Jᵀ in the tool axes: the coefficients of the tool wrench in τ (τ = Jᵀ [f; n])"
     jt = ctx.step("force.JT", title, "J_{\\mathrm{tool}}^{T}", JT, None, "force")
