@@ -2,8 +2,8 @@
 
 Start it with ``jacobian-lab serve`` or :func:`app.server.serve`. The app only
 draws and wires the GUI: every quantity comes from :mod:`kinematics`
-(:mod:`app.snapshot` is the one place that calls it), every client has its
-own :class:`app.session.ClientSession`.
+(:mod:`app.core.snapshot` is the one place that calls it), every client has its
+own :class:`app.tab.session.ClientSession`.
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""Start the Jacobian Lab server: one viser server, one :class:`~app.session.ClientSession` per browser tab.
+"""Start the Jacobian Lab server: one viser server, one
+:class:`~app.tab.session.ClientSession` per browser tab.
 
 Example::
 
@@ -20,12 +21,12 @@ from pathlib import Path
 
 import viser
 
-from .catalog import RobotCatalog
-from .classroom import Classroom
-from .lifecycle import check_listen_address, wait_for_stop
-from .renderer import Renderer
-from .session import ClientSession
-from .symbolic import SymbolicService
+from .services.catalog import RobotCatalog
+from .services.classroom import Classroom
+from .services.lifecycle import check_listen_address, wait_for_stop
+from .services.renderer import Renderer
+from .services.symbolic_service import SymbolicService
+from .tab.session import ClientSession
 from .viser_adapter import install_fast_prop_casts, install_icon_cache, install_message_limits
 
 __all__ = ["serve", "Lab"]
@@ -37,13 +38,14 @@ class Lab:
     """A running Jacobian Lab: the viser server, the robot catalogue and the client sessions.
 
     Args:
-        robot: Library robot (or robot file path) shown first; default :data:`app.catalog.DEFAULT_ROBOT`.
+        robot: Library robot (or robot file path) shown first; default
+            :data:`app.services.catalog.DEFAULT_ROBOT`.
         urdf: URDF file shown first (listed in the dropdown beside the library).
         host: Address to listen on (127.0.0.1: this machine only; 0.0.0.0: the classroom network).
         port: Port; 0 picks a free one. A busy port makes viser try the next one.
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: With a token, classroom mode: the tab that types it presents and every
-            other tab follows (see :mod:`app.classroom`).
+            other tab follows (see :mod:`app.services.classroom`).
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded

@@ -5,7 +5,7 @@ In one run on this machine:
 * ``kinematics.maps.workspace(panda, 100_000)`` (sampling, FK, Jacobians, w and σmin/σmax)
   against NumPy's own singular values of 100 000 random 6×7 matrices
   (``np.linalg.svd(A, compute_uv=False)``): the ratio should be ≤ 1;
-* ``kinematics.ik.solve`` for the Panda from a near start (the app's warm-started gizmo
+* ``kinematics.motion.ik.solve`` for the Panda from a near start (the app's warm-started gizmo
   drag), per call, and, when installed, Robotics Toolbox's compiled ``ets.ik_LM`` on the same
   target, as a ratio.
 
@@ -23,8 +23,8 @@ import numpy as np
 
 import robots
 from kinematics import fk
-from kinematics.ik import solve
 from kinematics.maps import workspace
+from kinematics.motion.ik import solve
 
 
 def best_of(fn, repeat: int = 5) -> float:

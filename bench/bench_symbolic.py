@@ -30,9 +30,9 @@ import sympy as sp  # noqa: E402
 
 import robots  # noqa: E402
 from kinematics import Robot, symbolic  # noqa: E402
-from kinematics.export import export  # noqa: E402
 from kinematics.symbolic import cache, chain, model  # noqa: E402
-from kinematics.symbolic.printing import Notation  # noqa: E402
+from kinematics.symbolic.typeset.export import export  # noqa: E402
+from kinematics.symbolic.typeset.printing import Notation  # noqa: E402
 
 
 def _reset(memory_only: bool = False) -> None:

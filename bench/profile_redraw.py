@@ -23,10 +23,10 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
 
-from app.actions import SetJoint  # noqa: E402
-from app.reducer import reduce  # noqa: E402
+from app.core.actions import SetJoint  # noqa: E402
+from app.core.reducer import reduce  # noqa: E402
+from app.core.snapshot import compute  # noqa: E402
 from app.server import Lab  # noqa: E402
-from app.snapshot import compute  # noqa: E402
 
 
 def main() -> int:

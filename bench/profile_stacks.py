@@ -4,7 +4,7 @@ Prints the share of samples per thread, then the functions with the most samples
 stack (inclusive) and at the top of the stack (self), e.g.::
 
     python bench/profile_stacks.py /tmp/prof/server-60.txt --top 40
-    python bench/profile_stacks.py /tmp/prof/server-60.txt --under "visit (app/session.py"
+    python bench/profile_stacks.py /tmp/prof/server-60.txt --under "visit (app/tab/session.py"
 """
 
 from __future__ import annotations

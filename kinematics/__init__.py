@@ -45,7 +45,7 @@ from .analysis import (
     task_rows,
     velocity_ellipsoid,
 )
-from .analytic import analytic_jacobian, euler_angles, euler_rate_matrix
+from .analytic_jacobian import analytic_jacobian, euler_angles, euler_rate_matrix
 from .errors import (
     ArrayError,
     ConfigurationError,

@@ -16,8 +16,8 @@ import numpy as np
 
 from kinematics import NamedConfiguration, Robot
 from kinematics.errors import RobotDefinitionError, UnknownRobotError
+from kinematics.files import decode_utf8, read_user_file
 from kinematics.transforms import rpy_to_matrix
-from kinematics.urdf_io import decode_utf8, read_user_file
 
 if sys.version_info >= (3, 11):
     import tomllib

@@ -13,7 +13,7 @@ import numpy as np
 from wsclient import ViserWsClient
 
 from app.server import Lab
-from app.session import ClientSession
+from app.tab.session import ClientSession
 from app.viser_adapter import node_props, scene_handles
 
 _BAD_TEXT = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)

@@ -45,8 +45,8 @@ def lab_client():
 @pytest.fixture
 def session(lab_client):
     """The module's session, reset to a fresh state of the default robot, so each test stands alone."""
-    from app.actions import ReplaceState
-    from app.state import LabState
+    from app.core.actions import ReplaceState
+    from app.core.state import LabState
 
     lab, session, _ = lab_client
     session.dispatch(ReplaceState(LabState.initial(lab.default_robot, lab.catalog.load(lab.default_robot))))

@@ -9,13 +9,13 @@ import pytest
 from app_helpers import assert_all_finite, nonfinite_paths, wait_until
 from wsclient import ViserWsClient
 
-from app.actions import GoTo
+from app.core.actions import GoTo
 from app.viser_adapter import handle_uuid
 
 
 def test_an_error_is_shown_to_that_client_only(lab_client, session, monkeypatch):
     lab, _, ws = lab_client
-    import app.session as session_module
+    import app.tab.session as session_module
 
     def broken(state):
         raise RuntimeError("deliberate failure")

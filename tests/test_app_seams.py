@@ -11,9 +11,12 @@ from app_helpers import running_lab, wait_until
 from wsclient import ViserWsClient
 
 import robots
-from app.actions import Play, SetRate, Step
-from app.camera import THREE_QUARTER, View, facing, framing, in_view, needs_framing
-from app.palette import (
+from app.core.actions import Play, SetRate, Step
+from app.core.reducer import reduce
+from app.core.state import LabState
+from app.tab.ticker import Ticker
+from app.views.camera import THREE_QUARTER, View, facing, framing, in_view, needs_framing
+from app.views.palette import (
     GLYPH_RGB,
     STATUS_RGB,
     STATUS_TEXT,
@@ -22,9 +25,6 @@ from app.palette import (
     joint_color,
     joint_text_hex,
 )
-from app.reducer import reduce
-from app.state import LabState
-from app.ticker import Ticker
 
 
 class FakeClock:
@@ -151,7 +151,7 @@ def test_a_tab_closed_while_its_session_is_built_is_forgotten(monkeypatch):
 
     import app.server as server_module
     from app.server import Lab
-    from app.session import ClientSession
+    from app.tab.session import ClientSession
 
     building, release = threading.Event(), threading.Event()
     built: list[ClientSession] = []

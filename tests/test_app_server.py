@@ -16,8 +16,7 @@ import pytest
 from app_helpers import assert_all_finite, scene_node, wait_until
 
 import robots
-from app import fmt
-from app.actions import (
+from app.core.actions import (
     ChooseRobot,
     GoTo,
     RequestDownload,
@@ -27,10 +26,11 @@ from app.actions import (
     SetRate,
     SetWrench,
 )
-from app.palette import LOST_RGB, joint_color
-from app.ranges import joint_ranges, to_display
-from app.scene.geometry import TINY, wxyz, wxyz_one
-from app.scene.overlays import LINEAR_SECONDS
+from app.core.ranges import joint_ranges, to_display
+from app.views import fmt
+from app.views.palette import LOST_RGB, joint_color
+from app.views.scene.geometry import TINY, wxyz, wxyz_one
+from app.views.scene.overlays import LINEAR_SECONDS
 from app.viser_adapter import is_removed
 from kinematics import jacobian, joint_frames, link_frames
 from kinematics.analysis import task_rows

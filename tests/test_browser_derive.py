@@ -14,8 +14,8 @@ from browser_helpers import (
     wait,
 )
 
-from app.fmt import fixed
 from app.server import Lab
+from app.views.fmt import fixed
 from kinematics import link_frames
 
 pytestmark = pytest.mark.browser

@@ -11,8 +11,8 @@ from app_helpers import assert_all_finite, running_lab, wait_until
 from wsclient import ViserWsClient
 
 import robots
-from app.actions import ApplyPreset, ExploreAlone, Play, SetJoint
-from app.classroom import PRESENTER_LEFT, TOKEN_TRIES, TOKEN_WINDOW, Classroom
+from app.core.actions import ApplyPreset, ExploreAlone, Play, SetJoint
+from app.services.classroom import PRESENTER_LEFT, TOKEN_TRIES, TOKEN_WINDOW, Classroom
 
 TOKEN = "lecture-7"
 
@@ -192,7 +192,7 @@ def test_tokens_are_rate_limited_per_tab():
 
 def test_followers_draw_a_robot_only_the_presenter_has():
     """A robot built in the presenter's Build tab (not in the followers' lists) still reaches them."""
-    from app.actions import EditRobot
+    from app.core.actions import EditRobot
     from kinematics import Robot, jacobian
 
     with room(1) as (lab, presenter, (follower,)):

@@ -11,8 +11,8 @@ import pytest
 from kinematics_helpers import import_source
 
 import robots
-from app import export_command
-from app.cli import main
+from app.cli import export as export_command
+from app.cli.main import main
 from kinematics import jacobian
 from kinematics.urdf import robot_from_urdf
 

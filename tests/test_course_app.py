@@ -17,11 +17,11 @@ import pytest
 from app_helpers import assert_all_finite, scene_node, wait_until
 
 import robots
-from app.actions import ChooseRobot, GoTo, GoToRepresentationSingularity, SetConfiguration, SetRate
-from app.palette import ACCEL_RGB
+from app.core.actions import ChooseRobot, GoTo, GoToRepresentationSingularity, SetConfiguration, SetRate
+from app.views.palette import ACCEL_RGB
 from app.viser_adapter import node_props
 from kinematics import fk, jacobian
-from kinematics.analytic import euler_angles
+from kinematics.analytic_jacobian import euler_angles
 
 L1, L2, L3 = 10.0, 5.0, 8.0  # the course's TRR
 COURSE_V = np.array([17.256, -20.13, 0.5])  # the course's printed tool velocity [m/s]

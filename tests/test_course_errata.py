@@ -12,7 +12,7 @@ import pytest
 
 import kinematics
 import robots
-from kinematics.analytic import euler_rate_matrix
+from kinematics.analytic_jacobian import euler_rate_matrix
 
 H = 1e-6
 

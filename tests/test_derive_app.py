@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from app_helpers import assert_all_finite, running_lab, scene_node, wait_until
 
-from app.actions import ChooseRobot, SetJoint, SetRate, SetWrench
-from app.derive import METHODS
-from app.fmt import fixed
-from app.palette import joint_color
-from app.scene.overlays import LINEAR_SECONDS
+from app.core.actions import ChooseRobot, SetJoint, SetRate, SetWrench
+from app.core.snapshot.derive import METHODS
+from app.views.fmt import fixed
+from app.views.palette import joint_color
+from app.views.scene.overlays import LINEAR_SECONDS
 from kinematics import fk, jacobian, link_frames
 
 DATA = Path(__file__).parent / "data"

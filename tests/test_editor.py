@@ -10,8 +10,8 @@ import pytest
 from app_helpers import assert_all_finite, scene_node
 
 import robots
-from app.dh_table import BUILT_NAME
-from app.panel.editor import DOWNLOADS, EMPTY, ROW_BUTTONS
+from app.core.build_table import BUILT_NAME
+from app.views.panel.editor import DOWNLOADS, EMPTY, ROW_BUTTONS
 from kinematics import Robot
 from kinematics.numeric import jacobian
 

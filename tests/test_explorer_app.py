@@ -12,10 +12,10 @@ import pytest
 from app_helpers import assert_all_finite, scene_node, wait_until
 
 import robots
-from app.actions import ChooseRobot, FindSingularity, Play, SetOption, Step
-from app.motion_reducer import FRAME_DT
-from app.panel.explore import OWN_TWIST
-from app.ticker import Ticker
+from app.core.actions import ChooseRobot, FindSingularity, Play, SetOption, Step
+from app.core.motion_rules import FRAME_DT
+from app.tab.ticker import Ticker
+from app.views.panel.motion import OWN_TWIST
 from kinematics import fk, jacobian
 from kinematics.analysis import manipulability, singular_values, task_rows
 
@@ -109,7 +109,7 @@ def test_dragging_the_handle_moves_the_arm(session):
     assert gizmo.visible
     T0 = fk(session.state.robot, session.state.q)
     assert np.asarray(gizmo.position) == pytest.approx(T0[:3, 3], abs=1e-6)
-    from app.actions import DriveTool
+    from app.core.actions import DriveTool
 
     T = T0.copy()
     T[:3, 3] += [0.05, -0.03, 0.02]

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import robots
-from app.actions import (
+from app.core.actions import (
     ApplyPreset,
     DriveTool,
     Play,
@@ -23,9 +23,9 @@ from app.actions import (
     Step,
     StepOnce,
 )
-from app.motion_reducer import FRAME_DT, redundancy_rows
-from app.reducer import InvalidAction, reduce
-from app.state import LabState
+from app.core.motion_rules import FRAME_DT, redundancy_rows
+from app.core.reducer import InvalidAction, reduce
+from app.core.state import LabState
 from kinematics import fk, jacobian
 from kinematics.analysis import manipulability, task_rows
 

@@ -11,8 +11,8 @@ from kinematics_helpers import import_source
 
 import kinematics
 import robots
-from kinematics import export as ex
 from kinematics.symbolic import jacobian_mathml
+from kinematics.symbolic.typeset import export as ex
 
 MATHML = "{http://www.w3.org/1998/Math/MathML}"
 

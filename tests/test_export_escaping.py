@@ -13,10 +13,10 @@ import pytest
 from test_export_latex import display_formulas, katex  # noqa: F401  (katex is a fixture)
 
 import kinematics
-from kinematics import export as ex
 from kinematics.model import Axis, Joint, Robot
 from kinematics.symbolic import jacobian_mathml
-from kinematics.symbolic.escape import latex_text, plain, py_docstring, py_identifier, xml_text
+from kinematics.symbolic.typeset import export as ex
+from kinematics.symbolic.typeset.escape import latex_text, plain, py_docstring, py_identifier, xml_text
 from kinematics.transforms import rot_x, trans
 
 INJECT = '"""; import os; os.system("touch MARKER")#'

@@ -18,7 +18,7 @@ import pytest
 
 import kinematics
 import robots
-from kinematics import export as ex
+from kinematics.symbolic.typeset import export as ex
 
 KATEX_DIR = Path(__file__).resolve().parent / "katex"
 

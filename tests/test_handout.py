@@ -22,7 +22,7 @@ from browser_helpers import ARGS, CHROMIUM, require_browser
 from test_export_latex import display_formulas, katex  # noqa: F401  (katex is a fixture)
 
 import robots
-from app.cli import main as cli_main
+from app.cli.main import main as cli_main
 from kinematics.symbolic import is_zero
 from kinematics.symbolic.handout import handout
 from kinematics.symbolic.steps import derivation_steps

@@ -1,4 +1,4 @@
-"""Inverse kinematics (kinematics.ik.solve): the course's Newton iteration and damped least squares."""
+"""Inverse kinematics (kinematics.motion.ik.solve): the course's Newton iteration and damped least squares."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from kinematics import (
     fk,
     jacobian,
 )
-from kinematics.ik import pinv_solve, pose_error, solve
+from kinematics.motion.ik import pinv_solve, pose_error, solve
 
 DEG = math.pi / 180
 

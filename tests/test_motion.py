@@ -1,4 +1,4 @@
-"""Resolved-rate motion (kinematics.motion): q_{k+1} = q_k + Δt J⁻¹ v, its stops and measures."""
+"""Resolved-rate motion (kinematics.motion.resolved_rate): q_{k+1} = q_k + Δt J⁻¹ v, its stops and measures."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from kinematics import (
     manipulability,
     singular_values,
 )
-from kinematics.motion import resolved_rate, resolved_rate_step
+from kinematics.motion.resolved_rate import resolved_rate, resolved_rate_step
 
 DEG = math.pi / 180
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from app.ratelimit import LatestFirstQueue, LeakyCounter, TabLimiter, TokenBucket, state_key
+from app.services.ratelimit import LatestFirstQueue, LeakyCounter, TabLimiter, TokenBucket, state_key
 
 
 class Clock:

@@ -25,13 +25,13 @@ import zstandard
 from browser_helpers import ARGS, CHROMIUM, close_notifications, image, require_browser
 
 import robots
-from app.actions import ApplyPreset, Play, Step
-from app.cli import main
-from app.fmt import number
-from app.record import CLIENT_PAGE, LEAD, RECORDING, plan, readout, record
-from app.reducer import reduce
-from app.snapshot import compute
-from app.state import LabState
+from app.cli.main import main
+from app.core.actions import ApplyPreset, Play, Step
+from app.core.reducer import reduce
+from app.core.snapshot import compute
+from app.core.state import LabState
+from app.demo.record import CLIENT_PAGE, LEAD, RECORDING, plan, readout, record
+from app.views.fmt import number
 from kinematics.numeric import fk
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -268,7 +268,7 @@ def test_the_recorded_demo_plays_from_a_static_server_in_chromium(tmp_path):
     out = tmp_path / "demo"
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
     done = subprocess.run(
-        [sys.executable, "-m", "app.cli", "record", "puma560", "-o", str(out)],
+        [sys.executable, "-m", "app.cli.main", "record", "puma560", "-o", str(out)],
         env=env,
         capture_output=True,
         text=True,

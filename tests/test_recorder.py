@@ -11,10 +11,10 @@ from app_helpers import wait_until
 from test_record import _last, read_viser
 
 import robots
-from app.actions import SetJoint, ToggleRecording
-from app.recorder import FPS, TabRecorder
-from app.snapshot import compute
-from app.state import LabState
+from app.core.actions import SetJoint, ToggleRecording
+from app.core.snapshot import compute
+from app.core.state import LabState
+from app.tab.recorder import FPS, TabRecorder
 from kinematics import fk
 
 

@@ -12,7 +12,7 @@ import collections
 import numpy as np
 from app_helpers import scene_node
 
-from app.actions import Redraw, SetJoint, SetOption
+from app.core.actions import Redraw, SetJoint, SetOption
 from app.viser_adapter import handle_uuid
 
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import robots
-from app.actions import (
+from app.core.actions import (
     ChooseRobot,
     ClearWrench,
     GoTo,
@@ -26,9 +26,9 @@ from app.actions import (
     Step,
     StopRates,
 )
-from app.ranges import SNAP_DEGREES, joint_ranges, rate_ranges, twist_ranges
-from app.reducer import InvalidAction, reduce
-from app.state import LabState
+from app.core.ranges import SNAP_DEGREES, joint_ranges, rate_ranges, twist_ranges
+from app.core.reducer import InvalidAction, reduce
+from app.core.state import LabState
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""Self-motion and the manipulability climb q̇ = (I − J⁺J) ∇w (kinematics.redundancy)."""
+"""Self-motion and the manipulability climb q̇ = (I − J⁺J) ∇w (kinematics.motion.redundancy)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from kinematics_helpers import random_q
 
 import robots
 from kinematics import ConfigurationError, JacobianLabError, OptionError, fk, jacobian, manipulability
-from kinematics.redundancy import (
+from kinematics.motion.redundancy import (
     climb,
     climb_step,
     manipulability_gradient,

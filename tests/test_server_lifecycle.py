@@ -17,7 +17,7 @@ import pytest
 from server_process import Server, alive, children, cmdline, poll, session_processes
 from wsclient import ViserWsClient
 
-from app.lifecycle import check_listen_address
+from app.services.lifecycle import check_listen_address
 
 ROOT = Path(__file__).resolve().parents[1]
 ROBOT = "planar2"  # its symbolic J takes a second
@@ -41,7 +41,7 @@ def _start_with_tab(tmp_path: Path, code: str) -> tuple[Server, list[int]]:
 
 SERVE = f"from app.server import serve; serve(robot={ROBOT!r}, host='127.0.0.1', port=0, block=True)"
 SERVE_WIRED = (
-    "from app.server import serve; from app.lifecycle import wait_for_stop\n"
+    "from app.server import serve; from app.services.lifecycle import wait_for_stop\n"
     f"lab = serve(robot={ROBOT!r}, host='127.0.0.1', port=0, block=False)\n"
     "print('stopped by', wait_for_stop(lab.stop), flush=True)"
 )

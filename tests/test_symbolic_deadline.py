@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 import kinematics
-from kinematics import export as ex
 from kinematics import symbolic
 from kinematics.model import Axis, Joint, Robot
 from kinematics.symbolic import cache
+from kinematics.symbolic.typeset import export as ex
 from kinematics.transforms import rot_x, rot_z, trans
 
 TIMEOUT = 5.0

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 import robots
-from app.symbolic import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable, WorkerPool
+from app.services.symbolic_service import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable, WorkerPool
 
 
 def _poll(predicate, timeout: float = 20.0) -> None:

@@ -150,7 +150,7 @@ def test_real_arm_urdf_snaps_and_stays_readable(name, tmp_path):
 
 def test_snapped_values_are_named_in_every_export():
     robot = kinematics.Robot.from_urdf(str(DATA / "xarm7_like.urdf"))
-    from kinematics import export as ex
+    from kinematics.symbolic.typeset import export as ex
 
     for fmt in ("latex", "mathml", "python", "json"):
         text = ex.export(robot, fmt, timeout=120)

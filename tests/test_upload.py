@@ -13,8 +13,8 @@ import pytest
 from app_helpers import assert_all_finite, gui_contents, scene_props, wait_until
 from wsclient import ViserWsClient
 
-import kinematics.urdf_mesh
-from app.uploads import MAX_UPLOAD_BYTES, TabCatalog
+import kinematics.urdf.mesh
+from app.tab.robots import MAX_UPLOAD_BYTES, TabCatalog
 from app.viser_adapter import UPLOAD_PART_BYTES, handle_uuid, message_class
 from kinematics import Robot
 from kinematics.numeric import jacobian
@@ -162,7 +162,7 @@ def test_a_hostile_upload_is_refused_in_words_and_every_tab_carries_on(
 
 def test_a_name_that_is_not_utf8_is_shown_printable():
     """A name with lone surrogates (undecodable bytes) or control characters, straight to the catalogue."""
-    from app.catalog import RobotCatalog
+    from app.services.catalog import RobotCatalog
     from kinematics.errors import UrdfError
 
     tab = TabCatalog(RobotCatalog())
@@ -194,9 +194,9 @@ def test_an_uploaded_urdf_never_reads_a_mesh(session, monkeypatch, tmp_path, uri
     (tmp_path / "x.stl").write_text("solid x\nendsolid x\n")
     errors0 = session.errors
     looked: list[str] = []
-    real = kinematics.urdf_mesh.resolve_mesh
+    real = kinematics.urdf.mesh.resolve_mesh
     monkeypatch.setattr(
-        kinematics.urdf_mesh, "resolve_mesh", lambda *a, **k: looked.append(a) or real(*a, **k)
+        kinematics.urdf.mesh, "resolve_mesh", lambda *a, **k: looked.append(a) or real(*a, **k)
     )
     mesh = f'<visual><geometry><mesh filename="{uri}"/></geometry></visual>'
     _upload(session, "meshy.urdf", _arm("meshy", mesh))
@@ -207,7 +207,7 @@ def test_an_uploaded_urdf_never_reads_a_mesh(session, monkeypatch, tmp_path, uri
 
 
 def test_uploads_are_capped_at_two_megabytes():
-    from app.catalog import RobotCatalog
+    from app.services.catalog import RobotCatalog
     from kinematics.errors import UrdfError
 
     tab = TabCatalog(RobotCatalog())

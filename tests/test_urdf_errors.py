@@ -11,8 +11,8 @@ import pytest
 
 from kinematics import fk
 from kinematics.errors import JacobianLabError, UrdfError
+from kinematics.files import MAX_FILE_BYTES
 from kinematics.urdf import MAX_LINKS, robot_from_urdf, robot_from_urdf_string
-from kinematics.urdf_io import MAX_FILE_BYTES
 
 ARM = (
     '<robot name="arm"><link name="a"/><link name="b"/>'

@@ -11,7 +11,7 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
-from ..ratelimit import TabLimiter
+from ..services.ratelimit import TabLimiter
 from .core import ViserApiChanged, _private, clip
 
 __all__ = [

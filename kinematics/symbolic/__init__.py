@@ -28,7 +28,6 @@ and nothing parses user text into SymPy.
 from __future__ import annotations
 
 from .analytic import AnalyticJacobian, analytic_jacobian, euler_rate_matrix
-from .codegen import numeric_function, python_source
 from .core import DEFAULT_TIMEOUT, Derivation, derive, fk, jacobian, joint_symbols
 from .derivations import (
     DERIVATIONS,
@@ -41,12 +40,13 @@ from .derivations import (
 )
 from .handout import handout
 from .model import SymbolicError, SymbolicModel, build_model
-from .printing import Notation
-from .render import jacobian_latex, jacobian_mathml, latex_parts, mathml_parts
 from .singular import Determinant, SingularSet, det_rows, determinant, singular_sets
 from .snap import SNAP_TOL, Snap
 from .steps import METHODS, Step, derivation_steps, dh_rows
 from .trig import is_zero, normal_form
+from .typeset.codegen import numeric_function, python_source
+from .typeset.printing import Notation
+from .typeset.render import jacobian_latex, jacobian_mathml, latex_parts, mathml_parts
 
 __all__ = [
     "fk",

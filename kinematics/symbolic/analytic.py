@@ -1,6 +1,6 @@
 """The analytic Jacobian J_A = blockdiag(I, B(φ)⁻¹) · J in symbolic form, with its representation singularity.
 
-Conventions match :mod:`kinematics.analytic`: ``"zyx"`` (roll-pitch-yaw),
+Conventions match :mod:`kinematics.analytic_jacobian`: ``"zyx"`` (roll-pitch-yaw),
 R = Rz(yaw) Ry(pitch) Rx(roll), angles (yaw, pitch, roll); ``"zyz"``,
 R = Rz(φ) Ry(θ) Rz(ψ), angles (φ, θ, ψ). ω = B(φ) φ̇ in the base frame, so
 J_A maps q̇ to [v; φ̇]. J_A is written in the joint symbols and the Euler-angle

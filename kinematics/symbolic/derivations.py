@@ -28,9 +28,9 @@ import sympy as sp
 from ..model import Robot
 from ..numeric import jacobian as numeric_jacobian
 from .chain import Frames, axis_motion, frames, frames_within
-from .codegen import numeric_function
 from .model import SymbolicModel, build_model, check_frame
 from .trig import Deadline, is_zero
+from .typeset.codegen import numeric_function
 
 __all__ = [
     "jacobian_differentiation",

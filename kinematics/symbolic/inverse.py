@@ -19,13 +19,13 @@ import sympy as sp
 from ..analysis import task_rows
 from ..model import Robot
 from .core import DEFAULT_TIMEOUT, derive
-from .escape import NOTE_CHARS, xml_text
-from .layout import MATHML_WIDTH, mathml_matrix
 from .model import SymbolicError
-from .render import MATH_STYLE, notation_for
 from .simplify import simplify_matrix
 from .singular import Determinant, determinant
 from .trig import Deadline
+from .typeset.escape import NOTE_CHARS, xml_text
+from .typeset.layout import MATHML_WIDTH, mathml_matrix
+from .typeset.render import MATH_STYLE, notation_for
 
 __all__ = ["SymbolicInverse", "inverse", "inverse_mathml", "MAX_JOINTS"]
 

@@ -24,9 +24,9 @@ import sympy as sp
 
 from ..errors import JacobianLabError
 from ..model import Robot
-from .escape import plain
 from .exact import exact_number, rot_x, rot_z, trans
 from .snap import LENGTH_NOISE, SNAP_TOL, Snap, Snapper, snap_summary
+from .typeset.escape import plain
 
 __all__ = [
     "SymbolicError",

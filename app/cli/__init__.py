@@ -1,0 +1,1 @@
+"""The command line: jacobian-lab serve, export, handout, record."""

@@ -1,0 +1,150 @@
+"""``jacobian-lab export``: the symbolic Jacobian of a robot as LaTeX, MathML, Python or JSON.
+
+``jacobian-lab export ROBOT --format latex|mathml|python|json [--frame base|tool]
+[--symbolic-params] [--base LINK] [--tip LINK] [-o FILE]``, with ROBOT a library name or a
+path to a robot file (.toml) or URDF. Output goes to stdout unless ``-o`` is given; progress is
+shown on stderr for any step that takes more than a second. The work is done by
+:func:`kinematics.symbolic.typeset.export.export`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import threading
+import time
+from pathlib import Path
+
+import robots
+from kinematics.errors import JacobianLabError
+from kinematics.symbolic.core import DEFAULT_TIMEOUT
+from kinematics.symbolic.typeset.export import FORMATS, export
+
+__all__ = ["main", "add_chain_arguments", "StderrProgress", "write_output"]
+
+
+def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--base LINK`` and ``--tip LINK``: the ends of the chain taken from a URDF."""
+    parser.add_argument(
+        "--base", metavar="LINK", help="URDF only: link the chain starts from (default: the root link)"
+    )
+    parser.add_argument(
+        "--tip",
+        metavar="LINK",
+        help="URDF only: link the chain ends at (default: tool0, *_tcp, flange, ee_link, *hand*, "
+        "else the leaf with the most moving joints)",
+    )
+
+
+class StderrProgress:
+    """Shows the current step on stderr, only once the whole job has taken more than ``after`` seconds."""
+
+    def __init__(self, stream=None, after: float = 1.0, command: str = "export") -> None:
+        self.stream = stream if stream is not None else sys.stderr
+        self.command = command
+        self.after = after
+        self.message = "working"
+        self.shown = ""
+        self.lock = threading.Lock()
+        self.stop = threading.Event()
+        self.start = time.perf_counter()
+        self.thread = threading.Thread(target=self._run, daemon=True)
+
+    def __call__(self, message: str) -> None:
+        with self.lock:
+            self.message = message
+
+    def _show(self, final: bool = False) -> None:
+        elapsed = time.perf_counter() - self.start
+        with self.lock:
+            message = "done" if final else self.message
+        if final or message != self.shown:
+            self.stream.write(f"jacobian-lab {self.command}: [{elapsed:5.1f} s] {message}\n")
+            self.stream.flush()
+            self.shown = message
+
+    def _run(self) -> None:
+        if self.stop.wait(self.after):
+            return
+        while not self.stop.wait(0.25):
+            self._show()
+
+    def __enter__(self) -> StderrProgress:
+        self.thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop.set()
+        self.thread.join()
+        if self.shown:
+            self._show(final=True)
+
+
+_StderrProgress = StderrProgress  # the name the tests use
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="jacobian-lab export",
+        description="Export a robot's symbolic Jacobian J(q) as LaTeX, MathML, a Python module or JSON.",
+    )
+    p.add_argument("robot", help="library robot name (e.g. puma560) or path to a robot .toml or .urdf file")
+    p.add_argument("--format", "-f", choices=FORMATS, default="latex", help="output format (default: latex)")
+    p.add_argument(
+        "--frame", choices=("base", "tool"), default="base", help="axes of J's rows (default: base)"
+    )
+    p.add_argument(
+        "--symbolic-params",
+        action="store_true",
+        help="keep DH lengths and offsets as symbols (a2, d4, ...) instead of numbers",
+    )
+    p.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
+    add_chain_arguments(p)
+    p.add_argument(
+        "--timeout",
+        type=float,
+        default=DEFAULT_TIMEOUT,
+        metavar="SECONDS",
+        help=f"simplification time limit (default: {DEFAULT_TIMEOUT:g} s)",
+    )
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run ``jacobian-lab export`` with ``argv`` (default: ``sys.argv[1:]``); returns the exit status.
+
+    0: written; 1: the robot or the export failed (message on stderr); 2: a usage error.
+    """
+    parser = _parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # -h or a usage error (already printed by argparse)
+        return int(exc.code or 0)
+    try:
+        robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        with StderrProgress() as progress:
+            text = export(
+                robot, args.format, args.frame, args.symbolic_params, progress, timeout=args.timeout
+            )
+    except JacobianLabError as exc:
+        print(f"jacobian-lab export: error: {exc}", file=sys.stderr)
+        return 1
+    return write_output(text, args.output, "export")
+
+
+def write_output(text: str, output: str | None, command: str) -> int:
+    """Write ``text`` to the file ``output`` (standard output when ``None``); the exit status, with
+    ``jacobian-lab COMMAND: error: cannot write …`` on stderr when the file cannot be written."""
+    if output is None:
+        sys.stdout.write(text)
+        return 0
+    try:
+        Path(output).write_text(text, encoding="utf-8")
+    except OSError as exc:
+        print(f"jacobian-lab {command}: error: cannot write {output}: {exc.strerror}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

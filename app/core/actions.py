@@ -1,0 +1,363 @@
+"""Named actions: everything a tab can ask for, as plain frozen values.
+
+Views, the ticker (:class:`~app.tab.ticker.Ticker`) and the classroom
+(:class:`~app.services.classroom.Classroom`) only ever *dispatch* one of these; the pure
+:func:`app.core.reducer.reduce` turns (state, action) into the next state.
+Values are in SI units with radians (the views convert from degrees).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from kinematics import Robot
+
+    from .state import LabState
+
+__all__ = [
+    "Action",
+    "SetJoint",
+    "SetConfiguration",
+    "GoTo",
+    "SetRate",
+    "StopRates",
+    "SetDesired",
+    "SetWrench",
+    "ClearWrench",
+    "SetOption",
+    "ChooseRobot",
+    "ChooseChain",
+    "SetRobot",
+    "ReplaceState",
+    "Play",
+    "Step",
+    "RequestDownload",
+    "StepOnce",
+    "ResetMotion",
+    "ApplyPreset",
+    "DriveTool",
+    "SelfMove",
+    "FollowPath",
+    "FindSingularity",
+    "GoToRepresentationSingularity",
+    "ClaimPresenter",
+    "StopPresenting",
+    "ExploreAlone",
+    "FollowPresenter",
+    "CLASSROOM",
+    "Mirror",
+    "Redraw",
+    "ToggleRecording",
+    "EditRobot",
+    "UploadRobot",
+    "COMMANDS",
+]
+
+
+@dataclass(frozen=True)
+class SetJoint:
+    """Move joint ``index`` to ``value`` [rad | m] (clamped to its slider, snapped to named values)."""
+
+    index: int
+    value: float
+
+
+@dataclass(frozen=True, eq=False)
+class SetConfiguration:
+    """Move every joint to ``q`` (n,) [rad | m]; ``name`` if it is a named configuration."""
+
+    q: tuple[float, ...]
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class GoTo:
+    """Move to the named configuration ``name`` ("home" or one of the robot's)."""
+
+    name: str
+
+
+@dataclass(frozen=True)
+class SetRate:
+    """Set joint rate q̇ᵢ [rad/s | m/s] of the forward view v = J q̇."""
+
+    index: int
+    value: float
+
+
+@dataclass(frozen=True)
+class StopRates:
+    """Set every joint rate to zero (and stop moving)."""
+
+
+@dataclass(frozen=True)
+class SetDesired:
+    """Set component ``row`` (0..5, [vx vy vz ωx ωy ωz]) of the desired tool twist [m/s | rad/s]."""
+
+    row: int
+    value: float
+
+
+@dataclass(frozen=True)
+class SetWrench:
+    """Set component ``row`` (0..5, [Fx Fy Fz Mx My Mz]) of the wrench at the tool [N | N·m]."""
+
+    row: int
+    value: float
+
+
+@dataclass(frozen=True)
+class ClearWrench:
+    """Remove the applied force and moment."""
+
+
+@dataclass(frozen=True)
+class SetOption:
+    """Set display option ``name`` (a field of :class:`~app.core.state.Options`) to ``value``."""
+
+    name: str
+    value: object
+
+
+@dataclass(frozen=True)
+class ChooseRobot:
+    """The user picked robot ``name`` of the catalogue (the session loads it, then dispatches SetRobot)."""
+
+    name: str
+
+
+@dataclass(frozen=True)
+class ChooseChain:
+    """The user picked the chain of the current URDF that ends at ``tip_link`` (a command: the session
+    loads that chain, then dispatches SetRobot)."""
+
+    tip_link: str
+
+
+@dataclass(frozen=True, eq=False)
+class SetRobot:
+    """Switch to the loaded ``robot`` listed as ``name`` (at its home, display choices kept);
+    ``chain``: the tip link of the URDF chain it is ("" for the default chain or a non-URDF robot)."""
+
+    name: str
+    robot: Robot
+    chain: str = ""
+
+
+@dataclass(frozen=True, eq=False)
+class ReplaceState:
+    """Take over a whole state (a presenter's, a recording's)."""
+
+    state: LabState
+
+
+@dataclass(frozen=True)
+class Play:
+    """Start (``True``) or pause the motion ``kind`` in time.
+
+    ``kind`` (see :data:`app.core.motion_state.MOTIONS`): "joints" moves the joints at q̇, "resolved_rate"
+    holds the desired tool twist (q̇ = J⁺ v), "climb" raises w with the tool held. Pausing ignores it.
+    """
+
+    playing: bool
+    kind: str = "joints"
+
+
+@dataclass(frozen=True)
+class Step:
+    """Advance time by ``dt`` [s]: while playing, q ← q + q̇ dt (stopping at the slider ends)."""
+
+    dt: float
+
+
+@dataclass(frozen=True)
+class StepOnce:
+    """One frame of the motion ``kind`` (while paused), for working through it step by step."""
+
+    kind: str = "resolved_rate"
+
+
+@dataclass(frozen=True)
+class ResetMotion:
+    """Stop and put the arm back where the motion started (its trace cleared)."""
+
+
+@dataclass(frozen=True, eq=False)
+class ApplyPreset:
+    """Set up the resolved-rate preset ``name``: the arm at ``q``, the desired twist ``twist`` (6,)
+    [m/s; rad/s] in ``frame`` axes, ready to Play at playback ``speed``."""
+
+    name: str
+    q: tuple[float, ...]
+    twist: tuple[float, ...]
+    frame: str = "base"
+    speed: float = 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class DriveTool:
+    """The tool was dragged to ``T_base_target`` (16 numbers, a 4×4 row-major): solve IK from the
+    current q (the option's method and mode) and move there."""
+
+    T_base_target: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class SelfMove:
+    """Move the self-motion parameter to ``s`` [rad | m]: the arm moves in the null space of J, the
+    tool held where it was when the self-motion began."""
+
+    s: float
+
+
+@dataclass(frozen=True, eq=False)
+class FollowPath:
+    """Play back the configurations ``path`` (k, n) (e.g. the descent to the nearest singularity);
+    ``found`` is said when it ends."""
+
+    path: tuple[tuple[float, ...], ...]
+    found: str
+
+
+@dataclass(frozen=True)
+class FindSingularity:
+    """Find the nearest singularity from here (a command: the session computes the descent away from
+    the drawing thread, then dispatches :class:`FollowPath`)."""
+
+
+@dataclass(frozen=True)
+class GoToRepresentationSingularity:
+    """Move the arm (inverse kinematics from q, tool position kept) to where the Euler angles of
+    ``convention`` are singular: ZYX pitch = ±90°, ZYZ θ = 0 or 180°."""
+
+    convention: str
+
+
+@dataclass(frozen=True)
+class ClaimPresenter:
+    """The tab typed ``token`` into "Presenter token" (a command: the classroom checks it once the
+    typing has paused, ``settled``; a browser sends every keystroke, and five half-typed tokens must
+    not use up the tab's tries)."""
+
+    token: str
+    settled: bool = False
+
+
+@dataclass(frozen=True)
+class StopPresenting:
+    """The presenter hands the room back (a command)."""
+
+
+@dataclass(frozen=True)
+class ExploreAlone:
+    """A follower leaves the presenter to explore on its own (a command)."""
+
+
+@dataclass(frozen=True)
+class FollowPresenter:
+    """A tab follows the presenter again (a command)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Mirror:
+    """Draw the presenter's ``state`` with the ``snapshot`` already computed for it (a follower's
+    session takes it as it is: one computation per presenter change, not one per follower); ``scene``:
+    the scene messages of the presenter's redraw, replayed instead of drawing the scene again (empty:
+    the follower draws its own)."""
+
+    state: LabState
+    snapshot: object
+    scene: tuple = ()
+
+
+@dataclass(frozen=True)
+class Redraw:
+    """Draw the tab again as it is (its classroom role changed, or refused input must be undone)."""
+
+
+@dataclass(frozen=True)
+class ToggleRecording:
+    """Start recording what this tab shows, or stop and download it as a demo that needs no server
+    (a command)."""
+
+
+@dataclass(frozen=True)
+class RequestDownload:
+    """Send J(q) exported as ``label`` ("LaTeX", "Python" or "JSON") to this tab (a command)."""
+
+    label: str
+
+
+@dataclass(frozen=True, eq=False)
+class EditRobot:
+    """The Build tab's DH table became ``robot`` (listed as ``name``): show it, keeping the display
+    choices; ``keep[i]`` is the joint of the robot shown whose value row ``i`` keeps (``None``: a new
+    row, at home). See :func:`app.core.build_table.edited_state`."""
+
+    name: str
+    robot: Robot
+    keep: tuple[int | None, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class UploadRobot:
+    """The tab uploaded the file ``filename`` with ``content`` (a command: the session reads it as a
+    URDF into the tab's own robot list, then switches to it). ``refused_size``: the size [bytes] of a
+    file refused as too large before it was sent (its content is then empty)."""
+
+    filename: str
+    content: bytes
+    refused_size: int = 0
+
+
+CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
+"""Classroom commands: a follower may always send these (its other inputs are read-only)."""
+
+COMMANDS = (
+    ChooseRobot,
+    ChooseChain,
+    RequestDownload,
+    FindSingularity,
+    UploadRobot,
+    ToggleRecording,
+    *CLASSROOM,
+)
+"""Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
+
+Action = (
+    SetJoint
+    | SetConfiguration
+    | GoTo
+    | SetRate
+    | StopRates
+    | SetDesired
+    | SetWrench
+    | ClearWrench
+    | SetOption
+    | ChooseRobot
+    | ChooseChain
+    | SetRobot
+    | ReplaceState
+    | Play
+    | Step
+    | RequestDownload
+    | StepOnce
+    | ResetMotion
+    | ApplyPreset
+    | DriveTool
+    | SelfMove
+    | FollowPath
+    | FindSingularity
+    | GoToRepresentationSingularity
+    | ClaimPresenter
+    | StopPresenting
+    | ExploreAlone
+    | FollowPresenter
+    | Mirror
+    | Redraw
+    | EditRobot
+    | UploadRobot
+    | ToggleRecording
+)

@@ -1,0 +1,268 @@
+"""The pure reducer: ``reduce(state, action) -> state``. No handles, no threads, no clock.
+
+Every rule about what an input means lives here, once: values are finite
+or refused with a message naming the input; a joint value is clamped to its
+slider and snapped onto a named configuration's value when it comes within
+reach; the configuration name follows q; a robot switch keeps the display
+choices that do not depend on the robot; time moves the joints at q̇ and
+stops, saying why, at the end of a slider.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from typing import Any
+
+import numpy as np
+
+from kinematics import Robot
+from kinematics.analytic_jacobian import representation_singularity
+from kinematics.errors import ConfigurationError
+
+from . import motion_rules
+from .actions import (
+    Action,
+    ApplyPreset,
+    ChooseChain,
+    ChooseRobot,
+    ClaimPresenter,
+    ClearWrench,
+    DriveTool,
+    EditRobot,
+    ExploreAlone,
+    FindSingularity,
+    FollowPath,
+    FollowPresenter,
+    GoTo,
+    GoToRepresentationSingularity,
+    Play,
+    ReplaceState,
+    RequestDownload,
+    ResetMotion,
+    SelfMove,
+    SetConfiguration,
+    SetDesired,
+    SetJoint,
+    SetOption,
+    SetRate,
+    SetRobot,
+    SetWrench,
+    Step,
+    StepOnce,
+    StopPresenting,
+    StopRates,
+    ToggleRecording,
+    UploadRobot,
+)
+from .build_table import edited_state
+from .motion_rules import FRAME_DT, MotionRefused
+from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
+from .snapshot.derive import METHODS
+from .state import LabState, Options, default_options, frozen
+
+__all__ = ["reduce", "InvalidAction", "named_configuration_at"]
+
+_FLOAT_OPTIONS = {"scale": (0.1, 3.0), "damping": (0.0, 1.0), "speed": (0.05, 2.0)}
+_CHOICES = {
+    "jacobian_frame": ("base", "tool"),
+    "twist_frame": ("base", "tool"),
+    "ik_method": ("dls", "newton"),
+    "ik_mode": ("position", "pose"),
+    "derive": tuple(METHODS),
+    "representation": ("geometric", "zyx", "zyz"),
+}
+_JOINT_OPTIONS = ("map_i", "map_j")
+
+
+class InvalidAction(ValueError):
+    """An action the state cannot take (a NaN, an unknown option or configuration), with the reason."""
+
+
+def _finite(value: object, what: str) -> float:
+    try:
+        x = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidAction(f"{what} must be a number, got {str(value)[:40]!r}") from None
+    if math.isnan(x):
+        raise InvalidAction(f"{what} must be a finite number; the value given is not a number")
+    if math.isinf(x):
+        raise InvalidAction(f"{what} must be a finite number, got {'−' if x < 0 else ''}∞")
+    return x
+
+
+def _index(i: object, n: int, what: str) -> int:
+    if not isinstance(i, (int, np.integer)) or isinstance(i, bool) or not 0 <= int(i) < n:
+        raise InvalidAction(f"{what} index must be 0 to {n - 1}, got {i!r}")
+    return int(i)
+
+
+def _with(a: np.ndarray, i: int, x: float) -> np.ndarray:
+    b = a.copy()
+    b[i] = x
+    return frozen(b)
+
+
+def named_configuration_at(state: LabState, q: np.ndarray) -> str:
+    """The name of the robot's named configuration (or "home") equal to ``q`` (within 1e-12), else ""."""
+    names, table = _named_table(state.robot)
+    hit = np.flatnonzero((np.abs(table - q) <= 1e-12).all(axis=1))
+    return names[hit[0]] if hit.size else ""
+
+
+@functools.lru_cache(maxsize=64)  # bounded: a table edited in the browser makes a robot per edit
+def _named_table(robot: Robot) -> tuple[tuple[str, ...], np.ndarray]:
+    """The robot's named configurations and then home, as names and one (k, n) array."""
+    names = (*(c.name for c in robot.configurations), "home")
+    return names, np.array([*(c.q for c in robot.configurations), robot.home], dtype=float)
+
+
+def reduce(state: LabState, action: Action) -> LabState:
+    """The state after ``action``.
+
+    Raises:
+        InvalidAction: the action cannot apply (the message names the input and the reason).
+    """
+    try:
+        after = _reduce(state, action)
+    except MotionRefused as exc:
+        raise InvalidAction(str(exc)) from None
+    m = after.motion
+    if m.anchor is not None and m.kind != "climb" and not isinstance(action, (SelfMove, Step)):
+        if after.q is not state.q or after.robot is not state.robot:  # moved by hand: a new self-motion
+            after = after.replace(
+                motion=m.replace(s=0.0, anchor=None, self_trace=m.self_trace[:0], direction=None)
+            )
+    return after
+
+
+def _reduce(state: LabState, action: Action) -> LabState:
+    robot, n = state.robot, state.robot.dof
+    match action:
+        case SetJoint(index=i, value=value):
+            i = _index(i, n, "joint")
+            x = joint_ranges(robot)[i].clamp_si(_finite(value, f"joint {robot.joints[i].name}"))
+            q = _with(state.q, i, snap_joint(robot, i, x, float(state.q[i])))
+            return state.replace(q=q, configuration=named_configuration_at(state, q), stopped="")
+        case SetConfiguration(q=values, name=name):
+            if len(values) != n:
+                raise InvalidAction(f"a configuration needs {n} joint values, got {len(values)}")
+            q = np.array([_finite(v, "joint value") for v in values])
+            return state.replace(q=frozen(q), configuration=name or named_configuration_at(state, q))
+        case GoTo(name=name):
+            if name == "home":
+                q = robot.home
+            else:
+                names = [c.name for c in robot.configurations]
+                if name not in names:
+                    raise InvalidAction(f"{robot.name} has no configuration {name!r}; it has {names}")
+                q = robot.configuration(name)
+            return state.replace(q=frozen(q), configuration=name, playing=False, stopped="")
+        case SetRate(index=i, value=value):
+            i = _index(i, n, "joint rate")
+            x = rate_ranges(robot)[i].clamp_si(_finite(value, f"rate of {robot.joints[i].name}"))
+            return state.replace(qd=_with(state.qd, i, x))
+        case StopRates():
+            return state.replace(qd=frozen(np.zeros(n)), playing=False)
+        case SetDesired(row=r, value=value):
+            r = _index(r, 6, "twist row")
+            x = twist_ranges(robot)[r].clamp_si(_finite(value, "desired tool velocity"))
+            return state.replace(v_desired=_with(state.v_desired, r, x))
+        case SetWrench(row=r, value=value):
+            r = _index(r, 6, "wrench row")
+            x = wrench_ranges(robot)[r].clamp_si(_finite(value, "applied force"))
+            return state.replace(wrench=_with(state.wrench, r, x))
+        case ClearWrench():
+            return state.replace(wrench=frozen(np.zeros(6)))
+        case SetOption(name=name, value=value):
+            return state.replace(options=_option(state.options, name, value, n))
+        case SetRobot(name=name, robot=new, chain=chain):
+            return LabState.initial(name, new, default_options(new, state.options), chain)
+        case EditRobot(name=name, robot=new, keep=keep):
+            return edited_state(state, name, new, keep)
+        case ReplaceState(state=other):
+            return other
+        case Play(playing=playing, kind=kind):
+            return motion_rules.play(state, bool(playing), kind)
+        case Step(dt=dt):
+            return motion_rules.step(state, _finite(dt, "time step"))
+        case StepOnce(kind=kind):
+            if state.playing:
+                return state
+            if state.motion.kind != kind or state.motion.trace is None:
+                started = motion_rules.play(state, True, kind)
+                if not started.playing:
+                    return started
+                state = started.replace(playing=False)
+            return motion_rules.step(state, FRAME_DT, force=True)
+        case ResetMotion():
+            return motion_rules.reset(state)
+        case ApplyPreset(name=name, q=q, twist=twist, frame=frame, speed=speed):
+            speed = min(max(_finite(speed, "preset speed"), 0.05), 2.0)
+            after = motion_rules.apply_preset(state, name, q, twist, frame, speed)
+            return after.replace(configuration=named_configuration_at(after, after.q))
+        case GoToRepresentationSingularity(convention=convention):
+            return _representation_singularity(state, convention)
+        case DriveTool(T_base_target=values):
+            return motion_rules.drive_tool(state, values)
+        case SelfMove(s=s):
+            return motion_rules.self_move(state, _finite(s, "self-motion"))
+        case FollowPath(path=path, found=found):
+            return motion_rules.follow_path(state, path, found)
+        case ChooseRobot() | ChooseChain() | RequestDownload() | FindSingularity() | UploadRobot():
+            raise InvalidAction(
+                f"{type(action).__name__} is a command the session carries out, not a state change"
+            )
+        case ClaimPresenter() | StopPresenting() | ExploreAlone() | FollowPresenter() | ToggleRecording():
+            raise InvalidAction(
+                f"{type(action).__name__} is a command the session carries out, not a state change"
+            )
+    raise InvalidAction(f"unknown action {action!r}")
+
+
+def _representation_singularity(state: LabState, convention: object) -> LabState:
+    if convention not in ("zyx", "zyz"):
+        raise InvalidAction(f"the Euler convention must be 'zyx' or 'zyz', got {convention!r}")
+    robot = state.robot
+    if robot.dof < 6:
+        raise InvalidAction(
+            f"{robot.name} has {robot.dof} joints: it cannot turn its tool to any orientation"
+        )
+    ranges = joint_ranges(robot)
+    lo = np.array([r.clamp_si(-math.inf) for r in ranges])
+    hi = np.array([r.clamp_si(math.inf) for r in ranges])
+    try:
+        q = representation_singularity(robot, state.q, convention, lo, hi)
+    except ConfigurationError as exc:
+        raise InvalidAction(str(exc)) from None
+    options = dataclasses.replace(state.options, representation=convention)
+    return state.replace(
+        q=frozen(q),
+        configuration=named_configuration_at(state, q),
+        playing=False,
+        stopped="",
+        options=options,
+    )
+
+
+def _option(options: Options, name: str, value: object, n: int) -> Options:
+    fields = {f.name: f for f in dataclasses.fields(Options)}
+    if name not in fields:
+        raise InvalidAction(f"unknown display option {name!r}; options are {sorted(fields)}")
+    if name in _FLOAT_OPTIONS:
+        lo, hi = _FLOAT_OPTIONS[name]
+        value = min(max(_finite(value, name), lo), hi)
+    elif name in _JOINT_OPTIONS:
+        value = _index(value, n, "map joint")
+    elif name == "derive_step":  # the Derive tab's previous/next buttons: clamped, never refused
+        if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
+            raise InvalidAction(f"derive_step is a joint index (an integer), got {value!r}")
+        value = min(max(int(value), 0), n - 1)
+    elif name in _CHOICES:
+        if value not in _CHOICES[name]:
+            raise InvalidAction(f"{name} must be one of {_CHOICES[name]}, got {value!r}")
+    elif not isinstance(value, bool):
+        raise InvalidAction(f"{name} is on or off (a bool), got {value!r}")
+    changes: dict[str, Any] = {name: value}
+    return dataclasses.replace(options, **changes)

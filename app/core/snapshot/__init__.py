@@ -1,0 +1,189 @@
+"""Everything one redraw needs, computed once per event by calling :mod:`kinematics`.
+
+:func:`compute` is the only place the app asks for maths: forward
+kinematics, the Jacobian in base and tool axes, the singularity report,
+the measures the panel reads out, the ellipsoids, the lost direction
+(rotations weighed by the arm's reach), and the three mappings of the
+course: v = J q̇, q̇ = J⁺ v (with the twist it actually produces and what is
+lost), τ = Jᵀ F. Views only draw a :class:`Snapshot`; they never compute.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinematics import jacobian, jacobian_dot
+from kinematics.analysis import (
+    Ellipsoid,
+    condition_number,
+    condition_of,
+    force_ellipsoid,
+    measures,
+    task_rows,
+    velocity_ellipsoid,
+)
+from kinematics.inverse import solve_rates
+from kinematics.lost import LostDirection, lost_direction
+from kinematics.numeric import frames_and_jacobian
+from kinematics.singularity import SingularityReport, assess
+
+from ..ranges import reach
+from ..state import LabState
+from .course import AnalyticView, InverseView, analytic_view, inverse_view
+from .derive import Derivation, derivation
+from .maps import Cloud, JointMap, joint_map, workspace_cloud
+
+__all__ = ["Snapshot", "compute", "translational_rows"]
+
+
+def translational_rows(planar: bool) -> tuple[int, ...]:
+    """Rows of J measured for the translational condition number: (vx, vy) for a planar arm."""
+    return (0, 1) if planar else (0, 1, 2)
+
+
+@dataclass(frozen=True, eq=False)
+class Snapshot:
+    """One tab's state after one event, ready to draw.
+
+    Attributes:
+        q: Joint values (n,) [rad | m].
+        link_frames: T_base_link (m + 2, 4, 4): frame 0, every link frame, the tool.
+        joint_frames: T_base_joint (m, 4, 4): the frame of every moving axis (z = axis).
+        J_base: Geometric Jacobian (6, n), rows [v; ω] in base axes.
+        J_shown: The Jacobian in the frame the tab chose (6, n).
+        rows: Task rows of J (what det J, κ and rank refer to).
+        report: Singularity report (status, kinds, σmin, κ).
+        sigma: Singular values of the task rows, descending.
+        manipulability: Yoshikawa's w = Π σᵢ of the task rows (0 with more rows than joints).
+        det: det J of the task rows when square, else ``None``.
+        rank: Numerical rank of the task rows.
+        cond_translational, cond_rotational: κ of the v rows and of the ω rows (``inf`` when
+            singular); a planar arm has no rotational one (``None``).
+        velocity, rotational, force: Ellipsoids at the tool point (base axes); the rotational
+            and force ellipsoids only when they are drawn (``None`` otherwise).
+        lost: The lost direction, ω rows weighed by ``length`` (``None`` when regular: not shown).
+        length: Characteristic length L [m] (the arm's reach) weighing rad/s against m/s.
+        twist: J_base q̇ (6,) [m/s; rad/s].
+        rates: Joint rates for the desired twist, J⁺ v or damped (n,).
+        produced: The task twist those rates actually produce, J q̇ (task rows, others 0) (6,).
+        shortfall: What is lost, v − J q̇ over the task rows (6,).
+        torques: Jᵀ F (n,) [N·m | N] balancing the applied wrench.
+        joint_map: w over the two chosen joints (when the map is shown), else ``None``.
+        cloud: The workspace cloud (when shown), else ``None``.
+        derive: The Derive tab's step as numbers (when it walks through a method), else ``None``.
+        inverse: J⁻¹ (or J⁺) of the task J the q̇ = J⁺ v tab uses (``None`` only for a hand-built one).
+        analytic: φ, M(φ) and J_A when the J(q) tab shows an analytic Jacobian, else ``None``.
+        jdot_qd: J̇ q̇ (6,) [m/s²; rad/s²], base axes: the tool's acceleration at constant joint rates
+            (zero when q̇ = 0).
+        T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
+    """
+
+    q: np.ndarray
+    link_frames: np.ndarray
+    joint_frames: np.ndarray
+    J_base: np.ndarray
+    J_shown: np.ndarray
+    rows: tuple[int, ...]
+    report: SingularityReport
+    sigma: np.ndarray
+    manipulability: float
+    det: float | None
+    rank: int
+    cond_translational: float
+    cond_rotational: float | None
+    velocity: Ellipsoid
+    rotational: Ellipsoid | None
+    force: Ellipsoid | None
+    lost: LostDirection | None
+    length: float
+    twist: np.ndarray
+    rates: np.ndarray
+    produced: np.ndarray
+    shortfall: np.ndarray
+    torques: np.ndarray
+    joint_map: JointMap | None = None
+    cloud: Cloud | None = None
+    derive: Derivation | None = None
+    inverse: InverseView | None = None
+    analytic: AnalyticView | None = None
+    jdot_qd: np.ndarray | None = None
+
+    @property
+    def T_tool(self) -> np.ndarray:
+        """The tool pose T_base_tool (4, 4)."""
+        return self.link_frames[-1]
+
+    @property
+    def tool_point(self) -> np.ndarray:
+        """Origin of the tool frame in base coordinates (3,) [m]."""
+        return self.link_frames[-1, :3, 3]
+
+
+def compute(state: LabState) -> Snapshot:
+    """Evaluate everything the views draw for ``state`` (one call per event)."""
+    robot, q = state.robot, state.q
+    planar, n = robot.planar, robot.dof
+    L, W, J = frames_and_jacobian(robot, q)  # one evaluation of the chain
+    J_shown = jacobian(robot, q, "tool") if state.options.jacobian_frame == "tool" else J
+    rows = task_rows(robot)
+    report = assess(robot, q, J)
+    J_task = J[list(rows)]
+    square = J_task.shape[0] == n
+    length = reach(robot)
+    v_task = state.v_desired[list(rows)]
+    J_twist = J_task if state.options.twist_frame == "base" else jacobian(robot, q, "tool")[list(rows)]
+    rates = solve_rates(J_twist, v_task, state.options.damping) if np.any(v_task) else np.zeros(n)
+    produced = np.zeros(6)
+    produced[list(rows)] = J_twist @ rates
+    m = measures(J, rows)  # σ, w, rank and κ of the task rows: one SVD
+    rank_task = m.rank
+    velocity = velocity_ellipsoid(J, "linear")
+    t_rows = translational_rows(planar)
+    # κ of the v rows: the velocity ellipsoid's radii are their singular values (zero-padded when n < 3).
+    cond_v = condition_of(velocity.radii) if len(t_rows) == 3 else condition_number(J, t_rows)
+    moving = bool(np.any(state.qd))
+    representation = state.options.representation
+    shortfall = np.zeros(6)
+    shortfall[list(rows)] = state.v_desired[list(rows)] - produced[list(rows)]
+    return Snapshot(
+        q=np.array(q),
+        link_frames=L,
+        joint_frames=W,
+        J_base=J,
+        J_shown=J_shown,
+        rows=rows,
+        report=report,
+        sigma=m.sigma,
+        manipulability=m.manipulability,
+        det=float(np.linalg.det(J_task)) if square else None,
+        rank=rank_task,
+        cond_translational=float(cond_v),
+        cond_rotational=None if planar else float(condition_number(J, "angular")),
+        velocity=velocity,
+        rotational=velocity_ellipsoid(J, "angular")
+        if state.options.rotational_ellipsoid and not planar
+        else None,
+        force=force_ellipsoid(J, "linear") if state.options.force_ellipsoid else None,
+        lost=lost_direction(J, rows, length) if report.status != "regular" else None,
+        length=length,
+        twist=J @ state.qd,
+        rates=rates,
+        produced=produced,
+        shortfall=shortfall,
+        torques=J.T @ state.wrench,
+        joint_map=_map(state),
+        cloud=workspace_cloud(robot) if state.options.workspace else None,
+        derive=derivation(state, L),
+        inverse=inverse_view(J_twist, rank_task),
+        analytic=analytic_view(L[-1], J, representation) if representation != "geometric" else None,
+        jdot_qd=jacobian_dot(robot, q, state.qd) @ state.qd if moving else np.zeros(6),
+    )
+
+
+def _map(state: LabState) -> JointMap | None:
+    o = state.options
+    if not o.joint_map or state.robot.dof < 2 or o.map_i == o.map_j:
+        return None
+    return joint_map(state.robot, np.array(state.q), o.map_i, o.map_j)

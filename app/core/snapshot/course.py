@@ -1,0 +1,102 @@
+"""The course's quantities the panels show beside J: J⁻¹ (or J⁺), the analytic Jacobian J_A and J̇ q̇.
+
+Pure functions of numbers (called by :func:`app.core.snapshot.compute` and the
+reducer), cheap enough for every redraw:
+
+* :func:`inverse_view`: J⁻¹ of a square task J (``None`` where it does not
+  exist: rank lost, det J = 0), J⁺ of a non-square one;
+* :func:`analytic_view`: the tool's Euler angles φ, the course's M(φ)
+  (``kinematics.analytic_jacobian`` calls it B(φ): ω = M(φ) φ̇) and
+  J_A = diag(I, M(φ)⁻¹) J, or "does not exist" at the representation's singularity
+  (:func:`kinematics.analytic_jacobian.analytic_parts`, named as the course names them).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from kinematics.analytic_jacobian import analytic_parts
+from kinematics.inverse import pinv
+
+__all__ = [
+    "InverseView",
+    "AnalyticView",
+    "REPRESENTATIONS",
+    "inverse_view",
+    "analytic_view",
+]
+
+REPRESENTATIONS = {
+    "geometric": "geometric J",
+    "zyx": "analytic J_A, roll-pitch-yaw (ZYX)",
+    "zyz": "analytic J_A, Euler ZYZ",
+}
+"""Option value → the label of the J(q) tab's "Representation" dropdown."""
+
+
+@dataclass(frozen=True, eq=False)
+class InverseView:
+    """The inverse of the task Jacobian the q̇ = J⁺ v tab uses.
+
+    Attributes:
+        kind: "inverse" (square, invertible), "none" (square, rank lost: det J = 0) or
+            "pseudo" (not square: J⁺, the Moore–Penrose pseudo-inverse).
+        matrix: J⁻¹ or J⁺ (n, rows) [units inverse to J's], ``None`` when kind is "none".
+        det: det J (square), else ``None``.
+    """
+
+    kind: Literal["inverse", "pseudo", "none"]
+    matrix: np.ndarray | None
+    det: float | None
+
+
+def inverse_view(J_task: np.ndarray, rank: int) -> InverseView:
+    """J⁻¹ of the square ``J_task`` (k, n) of numerical rank ``rank``, or its J⁺ when k ≠ n.
+
+    A square J whose rank is below n has no inverse (its det J is 0 up to round-off): kind "none",
+    never a matrix of 10¹⁶s. Near that, J⁻¹ is finite and large: it blows up as det J → 0.
+    """
+    k, n = J_task.shape
+    if k != n:
+        return InverseView("pseudo", pinv(J_task), None)
+    det = float(np.linalg.det(J_task))
+    if rank < n or det == 0.0:
+        return InverseView("none", None, 0.0)
+    inv = np.linalg.inv(J_task)
+    if not np.isfinite(inv).all():
+        return InverseView("none", None, 0.0)
+    return InverseView("inverse", inv, det)
+
+
+@dataclass(frozen=True, eq=False)
+class AnalyticView:
+    """The analytic Jacobian at q for one Euler-angle convention.
+
+    Attributes:
+        convention: "zyx" (φ = yaw, pitch, roll) or "zyz" (φ = φ, θ, ψ).
+        phi: The tool's Euler angles (3,) [rad] in the base frame.
+        M: M(φ) (3, 3) with ω = M(φ) φ̇ (``kinematics.analytic_jacobian.euler_rate_matrix``).
+        det_M: det M(φ) (−cos pitch for ZYX, −sin θ for ZYZ).
+        J_A: diag(I, M(φ)⁻¹) J (6, n), rows [v; φ̇]; ``None`` at the representation singularity.
+    """
+
+    convention: str
+    phi: np.ndarray
+    M: np.ndarray
+    det_M: float
+    J_A: np.ndarray | None
+
+    @property
+    def singular(self) -> bool:
+        """Whether the representation is singular here (|det M| below ``EULER_TOL``)."""
+        return self.J_A is None
+
+
+def analytic_view(T_tool: np.ndarray, J_base: np.ndarray, convention: str) -> AnalyticView:
+    """φ, M(φ) and J_A for the tool pose ``T_tool`` (4, 4) and the base-frame J (6, n)."""
+    conv: Literal["zyx", "zyz"] = "zyz" if convention == "zyz" else "zyx"
+    parts = analytic_parts(T_tool[:3, :3], J_base, conv)
+    return AnalyticView(conv, parts.phi, parts.B, parts.det_B, parts.J_A)

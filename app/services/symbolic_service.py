@@ -1,0 +1,359 @@
+"""Symbolic J(q) and exports for the panel, computed off the event path and shared by all clients.
+
+Simplifying a 6×6 symbolic Jacobian can take seconds of pure-Python work,
+which in a thread would hold the interpreter lock and stall every client's
+sliders. :class:`SymbolicService` therefore runs
+:func:`kinematics.symbolic.jacobian_mathml` and :func:`kinematics.symbolic.typeset.export.export`
+in worker processes (one for the panel's MathML, one for downloads, so a
+download never waits behind a long simplification). A worker that dies is
+restarted and its computations are retried once; a worker whose server is
+gone exits by itself. MathML is cached per (robot, frame, letters) and
+the symbolic J⁻¹ per (robot, letters) — a class of students asking for the
+Puma's J triggers one computation — and a request nobody waits for any more (every client moved
+on to another robot) is cancelled before it starts. The symbolic modules are
+imported lazily in the workers and may be missing; then the panel shows a
+plain note.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import multiprocessing
+import os
+import threading
+from collections.abc import Callable
+from concurrent.futures import Future, InvalidStateError, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from typing import Any
+
+from kinematics import Robot
+
+from .lifecycle import watch_parent
+
+__all__ = [
+    "SymbolicService",
+    "SymbolicUnavailable",
+    "SymbolicFuture",
+    "WorkerPool",
+    "EXPORT_FORMATS",
+    "WORKER_RESTARTED",
+]
+
+log = logging.getLogger(__name__)
+
+EXPORT_FORMATS = {"LaTeX": ("latex", "tex"), "Python": ("python", "py"), "JSON": ("json", "json")}
+"""Download button label → (kinematics.symbolic.typeset.export format, file extension)."""
+
+
+class SymbolicUnavailable(RuntimeError):
+    """The symbolic module (or the export module) is not installed in this build."""
+
+
+STEP_WIDTH_PX = 370
+"""Width [px] the Derive tab's formulas are typeset for (the docked panel, less its padding)."""
+
+WORKER_RESTARTED = "the symbolic worker stopped and was restarted"
+"""The notice given to :meth:`SymbolicService.on_restart` listeners when a worker was restarted."""
+
+
+class SymbolicFuture(Future[Any]):
+    """A future of a worker computation that is retried once on a new worker if the worker died.
+
+    Attributes:
+        restarted: True when this computation's first worker stopped (e.g. was killed) and the
+            computation was run again on a restarted worker.
+    """
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.restarted = False
+        self._inner: Future | None = None
+
+    def cancel(self) -> bool:
+        """Cancel unless the computation already runs in a worker (then it is left to finish)."""
+        inner = self._inner
+        if inner is not None and not inner.cancel():
+            return False
+        return super().cancel()
+
+
+class WorkerPool:
+    """One worker process, started on first use with "spawn" (the server's threads make forking unsafe).
+
+    The worker exits by itself when this process is gone (:func:`app.services.lifecycle.watch_parent`).
+    When it dies (killed, out of memory), the pool starts a new one: each computation that
+    was queued or running is run once more there, and ``on_restart(WORKER_RESTARTED)`` is called.
+
+    Args:
+        on_restart: Called with :data:`WORKER_RESTARTED` after a restart, in a new thread (so it may
+            take any lock).
+    """
+
+    def __init__(self, on_restart: Callable[[str], None] | None = None) -> None:
+        self.restarts = 0
+        self._on_restart = on_restart
+        self._pool: ProcessPoolExecutor | None = None
+        self._generation = 0
+        self._closed = False
+        self._lock = threading.Lock()
+
+    def submit(self, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
+        """``fn(*args)`` in the worker; ``fn`` must be importable by name (a module-level function)."""
+        future = SymbolicFuture()
+        self._run(future, fn, args, retry=True)
+        return future
+
+    def _run(self, future: SymbolicFuture, fn: Callable[..., Any], args: tuple, retry: bool) -> None:
+        with self._lock:
+            if self._closed:
+                raise RuntimeError("the symbolic worker pool was closed")
+            if self._pool is None:
+                self._pool = ProcessPoolExecutor(
+                    max_workers=1,
+                    mp_context=multiprocessing.get_context("spawn"),
+                    initializer=watch_parent,
+                    initargs=(os.getpid(),),
+                )
+            generation = self._generation
+            try:
+                inner = self._pool.submit(fn, *args)
+            except BrokenProcessPool as exc:
+                inner = Future()
+                inner.set_exception(exc)
+            future._inner = inner
+        inner.add_done_callback(lambda f: self._settle(future, f, fn, args, retry, generation))
+
+    def _settle(
+        self, future: SymbolicFuture, inner: Future, fn, args: tuple, retry: bool, generation: int
+    ) -> None:
+        if inner.cancelled():
+            future.cancel()
+            return
+        exc = inner.exception()
+        if isinstance(exc, BrokenProcessPool) and retry and not self._closed and not future.done():
+            self._restart(generation)
+            future.restarted = True
+            try:
+                self._run(future, fn, args, retry=False)
+                return
+            except Exception as again:  # closed meanwhile
+                exc = again
+        elif isinstance(exc, BrokenProcessPool) and not retry:
+            exc = SymbolicUnavailable("the symbolic worker stopped twice during this computation")
+        with contextlib.suppress(InvalidStateError):  # cancelled by its last interested client
+            if exc is not None:
+                future.set_exception(exc)
+            else:
+                future.set_result(inner.result())
+
+    def _restart(self, generation: int) -> None:
+        """Drop the broken pool (once per breakage: the first failing future does it)."""
+        with self._lock:
+            if generation != self._generation or self._closed:
+                return
+            self._generation += 1
+            broken, self._pool = self._pool, None
+            self.restarts += 1
+        log.warning("%s (restart %d)", WORKER_RESTARTED, self.restarts)
+        if broken is not None:
+            _end_pool(broken)
+        if self._on_restart is not None:  # in a thread of its own: the caller may hold any lock
+            threading.Thread(target=self._notify, name="symbolic-restart", daemon=True).start()
+
+    def _notify(self) -> None:
+        try:
+            self._on_restart(WORKER_RESTARTED)  # type: ignore[misc]
+        except Exception:
+            log.exception("a restart listener failed")
+
+    def pids(self) -> list[int]:
+        """Process ids of the running worker(s) (none before the first computation)."""
+        with self._lock:
+            pool = self._pool
+        return [p.pid for p in _pool_processes(pool) if p.pid is not None] if pool is not None else []
+
+    def close(self) -> None:
+        """End the worker now (a running computation is abandoned) and refuse further work."""
+        with self._lock:
+            self._closed = True
+            pool, self._pool = self._pool, None
+        if pool is not None:
+            _end_pool(pool)
+
+
+def _pool_processes(pool: ProcessPoolExecutor) -> list[multiprocessing.process.BaseProcess]:
+    """The worker processes of ``pool`` (the standard library keeps them private, in ``_processes``)."""
+    return list((getattr(pool, "_processes", None) or {}).values())
+
+
+def _end_pool(pool: ProcessPoolExecutor) -> None:
+    """Terminate the workers of ``pool`` (a running simplification would hold up exit) and shut it down."""
+    processes = _pool_processes(pool)
+    for process in processes:
+        process.terminate()
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        process.join(2.0)
+        if process.is_alive():
+            process.kill()
+
+
+class SymbolicService:
+    """MathML of J(q) and text exports, computed in worker processes.
+
+    Args:
+        timeout: Time limit passed to the symbolic module [s].
+    """
+
+    def __init__(self, timeout: float = 60.0) -> None:
+        self.timeout = timeout
+        self._lock = threading.Lock()
+        self._mathml: dict[tuple, SymbolicFuture] = {}
+        self._interest: dict[tuple, int] = {}
+        self._listeners: list[Callable[[str], None]] = []
+        self.last_notice: str | None = None
+        self._panel_worker = WorkerPool(self._restarted)
+        self._export_worker = WorkerPool(self._restarted)
+
+    @property
+    def restarts(self) -> int:
+        """How many times a worker process died and was restarted."""
+        return self._panel_worker.restarts + self._export_worker.restarts
+
+    def on_restart(self, callback: Callable[[str], None]) -> None:
+        """Call ``callback(WORKER_RESTARTED)`` (in a background thread) whenever a worker is restarted."""
+        with self._lock:
+            self._listeners.append(callback)
+
+    def _restarted(self, notice: str) -> None:
+        with self._lock:
+            self.last_notice = notice
+            listeners = list(self._listeners)
+        for callback in listeners:
+            callback(notice)
+
+    def worker_pids(self) -> list[int]:
+        """Process ids of the running worker processes (for diagnostics and tests)."""
+        return self._panel_worker.pids() + self._export_worker.pids()
+
+    def mathml(self, robot: Robot, frame: str, letters: bool = False) -> SymbolicFuture:
+        """A future of the ``<math>`` element of J(q) for ``robot`` in ``frame`` ("base" or "tool").
+
+        ``letters``: the DH lengths and offsets as the course's letters (l₁, a₂, d₄ …), with det J,
+        its factors and singular sets under J (``kinematics.symbolic`` with ``symbolic_params=True``).
+
+        Call :meth:`release` with the same arguments when no longer interested. The future
+        fails with :class:`SymbolicUnavailable` when the symbolic module is missing, or with
+        the module's own error; it is cancelled if every interested client released it
+        before it started. If the worker dies, the computation is run once more on a new
+        worker (``future.restarted`` is then True).
+        """
+        return self._want(
+            (robot.fingerprint(), frame, bool(letters)), _mathml, robot, frame, self.timeout, letters
+        )
+
+    def inverse(self, robot: Robot, letters: bool = False) -> SymbolicFuture:
+        """A future of the MathML of J⁻¹ = adj(J) / det J of ``robot``'s square task J (base axes);
+        release with :meth:`release_inverse`. Fails with the symbolic module's error for a J that is
+        not square or too large."""
+        key = (robot.fingerprint(), "inverse", bool(letters))
+        return self._want(key, _inverse_mathml, robot, bool(letters), self.timeout)
+
+    def steps(self, robot: Robot, method: str) -> SymbolicFuture:
+        """A future of the steps of one derivation of J (``method``: "whitney", "differentiation",
+        "propagation" or "force") as (joint, key, caption HTML, MathML) tuples, for the Derive tab;
+        release with :meth:`release_steps`."""
+        return self._want((robot.fingerprint(), "steps", method), _steps_mathml, robot, method, self.timeout)
+
+    def release_steps(self, robot: Robot, method: str) -> None:
+        """One client no longer waits for the steps of ``method`` for ``robot``."""
+        self._release((robot.fingerprint(), "steps", method))
+
+    def _want(self, key: tuple, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
+        with self._lock:
+            self._interest[key] = self._interest.get(key, 0) + 1
+            future = self._mathml.get(key)
+            if future is None or future.cancelled() or (future.done() and future.exception() is not None):
+                future = self._panel_worker.submit(fn, *args)
+                self._mathml[key] = future
+            return future
+
+    def release(self, robot: Robot, frame: str, letters: bool = False) -> None:
+        """One client no longer waits for J(q) of ``robot`` in ``frame`` (unwanted work is dropped)."""
+        self._release((robot.fingerprint(), frame, bool(letters)))
+
+    def release_inverse(self, robot: Robot, letters: bool = False) -> None:
+        """One client no longer waits for the symbolic J⁻¹ of ``robot``."""
+        self._release((robot.fingerprint(), "inverse", bool(letters)))
+
+    def _release(self, key: tuple) -> None:
+        with self._lock:
+            left = self._interest.get(key, 0) - 1
+            if left > 0:
+                self._interest[key] = left
+                return
+            self._interest.pop(key, None)
+            future = self._mathml.get(key)
+            if future is not None and not future.done() and future.cancel():
+                del self._mathml[key]
+
+    def export(self, robot: Robot, label: str, frame: str) -> SymbolicFuture:
+        """A future of (file name, content) of J(q) exported as ``label`` ("LaTeX", "Python" or "JSON")."""
+        fmt, ext = EXPORT_FORMATS[label]
+        name = f"{robot.name or 'robot'}_J_{frame}.{ext}"
+        return self._export_worker.submit(_export, robot, fmt, frame, self.timeout, name)
+
+    def close(self) -> None:
+        """Stop the worker processes (pending computations are abandoned)."""
+        self._panel_worker.close()
+        self._export_worker.close()
+
+
+def _mathml(robot: Robot, frame: str, timeout: float, letters: bool = False) -> str:
+    """In the worker process: the MathML of J(q) (with letters: and det J, its factors, singular sets)."""
+    try:
+        from kinematics.symbolic import jacobian_mathml, mathml_parts
+        from kinematics.symbolic.typeset.render import MATH_STYLE
+    except ImportError as exc:
+        raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
+    if not letters:
+        return jacobian_mathml(robot, frame=frame, timeout=timeout)
+    out = jacobian_mathml(robot, frame=frame, timeout=timeout, symbolic_params=True)
+    parts = mathml_parts(robot, frame, symbolic_params=True, with_det=True, timeout=timeout, wrap=True)
+    blocks = ([parts.det] if parts.det else []) + list(parts.singular)
+    extra = "".join(f'\n<math display="block" style="{MATH_STYLE}"><mrow>{b}</mrow></math>' for b in blocks)
+    at = out.find('\n<p class="jl-legend">')  # det J under J, before the legend of both
+    return out + extra if at < 0 else out[:at] + extra + out[at:]
+
+
+def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:
+    """In the worker process: the MathML of J⁻¹ = adj(J) / det J."""
+    try:
+        from kinematics.symbolic.inverse import inverse_mathml
+    except ImportError as exc:
+        raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
+    return inverse_mathml(robot, symbolic_params=letters, timeout=timeout)
+
+
+def _steps_mathml(robot: Robot, method: str, timeout: float) -> tuple[tuple[int | None, str, str, str], ...]:
+    """In the worker process: every step of one derivation, its caption and its MathML (panel width)."""
+    try:
+        from kinematics.symbolic import derivation_steps
+    except ImportError as exc:
+        raise SymbolicUnavailable("symbolic steps not available (kinematics.symbolic is missing)") from exc
+    return tuple(
+        (s.joint, s.key, s.title_html(), s.mathml(STEP_WIDTH_PX))
+        for s in derivation_steps(robot, method, timeout=timeout)  # type: ignore[arg-type]
+    )
+
+
+def _export(robot: Robot, fmt: str, frame: str, timeout: float, name: str) -> tuple[str, bytes]:
+    """In the worker process: J(q) exported by kinematics.symbolic.typeset.export."""
+    try:
+        from kinematics.symbolic.typeset.export import export
+    except ImportError as exc:
+        raise SymbolicUnavailable(
+            "export not available (kinematics.symbolic.typeset.export is missing)"
+        ) from exc
+    return name, export(robot, fmt, frame=frame, timeout=timeout).encode("utf-8")

@@ -1,0 +1,108 @@
+"""The Derive tab: the DH table, then the course's derivations walked through joint by joint.
+
+The DH table always shows the current joint variables (θᵢ or dᵢ, in the joint's colour).
+A dropdown picks what to walk through (:data:`app.core.snapshot.derive.METHODS`); a slider and
+Previous/Next buttons pick the step (joint i); the step's numbers at q are shown with the
+check against J, its vectors are drawn in the 3-D view (:mod:`app.views.scene.derive`) and, below,
+the same step in symbols (:func:`kinematics.symbolic.derivation_steps`, typeset in the symbolic
+worker process).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import viser
+
+from kinematics import Robot
+
+from ...core.actions import SetOption
+from ...core.snapshot import Snapshot
+from ...core.snapshot.derive import METHODS
+from ...core.state import LabState
+from .common import Dispatch, bind, sync_value
+from .derive_html import dh_table_html, formulas_html, step_html
+
+__all__ = ["DerivePanel"]
+
+_LABELS = {label: key for key, label in METHODS.items()}
+
+
+class DerivePanel:
+    """The Derive tab's handles for one robot."""
+
+    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+        self.robot = robot
+        self.dispatch = dispatch
+        self._step = 0
+        self._method = ""
+        self.method = gui.add_dropdown(
+            "Walk through",
+            tuple(METHODS.values()),
+            initial_value=METHODS[""],
+            order=order,
+            hint="Pick one of the course's derivations of J and step through it joint by joint.",
+        )
+        bind(self.method, dispatch, lambda v: SetOption("derive", _LABELS[v]) if v in _LABELS else None)
+        self.step = gui.add_slider(
+            "Joint i",
+            min=1,
+            max=max(robot.dof, 2),
+            step=1,
+            initial_value=1,
+            order=order + 2,
+            disabled=robot.dof < 2,
+        )
+        bind(self.step, dispatch, lambda v: SetOption("derive_step", int(round(v)) - 1))
+        self.buttons = gui.add_button_group("Step", ("◀ Previous", "Next ▶"), order=order + 3)
+        self.buttons.on_click(self._clicked)
+        self.body = gui.add_html("", order=order + 4)
+        self.formula = gui.add_html("", order=order + 6, visible=False)
+        self._formulas: tuple | None = None
+        self._formula_note = ""
+        self._walking = False
+        self.table = gui.add_html("", order=order + 7)
+        self._parts: list[Any] = [
+            self.table,
+            self.method,
+            self.step,
+            self.buttons,
+            self.body,
+            self.formula,
+        ]
+
+    def _clicked(self, event: viser.GuiEvent) -> None:
+        delta = -1 if str(event.target.value).startswith("◀") else 1
+        self.dispatch(SetOption("derive_step", self._step + delta))
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        options = state.options
+        self._step = options.derive_step
+        self._method = options.derive
+        walking = bool(options.derive)
+        self.table.content = dh_table_html(self.robot, snap.q, options.derive_step if walking else None)
+        sync_value(self.method, METHODS.get(options.derive, METHODS[""]))
+        sync_value(self.step, float(options.derive_step + 1))
+        self.step.visible = self.buttons.visible = walking
+        self.body.visible = walking
+        if snap.derive is not None:
+            self.body.content = step_html(self.robot, snap.derive, snap)
+        self._walking = walking
+        self._show_formula()
+
+    def show_formulas(self, steps: tuple | None, note: str) -> None:
+        """The steps of the derivation in symbols, (joint, key, caption HTML, MathML) each (from the
+        symbolic worker), or ``None`` with a note while they are worked out or when they cannot be."""
+        self._formulas, self._formula_note = steps, note
+        self._show_formula()
+
+    def _show_formula(self) -> None:
+        self.formula.visible = self._walking
+        if self._walking:
+            self.formula.content = formulas_html(
+                self._formulas, self._formula_note, self._method, self._step, self._step == self.robot.dof - 1
+            )
+
+    def remove(self) -> None:
+        for part in self._parts:
+            part.remove()

@@ -1,0 +1,105 @@
+"""Joint sliders (degrees for revolute joints, metres for prismatic ones) and named configurations.
+
+Built once per robot inside a header-less folder, so a robot switch removes
+the whole group at once. Each slider is coloured like its joint's axis and
+column arrow; its range, step and snapping come from :mod:`app.core.ranges`.
+"""
+
+from __future__ import annotations
+
+import functools
+from typing import Any
+
+import numpy as np
+import viser
+
+from kinematics import Robot
+
+from ...core.actions import GoTo, SetJoint
+from ...core.ranges import Range, from_display, joint_ranges, to_display
+from ...viser_adapter import handle_uuid
+from .. import fmt
+from .common import Dispatch, bind, sync_value
+from .style import slider_css
+
+__all__ = ["JointsPanel", "slider_label", "configuration_label", "configurations_html", "MOVED"]
+
+MOVED = "— (moved)"
+"""What the configuration dropdown shows when the arm is at no named configuration."""
+
+
+def slider_label(i: int, name: str, unit: str) -> str:
+    """A short slider label: the joint's own name when short ("q2 shoulder"), else "q3"; and the unit."""
+    short = name if len(name) <= 12 else f"q{i + 1}"
+    return f"{short} [{unit}]"
+
+
+def configuration_label(name: str) -> str:
+    """A configuration's button text: "wrist_singular" → "wrist singular"."""
+    return name.replace("_", " ")
+
+
+class JointsPanel:
+    """Sliders for q and buttons for the robot's named configurations."""
+
+    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+        self.robot = robot
+        self.ranges = joint_ranges(robot)
+        self.root = gui.add_folder(None, order=order)
+        css = []
+        with self.root:
+            self.sliders = []
+            for i, (joint, r) in enumerate(zip(robot.joints, self.ranges, strict=True)):
+                value = min(max(to_display(r, robot.home[i]), r.lo), r.hi)
+                slider = gui.add_slider(
+                    slider_label(i, joint.name, r.unit),
+                    min=r.lo,
+                    max=r.hi,
+                    step=r.step,
+                    initial_value=round(value, 6),
+                    marks=(),
+                    hint=f"{joint.name}: {joint.kind} joint, "
+                    f"{fmt.number(r.lo)} to {fmt.number(r.hi)} {r.unit}. "
+                    "Arrow keys: 10 steps; Shift + arrow: one fine step.",
+                )
+                bind(slider, dispatch, functools.partial(_set_joint, i, r))
+                css.append(slider_css(handle_uuid(slider), i))
+                self.sliders.append(slider)
+            gui.add_html(f"<style>{''.join(css)}</style>")
+            names = ["home", *(c.name for c in robot.configurations if c.name != "home")]
+            singular = {c.name for c in robot.configurations if c.singular}
+            self._labels = {n: configuration_label(n) + (" (singular)" * (n in singular)) for n in names}
+            by_label = {label: n for n, label in self._labels.items()}
+            self.configuration = gui.add_dropdown(
+                "Configuration",
+                (MOVED, *self._labels.values()),
+                initial_value=self._labels["home"],
+                hint="Go to a named configuration; its description shows under the status.",
+            )
+            bind(self.configuration, dispatch, lambda v: GoTo(by_label[str(v)]) if v in by_label else None)
+
+    def show(self, q: np.ndarray, configuration: str) -> None:
+        """Put ``q`` on the sliders and the configuration's name in the dropdown (echoes are ignored)."""
+        sync_value(self.configuration, self._labels.get(configuration, MOVED))
+        for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
+            sync_value(slider, round(min(max(to_display(r, q[i]), r.lo), r.hi), 6))
+
+    def remove(self) -> None:
+        self.root.remove()
+
+
+def configurations_html(robot: Robot) -> str:
+    """Every named configuration with its description (singular ones marked)."""
+    items = "".join(
+        f"<li><b>{fmt.escape(configuration_label(c.name))}</b>"
+        + (" <span class='jl-warn'>(singular)</span>" if c.singular else "")
+        + f": {fmt.escape(c.description)}</li>"
+        for c in robot.configurations
+        if c.description
+    )
+    listing = f'<ul class="jl-conf">{items or "<li>none</li>"}</ul>'
+    return f'<div class="jl"><b>Named configurations</b>{listing}</div>'
+
+
+def _set_joint(i: int, r: Range, value: Any) -> SetJoint:
+    return SetJoint(i, from_display(r, float(value)))

@@ -1,0 +1,194 @@
+"""The Jacobian itself: the numeric J at the current q, measures, its symbolic form J(q), downloads,
+and an enlarged projector view.
+
+The numeric table has one coloured column per joint headed q1…qn (the
+joint's own name on hover) and one row per twist component; rows outside
+the robot's task are greyed. The enlarged view is a modal that stays live
+and closes with Escape, its × or a click outside (see the page script).
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import Any
+
+import numpy as np
+import viser
+
+from kinematics import Robot
+
+from ...core.actions import GoToRepresentationSingularity, RequestDownload, SetOption
+from ...core.snapshot import Snapshot
+from ...core.snapshot.course import REPRESENTATIONS
+from ...core.state import LabState
+from ...services.symbolic_service import EXPORT_FORMATS
+from .. import fmt
+from ..palette import joint_hex, joint_text_hex
+from .common import Dispatch, bind, bind_click, sync_value
+from .course import analytic_html
+from .readouts import ROW_NAMES
+
+__all__ = ["matrix_html", "MatrixPanel"]
+
+
+def _head(robot: Robot) -> str:
+    """The header cells of J's table: q1…qn in the joints' colours, each joint's name on hover."""
+    return "".join(
+        f'<th class="col" style="color:{joint_text_hex(i)};border-color:{joint_hex(i)}" '
+        f'title="{fmt.escape(j.name)}">q{i + 1}</th>'
+        for i, j in enumerate(robot.joints)
+    )
+
+
+def matrix_html(
+    J: np.ndarray, robot: Robot, rows: tuple[int, ...], frame: str, big: bool = False, head: str = ""
+) -> str:
+    """HTML table of J (6, n): coloured joint columns headed q1…qn, [v; ω] rows, non-task rows greyed.
+
+    ``head``: the header cells as :func:`_head` writes them for ``robot`` (worked out when empty).
+    """
+    head = head or _head(robot)
+    values = fmt.cleaned(np.asarray(J, float).ravel().tolist())
+    n = J.shape[1]
+    body = []
+    for r in range(6):
+        classes = [c for c in ("off" if r not in rows else "", "split" if r == 3 else "") if c]
+        cells = "".join([f"<td>{fmt.fixed(x, 3)}</td>" for x in values[r * n : (r + 1) * n]])
+        body.append(f'<tr class="{" ".join(classes)}"><th class="row">{ROW_NAMES[r]}</th>{cells}</tr>')
+    caption = (
+        f'<div class="jl-note">J(q) in {"base" if frame == "base" else "tool"} axes, rows [v; ω], '
+        "v = velocity of the tool point; v rows in m/rad (m/m for a prismatic joint), ω rows in rad/rad."
+        + (" Grey rows are outside the task." if len(rows) < 6 else "")
+        + "</div>"
+    )
+    table = f'<table class="jl-matrix"><tr><th></th>{head}</tr>{"".join(body)}</table>'
+    return f'<div class="jl{" jl-big" if big else ""}">{table}{caption}</div>'
+
+
+def _mathml_html(inner: str, note: str = "") -> str:
+    note_html = f'<div class="jl-note">{fmt.escape(note)}</div>'
+    return f'<div class="jl"><div class="jl-mathml">{inner}</div>{note_html}</div>'
+
+
+class MatrixPanel:
+    """Numeric and symbolic J for one robot, measures, downloads and an enlarged view."""
+
+    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+        self.gui = gui
+        self.robot = robot
+        self._modal: Any = None  # viser's modal handle (not exported by name)
+        self._modal_html: viser.GuiHtmlHandle | None = None
+        self._last = ""
+        self._last_args: tuple = (np.zeros((6, robot.dof)), (), "base", "")
+        self._lock = threading.RLock()
+        self._symbolic = ""
+        self._head = _head(robot)  # the same for every redraw of this robot
+        self.root = gui.add_folder(None, order=order)
+        with self.root:
+            self.frame = gui.add_dropdown(
+                "Frame of J", ("base", "tool"), initial_value="base", hint="Axes in which J is written"
+            )
+            bind(self.frame, dispatch, lambda v: SetOption("jacobian_frame", str(v)))
+            self.representation = gui.add_dropdown(
+                "Representation",
+                tuple(REPRESENTATIONS.values()),
+                initial_value=REPRESENTATIONS["geometric"],
+                hint="Geometric J (rows [v; ω]) or the analytic J_A (rows [v; φ̇], φ: Euler angles)",
+            )
+            keys = {label: key for key, label in REPRESENTATIONS.items()}
+            bind(self.representation, dispatch, lambda v: SetOption("representation", keys[str(v)]))
+            self.numeric = gui.add_html("")
+            self.analytic = gui.add_html("")
+            self.go_singular: viser.GuiButtonHandle | None = None
+            self._convention = "zyx"
+            if robot.dof >= 6:
+                self.go_singular = gui.add_button(
+                    "Go to a representation singularity", icon=viser.Icon.TARGET
+                )
+                bind_click(
+                    self.go_singular, dispatch, lambda: GoToRepresentationSingularity(self._convention)
+                )
+            enlarge = gui.add_button("Enlarge J (Esc closes)", icon=viser.Icon.ARROWS_MAXIMIZE)
+            enlarge.on_click(lambda _event: self.open_large())
+            self.measures = gui.add_html("")
+            with gui.add_folder("Symbolic J(q)", expand_by_default=False):
+                self.letters: viser.GuiCheckboxHandle | None = None
+                if robot.dh is not None:
+                    self.letters = gui.add_checkbox(
+                        "Course letters (l₁, a₂, d₄ …)",
+                        initial_value=False,
+                        hint="DH lengths and offsets as letters; det J, its factors, singular sets below J",
+                    )
+                    bind(self.letters, dispatch, lambda v: SetOption("course_letters", bool(v)))
+                self.symbolic = gui.add_html(_mathml_html("", "computing the symbolic form…"))
+                self.download = gui.add_button_group("Download J(q)", tuple(EXPORT_FORMATS))
+                self.download.on_click(lambda event: dispatch(RequestDownload(event.target.value)))
+
+    def show(self, frame: str) -> None:
+        sync_value(self.frame, frame)
+
+    def show_course(self, state: LabState, snap: Snapshot) -> None:
+        """The representation chosen, φ, M(φ) and J_A (or why J_A does not exist), the letters box."""
+        o = state.options
+        sync_value(self.representation, REPRESENTATIONS[o.representation])
+        if o.representation != "geometric":
+            self._convention = o.representation
+        if self.letters is not None:
+            sync_value(self.letters, bool(o.course_letters))
+        self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows)
+
+    def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:
+        """Show the numeric J and measures, and in the enlarged view (if open) J under the status."""
+        self.numeric.content = matrix_html(J, self.robot, rows, frame, head=self._head)
+        self.measures.content = measures
+        with self._lock:
+            self._last_args = (J, rows, frame, status)
+            if self._modal_html is not None:
+                self._modal_html.content = self._big()
+
+    def _big(self) -> str:
+        J, rows, frame, status = self._last_args
+        self._last = status + matrix_html(J, self.robot, rows, frame, big=True, head=self._head)
+        symbolic = f'<div class="jl jl-big">{self._symbolic}</div>' if self._symbolic else ""
+        close = (
+            '<div class="jl-close-row"><button class="jl-close-x" title="Close (Esc)">× close</button></div>'
+        )
+        return close + self._last + symbolic
+
+    def show_symbolic(self, mathml: str | None, note: str) -> None:
+        """Show the symbolic J(q) (``None``: only the note), here and in the enlarged view."""
+        self.symbolic.content = _mathml_html(mathml or "", note)
+        with self._lock:
+            self._symbolic = _mathml_html(mathml, note) if mathml else ""
+            if self._modal_html is not None:
+                self._modal_html.content = self._big()
+
+    @property
+    def enlarged(self) -> bool:
+        """Whether the enlarged view is open."""
+        return self._modal is not None
+
+    def open_large(self) -> None:
+        """Open the projector view of J (a wide modal, updated live)."""
+        with self._lock:
+            if self._modal is None:
+                self._open()
+
+    def _open(self) -> None:
+        with self.gui.add_modal(f"Jacobian J(q) of the {self.robot.title or self.robot.name}") as modal:
+            self._modal = modal
+            self._modal_html = self.gui.add_html(self._big())
+            close = self.gui.add_button("Close", icon=viser.Icon.X)
+            close.on_click(lambda _event: self.close_large())
+
+    def close_large(self) -> None:
+        """Close the enlarged view (no-op when closed)."""
+        with self._lock:
+            if self._modal is not None:
+                self._modal.close()
+            self._modal = None
+            self._modal_html = None
+
+    def remove(self) -> None:
+        self.close_large()
+        self.root.remove()

@@ -1,0 +1,1 @@
+"""Motion through J: inverse kinematics, resolved-rate control and redundancy."""

@@ -1,0 +1,293 @@
+"""The course's derivations of J, step by step: what a teacher writes on the board.
+
+:func:`derivation_steps` returns the working of one method as a tuple of :class:`.step.Step`:
+
+1. shared by all methods (section ``"transforms"``): the link transforms ``A1 … An``
+   (``{}^{i-1}T_{i}``; the robot's base transform ``"base"`` first and the tool transform
+   ``"Atool"`` last when they are not the identity) and their products ``T0_1 … T0_n``
+   (``{}^{0}T_{i}``) and ``T0_tool``;
+2. the method's own steps (:mod:`.steps_methods`):
+
+   * ``"whitney"``: for joint i, ``whitney.z{i-1}``, ``whitney.p{i-1}``, ``whitney.r{i-1}``
+     (pₙ − pᵢ₋₁; revolute joints only) and ``whitney.col{i}``;
+   * ``"differentiation"``: ``diff.dp{i}`` (∂p/∂qᵢ), ``diff.S{i}`` ((∂R/∂qᵢ) Rᵀ, the skew
+     matrix of the ω part) and ``diff.col{i}``;
+   * ``"propagation"``: ``prop.w{i}``, ``prop.v{i}`` (link i's ω and origin velocity in its own
+     axes, Craig's outward iteration, with the joint rates q̇ as :attr:`.Step.inputs`), then
+     ``prop.wtool``, ``prop.vtool`` (when there is a tool transform) and, for the base frame,
+     ``prop.w_base``, ``prop.v_base`` (rotated to the base axes);
+   * ``"force"``: inward from the tool, ``force.f{i}``, ``force.n{i}`` (in the axes of joint i's
+     frame, z along its axis), ``force.tau{i}``, with the tool wrench [f; n] (in the axes of
+     ``frame``) as :attr:`.Step.inputs`; then ``force.JT`` = Jᵀ;
+
+   (the index in a key is always the joint's: ``whitney.z0`` is the axis of joint 1 whatever
+   the convention calls it; the :attr:`.Step.lhs` uses the convention's names);
+3. section ``"result"``: ``"J"`` assembled from the method's own steps (for the tool frame
+   after ``"J_base"`` rotated, for Whitney and differentiation), and ``"detJ"``: det J of the
+   square task rows, or det(J Jᵀ), factored, with its singular sets (:attr:`.Step.singular`),
+   when it could be computed in time.
+
+Everything is exact; each step is simplified (:mod:`.simplify`) within one shared time limit,
+past which the remaining steps stay exact but unsimplified (their notes say so). Results are
+kept in memory per (robot, method, frame, symbolic_params).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+from typing import Literal
+
+import sympy as sp
+
+from ...model import Robot
+from ..chain import frames_within, multiply
+from ..core import DEFAULT_TIMEOUT, check_timeout
+from ..model import SymbolicError, build_model, check_frame
+from ..singular import determinant
+from ..trig import Deadline
+from .methods import METHOD_STEPS, Context, rotate_rows
+from .step import DHRow, Step
+
+__all__ = ["METHODS", "Method", "derivation_steps", "dh_rows", "Step", "DHRow"]
+
+Method = Literal["whitney", "differentiation", "propagation", "force"]
+METHODS: tuple[str, ...] = ("whitney", "differentiation", "propagation", "force")
+"""The derivations :func:`derivation_steps` knows."""
+
+
+def dh_rows(robot: Robot, symbolic_params: bool = False) -> tuple[DHRow, ...]:
+    """The robot's DH table with symbolic θ, d, a, α per row (standard or modified convention).
+
+    Angles are exact (π/2 stays π/2; rounded values of the file snapped as in :mod:`.snap`),
+    lengths exact decimals, or symbols (the course's letters) with ``symbolic_params``. The
+    joint variable appears in θᵢ (revolute) or dᵢ (prismatic). A robot without a DH table
+    (a URDF chain) has none: the result is empty.
+
+    Raises:
+        SymbolicError: ``symbolic_params`` for a robot without a DH table.
+    """
+    model = build_model(robot, symbolic_params)
+    if not model.dh:
+        return ()
+    return tuple(
+        DHRow(i + 1, kind, robot.joints[j].name, *values, model.q[j], robot.convention or "standard")
+        for i, (kind, j, values) in enumerate(zip(model.kinds, model.axis_joint, model.dh, strict=True))
+    )
+
+
+def _is_identity(T: sp.Matrix) -> bool:
+    return T == sp.eye(4)
+
+
+def _transform_steps(ctx: Context) -> list[Step]:
+    m, F = ctx.model, ctx.F
+    out: list[Step] = []
+    dh = bool(m.dh)
+    what = "DH link transform" if dh else "link transform of the chain"
+    if not _is_identity(m.base):
+        out.append(
+            ctx.step(
+                "base",
+                "The robot's base transform: frame 0 seen from the base",
+                "T_{\\mathrm{base}}",
+                m.base,
+                None,
+            )
+        )
+    for k, (kind, value) in enumerate(zip(m.kinds, m.axis_value, strict=True)):
+        A = multiply(multiply(m.parent_joint[k], _axis(kind, value)), m.joint_child[k])
+        formula = ""
+        if dh:
+            formula = (
+                ": Rz(θ) Tz(d) Tx(a) Rx(α)"
+                if m.robot.convention == "standard"
+                else ": Rx(α) Tx(a) Rz(θ) Tz(d)"
+            )
+        out.append(
+            ctx.step(
+                f"A{k + 1}",
+                f"A{_sub(k + 1)} = {_sup(k)}T{_sub(k + 1)}, the {what} of joint {k + 1}{formula}",
+                f"A_{{{k + 1}}}",
+                A,
+                m.axis_joint[k],
+            )
+        )
+    if not _is_identity(m.tool):
+        n = len(m.kinds)
+        out.append(
+            ctx.step(
+                "Atool",
+                f"The tool transform: the tool frame seen from frame {n}",
+                f"{{}}^{{{n}}}T_{{\\mathrm{{tool}}}}",
+                m.tool,
+                None,
+            )
+        )
+    for k in range(len(m.kinds)):
+        title = f"⁰T{_sub(k + 1)} = " + (" ".join(f"A{_sub(i + 1)}" for i in range(k + 1)) if k else "A₁")
+        if not _is_identity(m.base):
+            title = title.replace("= ", "= T_base ", 1)
+        out.append(
+            ctx.step(
+                f"T0_{k + 1}",
+                title + f": frame {k + 1} in the base frame",
+                f"{{}}^{{0}}T_{{{k + 1}}}",
+                F.link[k],
+                m.axis_joint[k],
+            )
+        )
+    if not _is_identity(m.tool):
+        out.append(
+            ctx.step(
+                "T0_tool",
+                f"⁰T_tool = ⁰T{_sub(len(m.kinds))} · {_sup(len(m.kinds))}T_tool: the tool pose "
+                "(pₙ is its origin)",
+                "{}^{0}T_{\\mathrm{tool}}",
+                F.tool,
+                None,
+            )
+        )
+    return out
+
+
+def _axis(kind: str, value: sp.Expr) -> sp.Matrix:
+    from ..chain import axis_motion
+
+    return axis_motion(kind, value)
+
+
+_SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+_SUP = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def _sub(i: int) -> str:
+    return str(i).translate(_SUB)
+
+
+def _sup(i: int) -> str:
+    return str(i).translate(_SUP)
+
+
+def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
+    det = determinant(robot, symbolic_params=symbolic_params, deadline=ctx.deadline)
+    if det.expr is None:
+        ctx.notes.extend(det.notes or ("det J was not computed within the time limit",))
+        return None
+    names: dict[tuple[int, ...], str] = {(0, 1, 2): "the position rows", (3, 4, 5): "the orientation rows"}
+    rows = "all six rows" if len(det.rows) == 6 else names.get(det.rows, "the task rows")
+    words = "; ".join(_set_words(s) for s in det.singular_sets) or "none: J never loses rank"
+    kind = "det(J Jᵀ)" if det.gram else "det J"
+    title = f"{kind} of {rows}, factored. Singular where a factor vanishes: {words}"
+    return Step(
+        "detJ",
+        title,
+        det_latex_label(det.rows, det.gram, robot.dof),
+        sp.Matrix([[det.expr]]),
+        None,
+        ctx.model,
+        "result",
+        notes=tuple(det.notes),
+        singular=det.singular_sets,
+    )
+
+
+_ROW_LATEX = ("v_{x}", "v_{y}", "v_{z}", "\\omega_{x}", "\\omega_{y}", "\\omega_{z}")
+
+
+def det_latex_label(rows: tuple[int, ...], gram: bool, dof: int) -> str:
+    """The LaTeX label of a determinant: ``\\det J``, ``\\det J_{v}``, ``\\det(J J^{T})`` …"""
+    blocks: dict[tuple[int, ...], str] = {(0, 1, 2): "v", (3, 4, 5): "\\omega"}
+    if len(rows) == 6:
+        J = "J"
+    else:
+        J = "J_{" + blocks.get(tuple(rows), "(" + ", ".join(_ROW_LATEX[r] for r in rows) + ")") + "}"
+    if not gram:
+        return f"\\det {J}"
+    return f"\\det({J} {J}^{{T}})" if len(rows) < dof else f"\\det({J}^{{T}} {J})"
+
+
+def _set_words(s) -> str:
+    name = {"wrist": "wrist singularity", "elbow": "elbow singularity", "shoulder": "shoulder singularity"}
+    text = f"{sp.sstr(s.factor)} = 0"
+    if s.solutions is not None and len(s.joints) == 1:
+        text += f" (at {s.joints[0]} ∈ {{{', '.join(sp.sstr(v) for v in s.solutions)}}})"
+    return text + (f", {name[s.kind]}" if s.kind else "")
+
+
+@functools.lru_cache(maxsize=32)
+def _cached(
+    robot: Robot, method: str, frame: str, symbolic_params: bool, timeout: float | None
+) -> tuple[Step, ...]:
+    return _build(robot, method, frame, symbolic_params, Deadline(timeout))
+
+
+def _build(
+    robot: Robot, method: str, frame: str, symbolic_params: bool, deadline: Deadline
+) -> tuple[Step, ...]:
+    model = build_model(robot, symbolic_params)
+    F, _ = frames_within(model, deadline)
+    ctx = Context(model, F, deadline, frame)
+    steps = _transform_steps(ctx)
+    own, J, axes = METHOD_STEPS[method](ctx)
+    steps += own
+    if axes != frame:  # Whitney and differentiation give J in the base axes, force propagation in the tool's
+        what = {"base": "the base axes: the columns side by side", "tool": "the tool axes"}[axes]
+        lhs = {"base": "J_{\\mathrm{base}}", "tool": "J_{\\mathrm{tool}}"}[axes]
+        steps.append(ctx.step(f"J_{axes}", f"J in {what}", lhs, J, None, "result"))
+        R = F.tool[:3, :3]
+        J = rotate_rows(J, R.T if frame == "tool" else R)
+    title = {
+        "base": "J: the columns side by side, rows [v; ω] in the base axes (v: velocity of the tool origin)",
+        "tool": "J in the tool axes: blockdiag(Rᵀ, Rᵀ) J_base, R the tool's rotation",
+    }[frame]
+    if method == "propagation":
+        title = "J: the coefficients of q̇ in [v; ω]" + (" (base axes)" if frame == "base" else " (tool axes)")
+    if method == "force" and frame == "base":
+        title = "J = blockdiag(R, R) J_tool, R the tool's rotation: rows [v; ω] in the base axes"
+    steps.append(ctx.step("J", title, "J" if frame == "base" else "J_{\\mathrm{tool}}", J, None, "result"))
+    det = _det_step(ctx, robot, symbolic_params) if frame == "base" else None
+    if det is not None:
+        steps.append(det)
+    if ctx.notes:
+        last = steps[-1]
+        steps[-1] = dataclasses.replace(last, notes=tuple(dict.fromkeys((*last.notes, *ctx.notes))))
+    return tuple(steps)
+
+
+def derivation_steps(
+    robot: Robot,
+    method: Method,
+    frame: Literal["base", "tool"] = "base",
+    symbolic_params: bool = False,
+    timeout: float | None = DEFAULT_TIMEOUT,
+    *,
+    deadline: Deadline | None = None,
+) -> tuple[Step, ...]:
+    """The steps of one derivation of J (see the module docstring for the keys).
+
+    Args:
+        robot: Any robot: a DH table or a URDF chain (then the link and joint frames of the chain
+            take the place of the DH frames).
+        method: ``"whitney"``, ``"differentiation"``, ``"propagation"`` or ``"force"``.
+        frame: Axes of J's rows, ``"base"`` or ``"tool"`` (``"detJ"`` only for the base frame:
+            the determinant does not depend on the axes).
+        symbolic_params: DH lengths and offsets as symbols (the course's letters where the robot
+            file names them).
+        timeout: Simplification budget [s] shared by all steps; past it the remaining steps
+            stay exact and unsimplified (their notes say so). ``None``: no limit.
+        deadline: A deadline shared with other work (a handout); replaces ``timeout`` and is not
+            cached.
+
+    Raises:
+        SymbolicError: unknown method or frame, bad timeout, symbolic parameters without a DH table.
+    """
+    if method not in METHODS:
+        raise SymbolicError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    frame = check_frame(frame)
+    timeout = check_timeout(timeout)
+    if not isinstance(robot, Robot):
+        raise SymbolicError(f"expected a kinematics.Robot, got {type(robot).__name__}")
+    if deadline is not None:
+        return _build(robot, method, frame, bool(symbolic_params), deadline)
+    return _cached(robot, method, frame, bool(symbolic_params), timeout)

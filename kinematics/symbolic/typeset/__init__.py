@@ -1,0 +1,1 @@
+"""Typesetting symbolic J: printers (LaTeX, MathML, text), layout, escaping, code generation and exports."""

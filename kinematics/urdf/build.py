@@ -1,0 +1,140 @@
+"""A :class:`~kinematics.model.Robot` from a chosen URDF chain, and a regular start configuration.
+
+Fixed joints fold into the neighbouring transforms; each moving joint becomes
+an axis about its local z (its frame rotated so that z is the URDF axis).
+Mimic joints are axes driven by the joint they follow (transitively), with
+the combined multiplier and offset; a leader on a sibling branch (the other
+finger of a two-finger gripper) becomes an actuated joint of the chain that
+drives only its followers.
+
+A URDF names no configuration, so the robot gets a ``home``: zeros (clipped
+into the limits), nudged by small deterministic offsets until the task rows
+of J are well away from singular (σmin/σmax > :data:`HOME_MIN_RATIO`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..analysis import singular_values, task_rows
+from ..errors import UrdfError
+from ..model import Axis, Joint, NamedConfiguration, Robot
+from ..numeric import jacobian
+from ..transforms import rotation_z_to
+from .tree import ChainChoice, Tree
+from .xml import UrdfJoint
+
+__all__ = ["build_robot", "regular_home", "HOME_MIN_RATIO", "UNLIMITED"]
+
+_KIND = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic"}
+HOME_MIN_RATIO = 1e-3
+"""A start configuration is accepted when σmin/σmax of the task rows exceeds this."""
+UNLIMITED = 1e15
+"""A URDF limit of this magnitude or more (±1e16 is a common sentinel) means "unlimited"."""
+_NUDGES = (0.05, 0.1, 0.2, 0.35, 0.5, 0.8)  # [rad] or [m]: sizes of the offsets tried, in order
+_DIRECTIONS = 12
+_SPREAD = 256
+
+
+def _qlim(j: UrdfJoint) -> tuple[float, float] | None:
+    """Limits for sliders and sampling; ``None`` for continuous joints and sentinel or empty ranges."""
+    if j.type == "continuous" or j.lower is None or j.upper is None:
+        return None
+    lo, hi = j.lower, j.upper
+    if not (abs(lo) < UNLIMITED and abs(hi) < UNLIMITED):
+        return None
+    if lo > hi:
+        raise UrdfError(f"joint {j.name!r} (line {j.line}): <limit> lower={lo} is above upper={hi}")
+    return (lo, hi) if lo < hi else None
+
+
+def build_robot(tree: Tree, choice: ChainChoice, name: str, **meta: object) -> Robot:
+    """The robot of the chain ``choice`` in ``tree`` (no configurations yet).
+
+    Raises:
+        UrdfError: a floating or planar joint on the chain, no moving joint, a bad mimic.
+    """
+    for j in choice.path:
+        if j.type in ("floating", "planar"):
+            raise UrdfError(
+                f"joint {j.name!r} is {j.type}: only revolute, continuous, prismatic and fixed joints "
+                "form a serial arm"
+            )
+    drivers = tree.actuated(choice.path)
+    if not drivers:
+        raise UrdfError(
+            f"the chain from {choice.base_link!r} to {choice.tip_link!r} has no moving joint "
+            "(choose another tip_link)"
+        )
+    index = {d.name: i for i, d in enumerate(drivers)}
+    joints = tuple(Joint(d.name, _KIND[d.type], _qlim(d)) for d in drivers)  # type: ignore[arg-type]
+    axes = []
+    pending = np.eye(4)
+    for j in choice.path:
+        if not j.moving:
+            pending = pending @ j.origin
+            continue
+        d, mult, off = tree.driver(j)
+        if not (math.isfinite(mult) and math.isfinite(off)):
+            raise UrdfError(f"joint {j.name!r}: its mimic multiplier and offset overflow ({mult}, {off})")
+        A = np.eye(4)
+        A[:3, :3] = rotation_z_to(j.axis)
+        axes.append(
+            Axis(j.name, _KIND[j.type], index[d.name], mult, off, pending @ j.origin @ A, A.T.copy())  # type: ignore[arg-type]
+        )
+        pending = np.eye(4)
+    return Robot(name=name, joints=joints, axes=tuple(axes), tool=pending, **meta)  # type: ignore[arg-type]
+
+
+def _ratio(robot: Robot, Q: np.ndarray) -> np.ndarray:
+    """σmin/σmax of the task rows of J at each row of ``Q`` (0 where J vanishes)."""
+    s = singular_values(jacobian(robot, Q), task_rows(robot))
+    top = s[..., 0]
+    return np.divide(s[..., -1], top, out=np.zeros_like(top), where=top > 0)
+
+
+def regular_home(robot: Robot) -> tuple[np.ndarray, float]:
+    """A start configuration off the singular set, and its σmin/σmax.
+
+    Zeros clipped into the limits when that is regular; else the first of a fixed
+    sequence of nudges (growing sizes along fixed pseudo-random directions, clipped
+    into the limits) that is; else the first regular one of fixed pseudo-random
+    configurations spread over the limits; else the best of all these.
+    """
+    lim = robot.qlim
+    lo, hi = lim
+    q0 = np.clip(np.zeros(robot.dof), lo, hi)
+    r0 = float(_ratio(robot, q0[None])[0])
+    if r0 > HOME_MIN_RATIO:
+        return q0, r0
+    rng = np.random.default_rng(20261201)
+    directions = rng.normal(size=(_DIRECTIONS, robot.dof))
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    Q = np.concatenate([q0 + s * directions for s in _NUDGES])
+    Q = np.clip(Q, lo, hi)
+    r = _ratio(robot, Q)
+    good = np.flatnonzero(r > HOME_MIN_RATIO)
+    if not good.size:  # last resort: spread over the limits (±π or ±0.5 m where unlimited)
+        wide = np.where(np.array(robot.joint_types) == "revolute", np.pi, 0.5)
+        spread = rng.uniform(np.maximum(lo, -wide), np.minimum(hi, wide), size=(_SPREAD, robot.dof))
+        Q, r = np.concatenate([Q, spread]), np.concatenate([r, _ratio(robot, spread)])
+        good = np.flatnonzero(r > HOME_MIN_RATIO)
+    k = int(good[0]) if good.size else int(np.argmax(r))
+    if r[k] <= r0:
+        return q0, r0
+    return Q[k], float(r[k])
+
+
+def with_home(robot: Robot) -> Robot:
+    """``robot`` with a ``home`` configuration chosen by :func:`regular_home`."""
+    q, ratio = regular_home(robot)
+    text = (
+        f"Start pose: zero joint values nudged off the singular set (sigma_min/sigma_max = {ratio:.3g})"
+        if np.any(q != np.clip(np.zeros(robot.dof), *robot.qlim))
+        else f"Start pose: zero joint values (sigma_min/sigma_max = {ratio:.3g})"
+    )
+    home = NamedConfiguration("home", q, text)
+    return dataclasses.replace(robot, configurations=(home, *robot.configurations))
