@@ -265,10 +265,6 @@ class Ellipsoid:
         """The same ellipsoid with radii clipped to [0, cap] (for drawing)."""
         return Ellipsoid(self.axes, np.minimum(self.radii, cap))
 
-    def rotation(self) -> np.ndarray:
-        """The 3×3 rotation whose columns are the semi-axis directions (= ``axes``)."""
-        return self.axes
-
 
 def _three_row_svd(J: np.ndarray, part: Part | tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
     Js = select_rows(J, part)

@@ -171,11 +171,6 @@ class LinkVelocity:
         """ω in the frame's own axes (Craig's ⁱωᵢ)."""
         return self.R.T @ self.omega
 
-    @property
-    def v_own(self) -> np.ndarray:
-        """v in the frame's own axes (Craig's ⁱvᵢ)."""
-        return self.R.T @ self.v
-
 
 def _axis_rates(robot: Robot, qd: np.ndarray) -> np.ndarray:
     return np.array([ax.multiplier * qd[ax.joint_index] for ax in robot.axes])

@@ -18,7 +18,7 @@ import sympy as sp
 
 from ..model import SymbolicModel
 from ..singular import SingularSet
-from ..typeset.escape import latex_text, xml_text
+from ..typeset.escape import xml_text
 from ..typeset.layout import MATHML_WIDTH, mathml_lines, text_width, too_long
 from ..typeset.printing import Notation
 from ..typeset.render import MATH_STYLE
@@ -169,10 +169,6 @@ class Step:
         """The caption escaped for HTML."""
         return xml_text(self.title, 2000)
 
-    def title_latex(self) -> str:
-        """The caption escaped for LaTeX text."""
-        return latex_text(self.title, 2000)
-
     # ------------------------------------------------------------------ numbers
     @functools.cached_property
     def _function(self) -> Callable:
@@ -199,14 +195,6 @@ class Step:
 
 def _block(inner: str) -> str:
     return f'<math display="block" style="{MATH_STYLE}"><mrow>{inner}</mrow></math>'
-
-
-def _stack(lines: list[str]) -> str:
-    indent = '<mspace width="1em"/>'
-    rows = "".join(
-        f"<mtr><mtd>{line if k == 0 else indent + line}</mtd></mtr>" for k, line in enumerate(lines)
-    )
-    return f'<mtable columnalign="left" rowspacing="0.1em">{rows}</mtable>'
 
 
 _LHS_MML = {

@@ -58,12 +58,6 @@ def _terms(N: Notation, expr: sp.Expr) -> list[sp.Expr]:
     return N.ordered_terms(expr) if expr.is_Add else [expr]
 
 
-def _signed(N: Notation, term: sp.Expr, first: bool) -> str:
-    if term.could_extract_minus_sign():
-        return f"<mo>\u2212</mo>{N.mathml(-term)}"
-    return N.mathml(term) if first else f"<mo>+</mo>{N.mathml(term)}"
-
-
 def _pack(pieces: list[str], width: float) -> list[str]:
     lines: list[str] = []
     for p in pieces:
