@@ -19,10 +19,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 
+from .conventions import PART_ROWS, Part
 from .errors import ArrayError, OptionError
 from .model import Robot
 from .validation import finite_matrix, is_number, show
@@ -50,13 +50,6 @@ __all__ = [
     "part_rows",
 ]
 
-Part = Literal["full", "linear", "angular", "planar"]
-PART_ROWS: dict[str, tuple[int, ...]] = {
-    "full": (0, 1, 2, 3, 4, 5),
-    "linear": (0, 1, 2),
-    "angular": (3, 4, 5),
-    "planar": (0, 1, 5),
-}
 DEFAULT_RTOL = 1e-9
 """Relative tolerance: σ ≤ DEFAULT_RTOL · max(σmax, 1) counts as zero (rank, singularity)."""
 

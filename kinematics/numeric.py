@@ -9,10 +9,10 @@ processed in cache-sized chunks (the kernels are in :mod:`kinematics.kernel`).
 from __future__ import annotations
 
 import math
-from typing import Literal
 
 import numpy as np
 
+from .conventions import FRAMES, Frame
 from .errors import ConfigurationError, OptionError
 from .kernel import (
     Kernel,
@@ -40,8 +40,6 @@ __all__ = [
     "FRAMES",
 ]
 
-Frame = Literal["base", "tool"]
-FRAMES: tuple[Frame, ...] = ("base", "tool")
 _FAST_BOUND = min(MAX_ANGLE, MAX_LENGTH)
 _MAX_ABS = np.maximum.reduce
 

@@ -16,6 +16,7 @@ from typing import Literal, TypeVar
 
 import numpy as np
 
+from .conventions import TASKS, Task
 from .errors import RobotDefinitionError
 from .transforms import check_rigid_transform
 from .validation import (
@@ -49,10 +50,8 @@ __all__ = [
 _S = TypeVar("_S", bound=str)
 JointType = Literal["revolute", "prismatic"]
 Convention = Literal["standard", "modified"]
-Task = Literal["auto", "full", "linear", "angular", "planar"]
 JOINT_TYPES: tuple[JointType, ...] = ("revolute", "prismatic")
 CONVENTIONS: tuple[Convention, ...] = ("standard", "modified")
-TASKS: tuple[Task, ...] = ("auto", "full", "linear", "angular", "planar")
 
 
 def check_choice(value: object, allowed: Sequence[_S], where: str) -> _S:

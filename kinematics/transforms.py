@@ -7,11 +7,12 @@ frame *b* to frame *a*; angles are in radians, lengths in metres.
 from __future__ import annotations
 
 import math
+from typing import Literal, cast
 
 import numpy as np
 
-from .errors import RobotDefinitionError
-from .validation import MAX_LENGTH
+from .errors import OptionError, RobotDefinitionError
+from .validation import MAX_LENGTH, finite_array, show
 
 __all__ = [
     "rot_x",
@@ -20,6 +21,11 @@ __all__ = [
     "trans",
     "rpy_to_matrix",
     "matrix_to_rpy",
+    "EulerConvention",
+    "EULER_CONVENTIONS",
+    "check_euler_convention",
+    "euler_angles",
+    "euler_rotation",
     "rotation_z_to",
     "check_rigid_transform",
     "rotation_log",
@@ -53,17 +59,61 @@ def trans(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> np.ndarray:
 
 
 def rpy_to_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """3×3 rotation R = Rz(yaw) Ry(pitch) Rx(roll) (URDF's rpy convention) [rad]."""
-    return (rot_z(yaw) @ rot_y(pitch) @ rot_x(roll))[:3, :3]
+    """3×3 rotation R = Rz(yaw) Ry(pitch) Rx(roll) (URDF's rpy convention) [rad]: ZYX Euler angles."""
+    return euler_rotation(np.array([yaw, pitch, roll]), "zyx")
 
 
 def matrix_to_rpy(R: np.ndarray) -> np.ndarray:
-    """Inverse of :func:`rpy_to_matrix`: (roll, pitch, yaw) [rad], pitch in [-π/2, π/2]."""
-    R = np.asarray(R, dtype=float)
-    pitch = math.atan2(-R[2, 0], math.hypot(R[0, 0], R[1, 0]))
-    if math.hypot(R[0, 0], R[1, 0]) < 1e-12:  # gimbal lock: put everything in yaw
-        return np.array([0.0, pitch, math.atan2(-R[0, 1], R[1, 1])])
-    return np.array([math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
+    """Inverse of :func:`rpy_to_matrix`: (roll, pitch, yaw) [rad], pitch in [-π/2, π/2].
+
+    The ZYX :func:`euler_angles` in URDF's order (at gimbal lock all of the turn is in yaw).
+    """
+    return euler_angles(R, "zyx")[::-1].copy()
+
+
+EulerConvention = Literal["zyx", "zyz"]
+EULER_CONVENTIONS: tuple[EulerConvention, ...] = ("zyx", "zyz")
+"""Euler-angle conventions, named by the order of their rotations."""
+
+
+def check_euler_convention(convention: object) -> EulerConvention:
+    """``convention`` if it is one of :data:`EULER_CONVENTIONS`, else an OptionError listing them."""
+    if isinstance(convention, str) and convention in ("zyx", "zyz"):
+        return cast(EulerConvention, convention)
+    raise OptionError(f"Euler convention must be one of 'zyx', 'zyz', got {show(convention)}")
+
+
+def euler_angles(R: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
+    """Euler angles (3,) [rad] of the rotation matrix R (3×3) in ``convention``.
+
+    ZYX: pitch in [-π/2, π/2]; ZYZ: θ in [0, π]. At the representation
+    singularity the split between the first and last angle is arbitrary
+    (all of it is put in the first).
+    """
+    check_euler_convention(convention)
+    R = finite_array(R, ((3, 3), (4, 4)), "R")[:3, :3]
+    if convention == "zyx":
+        cb = math.hypot(R[0, 0], R[1, 0])
+        pitch = math.atan2(-R[2, 0], cb)
+        if cb < 1e-12:
+            return np.array([math.atan2(-R[0, 1], R[1, 1]), pitch, 0.0])
+        return np.array([math.atan2(R[1, 0], R[0, 0]), pitch, math.atan2(R[2, 1], R[2, 2])])
+    st = math.hypot(R[0, 2], R[1, 2])
+    theta = math.atan2(st, R[2, 2])
+    if st < 1e-12:
+        return np.array([math.atan2(R[1, 0], R[0, 0]), theta, 0.0])
+    return np.array([math.atan2(R[1, 2], R[0, 2]), theta, math.atan2(R[2, 1], -R[2, 0])])
+
+
+def euler_rotation(angles: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
+    """The rotation matrix (3, 3) of Euler angles (3,) [rad]: the inverse of :func:`euler_angles`.
+
+    ZYX: Rz(yaw) Ry(pitch) Rx(roll); ZYZ: Rz(φ) Ry(θ) Rz(ψ).
+    """
+    convention = check_euler_convention(convention)
+    a, b, c = (float(v) for v in finite_array(angles, ((3,),), "angles"))
+    last = rot_x(c) if convention == "zyx" else rot_z(c)
+    return (rot_z(a) @ rot_y(b) @ last)[:3, :3]
 
 
 def rotation_z_to(axis: np.ndarray) -> np.ndarray:

@@ -36,6 +36,7 @@ __all__ = [
     "joint_limits",
     "frozen_array",
     "finite_matrix",
+    "finite_array",
 ]
 
 MAX_LENGTH = 1e15
@@ -186,3 +187,18 @@ def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> np.nda
     if not np.isfinite(A).all():
         raise ArrayError(f"{what} contains NaN or infinity")
     return A
+
+
+def finite_array(x: object, shapes: tuple[tuple[int, ...], ...], what: str) -> np.ndarray:
+    """``x`` as a float array of one of ``shapes`` with finite entries, or ArrayError naming ``what``."""
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError, OverflowError):
+        raise ArrayError(f"{what} must be an array of numbers, got {show(x)}") from None
+    if a.dtype.kind not in "iuf" or a.shape not in shapes:
+        expected = " or ".join(str(s) for s in shapes)
+        raise ArrayError(f"{what} must be numbers of shape {expected}, got {show(x)}")
+    a = a.astype(float, copy=False)
+    if not np.isfinite(a).all():
+        raise ArrayError(f"{what} contains NaN or infinity")
+    return a

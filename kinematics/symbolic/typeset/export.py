@@ -16,6 +16,7 @@ from collections.abc import Callable
 
 import sympy as sp
 
+from ...conventions import ROW_ASCII
 from ...errors import JacobianLabError
 from ...model import Robot
 from .. import build_model, derive, determinant, latex_parts, mathml_parts, python_source
@@ -29,7 +30,6 @@ from .render import MATH_STYLE, notation_for
 __all__ = ["FORMATS", "ExportError", "export"]
 
 FORMATS = ("latex", "mathml", "python", "json")
-_ROWS = ("vx", "vy", "vz", "wx", "wy", "wz")
 
 
 class ExportError(JacobianLabError):
@@ -123,7 +123,7 @@ def _json(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, p
         "source": robot.source,
         "fingerprint": robot.fingerprint(),
         "frame": frame,
-        "rows": list(_ROWS),
+        "rows": list(ROW_ASCII),
         "joints": [
             {"symbol": str(s), "name": j.name, "kind": j.kind, "unit": "rad" if j.kind == "revolute" else "m"}
             for s, j in zip(d.q, robot.joints, strict=True)
@@ -138,7 +138,7 @@ def _json(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, p
         ],
         "latex": {"matrix": latex, "legend": N.latex_legend(), "not_typeset": [list(ij) for ij in skipped]},
         "determinant": {
-            "rows": [_ROWS[r] for r in det.rows],
+            "rows": [ROW_ASCII[r] for r in det.rows],
             "kind": "det(J J^T)" if det.gram else "det J",
             "expr": None if det.expr is None else str(det.expr),
             "singular_sets": [
