@@ -25,6 +25,7 @@ import robots
 from kinematics import NamedConfiguration, Robot
 from kinematics.analysis import task_rows
 from kinematics.errors import RobotDefinitionError
+from kinematics.parts import CONVENTIONS, JOINT_TYPES
 from kinematics.urdf import to_urdf
 
 from .ranges import joint_ranges
@@ -157,7 +158,7 @@ def rows_si(table: Table) -> list[dict[str, object]]:
     """
     out: list[dict[str, object]] = []
     for i, r in enumerate(table.rows, start=1):
-        if r.joint not in ("revolute", "prismatic"):
+        if r.joint not in JOINT_TYPES:
             raise TableError(i, "joint", f"expected revolute or prismatic, got {str(r.joint)[:30]!r}")
         v = {k: _number(getattr(r, k), i, k) for k in ("a", "alpha", "d", "theta", "lo", "hi")}
         if v["lo"] > v["hi"]:
@@ -184,7 +185,7 @@ def build(table: Table) -> Robot:
     Raises:
         TableError: a bad field, or a table :meth:`Robot.from_dh` rejects (its message kept).
     """
-    if table.convention not in ("standard", "modified"):
+    if table.convention not in CONVENTIONS:
         raise TableError(0, "convention", f"expected standard or modified, got {table.convention!r}")
     rows = rows_si(table)
     same_joints = tuple(r.joint for r in table.rows) == table.kinds
