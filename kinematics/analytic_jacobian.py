@@ -21,7 +21,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
+from .conventions import FloatArray
 from .errors import ConfigurationError, RepresentationSingularityError
 from .model import Robot
 from .motion.ik import solve
@@ -45,7 +47,7 @@ EULER_TOL = 1e-6
 """|det B(φ)| below this is a representation singularity."""
 
 
-def euler_rate_matrix(angles: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
+def euler_rate_matrix(angles: npt.ArrayLike, convention: EulerConvention = "zyx") -> FloatArray:
     """B(φ) (3×3) with ω = B(φ) φ̇, ω in the base frame.
 
     Its columns are the axes of the three elementary rotations, each rotated
@@ -70,14 +72,14 @@ class AnalyticParts:
         J_A: blockdiag(I, B(φ)⁻¹) J (6, n), rows [v; φ̇]; ``None`` at the representation singularity.
     """
 
-    phi: np.ndarray
-    B: np.ndarray
+    phi: FloatArray
+    B: FloatArray
     det_B: float
-    J_A: np.ndarray | None
+    J_A: FloatArray | None
 
 
 def analytic_parts(
-    R_base_tool: np.ndarray, J: np.ndarray, convention: EulerConvention = "zyx", tol: float = EULER_TOL
+    R_base_tool: FloatArray, J: FloatArray, convention: EulerConvention = "zyx", tol: float = EULER_TOL
 ) -> AnalyticParts:
     """φ, B(φ), det B and J_A for a tool orientation and its base-frame Jacobian J (6, n) already at
     hand (an app redrawing on every move has both); ``J_A`` is ``None`` where |det B| < ``tol``."""
@@ -93,8 +95,8 @@ def analytic_parts(
 
 
 def analytic_jacobian(
-    robot: Robot, q: object, convention: EulerConvention = "zyx", tol: float = EULER_TOL
-) -> np.ndarray:
+    robot: Robot, q: npt.ArrayLike, convention: EulerConvention = "zyx", tol: float = EULER_TOL
+) -> FloatArray:
     """Analytic Jacobian J_A (6, n), rows [v; φ̇] with φ the tool's Euler angles in the base frame.
 
     Raises:
@@ -117,8 +119,8 @@ def analytic_jacobian(
 
 
 def representation_singularity(
-    robot: Robot, q: object, convention: EulerConvention, lo: np.ndarray, hi: np.ndarray
-) -> np.ndarray:
+    robot: Robot, q: npt.ArrayLike, convention: EulerConvention, lo: FloatArray, hi: FloatArray
+) -> FloatArray:
     """Joint values near ``q`` (within [lo, hi]) where the tool keeps its position and its Euler angles
     are singular: ZYX pitch = ±90° (the tool's x axis along ∓z of the base), ZYZ θ = 0 or 180°
     (the tool's z axis along ±z of the base). Newton's method from ``q``; the closer solution wins.
@@ -131,7 +133,7 @@ def representation_singularity(
     T_tool = fk(robot, q)
     a, _, c = euler_angles(T_tool[:3, :3], convention)
     middles = (math.pi / 2, -math.pi / 2) if convention == "zyx" else (0.0, math.pi)
-    best: np.ndarray | None = None
+    best: FloatArray | None = None
     for b in middles:
         T = np.array(T_tool, dtype=float)
         T[:3, :3] = euler_rotation(np.array([a, b, c]), convention)

@@ -12,14 +12,18 @@ ASCII for file formats, HTML, LaTeX and MathML).
 * **Tasks**: the rows of J a robot is meant to control (:data:`PART_ROWS`); ``"auto"``
   lets :func:`kinematics.analysis.task_rows` choose from the robot's shape.
 
-This module imports nothing from the rest of the package, so anything may import it.
+This module imports nothing from the rest of the package (only NumPy), so anything may import it.
 """
 
 from __future__ import annotations
 
 from typing import Literal
 
+import numpy as np
+from numpy.typing import NDArray
+
 __all__ = [
+    "FloatArray",
     "Frame",
     "FRAMES",
     "Task",
@@ -33,6 +37,11 @@ __all__ = [
     "ROW_MATHML",
     "WRENCH_TEXT",
 ]
+
+FloatArray = NDArray[np.float64]
+"""What the numeric functions return: float arrays (shapes in each docstring: (n,) for one
+configuration, (4, 4) transforms, (6, n) Jacobians, with a leading (N, …) for batches). They take
+anything :data:`numpy.typing.ArrayLike` and check it."""
 
 Frame = Literal["base", "tool"]
 FRAMES: tuple[Frame, ...] = ("base", "tool")

@@ -27,6 +27,7 @@ from typing import Any, Generic, TypeVar
 
 import numpy as np
 
+from .conventions import FloatArray
 from .errors import RobotDefinitionError
 from .parts import JOINT_TYPES, Axis, Convention, DHRow, Joint, check_choice
 from .transforms import rot_x, rot_z, trans
@@ -128,7 +129,7 @@ class MatrixOps(Generic[M]):
     mul: Callable[[M, M], M]
 
 
-NUMPY_OPS: MatrixOps[np.ndarray] = MatrixOps(
+NUMPY_OPS: MatrixOps[FloatArray] = MatrixOps(
     eye=lambda: np.eye(4),
     rot_x=rot_x,
     rot_z=rot_z,

@@ -16,7 +16,7 @@ from typing import Literal, TypeVar
 
 import numpy as np
 
-from .conventions import TASKS, Task
+from .conventions import TASKS, FloatArray, Task
 from .errors import RobotDefinitionError
 from .transforms import check_rigid_transform
 from .validation import (
@@ -129,8 +129,8 @@ class Axis:
     joint_index: int
     multiplier: float
     offset: float
-    T_parent_joint: np.ndarray
-    T_joint_child: np.ndarray
+    T_parent_joint: FloatArray
+    T_joint_child: FloatArray
     corners: tuple[tuple[float, float, float], ...] = ()
 
     def __post_init__(self) -> None:
@@ -183,7 +183,7 @@ class NamedConfiguration:
     """
 
     name: str
-    q: np.ndarray
+    q: FloatArray
     description: str = ""
     singular: str = ""
 

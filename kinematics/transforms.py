@@ -10,7 +10,9 @@ import math
 from typing import Literal, cast
 
 import numpy as np
+import numpy.typing as npt
 
+from .conventions import FloatArray
 from .errors import OptionError, RobotDefinitionError
 from .validation import MAX_LENGTH, finite_array, show
 
@@ -33,42 +35,42 @@ __all__ = [
 ]
 
 
-def rot_x(angle: float) -> np.ndarray:
+def rot_x(angle: float) -> FloatArray:
     """4×4 rotation about x by ``angle`` [rad]."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
 
 
-def rot_y(angle: float) -> np.ndarray:
+def rot_y(angle: float) -> FloatArray:
     """4×4 rotation about y by ``angle`` [rad]."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, 0, s, 0], [0, 1, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1.0]])
 
 
-def rot_z(angle: float) -> np.ndarray:
+def rot_z(angle: float) -> FloatArray:
     """4×4 rotation about z by ``angle`` [rad]."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
 
 
-def trans(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> np.ndarray:
+def trans(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> FloatArray:
     """4×4 pure translation by (x, y, z) [m]."""
     T = np.eye(4)
     T[:3, 3] = (x, y, z)
     return T
 
 
-def rpy_to_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+def rpy_to_matrix(roll: float, pitch: float, yaw: float) -> FloatArray:
     """3×3 rotation R = Rz(yaw) Ry(pitch) Rx(roll) (URDF's rpy convention) [rad]: ZYX Euler angles."""
     return euler_rotation(np.array([yaw, pitch, roll]), "zyx")
 
 
-def matrix_to_rpy(R: np.ndarray) -> np.ndarray:
+def matrix_to_rpy(R: npt.ArrayLike) -> FloatArray:
     """Inverse of :func:`rpy_to_matrix`: (roll, pitch, yaw) [rad], pitch in [-π/2, π/2].
 
     The ZYX :func:`euler_angles` in URDF's order (at gimbal lock all of the turn is in yaw).
     """
-    return euler_angles(R, "zyx")[::-1].copy()
+    return cast(FloatArray, euler_angles(R, "zyx")[::-1].copy())
 
 
 EulerConvention = Literal["zyx", "zyz"]
@@ -78,12 +80,12 @@ EULER_CONVENTIONS: tuple[EulerConvention, ...] = ("zyx", "zyz")
 
 def check_euler_convention(convention: object) -> EulerConvention:
     """``convention`` if it is one of :data:`EULER_CONVENTIONS`, else an OptionError listing them."""
-    if isinstance(convention, str) and convention in ("zyx", "zyz"):
-        return cast(EulerConvention, convention)
+    if isinstance(convention, str) and convention in EULER_CONVENTIONS:
+        return convention
     raise OptionError(f"Euler convention must be one of 'zyx', 'zyz', got {show(convention)}")
 
 
-def euler_angles(R: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
+def euler_angles(R: npt.ArrayLike, convention: EulerConvention = "zyx") -> FloatArray:
     """Euler angles (3,) [rad] of the rotation matrix R (3×3) in ``convention``.
 
     ZYX: pitch in [-π/2, π/2]; ZYZ: θ in [0, π]. At the representation
@@ -105,7 +107,7 @@ def euler_angles(R: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarr
     return np.array([math.atan2(R[1, 2], R[0, 2]), theta, math.atan2(R[2, 1], -R[2, 0])])
 
 
-def euler_rotation(angles: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
+def euler_rotation(angles: npt.ArrayLike, convention: EulerConvention = "zyx") -> FloatArray:
     """The rotation matrix (3, 3) of Euler angles (3,) [rad]: the inverse of :func:`euler_angles`.
 
     ZYX: Rz(yaw) Ry(pitch) Rx(roll); ZYZ: Rz(φ) Ry(θ) Rz(ψ).
@@ -116,7 +118,7 @@ def euler_rotation(angles: np.ndarray, convention: EulerConvention = "zyx") -> n
     return (rot_z(a) @ rot_y(b) @ last)[:3, :3]
 
 
-def rotation_z_to(axis: np.ndarray) -> np.ndarray:
+def rotation_z_to(axis: FloatArray) -> FloatArray:
     """A 3×3 rotation whose third column is the unit vector ``axis``.
 
     Used to make every joint move about its local z axis: a URDF joint with
@@ -134,7 +136,7 @@ def rotation_z_to(axis: np.ndarray) -> np.ndarray:
     return np.column_stack([x, y, u])
 
 
-def check_rigid_transform(T: object, what: str, tol: float = 1e-6) -> np.ndarray:
+def check_rigid_transform(T: npt.ArrayLike, what: str, tol: float = 1e-6) -> FloatArray:
     """Return ``T`` as a float 4×4 rigid transform, or raise naming ``what`` and the defect.
 
     Checks: numbers only (no strings, bools or objects), shape (4, 4), finite, last row
@@ -178,13 +180,13 @@ def _dtype_text(dtype: np.dtype) -> str:
     return names.get(dtype.kind, f"dtype {dtype}")
 
 
-def skew(w: np.ndarray) -> np.ndarray:
+def skew(w: FloatArray) -> FloatArray:
     """3×3 skew-symmetric matrix [w]× with [w]× v = w × v."""
     x, y, z = w
     return np.array([[0, -z, y], [z, 0, -x], [-y, x, 0.0]])
 
 
-def rotation_log(R: np.ndarray) -> np.ndarray:
+def rotation_log(R: npt.ArrayLike) -> FloatArray:
     """Rotation vector (axis · angle) [rad] of a 3×3 rotation matrix, angle in [0, π]."""
     R = np.asarray(R, dtype=float)
     cos_angle = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)

@@ -21,6 +21,7 @@ from typing import TypeGuard
 
 import numpy as np
 
+from .conventions import FloatArray
 from .errors import ArrayError, RobotDefinitionError
 
 __all__ = [
@@ -158,14 +159,14 @@ def joint_limits(qlim: object, where: str) -> tuple[float, float] | None:
     return (lo, hi)
 
 
-def frozen_array(a: object, dtype: type = float) -> np.ndarray:
+def frozen_array(a: object, dtype: type = float) -> FloatArray:
     """A read-only copy of ``a`` as an array of ``dtype``."""
-    out: np.ndarray = np.array(a, dtype=dtype)
+    out: FloatArray = np.array(a, dtype=dtype)
     out.flags.writeable = False
     return out
 
 
-def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> np.ndarray:
+def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> FloatArray:
     """``J`` as a finite float array of shape (m, n) or a batch (N, m, n), or ArrayError.
 
     Args:
@@ -189,7 +190,7 @@ def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> np.nda
     return A
 
 
-def finite_array(x: object, shapes: tuple[tuple[int, ...], ...], what: str) -> np.ndarray:
+def finite_array(x: object, shapes: tuple[tuple[int, ...], ...], what: str) -> FloatArray:
     """``x`` as a float array of one of ``shapes`` with finite entries, or ArrayError naming ``what``."""
     try:
         a = np.asarray(x)

@@ -180,7 +180,12 @@ def _generic_latex(name: str) -> str:
     return f"{head}_{{{digits}}}" if digits else head
 
 
-def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list, list] | None:
+DHValues = tuple[sp.Expr, sp.Expr, sp.Expr, sp.Expr]
+"""(θ, d, a, α) of one DH row, the joint symbol in θ or d."""
+_DHAxes = tuple[list[sp.Matrix], list[sp.Matrix], list[sp.Expr], list[DHValues]]
+
+
+def _dh_axes(robot: Robot, P: _Params) -> _DHAxes | None:
     """(parent_joint, joint_child, offsets, (theta, d, a, alpha) per row) rebuilt from the DH table;
     None if it does not match the axes."""
     if robot.dh is None or len(robot.axes) != len(robot.dh):
@@ -260,7 +265,7 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
             f"robot {robot.name!r}: symbolic parameters need a robot built from a DH table "
             "(this one is a URDF or hand-built chain); use symbolic_params=False"
         )
-    table: tuple = ()
+    table: tuple[DHValues, ...] = ()
     if dh is not None:
         pj, jc, offsets, rows = dh
         values = [q[ax.joint_index] + off for ax, off in zip(robot.axes, offsets, strict=True)]

@@ -126,7 +126,7 @@ class Handout:
     method_steps: dict[str, list[Step]]
     result: list[Step]
     example: Example
-    names: dict = field(default_factory=dict)
+    names: dict[sp.Symbol, str] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     same_J: bool = True
 

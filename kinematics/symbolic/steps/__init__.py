@@ -44,7 +44,7 @@ from ...model import Robot
 from ..chain import frames_within, multiply
 from ..core import DEFAULT_TIMEOUT, check_timeout
 from ..model import SymbolicError, build_model, check_frame
-from ..singular import determinant
+from ..singular import SingularSet, determinant
 from ..trig import Deadline
 from ..typeset.render import det_label
 from .methods import METHOD_STEPS, Context, rotate_rows
@@ -78,7 +78,7 @@ def dh_rows(robot: Robot, symbolic_params: bool = False) -> tuple[DHRow, ...]:
 
 
 def _is_identity(T: sp.Matrix) -> bool:
-    return T == sp.eye(4)
+    return bool(T == sp.eye(4))
 
 
 def _transform_steps(ctx: Context) -> list[Step]:
@@ -193,7 +193,7 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
     )
 
 
-def _set_words(s) -> str:
+def _set_words(s: SingularSet) -> str:
     name = {"wrist": "wrist singularity", "elbow": "elbow singularity", "shoulder": "shoulder singularity"}
     text = f"{sp.sstr(s.factor)} = 0"
     if s.solutions is not None and len(s.joints) == 1:

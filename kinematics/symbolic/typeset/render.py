@@ -103,7 +103,7 @@ def det_label(rows: tuple[int, ...], gram: bool, dof: int, latex: bool) -> str:
 
 def _matrix(
     N: Notation, M: sp.Matrix, latex: bool, deadline: Deadline | None, wrap: bool
-) -> tuple[str, list]:
+) -> tuple[str, list[tuple[int, int]]]:
     if latex:
         return latex_matrix(N, M, deadline)
     return mathml_matrix(N, M, deadline, MATHML_WIDTH if wrap else None)
