@@ -15,8 +15,9 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 PACKAGES = ("app", "kinematics", "robots")
 TOP = ("app", "kinematics", "robots", "tests", "bench", "docs", "examples", ".ci")
 
-PATH_RE = re.compile(r"(?<![\w./-])((?:%s)/[\w./-]*[\w/])" % "|".join(re.escape(t) for t in TOP))
-DOTTED_RE = re.compile(r"(?<![\w./-])((?:%s)(?:\.[A-Za-z_]\w*)+)" % "|".join(PACKAGES))
+_TOP = "|".join(re.escape(t) for t in TOP)
+PATH_RE = re.compile(r"(?<![\w./-])((?:" + _TOP + r")/[\w./-]*[\w/])")
+DOTTED_RE = re.compile(r"(?<![\w./-])((?:" + "|".join(PACKAGES) + r")(?:\.[A-Za-z_]\w*)+)")
 LINK_RE = re.compile(r"\]\(([^)#\s]+)(?:#[^)]*)?\)")
 
 
