@@ -257,4 +257,3 @@ def serve_workers(workers: int, lab_options: dict[str, Any], host: str, port: in
         signals.restore()
         pool.stop()
     return 0
-
