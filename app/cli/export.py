@@ -20,8 +20,9 @@ from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.typeset.ccode import c_identifier
 from kinematics.symbolic.typeset.export import FORMATS, ExportError, export, export_c, export_matlab
+from kinematics.urdf import parse_xacro_args
 
-__all__ = ["main", "add_chain_arguments", "StderrProgress", "write_output"]
+__all__ = ["main", "add_chain_arguments", "xacro_arguments", "StderrProgress", "write_output"]
 
 
 def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
@@ -35,6 +36,22 @@ def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
         help="URDF only: link the chain ends at (default: tool0, *_tcp, flange, ee_link, *hand*, "
         "else the leaf with the most moving joints)",
     )
+    parser.add_argument(
+        "--xacro-arg",
+        metavar="NAME:=VALUE",
+        action="append",
+        default=[],
+        help="xacro only: an argument of the .xacro file (repeat for several)",
+    )
+
+
+def xacro_arguments(args: argparse.Namespace) -> dict[str, str] | None:
+    """The ``--xacro-arg`` values as a mapping (``None`` when none were given).
+
+    Raises:
+        UrdfError: a value without ``:=``.
+    """
+    return parse_xacro_args(args.xacro_arg) if args.xacro_arg else None
 
 
 class StderrProgress:
@@ -124,7 +141,9 @@ def main(argv: list[str] | None = None) -> int:
         return int(exc.code or 0)
     files: list[tuple[str, str | None]] = []
     try:
-        robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        robot = robots.load(
+            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
+        )
         options = (args.frame, args.symbolic_params)
         with StderrProgress() as progress:
             if args.output and args.format == "c":  # FILE.c and its header FILE.h
