@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import io
 import logging
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,7 +21,7 @@ import numpy as np
 import viser
 
 from kinematics import Robot, joint_frames, link_frames
-from kinematics.urdf import mesh_filename_handler
+from kinematics.urdf import is_xacro, mesh_filename_handler, read_description
 
 from ...core.snapshot import Snapshot
 from ...core.state import Options
@@ -301,8 +302,11 @@ def _load_urdf_meshes(
         from viser.extras import ViserUrdf
 
         path = Path(robot.urdf_path)
+        source: str | io.BytesIO = str(path)
+        if is_xacro(path):  # the URDF the xacro file expanded to (its last expansion, with its arguments)
+            source = io.BytesIO(read_description(path))
         urdf = yourdfpy.URDF.load(
-            str(path),
+            source,
             build_scene_graph=True,
             load_meshes=True,
             filename_handler=mesh_filename_handler(path),
