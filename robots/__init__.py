@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from kinematics import NamedConfiguration, Robot
+from kinematics import NamedConfiguration, Robot, robot_from_urdf
 from kinematics.errors import RobotDefinitionError, UnknownRobotError
 from kinematics.files import decode_utf8, read_user_file
 from kinematics.transforms import rpy_to_matrix
@@ -144,7 +144,7 @@ def load_file(path: str | Path, base_link: str | None = None, tip_link: str | No
     """Build a robot from a ``.toml`` robot file or a ``.urdf`` file (base and tip links: URDF only)."""
     path = Path(path)
     if path.suffix.lower() == ".urdf":
-        return Robot.from_urdf(str(path), base_link=base_link, tip_link=tip_link)
+        return robot_from_urdf(path, base_link=base_link, tip_link=tip_link)
     if path.suffix.lower() != ".toml":
         raise RobotDefinitionError(f"{path.name}: expected a .toml robot file or a .urdf file")
     _no_links(path, base_link, tip_link)
