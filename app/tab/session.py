@@ -71,7 +71,7 @@ from ..services.catalog import RobotCatalog
 from ..services.classroom import Classroom, Role
 from ..services.renderer import Renderer
 from ..services.symbolic_service import SymbolicService, SymbolicUnavailable
-from ..views.camera import FROM_ABOVE, TabCamera, facing
+from ..views.camera import FROM_ABOVE, TabCamera, facing, lost_axes
 from ..views.panel import PanelView
 from ..views.scene import SceneView
 from ..viser_adapter import capture_scene, replay_scene
@@ -385,6 +385,8 @@ class ClientSession:
         if rebuild and not edited:
             direction = FROM_ABOVE if state.robot.planar else facing(self.scene.extent)
             self.camera.frame(self.scene.extent, pad, direction, glide=False)
+        elif jump and snap.losses and not state.robot.planar:
+            self.camera.frame_across(self.scene.extent, pad, lost_axes(snap.losses))
         elif jump or edited:
             self.camera.frame_if_needed(self.scene.extent, pad)
         self._tell_subscribers(state, snap)

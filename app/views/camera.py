@@ -24,6 +24,9 @@ __all__ = [
     "needs_framing",
     "framing",
     "facing",
+    "across",
+    "lost_axes",
+    "ACROSS_DEGREES",
     "CameraMove",
     "TabCamera",
     "THREE_QUARTER",
@@ -135,6 +138,52 @@ def facing(points: np.ndarray) -> np.ndarray:
     return d
 
 
+ACROSS_DEGREES = 60.0
+"""At a singularity the view makes at least this angle with every lost direction (when it can)."""
+
+
+def lost_axes(losses) -> np.ndarray:
+    """The directions (k, 3) a singular configuration's picture is about: every lost translation and
+    lost rotation axis (the flattened axes of the ellipsoids that flatten lie along them)."""
+    axes = [x.translation for x in losses if np.linalg.norm(x.translation) > 0.5]
+    axes += [x.rotation for x in losses if np.linalg.norm(x.rotation) > 0.5]
+    return np.array(axes).reshape(-1, 3)
+
+
+def _sphere(count: int = 600) -> np.ndarray:
+    """Nearly even directions over the upper half sphere (Fibonacci lattice), 10° above the horizon."""
+    k = np.arange(count) + 0.5
+    z = np.sin(np.radians(10)) + (1 - np.sin(np.radians(10))) * k / count
+    phi = k * np.pi * (3 - np.sqrt(5))
+    r = np.sqrt(1 - z * z)
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+
+
+_CANDIDATES = _sphere()
+
+
+def across(direction: np.ndarray, axes: np.ndarray, degrees: float = ACROSS_DEGREES) -> np.ndarray:
+    """A viewing direction (from the target to the camera) close to ``direction`` that sees every one of
+    ``axes`` (k, 3) across the view: at least ``degrees`` from each (or as far as it can when no view
+    does, e.g. three orthogonal axes allow 54.7° at most). ``direction`` itself when it already does."""
+    d = np.asarray(direction, float)
+    d = d / max(float(np.linalg.norm(d)), 1e-12)
+    A = np.asarray(axes, float).reshape(-1, 3)
+    if not len(A):
+        return d
+    limit = np.cos(np.radians(degrees))
+
+    def worst(v: np.ndarray) -> np.ndarray:
+        return np.abs(v @ A.T).max(axis=-1)  # cos of the smallest angle to an axis
+
+    if worst(d) <= limit:
+        return d
+    w = worst(_CANDIDATES)
+    ok = w <= max(limit, float(w.min()) + 1e-9)
+    candidates = _CANDIDATES[ok]
+    return candidates[int(np.argmax(candidates @ d))]
+
+
 class CameraMove:
     """Glide a client's camera to a new pose in a few frames (a new move replaces a running one).
 
@@ -219,6 +268,18 @@ class TabCamera:
         else:
             self.mover.cancel()
             self._set(*end)
+
+    def frame_across(self, points: np.ndarray, pad: float, axes: np.ndarray) -> None:
+        """At a singular configuration: glide so that ``axes`` (k, 3), the lost directions, lie across
+        the view (:func:`across`), or only re-frame if they already do."""
+        view = self.view()
+        current = view.position - view.look_at if view is not None else facing(points)
+        current = current / max(float(np.linalg.norm(current)), 1e-12)
+        direction = across(current, axes)
+        if view is None or not np.allclose(direction, current):
+            self.frame(points, pad, direction)
+        else:
+            self.frame_if_needed(points, pad)
 
     def frame_if_needed(self, points: np.ndarray, pad: float) -> None:
         """Glide to a framing only when something drawn left the view (or shrank to a speck)."""
