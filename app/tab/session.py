@@ -385,7 +385,7 @@ class ClientSession:
         if rebuild and not edited:
             direction = FROM_ABOVE if state.robot.planar else facing(self.scene.extent)
             self.camera.frame(self.scene.extent, pad, direction, glide=False)
-        elif jump and snap.losses and not state.robot.planar:
+        elif jump and snap.losses:
             self.camera.frame_across(self.scene.extent, pad, lost_axes(snap.losses))
         elif jump or edited:
             self.camera.frame_if_needed(self.scene.extent, pad)

@@ -90,7 +90,7 @@ def _block(d: Decoupling, which: str, near: bool) -> list[tuple[np.ndarray, floa
 def _in_range(J: np.ndarray, twist: np.ndarray) -> bool:
     """True when ``twist`` (6,) is (nearly) produced by some joint rates: not lost after all."""
     x = np.linalg.lstsq(J, twist, rcond=None)[0]
-    return float(np.linalg.norm(J @ x - twist)) < 0.5
+    return float(np.linalg.norm(J @ x - twist)) < 1e-6
 
 
 def losses(

@@ -110,7 +110,7 @@ def lost_text(snap: Snapshot, planar: bool) -> str:
     rows = "" if len(snap.rows) == 6 else f" (rows {row_label(snap.rows)})"
     lines.append(f"Measured at the tool point{rows}{weigh}.")
     if "wrist" in snap.report.kinds:
-        lines.append("The wrist axes lie in one plane; they do not meet in a point, so J does not decouple.")
+        lines.append("The wrist axes lie in one plane (not decoupled: no spherical wrist on an arm).")
     return "<br>".join(lines)
 
 

@@ -276,7 +276,7 @@ class Overlays:
             self._status = status
         rot = snap.rotational
         if rot is not None and options.rotational_ellipsoid and not decoupled:
-            self.rotational.set(p, rot.axes, rot.radii * 0.6 * unit, True, cap)
+            self.rotational.set(p, rot.axes, rot.radii * 0.6 * unit, True, cap, floor)
         else:
             self.rotational.set(p, _EYE, _ZERO3, False, 1.0)
         force = snap.force
