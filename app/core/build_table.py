@@ -25,6 +25,7 @@ import numpy as np
 from kinematics import NamedConfiguration, Robot
 from kinematics.analysis import task_rows
 from kinematics.errors import RobotDefinitionError
+from kinematics.planarity import is_planar_chain
 from kinematics.transforms import matrix_to_rpy
 from kinematics.urdf import to_urdf
 
@@ -190,7 +191,7 @@ def build(table: Table) -> Robot:
     rows = rows_si(table)
     same_joints = tuple(r.joint for r in table.rows) == table.kinds
     try:
-        return Robot.from_dh(
+        robot = Robot.from_dh(
             rows,
             table.convention,
             table.base,
@@ -202,6 +203,9 @@ def build(table: Table) -> Robot:
             source="Jacobian Lab, Build tab",
             configurations=table.configurations if same_joints else (),
         )
+        if is_planar_chain(robot):  # all axes along base z: its task is the planar rows, as the library's
+            robot = dataclasses.replace(robot, planar=True)
+        return robot
     except RobotDefinitionError as exc:
         text = str(exc)
         row = next((i + 1 for i in range(len(rows)) if f"DH row {i + 1}," in text), 0)
@@ -243,6 +247,7 @@ def robot_toml(robot: Robot, name: str = FILE_STEM) -> str:
         f"description = {_toml_str(robot.description)}",
         f"source = {_toml_str(robot.source)}",
         f"convention = {_toml_str(robot.convention)}",
+        f"planar = {'true' if robot.planar else 'false'}",
         "",
     ]
     out += _frame_toml(robot.base, "base") + _frame_toml(robot.tool, "tool")
