@@ -12,7 +12,8 @@ import pytest
 from app_helpers import scene_node
 from browser_helpers import app_page, steady_canvas, wait
 
-from app.core.actions import ChooseRobot, GoTo
+from app.core.actions import GoTo
+from app.core.commands import ChooseRobot
 from app.server import Lab
 from app.views.camera import lost_axes
 from app.views.scene.overlays import MAX_LOSSES

@@ -10,7 +10,8 @@ import pytest
 from app_helpers import scene_node
 
 import robots
-from app.core.actions import ChooseRobot, GoTo
+from app.core.actions import GoTo
+from app.core.commands import ChooseRobot
 from app.views.camera import FROM_ABOVE, THREE_QUARTER, across, facing, lost_axes
 from app.views.scene.overlays import MAX_LOSSES
 
