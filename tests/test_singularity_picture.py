@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from app_helpers import scene_node
+from app_helpers import scene_node, wait_until
 
 import robots
 from app.core.actions import GoTo
@@ -132,6 +132,8 @@ def test_the_camera_policy_puts_every_lost_direction_across_the_view(session, ro
         assert np.linalg.norm(d) == pytest.approx(1.0)
         angles = np.degrees(np.arccos(np.clip(np.abs(axes @ d), 0.0, 1.0)))
         assert angles.min() >= 45.0, (start, angles)
+    # ... and the tab's camera ends there after the jump.
+    wait_until(lambda: _camera_angles(session, axes).min() >= 45.0)
 
 
 def test_puma_wrist_singularity_says_wrist_not_translation(session):
@@ -140,3 +142,32 @@ def test_puma_wrist_singularity_says_wrist_not_translation(session):
     assert "<b>Wrist singular</b>: the wrist loses a rotation about (0.71, 0, 0.71)." in status
     assert "translation" not in status.split("Wrist singular")[1]
     assert snap.decoupling.det_wrist == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("robot_name", ["puma560", "stanford", "elbow3r"])
+def test_derive_steps_are_framed_with_their_vectors_across_the_view(session, robot_name):
+    """Whitney's walk: at every step the axis zᵢ₋₁, the lever pₙ − pᵢ₋₁ and the column Jᵢ are ≥ 45° from
+    the view the camera policy picks (on the Puma at home, from the default view z₁, z₂ and J₁ were dots)."""
+    from app.core.actions import SetOption
+    from app.views.camera import step_axes
+
+    session.dispatch(ChooseRobot(robot_name))
+    session.dispatch(SetOption("derive", "whitney"))
+    session.settle()
+    for k in range(session.state.robot.dof):
+        session.dispatch(SetOption("derive_step", k))
+        session.settle()
+        axes = step_axes(session.snapshot.derive)
+        assert len(axes) >= 1  # zᵢ₋₁ (lever and column are zero for a wrist axis through the tool point)
+        d = across(THREE_QUARTER, axes)
+        angles = np.degrees(np.arccos(np.clip(np.abs(axes @ d), 0.0, 1.0)))
+        assert angles.min() >= 45.0, (k, angles)
+        # ... and the tab's camera goes there.
+        wait_until(lambda axes=axes: _camera_angles(session, axes).min() >= 45.0)
+
+
+def _camera_angles(session, axes: np.ndarray) -> np.ndarray:
+    cam = session.client.camera
+    d = np.asarray(cam.position, float) - np.asarray(cam.look_at, float)
+    d /= np.linalg.norm(d)
+    return np.degrees(np.arccos(np.clip(np.abs(axes @ d), 0.0, 1.0)))

@@ -225,7 +225,7 @@ class ClientSession:
             self.ticker.stop()
         self.symbols.update(state, None if rebuild else old)
         if not following:  # a follower's camera is the presenter's
-            self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap.losses)
+            self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap)
         for fn in list(self._subscribers):
             try:
                 fn(state, snap)

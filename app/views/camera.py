@@ -21,6 +21,7 @@ __all__ = [
     "facing",
     "across",
     "lost_axes",
+    "step_axes",
     "ACROSS_DEGREES",
     "THREE_QUARTER",
     "FROM_ABOVE",
@@ -141,6 +142,16 @@ def lost_axes(losses) -> np.ndarray:
     axes = [x.translation for x in losses if np.linalg.norm(x.translation) > 0.5]
     axes += [x.rotation for x in losses if np.linalg.norm(x.rotation) > 0.5]
     return np.array(axes).reshape(-1, 3)
+
+
+def step_axes(derivation) -> np.ndarray:
+    """The directions (k, 3) a Derive step draws and must not be seen end-on: for Whitney's method the
+    step's axis zᵢ₋₁, its lever pₙ − pᵢ₋₁ and its column Jᵢ (none for the other methods)."""
+    if derivation is None or derivation.method != "whitney" or not derivation.whitney:
+        return np.zeros((0, 3))
+    vectors = [v for c in derivation.whitney if c.joint == derivation.joint for v in (c.z, c.r, c.linear)]
+    out = [v / np.linalg.norm(v) for v in vectors if np.linalg.norm(v) > 1e-9]
+    return np.array(out).reshape(-1, 3)
 
 
 def _sphere(count: int = 600) -> np.ndarray:
