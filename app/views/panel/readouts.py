@@ -8,6 +8,7 @@ unchanged ones).
 from __future__ import annotations
 
 from kinematics import Robot
+from kinematics.conventions import ROW_HTML
 
 from ...core.snapshot import Loss, Snapshot
 from ...core.state import LabState
@@ -25,14 +26,7 @@ __all__ = [
     "direction",
 ]
 
-ROW_NAMES = (
-    "v<sub>x</sub>",
-    "v<sub>y</sub>",
-    "v<sub>z</sub>",
-    "ω<sub>x</sub>",
-    "ω<sub>y</sub>",
-    "ω<sub>z</sub>",
-)
+ROW_NAMES = ROW_HTML
 
 
 def row_label(rows: tuple[int, ...]) -> str:
