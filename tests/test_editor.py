@@ -280,3 +280,24 @@ def test_an_edit_keeps_the_users_view_a_new_robot_is_framed(session, monkeypatch
     session.panel.robot.value = "planar2"  # another robot: framed at once
     session.settle()
     assert [k for k in framed if k.get("glide") is False]
+
+
+def test_a_planar_arm_built_in_the_browser_is_planar_not_singular_everywhere(session):
+    """All axes along base z: the built robot takes the planar rows (vx, vy) as its task, as planar2 does,
+    so a bent pose is regular (det J = a₁ a₂ sin q₂) instead of singular through an always-zero vz row."""
+    editor = _editor(session)
+    editor.a.value = 1.0
+    editor.rows.value = ADD
+    editor.a.value = 0.5
+    session.settle()
+    robot = session.state.robot
+    assert robot.planar and session.snapshot.rows == (0, 1)
+    session.panel.joints.sliders[1].value = 60.0
+    session.settle()
+    snap = session.snapshot
+    assert snap.report.status == "regular"
+    assert snap.det == pytest.approx(1.0 * 0.5 * math.sin(math.radians(60.0)), rel=1e-9)
+    editor.row.value = "1"
+    editor.alpha.value = 90.0  # standard DH: α₁ tilts axis 2 out of line with axis 1, no longer planar
+    session.settle()
+    assert not session.state.robot.planar

@@ -226,7 +226,7 @@ class ClientSession:
         else:
             self.ticker.stop()
         if not following:  # a follower's camera is the presenter's
-            self.camera.after_commit(self.screen.scene, state, old, rebuild, jump)
+            self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap)
         for fn in list(self._subscribers):
             try:
                 fn(state, snap)
