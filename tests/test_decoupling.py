@@ -1,4 +1,4 @@
-"""Arm/wrist decoupling (kinematics.decoupling) against independent derivations: the wrist centre from
+"""Arm/wrist decoupling (kinematics.singularity.decoupling) against independent derivations: the wrist centre from
 the axis lines, J at the centre from finite differences of the centre, det J = det J₁₁ · det J₂₂, and the
 lost directions at the named configurations from the geometry of the axes."""
 
@@ -10,8 +10,8 @@ from kinematics_helpers import random_q
 
 from kinematics import chain_frames, jacobian
 from kinematics.analysis import task_rows
-from kinematics.decoupling import decouple, spherical_wrist, wrist_centre
-from kinematics.lost import characteristic_length, lost_directions
+from kinematics.singularity.decoupling import decouple, spherical_wrist, wrist_centre
+from kinematics.singularity.lost import characteristic_length, lost_directions
 from robots import load
 
 SIX_AXIS_WRISTS = ("puma560", "puma560_mdh", "stanford")

@@ -23,10 +23,9 @@ import numpy as np
 
 import robots
 from kinematics import NamedConfiguration, Robot
-from kinematics.analysis import task_rows
+from kinematics.analysis import is_planar_chain, task_rows
 from kinematics.errors import RobotDefinitionError
 from kinematics.parts import CONVENTIONS, JOINT_TYPES
-from kinematics.planarity import is_planar_chain
 from kinematics.urdf import to_urdf
 
 from .ranges import joint_ranges

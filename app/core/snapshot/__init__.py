@@ -24,11 +24,11 @@ from kinematics.analysis import (
     task_rows,
     velocity_ellipsoid,
 )
-from kinematics.decoupling import Decoupling, decouple
 from kinematics.inverse import solve_rates
-from kinematics.lost import LostDirection, lost_direction
 from kinematics.numeric import frames_and_jacobian
 from kinematics.singularity import SingularityReport, assess
+from kinematics.singularity.decoupling import Decoupling, decouple
+from kinematics.singularity.lost import LostDirection, lost_direction
 
 from ..ranges import reach
 from ..state import LabState

@@ -2,7 +2,7 @@
 
 One :class:`Loss` per lost direction, each at its own point:
 
-* a robot with a spherical wrist (:func:`kinematics.decoupling.decouple`) is decoupled as the
+* a robot with a spherical wrist (:func:`kinematics.singularity.decoupling.decouple`) is decoupled as the
   course teaches: an **arm** loss is a translation of the wrist centre the arm joints cannot give
   (det J₁₁ = 0), a **wrist** loss a rotation about an axis through the wrist centre the wrist
   cannot give (det J₂₂ = 0);
@@ -21,9 +21,9 @@ from typing import Literal
 import numpy as np
 
 from kinematics.analysis import Ellipsoid, velocity_ellipsoid
-from kinematics.decoupling import Decoupling
-from kinematics.lost import lost_directions
 from kinematics.singularity import NEAR_CONDITION, SingularityReport
+from kinematics.singularity.decoupling import Decoupling
+from kinematics.singularity.lost import lost_directions
 
 __all__ = ["Loss", "losses", "block_ellipsoids"]
 

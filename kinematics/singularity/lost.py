@@ -26,8 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import Robot
-from .numeric import link_frames
+from ..model import Robot
+from ..numeric import link_frames
 
 __all__ = ["LostDirection", "lost_direction", "lost_directions", "characteristic_length"]
 

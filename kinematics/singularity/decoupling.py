@@ -29,9 +29,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ConfigurationError
-from .model import Robot
-from .numeric import as_configuration, chain_frames, jacobian
+from ..errors import ConfigurationError
+from ..model import Robot
+from ..numeric import as_configuration, chain_frames, jacobian
 
 __all__ = ["Decoupling", "spherical_wrist", "wrist_centre", "decouple", "DECOUPLED_RTOL", "block_losses"]
 
