@@ -23,6 +23,7 @@ from kinematics import Robot
 from kinematics.analysis import task_rows
 
 from .motion_state import MotionState
+from .options import default
 
 __all__ = ["Options", "LabState", "Frame", "frozen", "default_options"]
 
@@ -40,7 +41,7 @@ def frozen(values: object, length: int | None = None) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Options:
-    """What the tab chose to see.
+    """What the tab chose to see (defaults, ranges, choices and widgets: :mod:`app.core.options`).
 
     Attributes:
         frames: Draw a triad at every DH/link frame and at the tool.
@@ -72,31 +73,31 @@ class Options:
         symbolic_inverse: Show the symbolic J⁻¹ = adj(J) / det J (asked for with a button: it takes seconds).
     """
 
-    frames: bool = False
-    labels: bool = True
-    columns: bool = True
-    angular_columns: bool = False
-    velocity_ellipsoid: bool = True
-    rotational_ellipsoid: bool = False
-    force_ellipsoid: bool = False
-    scale: float = 1.0
-    jacobian_frame: Frame = "base"
-    damping: float = 0.0
-    twist_frame: Frame = "base"
-    speed: float = 1.0
-    gizmo: bool = False
-    ik_method: Literal["dls", "newton"] = "dls"
-    ik_mode: Literal["position", "pose"] = "position"
-    workspace: bool = False
-    joint_map: bool = False
-    map_i: int = 1
-    map_j: int = 2
-    derive: str = ""
-    derive_step: int = 0
-    representation: Literal["geometric", "zyx", "zyz"] = "geometric"
-    jdot_arrow: bool = True
-    course_letters: bool = False
-    symbolic_inverse: bool = False
+    frames: bool = default("frames")
+    labels: bool = default("labels")
+    columns: bool = default("columns")
+    angular_columns: bool = default("angular_columns")
+    velocity_ellipsoid: bool = default("velocity_ellipsoid")
+    rotational_ellipsoid: bool = default("rotational_ellipsoid")
+    force_ellipsoid: bool = default("force_ellipsoid")
+    scale: float = default("scale")
+    jacobian_frame: Frame = default("jacobian_frame")
+    damping: float = default("damping")
+    twist_frame: Frame = default("twist_frame")
+    speed: float = default("speed")
+    gizmo: bool = default("gizmo")
+    ik_method: Literal["dls", "newton"] = default("ik_method")
+    ik_mode: Literal["position", "pose"] = default("ik_mode")
+    workspace: bool = default("workspace")
+    joint_map: bool = default("joint_map")
+    map_i: int = default("map_i")
+    map_j: int = default("map_j")
+    derive: str = default("derive")
+    derive_step: int = default("derive_step")
+    representation: Literal["geometric", "zyx", "zyz"] = default("representation")
+    jdot_arrow: bool = default("jdot_arrow")
+    course_letters: bool = default("course_letters")
+    symbolic_inverse: bool = default("symbolic_inverse")
 
 
 GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")

@@ -34,6 +34,7 @@ from kinematics.steps import (
     whitney,
 )
 
+from ..options import OPTION
 from ..ranges import reach
 from ..state import LabState
 
@@ -50,14 +51,7 @@ __all__ = [
 ]
 
 Method = Literal["", "dh", "whitney", "differentiation", "propagation", "force"]
-METHODS: dict[str, str] = {
-    "": "Nothing (DH table only)",
-    "dh": "DH frames: Aᵢ and ⁰Tᵢ",
-    "whitney": "Whitney: Jᵢ = zᵢ₋₁ × (pₙ − pᵢ₋₁)",
-    "differentiation": "Differentiation: ∂p/∂qᵢ",
-    "propagation": "Velocity propagation: ωᵢ, vᵢ",
-    "force": "Force propagation: τ = Jᵀ F",
-}
+METHODS: dict[str, str] = dict(zip(OPTION["derive"].choices, OPTION["derive"].labels, strict=True))
 """Option value → the label the tab's dropdown shows."""
 PATH_POINTS = 41
 """Points of the tool path drawn for a differentiation step."""

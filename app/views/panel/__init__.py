@@ -14,9 +14,7 @@ screen.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Sequence
-from typing import Any
 
 import viser
 
@@ -24,13 +22,14 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.actions import ChooseChain, ChooseRobot, SetOption, ToggleRecording
+from ...core.actions import ChooseChain, ChooseRobot, ToggleRecording
+from ...core.options import options_of
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...services.classroom import Role
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
 from .classroom import ClassroomPanel
-from .common import Dispatch, bind, sync_value
+from .common import Dispatch, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
@@ -44,25 +43,6 @@ __all__ = ["PanelView", "PANEL_WIDTH"]
 
 PANEL_WIDTH = 400
 """Width of the docked panel [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
-
-_TOGGLES = (
-    (
-        "velocity_ellipsoid",
-        "Velocity ellipsoid",
-        "Translational manipulability ellipsoid at the tool point: "
-        "semi-axes σᵢ along the left singular vectors of the base-frame linear rows of J.",
-    ),
-    ("rotational_ellipsoid", "Rotational ellipsoid", "Angular-velocity ellipsoid (ω rows of J)."),
-    (
-        "force_ellipsoid",
-        "Force ellipsoid",
-        "Semi-axes 1/σᵢ along the same directions (capped at a singularity).",
-    ),
-    ("columns", "Columns Jᵢ (linear part)", "Tool-point velocity produced by each joint alone at unit rate."),
-    ("angular_columns", "Columns Jᵢ (angular part)", "Drawn on each joint axis."),
-    ("frames", "Frames 0…n and tool", "A triad for every DH / link frame and the tool frame."),
-    ("labels", "Joint labels", "Name each joint axis in the 3-D view."),
-)
 
 _LEGEND = (
     "**Colours.** Each joint has one colour: slider, axis, column arrow and bars. "
@@ -115,19 +95,12 @@ class PanelView:
         self.views.dock_below(gui.main_panel)
         with self.tab_view:
             self.toggles = {}
-            for key, label, hint in _TOGGLES:
-                box = gui.add_checkbox(label, initial_value=getattr(state.options, key), hint=hint)
-                bind(box, dispatch, functools.partial(_option, key))
-                self.toggles[key] = box
-            self.scale = gui.add_slider(
-                "Glyph scale",
-                min=0.1,
-                max=3.0,
-                step=0.05,
-                initial_value=state.options.scale,
-                hint="1: a column of 1 m/rad is drawn 0.5 m long",
-            )
-            bind(self.scale, dispatch, lambda v: SetOption("scale", float(v)))
+            for row in options_of("view"):
+                if row.kind == "bool":
+                    self.toggles[row.name] = option_widget(
+                        gui, dispatch, row.name, getattr(state.options, row.name)
+                    )
+            self.scale = option_widget(gui, dispatch, "scale", state.options.scale)
             gui.add_markdown(_LEGEND)
             self.record = gui.add_button("Record a demo", icon=viser.Icon.PLAYER_RECORD)
             self.record.on_click(lambda _: dispatch(ToggleRecording()))
@@ -270,13 +243,9 @@ class PanelView:
 
     def _show_options(self, options: Options) -> None:
         for key, box in self.toggles.items():
-            sync_value(box, getattr(options, key))
-        sync_value(self.scale, float(options.scale))
+            show_option(box, key, getattr(options, key))
+        show_option(self.scale, "scale", options.scale)
 
 
 def _chain_label(chain: ChainInfo) -> str:
     return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"
-
-
-def _option(key: str, value: Any) -> SetOption:
-    return SetOption(key, bool(value))

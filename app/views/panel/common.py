@@ -8,10 +8,11 @@ from typing import Any
 
 import viser
 
-from ...core.actions import Action
+from ...core.actions import Action, SetOption
+from ...core.options import OPTION
 from ...viser_adapter import is_removed
 
-__all__ = ["sync_value", "bind", "bind_click", "Dispatch"]
+__all__ = ["sync_value", "bind", "bind_click", "Dispatch", "option_widget", "show_option"]
 
 Dispatch = Callable[[Action], None]
 
@@ -51,3 +52,49 @@ def sync_value(handle: Any, value: float | str | bool) -> None:
     elif current == value:
         return
     handle.value = value
+
+
+def option_widget(
+    gui: viser.GuiApi, dispatch: Dispatch, name: str, initial: Any = None, **kwargs: Any
+) -> Any:
+    """The widget of option ``name`` as its row of :data:`app.core.options.OPTION` describes it (a
+    checkbox, a slider over its range, a dropdown of its choices' labels), bound to ``SetOption``.
+
+    ``initial``: the value shown first (default: the row's default); ``kwargs`` go to viser
+    (``order``, ``disabled`` …).
+    """
+    row = OPTION[name]
+    value = row.default if initial is None else initial
+    hint = row.hint or None
+    if row.kind == "bool":
+        box = gui.add_checkbox(row.label, initial_value=bool(value), hint=hint, **kwargs)
+        bind(box, dispatch, lambda v: SetOption(name, bool(v)))
+        return box
+    if row.kind == "float":
+        slider = gui.add_slider(
+            row.label, min=row.lo, max=row.hi, step=row.step, initial_value=float(value), hint=hint, **kwargs
+        )
+        bind(slider, dispatch, lambda v: SetOption(name, float(v)))
+        return slider
+    if row.kind == "choice":
+        shown = row.labels or row.choices
+        menu = gui.add_dropdown(row.label, shown, initial_value=row.label_of(value), hint=hint, **kwargs)
+
+        def chosen(label: Any) -> Action | None:
+            choice = row.value_of(str(label))
+            return None if choice is None else SetOption(name, choice)
+
+        bind(menu, dispatch, chosen)
+        return menu
+    raise ValueError(f"option {name!r} ({row.kind}) has no widget of its own kind: its tab builds it")
+
+
+def show_option(handle: Any, name: str, value: Any) -> None:
+    """Show option ``name``'s ``value`` on its widget (a choice by its label)."""
+    row = OPTION[name]
+    if row.kind == "choice":
+        sync_value(handle, row.label_of(value))
+    elif row.kind == "float":
+        sync_value(handle, float(value))
+    else:
+        sync_value(handle, value)
