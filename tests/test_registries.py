@@ -98,3 +98,77 @@ def test_every_method_assembles_j_at_random_configurations(key: str, name: str) 
         assembled = np.column_stack([method.column(robot, q, j) for j in range(robot.dof)])
         tol = 1e-6 if key == "differentiation" else 1e-9
         np.testing.assert_allclose(assembled, J, atol=tol * max(1.0, float(np.abs(J).max())))
+
+
+def test_every_method_has_one_spelling_in_every_table() -> None:
+    from app.views.methods import METHODS as VIEWS
+    from kinematics.symbolic import DERIVATIONS as WHOLE
+    from kinematics.symbolic.steps.methods import METHOD_STEPS
+
+    assert list(VIEWS) == list(METHODS)
+    assert OPTION["derive"].choices == ("", *METHODS)
+    assert set(METHOD_STEPS) == set(DERIVATIONS) == set(WHOLE)
+    for key, view in VIEWS.items():
+        assert view.steps is METHODS[key] and view.label and view.title
+        assert (view.symbolic is None) == (key not in DERIVATIONS)
+        assert all(prefix for prefix in view.symbols)
+
+
+def _spy(obj, method: str, calls: list) -> None:
+    real = getattr(obj, method)
+
+    def spy(*args):
+        calls.append(args)
+        return real(*args)
+
+    setattr(obj, method, spy)
+
+
+def test_every_tab_and_glyph_of_the_lists_is_built_and_drawn() -> None:
+    from app.core.actions import SetJoint, SetOption
+    from app.views.panel import TABS
+    from app.views.scene import GLYPHS
+
+    with running_lab() as (_lab, session, _ws):
+        session.dispatch(ChooseRobot("puma560"))
+        session.settle()
+        panel, scene = session.panel, session.scene
+        assert [t.name for t in TABS] == list(panel.tabs)
+        assert [panel.tabs[t.name]._label for t in TABS] == [t.label for t in TABS]
+        built = [t.name for t in TABS if t.build is not None]
+        assert list(panel.parts) == built and all(getattr(panel, n) is panel.parts[n] for n in built)
+        assert list(scene.glyphs) == [g.name for g in GLYPHS]
+        drawn: dict[str, list] = {n: [] for n in [*built, *scene.glyphs]}
+        for name, part in panel.parts.items():
+            _spy(part, "draw", drawn[name])
+        for name, glyph in scene.glyphs.items():
+            _spy(glyph, "update", drawn[name])
+        session.dispatch(SetOption("derive", "whitney"))
+        session.dispatch(SetJoint(1, 0.4))
+        session.settle()
+        state = session.state
+        assert state.q[1] == 0.4
+        for name, calls in drawn.items():
+            assert calls, f"{name} was not drawn"
+            assert calls[-1][0] is state or calls[-1][1] is state, name  # drawn with the last state
+        assert len(scene.glyphs["derive"].extent)  # the Derive glyph drew Whitney's vectors
+
+
+@pytest.mark.parametrize("key", list(METHODS))
+def test_every_method_record_is_shown_and_drawn_at_every_step(key: str) -> None:
+    from app_helpers import assert_all_finite
+
+    from app.core.actions import SetOption
+
+    with running_lab() as (_lab, session, _ws):
+        for name in ("puma560", "scara"):
+            session.dispatch(ChooseRobot(name))
+            session.dispatch(SetOption("derive", key))
+            session.settle()
+            for j in range(session.state.robot.dof):
+                session.dispatch(SetOption("derive_step", j))
+                session.settle()
+                body = session.panel.derive.body.content
+                assert f"Step {j + 1} of" in body and "✗" not in body, (name, key, j)
+                assert len(session.scene.derive.extent), (name, key, j)
+                assert_all_finite(session)

@@ -1,18 +1,35 @@
-"""Small helpers shared by the panel modules: binding inputs to actions, showing values."""
+"""What the panel modules share: binding inputs to actions, showing values, the widgets of the option
+table, and the tab protocol (a tab is one module plus one entry in :data:`app.views.panel.TABS`)."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol
 
 import viser
 
+import robots
+from kinematics import Robot
+
 from ...core.actions import Action, SetOption
 from ...core.options import OPTION
+from ...core.snapshot import Snapshot
+from ...core.state import LabState
 from ...viser_adapter import is_removed
 
-__all__ = ["sync_value", "bind", "bind_click", "Dispatch", "option_widget", "show_option"]
+__all__ = [
+    "sync_value",
+    "bind",
+    "bind_click",
+    "Dispatch",
+    "option_widget",
+    "show_option",
+    "Tab",
+    "TabContext",
+    "TabView",
+]
 
 Dispatch = Callable[[Action], None]
 
@@ -98,3 +115,49 @@ def show_option(handle: Any, name: str, value: Any) -> None:
         sync_value(handle, float(value))
     else:
         sync_value(handle, value)
+
+
+@dataclass(frozen=True)
+class TabContext:
+    """What a tab's view is built from, once per robot.
+
+    Attributes:
+        gui: The tab's GUI (widgets added under the tab's handle).
+        dispatch: Where its widgets send actions.
+        robot: The robot shown; rows: its task rows; presets: its resolved-rate presets.
+        joint_sliders: The ids of the joint sliders (always visible above the tabs).
+    """
+
+    gui: viser.GuiApi
+    dispatch: Dispatch
+    robot: Robot
+    rows: tuple[int, ...]
+    presets: Sequence[robots.MotionPreset]
+    joint_sliders: Sequence[str]
+
+
+class TabView(Protocol):
+    """One tab's widgets for one robot: drawn on every redraw, removed on a robot switch.
+
+    A view may also list ``stepped``: its sliders whose step the page must honour (typed values).
+    """
+
+    def draw(self, state: LabState, snap: Snapshot) -> None: ...
+
+    def remove(self) -> None: ...
+
+
+@dataclass(frozen=True)
+class Tab:
+    """One entry of the panel's list of tabs (:data:`app.views.panel.TABS`).
+
+    Attributes:
+        name: The panel's attribute for its view (``panel.matrix``) and the tab's key.
+        label: The tab's title; icon: its icon.
+        build: Makes the view for a robot, inside the tab (``None``: the tab has no per-robot view).
+    """
+
+    name: str
+    label: str
+    icon: Any  # a viser.Icon (its type, IconName, is not public)
+    build: Callable[[TabContext], TabView] | None

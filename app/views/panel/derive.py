@@ -65,6 +65,11 @@ class DerivePanel:
         delta = -1 if str(event.target.value).startswith("◀") else 1
         self.dispatch(SetOption("derive_step", self._step + delta))
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return [self.step]
+
     def draw(self, state: LabState, snap: Snapshot) -> None:
         options = state.options
         self._step = options.derive_step

@@ -130,6 +130,15 @@ class ForwardPanel:
             bind_click(stop, dispatch, StopRates)
             self.jdot = option_widget(gui, dispatch, "jdot_arrow")
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return list(self.sliders)
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
+
     def show(self, state: LabState) -> None:
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(to_display(r, state.qd[i]), 6))
@@ -217,6 +226,15 @@ class InversePanel:
                 )
             self._asked = False
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return [*self.sliders.values(), self.damping]
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
+
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():
             sync_value(slider, round(to_display(self.ranges[r], state.v_desired[r]), 6))
@@ -303,6 +321,15 @@ class ForcePanel:
             zero = gui.add_button("Remove the force (F = 0)")
             bind_click(zero, dispatch, ClearWrench)
             self._idle = False
+
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return list(self.sliders.values())
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
 
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():

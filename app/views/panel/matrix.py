@@ -25,7 +25,7 @@ from .. import fmt
 from ..palette import joint_hex, joint_text_hex
 from .common import Dispatch, bind_click, option_widget, show_option
 from .course import analytic_html
-from .readouts import ROW_NAMES
+from .readouts import ROW_NAMES, measures_html, status_html
 
 __all__ = ["matrix_html", "MatrixPanel"]
 
@@ -107,6 +107,13 @@ class MatrixPanel:
                 self.symbolic = gui.add_html(_mathml_html("", "computing the symbolic form…"))
                 self.download = gui.add_button_group("Download J(q)", tuple(EXPORT_FORMATS))
                 self.download.on_click(lambda event: dispatch(RequestDownload(event.target.value)))
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        frame = state.options.jacobian_frame
+        self.show(frame)
+        self.show_course(state, snap)
+        status, measures = status_html(snap, state), measures_html(snap, state.robot)
+        self.update(snap.J_shown, snap.rows, frame, status, measures)
 
     def show(self, frame: str) -> None:
         show_option(self.frame, "jacobian_frame", frame)

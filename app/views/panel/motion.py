@@ -141,6 +141,11 @@ class MotionPanel:
             return None
         return ApplyPreset(p.name, tuple(map(float, p.q)), tuple(map(float, p.twist)), p.frame, p.speed)
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return [self.speed] + ([self.self_slider] if self.self_slider is not None else [])
+
     def draw(self, state: LabState, snap: Snapshot) -> None:
         o, m = state.options, state.motion
         sync_value(self.preset, m.preset if m.preset in self.presets else OWN_TWIST)
