@@ -107,7 +107,7 @@ def test_every_method_has_one_spelling_in_every_table() -> None:
 
     assert list(VIEWS) == list(METHODS)
     assert OPTION["derive"].choices == ("", *METHODS)
-    assert set(METHOD_STEPS) == set(DERIVATIONS) == set(WHOLE)
+    assert set(METHOD_STEPS) == set(DERIVATIONS) and set(WHOLE) <= set(DERIVATIONS)
     for key, view in VIEWS.items():
         assert view.steps is METHODS[key] and view.label and view.title
         assert (view.symbolic is None) == (key not in DERIVATIONS)
