@@ -23,11 +23,11 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.actions import ChooseChain, ChooseRobot, ToggleRecording
+from ...core.commands import ChooseChain, ChooseRobot, ToggleRecording
 from ...core.options import options_of
+from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
-from ...services.classroom import Role
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
 from .classroom import ClassroomPanel
 from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value

@@ -14,6 +14,7 @@ import robots
 from kinematics import Robot
 
 from ...core.actions import Action, SetOption
+from ...core.commands import Message
 from ...core.options import OPTION
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
@@ -31,10 +32,10 @@ __all__ = [
     "TabView",
 ]
 
-Dispatch = Callable[[Action], None]
+Dispatch = Callable[[Message], None]
 
 
-def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any], Action | None]) -> None:
+def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any], Message | None]) -> None:
     """When the user changes ``handle``, dispatch ``make(value)`` (nothing when it returns ``None``)."""
 
     def callback(event: viser.GuiEvent) -> None:
@@ -46,7 +47,7 @@ def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any],
     handle.on_update(callback)
 
 
-def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable[[], Action]) -> None:
+def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable[[], Message]) -> None:
     """When ``button`` is clicked, dispatch ``make()``."""
 
     def callback(event: viser.GuiEvent) -> None:

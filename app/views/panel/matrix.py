@@ -17,10 +17,11 @@ import viser
 
 from kinematics import Robot
 
-from ...core.actions import GoToRepresentationSingularity, RequestDownload
+from ...core.actions import GoToRepresentationSingularity
+from ...core.commands import RequestDownload
+from ...core.downloads import EXPORT_FORMATS
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
-from ...services.symbolic_service import EXPORT_FORMATS
 from .. import fmt
 from ..palette import joint_hex, joint_text_hex
 from .common import Dispatch, bind_click, option_widget, show_option
