@@ -16,7 +16,7 @@ import pytest
 from app_helpers import running_lab
 
 import robots
-from app.core.actions import ChooseRobot
+from app.core.commands import ChooseRobot
 from app.core.options import OPTION, OPTIONS
 from app.core.state import Options
 from kinematics import jacobian
