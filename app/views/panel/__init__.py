@@ -34,6 +34,7 @@ from .common import Dispatch, bind, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
+from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .matrix import MatrixPanel
 from .motion import MapsPanel, MotionPanel, slider_ids
@@ -100,6 +101,7 @@ class PanelView:
         self.chain: viser.GuiDropdownHandle | None = None
         self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
+        self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
@@ -255,6 +257,11 @@ class PanelView:
         self.inverse.update(snap, state)
         self.force.update(snap, state)
         self.motion.draw(state, snap)
+        live = live_html(state)
+        if live != self.live.content:
+            self.live.content = live
+        if self.live.visible != bool(live):
+            self.live.visible = bool(live)
         self.maps.draw(state, snap)
         self.derive.draw(state, snap)
 

@@ -22,6 +22,7 @@ from .arm import ArmGeometry, ArmView
 from .derive import DeriveScene
 from .drive import DriveView
 from .overlays import Overlays
+from .path import ToolPath
 
 __all__ = ["SceneView", "ArmGeometry"]
 
@@ -44,6 +45,7 @@ class SceneView:
         self.overlays = Overlays(client.scene, self.arm.geometry, robot.dof, robot.planar, f"{root}/jacobian")
         self.derive = DeriveScene(client.scene, robot, self.arm.geometry, f"{root}/derive")
         self.accel = AccelArrow(client.scene, self.size, f"{root}/jacobian")
+        self.path = ToolPath(client.scene, f"{root}/motion")
         self.drive = DriveView(
             client.scene, dispatch or (lambda action: None), self.size, robot.planar, f"{root}/drive"
         )
@@ -56,7 +58,13 @@ class SceneView:
     @property
     def extent(self) -> np.ndarray:
         """Points (N, 3) [m] of everything drawn at the last update: arm, ellipsoids, arrow tips."""
-        parts = [self.overlays.extent, self.drive.extent, self.accel.extent, self.derive.extent]
+        parts = [
+            self.overlays.extent,
+            self.drive.extent,
+            self.accel.extent,
+            self.derive.extent,
+            self.path.extent,
+        ]
         return np.concatenate([x for x in parts if len(x)]) if any(len(x) for x in parts[1:]) else parts[0]
 
     def update(self, snap: Snapshot, state: LabState) -> None:
@@ -65,11 +73,13 @@ class SceneView:
         self.overlays.update(snap, state)
         self.accel.update(snap, state)
         self.drive.update(snap, state)
+        self.path.update(state)
         self.derive.update(snap, state)
 
     def remove(self) -> None:
         """Remove every node (on robot switch or disconnect)."""
         self.drive.remove()
+        self.path.remove()
         self.derive.remove()
         self.accel.remove()
         self.overlays.remove()
