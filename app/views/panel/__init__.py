@@ -34,6 +34,7 @@ from .common import Dispatch, bind, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
+from .layout import LAYOUT_CSS, LAYOUT_JS
 from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .matrix import MatrixPanel
@@ -93,8 +94,9 @@ class PanelView:
         gui.set_panel_label("Jacobian Lab")
         gui.main_panel.dock_right()
         gui.main_panel.set_width(PANEL_WIDTH)
-        gui.add_html(BASE_CSS + f"<style>{status_css()}</style>", order=0)
+        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
+        run_javascript(client, LAYOUT_JS)
         set_page_title(client, PAGE_TITLE)
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
         bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))

@@ -23,7 +23,7 @@ from ...core.state import LabState
 from ...viser_adapter import update_props
 from ..palette import FORCE_RGB, TWIST_ANGULAR_RGB, TWIST_RGB, joint_color
 from .arm import ArmGeometry
-from .geometry import finite, set_if_changed
+from .geometry import LABEL_SCALE, finite, set_if_changed
 from .overlays import LINEAR_SECONDS, Arrows
 
 __all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB"]
@@ -55,7 +55,7 @@ class DeriveScene:
         )
         self.labels = [
             scene.add_label(
-                f"{root}/label_{k}", "", visible=False, anchor="bottom-left", font_screen_scale=1.1
+                f"{root}/label_{k}", "", visible=False, anchor="bottom-left", font_screen_scale=LABEL_SCALE
             )
             for k in range(_LABELS)
         ]
