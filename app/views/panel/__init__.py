@@ -35,7 +35,7 @@ from .common import Dispatch, bind, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
-from .layout import LAYOUT_CSS, LAYOUT_JS
+from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
 from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .matrix import MatrixPanel
@@ -45,8 +45,6 @@ from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 
 __all__ = ["PanelView", "PANEL_WIDTH"]
 
-PANEL_WIDTH = 400
-"""Width of the docked panel [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
 
 _TOGGLES = (
     (

@@ -19,8 +19,12 @@ Colours here are chosen for at least 4.5:1 on their background (checked by the t
 
 from __future__ import annotations
 
-__all__ = ["LAYOUT_CSS", "LAYOUT_JS", "ZOOM_MAX", "TOP_MAX", "TEXT_COLOURS"]
+__all__ = ["LAYOUT_CSS", "LAYOUT_JS", "PANEL_WIDTH", "COLUMN", "ZOOM_MAX", "TOP_MAX", "TEXT_COLOURS"]
 
+PANEL_WIDTH = 400
+"""Width of the docked panel at zoom 1 [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
+COLUMN = PANEL_WIDTH + 4
+"""Width viser gives the docked column for :data:`PANEL_WIDTH` (its border included) [px]."""
 ZOOM_MAX = 1.6
 """Largest zoom of the panel (at 2048×1152 and beyond)."""
 TOP_MAX = 0.62
@@ -44,9 +48,9 @@ _C = {k: v[0] for k, v in TEXT_COLOURS.items()}
 LAYOUT_CSS = f"""
 <style>
 :root {{ --jl-zoom: 1; }}
+/* The column is zoomed (its width in its own units stays viser's); its shadow is widened to match. */
 [data-dock-region="right"] {{ zoom: var(--jl-zoom); }}
-.jl-spacer {{ width: calc(404px * var(--jl-zoom)) !important; }}
-.jl-shadow {{ width: calc(404px * var(--jl-zoom)) !important; }}
+.jl-shadow {{ width: calc({COLUMN}px * var(--jl-zoom)) !important; }}
 /* The split: the joints' panel as tall as its content, the views of J the rest. */
 .jl-views {{ flex: 1 1 0px !important; }}
 /* A band at the bottom of a scroll area that has more below. */
@@ -69,9 +73,9 @@ label, .mantine-InputWrapper-label {{ color: {_C["label"]}; }}
 [data-dock-region] .jl-mathml {{ overflow-x: auto; }}
 /* The enlarged J leaves the panel free: its sliders move J while it is watched. */
 .mantine-Modal-root:has(.jl-big) .mantine-Modal-overlay, .mantine-Modal-inner:has(.jl-big) {{
-  right: calc(404px * var(--jl-zoom)) !important; width: auto !important; }}
+  right: calc({COLUMN}px * var(--jl-zoom)) !important; width: auto !important; }}
 .mantine-Modal-inner:has(.jl-big) .mantine-Modal-content {{
-  max-width: calc(100vw - 404px * var(--jl-zoom) - 24px) !important; }}
+  max-width: calc(100vw - {COLUMN}px * var(--jl-zoom) - 24px) !important; }}
 /* The motion's numbers in the 3-D view's top-left corner, beside the arm (out of the panel's flow, so
    the sliders and Configuration stay where they are). */
 .jl-live {{ position: fixed; left: 12px; top: 12px; width: 350px; z-index: 20; background: #f1f3f5;
@@ -109,9 +113,9 @@ LAYOUT_JS = """
   const tag = () => {
     const column = document.querySelector('[data-dock-region="right"]');
     if (!column) return;
-    for (const d of document.querySelectorAll('div[style*="width: 404px"]')) {
-      if (d === column) continue;
-      d.classList.add(d.style.position === "absolute" ? "jl-shadow" : "jl-spacer");
+    for (const d of document.querySelectorAll('div[style*="width: __COLUMN__px"]')) {
+      const shadow = d !== column && !column.contains(d) && d.style.position === "absolute";
+      if (shadow) d.classList.add("jl-shadow");
     }
     const cells = [...column.querySelectorAll("div")].filter(
       (d) => d.style && d.style.minHeight === "50px" && d.style.flex);
@@ -173,4 +177,6 @@ LAYOUT_JS = """
   document.addEventListener("scroll", cue, true);
   setInterval(apply, 400);
 })();
-""".replace("__ZOOM_MAX__", str(ZOOM_MAX)).replace("__TOP_MAX__", str(TOP_MAX))
+"""
+for _key, _value in (("__ZOOM_MAX__", ZOOM_MAX), ("__TOP_MAX__", TOP_MAX), ("__COLUMN__", COLUMN)):
+    LAYOUT_JS = LAYOUT_JS.replace(_key, str(_value))
