@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import robots
-from app.core.actions import ApplyPreset, ChooseRobot, Play, Step
+from app.core.actions import ApplyPreset, Play, Step
+from app.core.commands import ChooseRobot
 from app.core.pacing import RATE_GROWTH, rate_growth
 from app.core.reducer import reduce
 from app.core.state import LabState
