@@ -107,7 +107,7 @@ def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
     out_dir.mkdir(parents=True, exist_ok=True)
     lab = Lab(port=0)
     with app_page(lab) as (page, session, errors):
-        page.get_by_role("tab", name="Motion").click()
+        page.get_by_role("tab", name="Motion").click(timeout=120_000)  # a busy machine renders slowly
         # The Motion tab opens on the robot's first preset: Play applies it and runs it.
         preset = page.get_by_label("Preset", exact=True).first
         assert preset.input_value() == "straight line into the wrist singularity"

@@ -45,15 +45,20 @@ def test_play_on_a_fresh_page_runs_the_preset_at_a_narratable_pace_with_the_rate
     out = _out(tmp_path)
     lab = Lab(port=0)
     with app_page(lab) as (page, session, errors):
-        page.get_by_role("tab", name="Motion").click()
-        page.get_by_role("button", name="Play", exact=True).click()  # the first click works
+        page.locator('[role=tab][title="Motion"]').first.click(timeout=120_000)
+        page.get_by_role("button", name="Play", exact=True).click(timeout=120_000)  # the first click works
         wait(lambda: session.state.playing)
         started = time.monotonic()
         start = session.state.motion.start.copy()
         # The numbers beside the arm: in the 3-D view (left of the panel), all in the window.
         live = page.locator(".jl-live")
-        wait(lambda: live.count() > 0 and live.first.is_visible())
-        box = live.first.bounding_box()
+        boxes: list = []
+        wait(
+            lambda: (
+                live.count() > 0 and boxes.append(live.first.bounding_box()) is None and boxes[-1] is not None
+            )
+        )
+        box = boxes[-1]
         panel = page.locator('[data-dock-region="right"]').first.bounding_box()
         assert box["x"] >= 0 and box["y"] >= 0 and box["x"] + box["width"] <= panel["x"]
         assert box["y"] + box["height"] <= 720
@@ -100,7 +105,7 @@ def test_the_layout_serves_the_open_tab(tmp_path, name, viewport, scale, least):
     with app_page(lab, viewport=viewport, scale=scale) as (page, session, errors):
         wait(lambda: page.locator(".jl-top").count() == 1 and page.locator(".jl-views").count() == 1)
         for tab in ("J(q)", "Motion"):
-            page.locator(f'[role=tab][title="{tab}"]').first.click()
+            page.locator(f'[role=tab][title="{tab}"]').first.click(timeout=120_000)
             wait(lambda: page.evaluate(_MEASURE)["view"]["height"] >= least, timeout=30)
             m = page.evaluate(_MEASURE)
             # Every joint slider and the Configuration menu are in sight, above the views of J.
@@ -127,7 +132,8 @@ def test_the_layout_serves_the_open_tab(tmp_path, name, viewport, scale, least):
 def test_the_enlarged_j_leaves_the_sliders_free(tmp_path):
     lab = Lab(port=0)
     with app_page(lab) as (page, session, errors):
-        page.get_by_role("button", name="Enlarge J (Esc closes)").click()
+        wait(lambda: page.locator(".jl-matrix").count() > 0, timeout=120)
+        page.get_by_role("button", name="Enlarge J (Esc closes)").click(timeout=120_000)
         wait(lambda: page.locator(".mantine-Modal-content .jl-big").count() > 0)
         modal = page.locator(".mantine-Modal-content").first.bounding_box()
         panel = page.locator('[data-dock-region="right"]').first.bounding_box()
