@@ -24,7 +24,7 @@ from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.handout import HANDOUT_METHODS, handout
 
-from .export import StderrProgress, add_chain_arguments, write_output
+from .export import StderrProgress, add_chain_arguments, write_output, xacro_arguments
 
 __all__ = ["main"]
 
@@ -117,7 +117,9 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 2
     try:
-        robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        robot = robots.load(
+            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
+        )
         rates = None
         if args.rates is not None:
             if len(args.rates) != robot.dof:
