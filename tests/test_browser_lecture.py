@@ -50,42 +50,39 @@ def test_play_on_a_fresh_page_runs_the_preset_at_a_narratable_pace_with_the_rate
         wait(lambda: session.state.playing)
         started = time.monotonic()
         start = session.state.motion.start.copy()
-        # The numbers beside the arm: in the 3-D view (left of the panel), all in the window.
-        live = page.locator(".jl-live")
-        boxes: list = []
-        wait(
-            lambda: (
-                live.count() > 0 and boxes.append(live.first.bounding_box()) is None and boxes[-1] is not None
-            )
-        )
-        box = boxes[-1]
-        panel = page.locator('[data-dock-region="right"]').first.bounding_box()
-        assert box["x"] >= 0 and box["y"] >= 0 and box["x"] + box["width"] <= panel["x"]
-        assert box["y"] + box["height"] <= 720
+        # The readout, read in one go in the page (it is redrawn every frame while the arm moves).
+        read = """() => { const e = document.querySelector('.jl-live');
+          const panel = document.querySelector('[data-dock-region="right"]').getBoundingClientRect();
+          const b = e && e.getBoundingClientRect(); if (!b || b.width === 0) return null;
+          return {text: e.innerText, x: b.left, y: b.top, right: b.right, bottom: b.bottom, panel: panel.left}; }"""
         # Near the singularity it is slowed down, and the readout says so with the rates as numbers:
         # watched (polled) until the motion stops.
-        seen: dict[str, object] = {"pace": 1.0, "text": ""}
+        seen: dict[str, object] = {"pace": 1.0, "text": "", "box": None}
 
         def watch() -> bool:
             state = session.state
             seen["pace"] = min(float(seen["pace"]), state.motion.pace)  # type: ignore[arg-type]
             if not seen["text"] and state.playing:
-                try:
-                    text = live.first.inner_text(timeout=2_000)
-                except Exception:  # the box is redrawn between two reads
-                    text = ""
-                if "slowed ×" in text:
-                    seen["text"] = text
+                box = page.evaluate(read)
+                if box is not None and "slowed ×" in box["text"]:
+                    seen["text"], seen["box"] = box["text"], box
                     page.screenshot(path=str(out / "lecture_play_1280x720.png"))
             return not state.playing
 
         wait(watch, timeout=240)
         text = str(seen["text"])
-        assert text, "the readout never said it was slowed down"
+        box = seen["box"]
+        assert text, (
+            f"the readout never said it was slowed down (least pace {seen['pace']}, "
+            f"{time.monotonic() - started:.1f} s, {session.state.stopped!r}, t = {session.state.time:.2f} s)"
+        )
         assert float(seen["pace"]) < 0.3  # type: ignore[arg-type]
         rates = re.findall(r"q̇[₁-₆]\s*([−-]?\d+\.\d)\s*°/s", text)
         assert len(rates) == 6, text
         assert "κ" in text and "σ" in text
+        # Beside the arm: in the 3-D view (left of the panel), all of it in the window.
+        assert isinstance(box, dict)
+        assert box["x"] >= 0 and box["y"] >= 0 and box["right"] <= box["panel"] and box["bottom"] <= 720
         # The text is large enough for the back row (the rates at 18 px or more).
         size = page.evaluate(
             "() => parseFloat(getComputedStyle(document.querySelector('.jl-live-rate b')).fontSize)"
