@@ -115,7 +115,10 @@ def test_the_layout_serves_the_open_tab(tmp_path, name, viewport, scale, least):
     out = _out(tmp_path)
     lab = Lab(port=0)
     with app_page(lab, viewport=viewport, scale=scale) as (page, session, errors):
-        wait(lambda: page.locator(".jl-top").count() == 1 and page.locator(".jl-views").count() == 1)
+        wait(
+            lambda: page.locator(".jl-top").count() == 1 and page.locator(".jl-views").count() == 1,
+            timeout=120,
+        )
         for tab in ("J(q)", "Motion"):
             page.locator(f'[role=tab][title="{tab}"]').first.click(timeout=120_000)
             wait(lambda: page.evaluate(_MEASURE)["view"]["height"] >= least, timeout=30)
