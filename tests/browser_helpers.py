@@ -96,10 +96,13 @@ def close_notifications(page) -> None:
 
 
 @contextlib.contextmanager
-def app_page(lab) -> Iterator[tuple[Any, Any, list[str]]]:
-    """A 1280×720 headless-Chromium page on ``lab``'s app, once its tab is drawn and its toasts are
-    hidden: ``(page, session, errors)``, ``errors`` collecting the page's script errors. The browser
-    closes and the lab stops on the way out (also when the browser is missing: skipped, or failed in CI).
+def app_page(
+    lab, viewport: dict[str, int] | None = None, scale: float = 1.0
+) -> Iterator[tuple[Any, Any, list[str]]]:
+    """A headless-Chromium page (1280×720 unless ``viewport``; ``scale``: device pixels per CSS pixel,
+    1.5 for a 150 % zoom) on ``lab``'s app, once its tab is drawn and its toasts are hidden:
+    ``(page, session, errors)``, ``errors`` collecting the page's script errors. The browser closes and
+    the lab stops on the way out (also when the browser is missing: skipped, or failed in CI).
     """
     errors: list[str] = []
     try:
@@ -107,7 +110,7 @@ def app_page(lab) -> Iterator[tuple[Any, Any, list[str]]]:
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
             try:
-                page = browser.new_page(viewport=VIEWPORT)
+                page = browser.new_page(viewport=viewport or VIEWPORT, device_scale_factor=scale)
                 page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
                 page.goto(lab.url)
                 page.wait_for_selector("[role=slider]", timeout=120_000)

@@ -30,7 +30,9 @@ def choose(session, name: str) -> None:
 def test_a_preset_from_the_dropdown_then_play_moves_the_arm_and_feeds_the_charts(session, monkeypatch):
     motion = session.panel.motion
     name = robots.motions("puma560")[0].name
-    motion.preset.value = name  # as the user picks it
+    assert motion.preset.value == name  # shown first; picked again after "your own v", as a user would
+    motion.preset.value = OWN_TWIST
+    motion.preset.value = name
     session.settle()
     state = session.state
     assert state.motion.preset == name and state.motion.kind == "resolved_rate"
@@ -63,9 +65,10 @@ def test_a_preset_from_the_dropdown_then_play_moves_the_arm_and_feeds_the_charts
 
 def test_the_play_buttons_drive_the_ticker(session):
     motion = session.panel.motion
-    motion.preset.value = robots.motions("puma560")[0].name
-    session.settle()
-    start = np.array(session.state.q)
+    # A fresh tab: the dropdown shows the first preset, not yet applied; Play applies it and runs it.
+    first = robots.motions("puma560")[0]
+    assert motion.preset.value == first.name and session.state.motion.preset == ""
+    start = np.array(first.q)
     q_seen = []
     _click(motion.buttons, "Play")
     session.settle()

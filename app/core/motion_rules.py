@@ -17,9 +17,10 @@ from kinematics import Robot, jacobian
 from kinematics.analysis import condition_number, manipulability, singular_values, task_rows
 from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
-from kinematics.motion import ik, redundancy, resolved_rate
+from kinematics.motion import ik, redundancy
 from kinematics.numeric import fk
 
+from . import pacing
 from .motion_state import MOTIONS, IkInfo, MotionState, Trace, readonly
 from .ranges import joint_ranges, twist_ranges
 from .self_motion import ROW_WORDS, climbed_along
@@ -88,7 +89,8 @@ def sample(
     kappa = float(condition_number(J, rows))
     w = float(manipulability(J, rows))
     base = trace if trace is not None else Trace.empty(robot.dof)
-    return base.append(t, float(sigma[-1]) if sigma.size else 0.0, kappa, w, qd)
+    tool = fk(robot, q)[:3, 3]
+    return base.append(t, float(sigma[-1]) if sigma.size else 0.0, kappa, w, qd, tool)
 
 
 def play(state: LabState, playing: bool, kind: str) -> LabState:
@@ -141,12 +143,12 @@ def step(state: LabState, dt: float, force: bool = False) -> LabState:
     """
     if (not state.playing and not force) or dt <= 0.0:
         return state
-    dt = dt * state.options.speed
     kind = state.motion.kind
-    if kind == "joints":
-        return _joints(state, dt)
     if kind == "resolved_rate":
         return _resolved_rate(state, dt)
+    dt = dt * state.options.speed
+    if kind == "joints":
+        return _joints(state, dt)
     if kind == "climb":
         return _climb(state)
     return _path(state)
@@ -191,28 +193,28 @@ def _joints(state: LabState, dt: float) -> LabState:
     return _moved(state, np.array(state.q) + qd * dt, t, trace, touching=True)[0]
 
 
-def _resolved_rate(state: LabState, dt: float) -> LabState:
-    """One step of q_{k+1} = q_k + Δt J⁺ v; stops at a slider end or when a rate passes its bound."""
-    robot = state.robot
-    rows = task_rows(robot)
+def _resolved_rate(state: LabState, clock_dt: float) -> LabState:
+    """One step of q_{k+1} = q_k + Δt J⁺ v, paced (:mod:`app.core.pacing`: slower near a singularity);
+    stops at a slider end or when a rate passes its bound."""
     o = state.options
-    q_next, qd, stop = resolved_rate.resolved_rate_step(
-        robot,
-        state.q,
-        state.v_desired,
-        dt=dt,
+    q_next, qd, stop, dt = pacing.paced_step(
+        state.robot,
+        np.array(state.q),
+        np.array(state.v_desired),
+        clock_dt=clock_dt,
+        speed=o.speed,
         frame=o.twist_frame,
         damping=o.damping,
         rate_limit=RATE_BOUND,
-        rows=rows,
+        rows=task_rows(state.robot),
     )
-    m = state.motion
+    m = state.motion.replace(pace=dt / (clock_dt * o.speed) if o.speed > 0 else 1.0)
     t = state.time + dt
     if stop is not None:
         trace = sample(state, np.array(state.q), np.asarray(qd, float), m.trace, t)
         return _stop(state, f"stopped: {stop.message}", motion=m.replace(trace=trace))
     rates = np.asarray(qd, float)
-    return _moved(state, q_next, t, lambda q: sample(state, q, rates, m.trace, t))[0]
+    return _moved(state.replace(motion=m), q_next, t, lambda q: sample(state, q, rates, m.trace, t))[0]
 
 
 def _climb(state: LabState) -> LabState:

@@ -44,6 +44,7 @@ class Trace:
         kappa: Condition number of the task rows, capped at :data:`KAPPA_CAP` (k,).
         w: Yoshikawa's manipulability of the task rows (k,).
         qd: Joint rates (k, n) [rad/s | m/s].
+        tool: The tool point at each sample (k, 3) [m] (base frame): the path drawn in the 3-D view.
     """
 
     t: np.ndarray
@@ -51,26 +52,35 @@ class Trace:
     kappa: np.ndarray
     w: np.ndarray
     qd: np.ndarray
+    tool: np.ndarray = field(default_factory=lambda: readonly(np.zeros((0, 3))))
 
     @classmethod
     def empty(cls, n: int) -> Trace:
         z = readonly(np.zeros(0))
-        return cls(z, z, z, z, readonly(np.zeros((0, n))))
+        return cls(z, z, z, z, readonly(np.zeros((0, n))), readonly(np.zeros((0, 3))))
 
     def __len__(self) -> int:
         return int(self.t.shape[0])
 
-    def append(self, t: float, sigma_min: float, kappa: float, w: float, qd: np.ndarray) -> Trace:
-        """This trace with one more sample (the oldest dropped beyond :data:`TRACE_LENGTH`)."""
+    def append(
+        self, t: float, sigma_min: float, kappa: float, w: float, qd: np.ndarray, tool: object = None
+    ) -> Trace:
+        """This trace with one more sample (the oldest dropped beyond :data:`TRACE_LENGTH`); ``tool``: the
+        tool point [m] (the last one again when not given)."""
         keep = slice(-TRACE_LENGTH + 1, None) if len(self) >= TRACE_LENGTH else slice(None)
         kappa = float(kappa) if np.isfinite(kappa) else KAPPA_CAP
         qd = np.where(np.isfinite(qd), qd, 0.0)
+        last = self.tool[-1] if len(self.tool) else np.zeros(3)
+        point = np.asarray(tool if tool is not None else last, dtype=float).reshape(3)
+        point = np.where(np.isfinite(point), point, last)
+        tools = self.tool if len(self.tool) == len(self) else np.zeros((len(self), 3))
         return Trace(
             readonly(np.append(self.t[keep], t)),
             readonly(np.append(self.sigma_min[keep], _finite(sigma_min))),
             readonly(np.append(self.kappa[keep], min(kappa, KAPPA_CAP))),
             readonly(np.append(self.w[keep], _finite(w))),
             readonly(np.vstack([self.qd[keep], qd[None, :]])),
+            readonly(np.vstack([tools[keep], point[None, :]])),
         )
 
 
@@ -116,6 +126,8 @@ class MotionState:
         self_trace: (s, w) samples of the self-motion, shape (k, 2).
         direction: The null-space direction of increasing s (n,) (kept so s keeps its sense).
         ik: The last "drive the tool" solve, or ``None``.
+        pace: The motion's time per second of the clock and unit speed at the last step (1: as fast as
+            the speed option says; less near a singularity, see :mod:`app.core.pacing`).
     """
 
     kind: str = "joints"
@@ -130,6 +142,7 @@ class MotionState:
     self_trace: np.ndarray = field(default_factory=lambda: readonly(np.zeros((0, 2))))
     direction: np.ndarray | None = None
     ik: IkInfo | None = None
+    pace: float = 1.0
 
     def replace(self, **changes: object) -> MotionState:
         return replace(self, **changes)  # type: ignore[arg-type]

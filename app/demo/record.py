@@ -62,7 +62,7 @@ __all__ = [
 CLIENT_PAGE = "viser-client.html"
 """viser's client page, copied next to the recording."""
 RECORDING = "recording.viser"
-DEFAULT_SECONDS = 8.0
+DEFAULT_SECONDS = 15.0
 DEFAULT_FPS = 30.0
 LEAD = 1e-3
 """Time [s] of frame 0 in the file (the scene before it is the last frame; see :func:`record`)."""

@@ -147,9 +147,10 @@ def lost_axes(losses) -> np.ndarray:
 def step_axes(derivation) -> np.ndarray:
     """The directions (k, 3) a Derive step draws and must not be seen end-on: for Whitney's method the
     step's axis zᵢ₋₁, its lever pₙ − pᵢ₋₁ and its column Jᵢ (none for the other methods)."""
-    if derivation is None or derivation.method != "whitney" or not derivation.whitney:
+    if derivation is None or derivation.method != "whitney" or not derivation.numbers:
         return np.zeros((0, 3))
-    vectors = [v for c in derivation.whitney if c.joint == derivation.joint for v in (c.z, c.r, c.linear)]
+    columns = derivation.numbers  # kinematics.steps.whitney: one column per axis
+    vectors = [v for c in columns if c.joint == derivation.joint for v in (c.z, c.r, c.linear)]
     out = [v / np.linalg.norm(v) for v in vectors if np.linalg.norm(v) > 1e-9]
     return np.array(out).reshape(-1, 3)
 

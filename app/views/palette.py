@@ -29,6 +29,7 @@ __all__ = [
     "DESIRED_RGB",
     "FORCE_RGB",
     "ACCEL_RGB",
+    "PATH_RGB",
     "ROTATION_ELLIPSOID_RGB",
     "FORCE_ELLIPSOID_RGB",
     "GLYPH_RGB",
@@ -62,6 +63,7 @@ TWIST_RGB = (20, 20, 20)  # v = J q̇: black
 TWIST_ANGULAR_RGB = (95, 61, 0)  # ω = J q̇: dark umber
 DESIRED_RGB = (200, 204, 212)  # the desired tool velocity: light grey (what J q̇ should reach)
 FORCE_RGB = (0, 45, 98)  # the applied force and moment: navy
+PATH_RGB = (0, 95, 115)  # the tool's traced path: dark teal (no joint, status or glyph uses it)
 ACCEL_RGB = (180, 0, 255)  # J̇ q̇, the tool's acceleration at constant joint rates: violet
 ROTATION_ELLIPSOID_RGB = (0, 120, 90)
 FORCE_ELLIPSOID_RGB = (90, 20, 120)

@@ -34,6 +34,8 @@ from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, sho
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
+from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
+from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .matrix import MatrixPanel
 from .motion import MapsPanel, MotionPanel, slider_ids
@@ -42,8 +44,6 @@ from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 
 __all__ = ["PanelView", "PANEL_WIDTH"]
 
-PANEL_WIDTH = 400
-"""Width of the docked panel [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
 
 _LEGEND = (
     "**Colours.** Each joint has one colour: slider, axis, column arrow and bars. "
@@ -73,14 +73,16 @@ class PanelView:
         gui.set_panel_label("Jacobian Lab")
         gui.main_panel.dock_right()
         gui.main_panel.set_width(PANEL_WIDTH)
-        gui.add_html(BASE_CSS + f"<style>{status_css()}</style>", order=0)
+        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
+        run_javascript(client, LAYOUT_JS)
         set_page_title(client, PAGE_TITLE)
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
         bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
         self.chain: viser.GuiDropdownHandle | None = None
         self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
+        self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
@@ -184,6 +186,11 @@ class PanelView:
         self.status.content = status_html(snap, state)
         for part in self.parts.values():
             part.draw(state, snap)
+        live = live_html(state)
+        if live != self.live.content:
+            self.live.content = live
+        if self.live.visible != bool(live):
+            self.live.visible = bool(live)
 
     def show_recording(self, recording: bool) -> None:
         """The record button says what a click does next."""

@@ -14,7 +14,7 @@ from ...core.commands import ClaimPresenter, Command, ExploreAlone, FollowPresen
 from ...core.role import Role
 from .common import Dispatch, bind, sync_value
 
-__all__ = ["ClassroomPanel"]
+__all__ = ["ClassroomPanel", "compact_title"]
 
 
 class ClassroomPanel:
@@ -63,6 +63,9 @@ class ClassroomPanel:
             text = "No presenter yet: tabs follow the presenter once one is on."
             label = ""
         self.status.content = f'<div class="jl-note" style="font-size:13.5px">{text}</div>'
+        # Presenting or following, the box folds to its one title line (app.views.panel.layout's script
+        # folds a folder whose title starts "Classroom ·"; a click on it opens it again).
+        self.root.label = compact_title(role)
         self.button.visible = bool(label)
         if label:
             self.button.label = label
@@ -72,3 +75,13 @@ class ClassroomPanel:
 
     def remove(self) -> None:
         self.root.remove()
+
+
+def compact_title(role: Role) -> str:
+    """The box's title: "Classroom", or one line saying the role once the tab presents or follows."""
+    if role.presenting:
+        n = role.followers
+        return f"Classroom · presenting: {n} tab{'s' if n != 1 else ''} follow{'s' if n == 1 else ''}"
+    if role.following:
+        return "Classroom · following the presenter (read-only)"
+    return "Classroom"

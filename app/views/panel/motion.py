@@ -78,21 +78,32 @@ class MotionPanel:
         with self.root:
             # Resolved rate: the course's q_{k+1} = q_k + Δt J⁺ v, the tool twist held.
             with gui.add_folder("Resolved rate: q̇ = J⁺v held in time"):
+                # The robot's first preset is shown first: Play on a fresh tab runs it (the arm goes to its
+                # start), instead of refusing "your own v" = 0.
                 self.preset = gui.add_dropdown(
                     "Preset",
-                    (OWN_TWIST, *self.presets),
-                    initial_value=OWN_TWIST,
+                    (*self.presets, OWN_TWIST),
+                    initial_value=next(iter(self.presets), OWN_TWIST),
                     hint="A start and a tool twist.",
                 )
                 bind(self.preset, dispatch, self._preset)
+                self._own = not self.presets  # the user chose "your own v"
+                self._pending: ApplyPreset | None = None  # the preset shown but not applied yet
                 self.buttons = gui.add_button_group("", PLAY_BUTTONS)
-                self.buttons.on_click(lambda event: dispatch(_button(str(event.target.value))))
+                self.buttons.on_click(lambda event: self._click(dispatch, str(event.target.value)))
                 self.readout = gui.add_html("")
-                self.measures = _chart(gui, "σmin and w", ("σmin", "w"), ("#c2255c", "#3b5bdb"), "σmin, w")
-                self.kappa = _chart(gui, "condition number κ", ("κ",), ("#e8590c",), "κ (log)", log=True)
+                # The blow-up first: the joint rates, then κ, then σmin and w (all against the motion's t).
                 names = [f"q̇{i + 1}" for i in range(robot.dof)]
                 colors = [joint_hex(i) for i in range(robot.dof)]
-                self.rates = _chart(gui, "joint rates", names, colors, "°/s, m/s")
+                kinds = {j.kind for j in robot.joints}
+                unit = "°/s" if kinds == {"revolute"} else "m/s" if "revolute" not in kinds else "°/s | m/s"
+                self.rates = _chart(gui, "joint rates q̇", names, colors, f"q̇ [{unit}]")
+                self.kappa = _chart(
+                    gui, "condition number κ", ("κ",), ("#c2410c",), "κ (log scale, no unit)", log=True
+                )
+                self.measures = _chart(
+                    gui, "σmin and w of the task rows", ("σmin", "w"), ("#c2255c", "#3b5bdb"), "σmin, w"
+                )
                 self.about = gui.add_html("")
                 self.frame = option_widget(gui, dispatch, "twist_frame")
                 self.speed = option_widget(gui, dispatch, "speed")
@@ -142,7 +153,11 @@ class MotionPanel:
             nearest.on_click(lambda _: dispatch(FindSingularity()))
 
     def _preset(self, value: Any) -> ApplyPreset | None:
-        p = self.presets.get(str(value))
+        self._own = str(value) not in self.presets
+        return self._apply(str(value))
+
+    def _apply(self, name: str) -> ApplyPreset | None:
+        p = self.presets.get(name)
         if p is None:
             return None
         return ApplyPreset(p.name, tuple(map(float, p.q)), tuple(map(float, p.twist)), p.frame, p.speed)
@@ -152,9 +167,29 @@ class MotionPanel:
         """Its sliders whose step the page honours."""
         return [self.speed] + ([self.self_slider] if self.self_slider is not None else [])
 
+    def _click(self, dispatch: Dispatch, label: str) -> None:
+        """Play or Step with a preset shown but not applied applies it first; then the button's action."""
+        pending = self._pending
+        if pending is not None and label in ("Play", "Step"):
+            self._pending = None
+            dispatch(pending)
+        dispatch(_button(label))
+
+    def shown_preset(self, state: LabState) -> str:
+        """The preset the dropdown shows: the state's, else "your own v" once the user chose it or set a v,
+        else the robot's first preset (what Play runs)."""
+        m = state.motion
+        if m.preset in self.presets:
+            return m.preset
+        if self._own or not self.presets or np.any(state.v_desired) or m.trace is not None:
+            return OWN_TWIST
+        return next(iter(self.presets))
+
     def draw(self, state: LabState, snap: Snapshot) -> None:
         o, m = state.options, state.motion
-        sync_value(self.preset, m.preset if m.preset in self.presets else OWN_TWIST)
+        shown = self.shown_preset(state)
+        sync_value(self.preset, shown)
+        self._pending = self._apply(shown) if shown != m.preset else None
         for handle, name in ((self.frame, "twist_frame"), (self.speed, "speed"), (self.gizmo, "gizmo")):
             show_option(handle, name, getattr(o, name))
         show_option(self.method, "ik_method", o.ik_method)
@@ -162,7 +197,7 @@ class MotionPanel:
         if self.self_slider is not None:
             sync_value(self.self_slider, float(round(m.s, 6)))
         key = (
-            m.preset,
+            shown,
             state.playing,
             state.stopped,
             m.kind,
@@ -171,8 +206,8 @@ class MotionPanel:
         )
         if key != self._shown:
             self._shown = key
-            self.about.content = self._about(m.preset)
-            self.readout.content = _readout(state, snap)
+            self.about.content = self._about(shown)
+            self.readout.content = _readout(state, snap, self._pending is not None)
         self.ik.content = _ik_html(state)
         # Charts at most every third frame while playing (each update resends the whole series).
         if (
@@ -217,7 +252,13 @@ def _button(label: str) -> Play | StepOnce | ResetMotion:
     return ResetMotion()
 
 
-def _readout(state: LabState, snap: Snapshot) -> str:
+def _readout(state: LabState, snap: Snapshot, pending: bool = False) -> str:
+    if pending:
+        return (
+            '<div class="jl"><div class="jl-note">Press <b>Play</b>: the arm goes to the preset\'s start '
+            "and its tool twist v is held (q̇ = J⁻¹ v), slowed down near the singularity so it can be "
+            "followed.</div></div>"
+        )
     rows = snap.rows
     v = [state.v_desired[r] if r < 3 else math.degrees(state.v_desired[r]) for r in rows]
     parts = ", ".join(f"{ROW_TEXT[r]} {fmt.number(x)}" for r, x in zip(rows, v, strict=True))

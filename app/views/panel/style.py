@@ -28,12 +28,12 @@ BASE_CSS = """
 .jl-table td.v { text-align: right; font-variant-numeric: tabular-nums; font-weight: 650; white-space: nowrap; }
 .jl-table td.v.wrap { white-space: normal; }
 .jl-note { color: #4f5660; font-size: 12.5px; }
-.jl-matrix { border-collapse: collapse; margin: 2px auto; font-variant-numeric: tabular-nums; font-size: 12.5px;
+.jl-matrix { border-collapse: collapse; margin: 2px auto; font-variant-numeric: tabular-nums; font-size: 13.5px;
   font-family: "DejaVu Sans Mono", "Menlo", "Consolas", monospace; }
 .jl-matrix td, .jl-matrix th { padding: 1px 3px; text-align: right; white-space: nowrap; }
 .jl-matrix th.col { text-align: center; font-family: inherit; font-weight: 700; border-bottom: 3px solid; }
 .jl-matrix th.row { text-align: left; font-weight: 600; color: #1f2328; padding-right: 6px; }
-.jl-matrix tr.off td, .jl-matrix tr.off th.row { color: #767c85; }
+.jl-matrix tr.off td, .jl-matrix tr.off th.row { color: #5f656e; }
 .jl-matrix tr.split td, .jl-matrix tr.split th { border-top: 1px solid #bbb; }
 .jl-big .jl-matrix { font-size: 26px; }
 .jl-big .jl-matrix td, .jl-big .jl-matrix th { padding: 4px 14px; }
@@ -110,22 +110,7 @@ def slider_css(uuid: str, joint: int) -> str:
 
 PAGE_JS = """
 (() => {
-  // The joints (top) get more of the right-hand column than the views of J (bottom), once.
-  let tries = 0;
-  const split = setInterval(() => {
-    tries += 1;
-    const marker = document.querySelector(".jl-views-marker");
-    let cell = marker;
-    while (cell && !(cell.style && cell.style.flex && cell.style.flex.startsWith("0.5 "))) cell = cell.parentElement;
-    if (cell && cell.parentElement) {
-      const cells = [...cell.parentElement.children].filter((c) => c.style && c.style.flex && c.style.flex.startsWith("0.5 "));
-      if (cells.length === 2) {
-        cells[0].style.flex = cells[0] === cell ? "0.4 1 0px" : "0.6 1 0px";
-        cells[1].style.flex = cells[1] === cell ? "0.4 1 0px" : "0.6 1 0px";
-      }
-      clearInterval(split);
-    } else if (tries > 40) clearInterval(split);
-  }, 250);
+  // The split of the right-hand column is app.views.panel.layout's.
   if (window.__jacobianLabKeys) return;
   window.__jacobianLabKeys = true;
   const modalClose = () => {
@@ -204,7 +189,7 @@ PAGE_JS = """
 
 
 def page_js() -> str:
-    """The page script (split of the right-hand column, slider keys, closing the enlarged J)."""
+    """The page script (slider keys, closing the enlarged J, clicks on the joint map)."""
     return PAGE_JS
 
 

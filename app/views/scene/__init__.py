@@ -31,6 +31,7 @@ from .arm import ArmGeometry, ArmView
 from .derive import DeriveScene
 from .drive import DriveView
 from .overlays import Overlays
+from .path import ToolPath
 
 __all__ = ["SceneView", "ArmGeometry", "Glyph", "GlyphView", "SceneContext", "GLYPHS"]
 
@@ -83,10 +84,11 @@ GLYPHS: tuple[Glyph, ...] = (
     Glyph(
         "drive", lambda c: DriveView(c.scene, c.dispatch, c.geometry.size, c.robot.planar, f"{c.root}/drive")
     ),
+    Glyph("path", lambda c: ToolPath(c.scene, f"{c.root}/motion")),
     Glyph("derive", lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive")),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
-J̇ q̇; the drag handle and motion traces; the Derive tab's step."""
+J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step."""
 _GLYPH_NAMES = frozenset(g.name for g in GLYPHS)
 
 

@@ -27,7 +27,15 @@ from ...core.snapshot import Snapshot
 from ...core.state import Options
 from ...viser_adapter import set_pose, update_props
 from ..palette import LINK_RGB, STATUS_RGB, joint_color
-from .geometry import finite, segment_instances, set_if_changed, unit_box, unit_cylinder, wxyz
+from .geometry import (
+    LABEL_SCALE,
+    finite,
+    segment_instances,
+    set_if_changed,
+    unit_box,
+    unit_cylinder,
+    wxyz,
+)
 
 __all__ = ["ArmGeometry", "ArmView"]
 
@@ -196,7 +204,7 @@ class ArmView:
         )
         self.labels = [
             scene.add_label(
-                f"{root}/label_{j}", _short(j, name), font_screen_scale=1.0, anchor="bottom-center"
+                f"{root}/label_{j}", _short(j, name), font_screen_scale=LABEL_SCALE, anchor="bottom-center"
             )
             for j, name in enumerate(robot.joint_names)
         ]

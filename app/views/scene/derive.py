@@ -22,7 +22,7 @@ from ...viser_adapter import update_props
 from ..methods import METHODS
 from ..methods.common import AXIS_RGB, LEVER_RGB
 from .arm import ArmGeometry
-from .geometry import finite, set_if_changed
+from .geometry import LABEL_SCALE, finite, set_if_changed
 from .overlays import LINEAR_SECONDS, Arrows
 
 __all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB"]
@@ -50,7 +50,7 @@ class DeriveScene:
         )
         self.labels = [
             scene.add_label(
-                f"{root}/label_{k}", "", visible=False, anchor="bottom-left", font_screen_scale=1.1
+                f"{root}/label_{k}", "", visible=False, anchor="bottom-left", font_screen_scale=LABEL_SCALE
             )
             for k in range(_LABELS)
         ]

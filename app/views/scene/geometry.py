@@ -25,8 +25,12 @@ __all__ = [
     "unit_cylinder",
     "unit_box",
     "TINY",
+    "LABEL_SCALE",
 ]
 
+LABEL_SCALE = 1.6
+"""Screen scale of the 3-D view's text labels (viser's 1.0 draws them about 11 px high: too small for the
+back row of a lecture hall; 1.6 gives about 17 px)."""
 TINY = 1e-4
 """Smallest drawn extent [m]: degenerate shapes are drawn this thin instead of vanishing."""
 _LIMIT = 1e3

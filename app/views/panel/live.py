@@ -1,0 +1,62 @@
+"""The motion readout at the top of the panel: while a motion plays (and after it stops), the joint
+rates, κ and σmin as numbers beside the arm, readable from the back row (the charts below are the
+history; these are the values now).
+
+A pure function of the state: :func:`live_html` returns "" when no motion has traced anything.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...core.state import LabState
+from .. import fmt
+from ..palette import joint_text_hex
+
+__all__ = ["live_html"]
+
+_DOING = {
+    "resolved_rate": "holding v",
+    "climb": "climbing w",
+    "path": "to the nearest singularity",
+    "joints": "moving at q̇",
+}
+
+
+def live_html(state: LabState) -> str:
+    """Rates [°/s | m/s], κ, σmin, the motion's time and its pace; "" when nothing is traced."""
+    m = state.motion
+    trace = m.trace
+    if trace is None or len(trace) < 2:
+        return ""
+    qd = np.asarray(trace.qd[-1], dtype=float)
+    cells = []
+    for i, joint in enumerate(state.robot.joints):
+        revolute = joint.kind == "revolute"
+        value = math.degrees(qd[i]) if revolute else float(qd[i])
+        unit = "°/s" if revolute else "m/s"
+        cells.append(
+            f'<div class="jl-live-rate" style="color:{joint_text_hex(i)}"><span>q̇{_sub(i + 1)}</span>'
+            f"<b>{fmt.fixed(value, 1 if revolute else 3)}</b><small>{unit}</small></div>"
+        )
+    kappa = float(trace.kappa[-1])
+    doing = _DOING.get(m.kind, "")
+    state_word = "playing" if state.playing else "paused" if not state.stopped else "stopped"
+    pace = (
+        f' · <span class="jl-live-slow">slowed ×{fmt.number(m.pace, 2)} near the singularity</span>'
+        if state.playing and m.kind == "resolved_rate" and m.pace < 0.95
+        else ""
+    )
+    head = (
+        f'<div class="jl-live-head"><span>κ <b>{fmt.number(kappa)}</b></span>'
+        f"<span>σ<sub>min</sub> <b>{fmt.number(float(trace.sigma_min[-1]))}</b></span>"
+        f"<span>t <b>{fmt.fixed(state.time, 2)}</b> s</span></div>"
+    )
+    foot = f'<div class="jl-live-foot">{state_word}{": " + doing if doing else ""}{pace}</div>'
+    return f'<div class="jl jl-live">{head}<div class="jl-live-rates">{"".join(cells)}</div>{foot}</div>'
+
+
+def _sub(n: int) -> str:
+    return str(n).translate(str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉"))
