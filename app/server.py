@@ -24,10 +24,16 @@ import viser
 from .services.catalog import RobotCatalog
 from .services.classroom import Classroom
 from .services.lifecycle import check_listen_address, wait_for_stop
+from .services.ratelimit import RoomLimits
 from .services.renderer import Renderer
 from .services.symbolic_service import SymbolicService
 from .tab.session import ClientSession
-from .viser_adapter import install_fast_prop_casts, install_icon_cache, install_message_limits
+from .viser_adapter import (
+    install_fast_prop_casts,
+    install_icon_cache,
+    install_input_checks,
+    install_message_limits,
+)
 
 __all__ = ["serve", "Lab"]
 
@@ -71,6 +77,7 @@ class Lab:
         self.catalog.load(self.default_robot)  # fail before starting the server
         check_listen_address(host, port)  # a clear error now, instead of a server that never listens
         install_message_limits()  # what one websocket message and one tab may cost
+        self.room = install_input_checks(RoomLimits())  # every value a tab sends, checked as it enters
         install_fast_prop_casts()
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
         self.symbolic = SymbolicService()

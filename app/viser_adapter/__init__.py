@@ -17,6 +17,9 @@ Wrapped:
   handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``; only
   an upload's parts (512 KiB, the browser's) may exceed the message limit, and an upload
   declared over :data:`MAX_UPLOAD_BYTES` is never buffered (:func:`upload_too_large`).
+* :func:`install_input_checks` — every value a tab sends, checked where it enters (:mod:`.gate`):
+  replaces ``GuiApi._handle_gui_updates`` and its upload handlers; :func:`check_message` is called
+  by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on).
 * :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
   ``queue_message`` and the messages' ``owner``), for a presenter's followers.
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
@@ -28,8 +31,8 @@ Wrapped:
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of five modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`, :mod:`.mirror`, :mod:`.icons`),
-so each stays short; nothing outside this package touches viser's private API.
+A package of six modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.props`, :mod:`.mirror`,
+:mod:`.icons`), so each stays short; nothing outside this package touches viser's private API.
 """
 
 from .core import (
@@ -44,6 +47,7 @@ from .core import (
     scene_handles,
     set_page_title,
 )
+from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
 from .icons import install_icon_cache
 from .limits import (
     MAX_UPLOAD_BYTES,
@@ -66,6 +70,11 @@ __all__ = [
     "is_removed",
     "scene_handles",
     "node_props",
+    "install_input_checks",
+    "uninstall_input_checks",
+    "check_message",
+    "check_gui_value",
+    "room_limits",
     "MessageLimits",
     "install_message_limits",
     "uninstall_message_limits",

@@ -145,6 +145,10 @@ class EditorPanel:
 
     def start_from(self, name: str) -> None:
         """Replace the table by ``name``'s DH table (a library robot) or by :data:`EMPTY`'s one row."""
+        if name not in self.start.options:  # a library robot's name, never a path (checked again here)
+            self.error = f"“Start from” takes one of its options: {name[:60]!r} is not one of them."
+            self._show_summary()
+            return
         try:
             table = dt.empty() if name == EMPTY else dt.from_robot(robots.load(name))
         except JacobianLabError as exc:
