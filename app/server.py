@@ -17,6 +17,7 @@ import socket
 import sys
 import threading
 import time
+from collections.abc import Sequence
 from pathlib import Path
 
 import viser
@@ -29,6 +30,7 @@ from .services.renderer import Renderer
 from .services.symbolic_service import SymbolicService
 from .tab.session import ClientSession
 from .viser_adapter import (
+    allow_origins,
     install_fast_prop_casts,
     install_icon_cache,
     install_input_checks,
@@ -52,6 +54,8 @@ class Lab:
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: With a token, classroom mode: the tab that types it presents and every
             other tab follows (see :mod:`app.services.classroom`).
+        allow_origin: Origins (``https://host[:port]``) of pages that may embed the lab and connect
+            to it; by default only the lab's own page may (:mod:`app.viser_adapter.handshake`).
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -67,6 +71,7 @@ class Lab:
         base_link: str | None = None,
         tip_link: str | None = None,
         presenter_token: str | None = None,
+        allow_origin: Sequence[str] = (),
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
@@ -76,6 +81,7 @@ class Lab:
         self.default_robot = robot or self.catalog.default()
         self.catalog.load(self.default_robot)  # fail before starting the server
         check_listen_address(host, port)  # a clear error now, instead of a server that never listens
+        self.allowed_origins = allow_origins(allow_origin)  # pages of other sites may not connect
         install_message_limits()  # what one websocket message and one tab may cost
         self.room = install_input_checks(RoomLimits())  # every value a tab sends, checked as it enters
         install_fast_prop_casts()
@@ -192,6 +198,7 @@ def serve(
     base_link: str | None = None,
     tip_link: str | None = None,
     presenter_token: str | None = None,
+    allow_origin: Sequence[str] = (),
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -203,6 +210,7 @@ def serve(
         block: Serve until Ctrl-C (then stop and return); ``False`` returns the running :class:`Lab`.
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: Classroom mode with this presenter token (see :class:`Lab`).
+        allow_origin: Origins of pages that may embed the lab (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -226,6 +234,7 @@ def serve(
         base_link=base_link,
         tip_link=tip_link,
         presenter_token=presenter_token,
+        allow_origin=allow_origin,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:

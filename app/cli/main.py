@@ -56,6 +56,14 @@ def _build_parser() -> argparse.ArgumentParser:
     present.add_argument(
         "--presenter", action="store_true", help="classroom mode with a random presenter token (printed)"
     )
+    serve.add_argument(
+        "--allow-origin",
+        metavar="ORIGIN",
+        action="append",
+        default=[],
+        help="also let pages from ORIGIN (e.g. https://course.example.org) connect, for a deliberate "
+        "embedding; by default only the lab's own page may (repeatable)",
+    )
     sub.add_parser("robots", help="list the library robots")
     sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
     sub.add_parser(
@@ -84,6 +92,13 @@ def _serve(args: argparse.Namespace) -> int:
         check_listen_address(args.host, args.port)
     except ValueError as exc:
         return _fail(str(exc))
+    from app.viser_adapter.handshake import normalized_origin
+
+    try:
+        for origin in args.allow_origin:
+            normalized_origin(origin)
+    except ValueError as exc:
+        return _fail(f"--allow-origin: {exc}")
     token = args.presenter_token
     if token is not None and not 1 <= len(token.strip()) <= 200:
         return _fail("--presenter-token needs 1 to 200 characters (not only spaces)")
@@ -105,6 +120,7 @@ def _serve(args: argparse.Namespace) -> int:
             port=args.port,
             block=True,
             presenter_token=token,
+            allow_origin=args.allow_origin,
         )
     except JacobianLabError as exc:
         return _fail(str(exc))

@@ -20,6 +20,9 @@ Wrapped:
 * :func:`install_input_checks` — every value a tab sends, checked where it enters (:mod:`.gate`):
   replaces ``GuiApi._handle_gui_updates`` and its upload handlers; :func:`check_message` is called
   by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on).
+* :func:`allow_origins` and :func:`handshake_refusal` — the Host and Origin of every HTTP request and
+  websocket handshake checked (:mod:`.handshake`, through the ``process_request`` viser passes to
+  ``serve``, replaced by :func:`install_message_limits`).
 * :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
   ``queue_message`` and the messages' ``owner``), for a presenter's followers.
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
@@ -31,8 +34,8 @@ Wrapped:
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of six modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.props`, :mod:`.mirror`,
-:mod:`.icons`), so each stays short; nothing outside this package touches viser's private API.
+A package of seven modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
+:mod:`.mirror`, :mod:`.icons`), so each stays short; nothing outside this package touches viser's private API.
 """
 
 from .core import (
@@ -48,6 +51,7 @@ from .core import (
     set_page_title,
 )
 from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
+from .handshake import allow_origins, handshake_refusal
 from .icons import install_icon_cache
 from .limits import (
     MAX_UPLOAD_BYTES,
@@ -75,6 +79,8 @@ __all__ = [
     "check_message",
     "check_gui_value",
     "room_limits",
+    "allow_origins",
+    "handshake_refusal",
     "MessageLimits",
     "install_message_limits",
     "uninstall_message_limits",

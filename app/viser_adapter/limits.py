@@ -14,6 +14,7 @@ from typing import Any
 from ..services.ratelimit import TabLimiter
 from .core import ViserApiChanged, _private, clip
 from .gate import check_message, room_limits
+from .handshake import checked_process_request
 
 __all__ = [
     "MessageLimits",
@@ -173,9 +174,11 @@ def _checked_upload(message: Any, size: int, limits: MessageLimits) -> tuple[Any
 
 
 def _serve_with_limit(*args: Any, **kwargs: Any) -> Any:
-    """``websockets.asyncio.server.serve`` as viser calls it, with our ``max_size``."""
+    """``websockets.asyncio.server.serve`` as viser calls it, with our ``max_size`` and every request's
+    Host and Origin checked (:mod:`.handshake`)."""
     if _limits is not None:
         kwargs["max_size"] = _frame_limit(_limits)
+    kwargs["process_request"] = checked_process_request(kwargs.get("process_request"))
     return _original["websockets"].asyncio.server.serve(*args, **kwargs)
 
 
