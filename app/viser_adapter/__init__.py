@@ -23,6 +23,8 @@ Wrapped:
 * :func:`allow_origins` and :func:`handshake_refusal` — the Host and Origin of every HTTP request and
   websocket handshake checked (:mod:`.handshake`, through the ``process_request`` viser passes to
   ``serve``, replaced by :func:`install_message_limits`).
+* :func:`listen_on` — the same ``serve`` wrapper accepting on a listening socket shared by several
+  worker processes (``jacobian-lab serve --workers N``) instead of binding host and port.
 * :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
   ``queue_message`` and the messages' ``owner``), for a presenter's followers.
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
@@ -58,6 +60,7 @@ from .limits import (
     UPLOAD_PART_BYTES,
     MessageLimits,
     install_message_limits,
+    listen_on,
     uninstall_message_limits,
     upload_too_large,
 )
@@ -83,6 +86,7 @@ __all__ = [
     "handshake_refusal",
     "MessageLimits",
     "install_message_limits",
+    "listen_on",
     "uninstall_message_limits",
     "upload_too_large",
     "MAX_UPLOAD_BYTES",
