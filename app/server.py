@@ -18,6 +18,7 @@ import socket
 import sys
 import threading
 import time
+import urllib.parse
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -32,6 +33,7 @@ from .services.symbolic_service import SymbolicService
 from .tab.session import ClientSession
 from .viser_adapter import (
     allow_origins,
+    client_address,
     install_fast_prop_casts,
     install_icon_cache,
     install_input_checks,
@@ -107,7 +109,11 @@ class Lab:
         self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
         self.sessions: dict[int, ClientSession] = {}
         self.renderer = Renderer()
-        self.classroom = Classroom(presenter_token) if presenter_token else None
+        self.classroom = (
+            Classroom(presenter_token, limits=self.room, address_of=self._address)
+            if presenter_token
+            else None
+        )
         self._gone: set[int] = set()
         self._lock = threading.Lock()
         self.server.on_client_connect(self._connect)
@@ -169,6 +175,9 @@ class Lab:
             if self.classroom is not None:
                 self.classroom.closed(client.client_id)
             session.close()
+
+    def _address(self, client_id: int) -> str:
+        return client_address(self.server, client_id)
 
     def _symbolic_restarted(self, notice: str) -> None:
         """Tell every tab that the symbolic worker stopped and was restarted (its request is retried)."""
@@ -252,9 +261,11 @@ def serve(
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:
+        link = f"{lab.url}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
         print(
-            f"Classroom mode: type the presenter token {presenter_token} into “Presenter token” "
-            "in the tab you present from; every other tab follows it.",
+            f"Classroom mode: open {link} in the tab you present from (keep the link off the "
+            "projector; it fills in the presenter token, masked, and drops it from the address bar). "
+            "Every other tab follows that one.",
             flush=True,
         )
     if not block:

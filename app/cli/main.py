@@ -62,7 +62,12 @@ def _build_parser() -> argparse.ArgumentParser:
         help="classroom mode: the tab where TOKEN is typed presents, every other tab follows",
     )
     present.add_argument(
-        "--presenter", action="store_true", help="classroom mode with a random presenter token (printed)"
+        "--presenter",
+        nargs="?",
+        const="",
+        metavar="TOKEN",
+        help="classroom mode; alone, with a random strong token and a presenter link (printed); a weak "
+        "TOKEN given by hand is warned about",
     )
     serve.add_argument(
         "--allow-origin",
@@ -119,13 +124,19 @@ def _serve(args: argparse.Namespace) -> int:
             normalized_origin(origin)
     except ValueError as exc:
         return _fail(f"--allow-origin: {exc}")
-    token = args.presenter_token
-    if token is not None and not 1 <= len(token.strip()) <= 200:
-        return _fail("--presenter-token needs 1 to 200 characters (not only spaces)")
-    if args.presenter:
+    token = args.presenter_token if args.presenter_token is not None else args.presenter
+    if token == "" and args.presenter == "":  # --presenter alone
         from app.services.classroom import random_token
 
         token = random_token()
+    elif token is not None:
+        if not 1 <= len(token.strip()) <= 200:
+            return _fail("--presenter-token needs 1 to 200 characters (not only spaces)")
+        from app.services.classroom import token_weakness
+
+        weak = token_weakness(token)
+        if weak:
+            print(f"jacobian-lab: warning: {weak}", file=sys.stderr)
     from .workers import default_workers, serve_workers
 
     workers = args.workers if args.workers is not None else default_workers()

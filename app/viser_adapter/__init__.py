@@ -10,6 +10,8 @@ Wrapped:
 * :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
 * :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
   to one client through ``client._websock_connection``.
+* :func:`client_address` — the IP a tab connected from (the server's connection table), by which
+  wrong presenter tokens are counted.
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
@@ -43,6 +45,7 @@ A package of seven modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.h
 from .core import (
     TESTED_VISER,
     ViserApiChanged,
+    client_address,
     clip,
     handle_uuid,
     is_removed,
@@ -98,4 +101,5 @@ __all__ = [
     "update_props",
     "set_pose",
     "clip",
+    "client_address",
 ]

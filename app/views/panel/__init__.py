@@ -30,7 +30,7 @@ from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
-from .classroom import ClassroomPanel
+from .classroom import ClassroomPanel, token_js
 from .common import Dispatch, bind, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
@@ -102,6 +102,8 @@ class PanelView:
         self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
+        if self.classroom is not None:  # masked, and filled from the presenter link
+            run_javascript(client, token_js(handle_uuid(self.classroom.token)))
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
         self.tab_matrix = self.views.add_tab("J(q)", viser.Icon.MATH)
