@@ -183,6 +183,10 @@ class EditorPanel:
         rows, i, n = list(self.table.rows), self.selected, len(self.table.rows)
         order: list[int | None] = list(range(n))
         if label == ROW_BUTTONS[0]:
+            if n >= dt.MAX_ROWS:
+                self.error = f"A table has at most {dt.MAX_ROWS} rows: remove one before adding another."
+                self._show_summary()
+                return
             rows.insert(i + 1, dt.Row(a=0.3))
             order.insert(i + 1, None)
             i += 1
