@@ -43,7 +43,7 @@ __all__ = [
 MAX_PRIVATE_ROBOTS = 8
 MAX_UPLOAD_JOINTS = 200
 """Most ``<joint>`` elements an uploaded URDF may have (real arms with hands have a few dozen)."""
-MAX_UPLOAD_DOF = 40
+MAX_UPLOAD_DOF = 24
 """Most moving joints of an uploaded robot's chain (each costs a slider and scene nodes per redraw)."""
 """Uploads one tab keeps (the oldest is forgotten first)."""
 _SUFFIX = " (uploaded)"
