@@ -9,6 +9,7 @@ from __future__ import annotations
 import functools
 import math
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -18,6 +19,7 @@ from kinematics import NamedConfiguration, Robot
 from kinematics.errors import RobotDefinitionError, UnknownRobotError
 from kinematics.files import decode_utf8, read_user_file
 from kinematics.transforms import rpy_to_matrix
+from kinematics.urdf import robot_from_urdf
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -27,7 +29,7 @@ else:  # pragma: no cover
 __all__ = ["DATA_DIR", "TASKS", "names", "load", "load_file", "info", "motions", "MotionPreset"]
 
 DATA_DIR = Path(__file__).resolve().parent / "data"
-SUFFIXES = (".toml", ".urdf")
+SUFFIXES = (".toml", ".urdf", ".xacro")
 MAX_ROBOT_FILE_BYTES = 1024 * 1024  # a robot file is a table of a few dozen numbers
 TASKS = ("auto", "full", "linear", "angular", "planar")  # the optional task key: kinematics.Robot.task
 
@@ -81,13 +83,21 @@ def names() -> list[str]:
     return sorted(p.stem for p in DATA_DIR.glob("*.toml"))
 
 
-def load(name_or_path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> Robot:
-    """A robot by library name (``"puma560"``), or from a ``.toml`` robot file or a ``.urdf`` file.
+def load(
+    name_or_path: str | Path,
+    base_link: str | None = None,
+    tip_link: str | None = None,
+    *,
+    xacro_args: Mapping[str, str] | None = None,
+) -> Robot:
+    """A robot by library name (``"puma560"``), or from a ``.toml`` robot file, a ``.urdf`` file or a
+    ``.xacro`` file (expanded to a URDF with ``xacro_args``, :mod:`kinematics.urdf.expand`).
 
     Args:
         name_or_path: Library name or file path.
         base_link, tip_link: For a URDF, the ends of the chain (default: see
             :mod:`kinematics.urdf`); a robot file or library robot has no links to choose.
+        xacro_args: ``NAME -> VALUE`` arguments of a xacro file.
 
     Raises:
         UnknownRobotError: not a library name (nor a file path); the message lists the names.
@@ -97,7 +107,7 @@ def load(name_or_path: str | Path, base_link: str | None = None, tip_link: str |
     if path.parent == DATA_DIR and path.suffix == ".toml":
         _no_links(path, base_link, tip_link)
         return _load_library(path.stem)
-    return load_file(path, base_link, tip_link)
+    return load_file(path, base_link, tip_link, xacro_args=xacro_args)
 
 
 def _no_links(path: Path, base_link: str | None, tip_link: str | None) -> None:
@@ -140,13 +150,22 @@ def motions(name_or_path: str | Path) -> tuple[MotionPreset, ...]:
     return tuple(out)
 
 
-def load_file(path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> Robot:
-    """Build a robot from a ``.toml`` robot file or a ``.urdf`` file (base and tip links: URDF only)."""
+def load_file(
+    path: str | Path,
+    base_link: str | None = None,
+    tip_link: str | None = None,
+    *,
+    xacro_args: Mapping[str, str] | None = None,
+) -> Robot:
+    """Build a robot from a ``.toml`` robot file, a ``.urdf`` file or a ``.xacro`` file (base and tip
+    links: URDF and xacro only; ``xacro_args``: xacro only)."""
     path = Path(path)
-    if path.suffix.lower() == ".urdf":
-        return Robot.from_urdf(str(path), base_link=base_link, tip_link=tip_link)
+    if path.suffix.lower() in (".urdf", ".xacro"):
+        return robot_from_urdf(str(path), base_link=base_link, tip_link=tip_link, xacro_args=xacro_args)
     if path.suffix.lower() != ".toml":
-        raise RobotDefinitionError(f"{path.name}: expected a .toml robot file or a .urdf file")
+        raise RobotDefinitionError(
+            f"{path.name}: expected a .toml robot file, a .urdf file or a .xacro file (e.g. arm.urdf.xacro)"
+        )
     _no_links(path, base_link, tip_link)
     doc = _validated(path, _read(path))
     rows, revolute = [], [j["joint"] == "revolute" for j in doc["joints"]]

@@ -145,6 +145,7 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "block": True,
             "presenter_token": None,
             "allow_origin": [],
+            "xacro_args": None,
         }
     ]
 

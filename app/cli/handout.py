@@ -25,7 +25,7 @@ from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.handout import HANDOUT_METHODS, handout
 
 from .args import MAX_TIMEOUT, bounded
-from .export import StderrProgress, add_chain_arguments, write_output
+from .export import StderrProgress, add_chain_arguments, write_output, xacro_arguments
 
 __all__ = ["main"]
 
@@ -118,7 +118,9 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 2
     try:
-        robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        robot = robots.load(
+            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
+        )
         rates = None
         if args.rates is not None:
             if len(args.rates) != robot.dof:
