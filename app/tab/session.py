@@ -55,9 +55,11 @@ log = logging.getLogger(__name__)
 MAX_REDRAWS_PER_SECOND = 40.0
 """A tab is redrawn at most this often; faster input is coalesced (all of it is reduced, drawn once)."""
 COST_SHARE = 4.0
-"""After a visit that took t seconds, a tab waits COST_SHARE · t before the next (a slider redraw of a
-few ms is not held back; rebuilding a large robot over and over takes at most 1/(1 + COST_SHARE) of
-the renderer)."""
+"""After a visit that took t seconds of CPU (over :data:`COSTLY`), a tab waits COST_SHARE · t before
+the next: a slider redraw of a few ms is not held back; rebuilding a large robot over and over takes
+at most 1/(1 + COST_SHARE) of the renderer."""
+COSTLY = 0.02
+"""A visit taking more CPU than this [s] (a robot rebuilt, not a redraw) delays the tab's next."""
 
 
 class ClientSession:
@@ -166,7 +168,7 @@ class ClientSession:
         """
         with self._queue_lock:
             messages, self._queue = coalesced(self._queue), []
-        started = time.monotonic()
+        started = time.thread_time()  # the CPU this tab's visit takes, not time spent waiting for others
         if messages and not self._closed:
             with self.lock:
                 batch = Batch(self.state)
@@ -183,7 +185,8 @@ class ClientSession:
                         )
                     except Exception as exc:  # the tab keeps its last good state on screen
                         self.notices.error(exc)
-        self._last_cost = min(time.monotonic() - started, 1.0)
+        cost = time.thread_time() - started
+        self._last_cost = min(cost, 1.0) if cost > COSTLY else 0.0
         with self._queue_lock:
             if self._queue and not self._closed:
                 return True
