@@ -179,3 +179,31 @@ def test_widget_checks_name_the_range_and_the_length():
     assert "outside its range [-1, 1]" in check_gui_value(handle, {"value": 2.0})
     assert "not a finite number" in check_gui_value(handle, {"value": math.inf})
     assert "not a finite number" in check_gui_value(handle, {"value": True})
+
+
+def test_an_upload_sent_to_a_slider_is_refused_and_the_slider_keeps_its_value():
+    """Point 10: an upload addressed to a slider's uuid used to give a traceback in the slider's callback."""
+    start = message_class("FileTransferStartUpload")
+    with running_lab(robot="planar2") as (lab, session, ws):
+        session.settle()
+        uuid, q = slider(ws), session.state.q
+        before = lab.room.refused
+        ws.send(start(uuid, "t1", "x.urdf", "text/xml", 1, 10))
+        ws.send(message_class("FileTransferPart")(uuid, "t1", 0, b"0123456789"))
+        wait_until(lambda: lab.room.refused > before, timeout=20)
+        assert "is not an upload button" in lab.room.refusals[-1][1]
+        session.settle()
+        assert session.errors == 0 and (session.state.q == q).all()
+
+
+def test_a_gizmo_at_1e308_m_and_a_lopsided_limits_vector_are_refused():
+    """Point 10: the IK handle at 1e308 m and a Limits vector of 1 or 3 numbers."""
+    gizmo = message_class("TransformControlsUpdateMessage")
+    assert "farther than" in check_message(gizmo("/lab/ik", (1.0, 0.0, 0.0, 0.0), (1e308, 0.0, 0.0)))
+    assert check_message(gizmo("/lab/ik", (1.0, 0.0, 0.0, 0.0), (0.5, 0.2, 0.1))) == ""
+    with running_lab(robot="planar2") as (lab, session, ws):
+        session.settle()
+        limits = next(u for u, m in widgets(ws).items() if m["type"] == "GuiVector2Message")
+        for value in ([10.0], [1.0, 2.0, 3.0]):
+            text = _send_and_wait(lab, ws, limits, {"value": value})
+            assert "expected 2 finite numbers" in text and "Limits" in text
