@@ -153,3 +153,33 @@ def test_one_tab_s_downloads_queue_behind_each_other_not_in_front_of_another_s()
             before_other = len(download(ws_hog))
             assert before_other <= 1, f"{before_other} of the first tab's downloads went before the other's"
             wait_until(lambda: len(download(ws_hog)) == len(labels), timeout=240)
+
+
+def test_a_newer_upload_cancels_a_pending_older_one_without_blocking_the_tab(monkeypatch):
+    """A newer upload cancels the older one while it still waits for the pool: cancelling runs the older
+    one's callback at once, on the drawing thread, which must not wait for a lock that thread holds
+    (it did: a busy server then never stopped)."""
+    import threading
+    from concurrent.futures import Future
+    from types import SimpleNamespace
+
+    import app.tab.commands as commands
+    from app.core.commands import UploadRobot
+
+    pending: list[Future] = []
+    pool = SimpleNamespace(submit=lambda fn: pending.append(Future()) or pending[-1])  # never started
+    monkeypatch.setattr(commands, "background", lambda: pool)
+    notices = SimpleNamespace(preparing=lambda *a: lambda: None, error=lambda exc: None)
+    runner = commands.CommandRunner(
+        None, None, None, None, None, notices, lambda m: None, lambda: (None, None), lambda: False
+    )
+    done = threading.Event()
+
+    def two_uploads() -> None:
+        runner.run(None, UploadRobot("a.urdf", b"<robot/>"))
+        runner.run(None, UploadRobot("b.urdf", b"<robot/>"))
+        done.set()
+
+    threading.Thread(target=two_uploads, daemon=True).start()
+    assert done.wait(10), "the second upload blocked the drawing thread"
+    assert pending[0].cancelled() and not pending[1].cancelled() and runner.building

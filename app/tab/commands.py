@@ -135,9 +135,9 @@ class CommandRunner:
         with self._jobs_lock:
             self._upload_job += 1
             self._building = True
-            job = self._upload_job
-            if self._upload_future is not None:
-                self._upload_future.cancel()
+            job, older = self._upload_job, self._upload_future
+        if older is not None:  # outside the lock: cancelling runs its done callback here, which takes it
+            older.cancel()
         shown = display_name(command.filename)
         remove_note = self.notices.preparing("Building…", f"the robot of {shown}")
 
