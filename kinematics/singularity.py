@@ -69,13 +69,6 @@ class SingularityReport:
         return f"{self.status}: {' + '.join(self.kinds)}"
 
 
-def _smallest(A: np.ndarray) -> float:
-    """Smallest singular value of A, or 0 when A has more rows than columns."""
-    if A.shape[0] > A.shape[1] or A.size == 0:
-        return 0.0
-    return float(np.linalg.svd(A, compute_uv=False)[-1])
-
-
 def assess(
     robot: Robot,
     q: object,

@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 import robots
+from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.files import write_user_file
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
@@ -112,9 +113,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("robot", help="library robot name (e.g. puma560) or path to a robot .toml or .urdf file")
     p.add_argument("--format", "-f", choices=FORMATS, default="latex", help="output format (default: latex)")
-    p.add_argument(
-        "--frame", choices=("base", "tool"), default="base", help="axes of J's rows (default: base)"
-    )
+    p.add_argument("--frame", choices=FRAMES, default="base", help="axes of J's rows (default: base)")
     p.add_argument(
         "--symbolic-params",
         action="store_true",

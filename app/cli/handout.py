@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 import robots
+from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.handout import HANDOUT_METHODS, handout
@@ -42,9 +43,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--method", "-m", choices=HANDOUT_METHODS, default="all", help="derivation(s) to show (default: all)"
     )
-    p.add_argument(
-        "--frame", choices=("base", "tool"), default="base", help="axes of J's rows (default: base)"
-    )
+    p.add_argument("--frame", choices=FRAMES, default="base", help="axes of J's rows (default: base)")
     p.add_argument(
         "--symbolic-params",
         action="store_true",

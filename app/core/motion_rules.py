@@ -15,6 +15,7 @@ import numpy as np
 
 from kinematics import Robot, jacobian
 from kinematics.analysis import condition_number, manipulability, singular_values, task_rows
+from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.motion import ik, redundancy, resolved_rate
 from kinematics.numeric import fk
@@ -265,7 +266,7 @@ def apply_preset(
 ) -> LabState:
     """The arm at the preset's start, its twist desired, ready to Play (resolved rate)."""
     robot = state.robot
-    if len(q) != robot.dof or len(twist) != 6 or frame not in ("base", "tool"):
+    if len(q) != robot.dof or len(twist) != 6 or frame not in FRAMES:
         raise MotionRefused(f"preset {name!r} does not fit {robot.name}")
     lo, hi = _bounds(state)
     qa = np.clip(np.array(q, dtype=float), lo, hi)

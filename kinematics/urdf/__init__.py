@@ -23,8 +23,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from xml.sax.saxutils import escape
 
-import numpy as np
-
+from ..conventions import FloatArray
 from ..errors import UrdfError
 from ..files import decode_utf8
 from ..model import Robot
@@ -137,7 +136,7 @@ def _attr(text: str) -> str:
     return escape(text, {'"': "&quot;"})
 
 
-def _origin_xml(T: np.ndarray) -> str:
+def _origin_xml(T: FloatArray) -> str:
     xyz = " ".join(repr(float(v)) for v in T[:3, 3])
     rpy = " ".join(repr(float(v)) for v in matrix_to_rpy(T[:3, :3]))
     return f'<origin xyz="{xyz}" rpy="{rpy}"/>'

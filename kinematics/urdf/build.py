@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from ..analysis import singular_values, task_rows
+from ..conventions import FloatArray
 from ..errors import UrdfError
 from ..model import Axis, Joint, NamedConfiguration, Robot
 from ..numeric import jacobian
@@ -92,14 +93,14 @@ def build_robot(tree: Tree, choice: ChainChoice, name: str, **meta: object) -> R
     return Robot(name=name, joints=joints, axes=tuple(axes), tool=pending, **meta)  # type: ignore[arg-type]
 
 
-def _ratio(robot: Robot, Q: np.ndarray) -> np.ndarray:
+def _ratio(robot: Robot, Q: FloatArray) -> FloatArray:
     """σmin/σmax of the task rows of J at each row of ``Q`` (0 where J vanishes)."""
     s = singular_values(jacobian(robot, Q), task_rows(robot))
     top = s[..., 0]
     return np.divide(s[..., -1], top, out=np.zeros_like(top), where=top > 0)
 
 
-def regular_home(robot: Robot) -> tuple[np.ndarray, float]:
+def regular_home(robot: Robot) -> tuple[FloatArray, float]:
     """A start configuration well off the singular set, and its σmin/σmax.
 
     Zeros clipped into the limits when σmin/σmax ≥ :data:`HOME_GOOD_RATIO` (κ ≤ 50); else the first

@@ -8,6 +8,7 @@ unchanged ones).
 from __future__ import annotations
 
 from kinematics import Robot
+from kinematics.conventions import ROW_HTML
 
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
@@ -16,14 +17,7 @@ from ..palette import status_hex
 
 __all__ = ["status_html", "measures_html", "source_html", "ROW_NAMES", "row_label", "task_name", "lost_text"]
 
-ROW_NAMES = (
-    "v<sub>x</sub>",
-    "v<sub>y</sub>",
-    "v<sub>z</sub>",
-    "ω<sub>x</sub>",
-    "ω<sub>y</sub>",
-    "ω<sub>z</sub>",
-)
+ROW_NAMES = ROW_HTML
 
 
 def row_label(rows: tuple[int, ...]) -> str:

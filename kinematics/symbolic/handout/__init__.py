@@ -17,6 +17,7 @@ import numpy as np
 import sympy as sp
 
 from ...analysis import task_rows
+from ...conventions import ROW_TEXT
 from ...errors import JacobianLabError
 from ...model import Robot
 from ...numeric import as_configuration
@@ -41,7 +42,7 @@ __all__ = [
 HANDOUT_FORMATS = ("html", "tex")
 HANDOUT_METHODS = (*METHODS, "all")
 
-ROW_NAMES = ("vx", "vy", "vz", "ωx", "ωy", "ωz")
+ROW_NAMES = ROW_TEXT
 
 INTRO = {
     "whitney": (
@@ -125,7 +126,7 @@ class Handout:
     method_steps: dict[str, list[Step]]
     result: list[Step]
     example: Example
-    names: dict = field(default_factory=dict)
+    names: dict[sp.Symbol, str] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     same_J: bool = True
 
