@@ -111,3 +111,29 @@ class RoundTrips:
         assert self.median() < ROUND_TRIP_BOUND_MS, (
             f"median {self.median():.0f} ms over {len(self.samples)}: {sorted(self.samples)}"
         )
+
+
+def widget(ws: ViserWsClient, predicate, timeout: float = 30.0) -> str:
+    """The uuid of the first input widget of this tab whose creation message satisfies ``predicate``,
+    waiting for it to arrive (the server may still be sending the panel)."""
+    end = time.monotonic() + timeout
+    while True:
+        found = [u for u, m in widgets(ws).items() if predicate(m)]
+        if found:
+            return found[0]
+        if time.monotonic() > end:
+            raise TimeoutError("no such widget arrived")
+        time.sleep(0.05)
+
+
+def all_widgets(ws: ViserWsClient, timeout: float = 30.0) -> dict[str, dict[str, Any]]:
+    """Every input widget of the tab once the panel has arrived (its count stopped growing)."""
+    widget(ws, lambda m: m["type"] == "GuiUploadButtonMessage", timeout)  # the Build tab's last input
+    end, last = time.monotonic() + timeout, -1
+    while time.monotonic() < end:
+        found = widgets(ws)
+        if len(found) == last:
+            return found
+        last = len(found)
+        time.sleep(0.5)
+    return widgets(ws)

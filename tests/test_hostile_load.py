@@ -10,7 +10,7 @@ import time
 import uuid
 
 from app_helpers import running_lab, wait_until
-from hostile_helpers import RoundTrips, slider, widgets
+from hostile_helpers import RoundTrips, slider, widget
 from server_process import Server
 from wsclient import ViserWsClient
 
@@ -43,7 +43,7 @@ def _notice(ws: ViserWsClient, mark: int, text: str, timeout: float = 60.0) -> s
 
 
 def _upload(ws: ViserWsClient, name: str, content: bytes) -> None:
-    button = next(u for u, m in widgets(ws).items() if m["type"] == "GuiUploadButtonMessage")
+    button = widget(ws, lambda m: m["type"] == "GuiUploadButtonMessage")
     transfer = uuid.uuid4().hex
     parts = [content[i : i + UPLOAD_PART_BYTES] for i in range(0, len(content), UPLOAD_PART_BYTES)]
     ws.send(
@@ -54,11 +54,7 @@ def _upload(ws: ViserWsClient, name: str, content: bytes) -> None:
 
 
 def _rows_button(ws: ViserWsClient) -> str:
-    return next(
-        u
-        for u, m in widgets(ws).items()
-        if m["type"] == "GuiButtonGroupMessage" and "+ Add" in m["props"]["options"]
-    )
+    return widget(ws, lambda m: m["type"] == "GuiButtonGroupMessage" and "+ Add" in m["props"]["options"])
 
 
 def test_a_999_joint_urdf_is_refused_in_words_and_the_room_carries_on(tmp_path):

@@ -7,7 +7,7 @@ from __future__ import annotations
 import time
 import uuid
 
-from hostile_helpers import RoundTrips, slider, widgets
+from hostile_helpers import RoundTrips, slider, widget
 from server_process import Server, rss_bytes
 from wsclient import ViserWsClient
 
@@ -63,7 +63,7 @@ def test_an_upload_whose_parts_outgrow_its_declared_size_holds_nothing(tmp_path)
         with ViserWsClient(server.url()) as good, ViserWsClient(server.url()) as bad:
             good_uuid = slider(good)
             slider(bad)
-            button = next(u for u, m in widgets(bad).items() if m["type"] == "GuiUploadButtonMessage")
+            button = widget(bad, lambda m: m["type"] == "GuiUploadButtonMessage")
             idle = _settled_rss(server.pid)
             transfer = uuid.uuid4().hex
             mark = bad.mark()
@@ -89,7 +89,7 @@ def test_uploads_in_flight_are_bounded_per_tab(tmp_path):
     try:
         with ViserWsClient(server.url()) as bad:
             slider(bad)
-            button = next(u for u, m in widgets(bad).items() if m["type"] == "GuiUploadButtonMessage")
+            button = widget(bad, lambda m: m["type"] == "GuiUploadButtonMessage")
             mark = bad.mark()
             for _ in range(3):  # declared, never sent: they stay in flight
                 bad.send(start_msg(button, uuid.uuid4().hex, "a.urdf", "text/xml", 2, 2 * UPLOAD_PART_BYTES))

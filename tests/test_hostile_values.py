@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 from app_helpers import running_lab, wait_until
-from hostile_helpers import RoundTrips, slider, widgets
+from hostile_helpers import RoundTrips, all_widgets, slider, widget
 from wsclient import ViserWsClient
 
 from app.services.ratelimit import RoomLimits
@@ -48,7 +48,7 @@ def test_every_widget_of_every_tab_refuses_hostile_values_and_nothing_changes():
         session.settle()
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as good:
             good_uuid = slider(good)
-            found = widgets(ws)
+            found = all_widgets(ws)
             labels = {u: m["props"].get("label") or m["props"]["options"][0] for u, m in found.items()}
             assert len(found) > 40, (
                 labels
@@ -79,7 +79,7 @@ def test_the_start_from_dropdown_reads_no_file_from_the_server():
     """Point 1: "Start from" set to a robot file's path shows nothing of it."""
     with running_lab(robot="planar2") as (lab, session, ws):
         session.settle()
-        start = next(u for u, m in widgets(ws).items() if m["props"].get("label") == "Start from")
+        start = widget(ws, lambda m: m["props"].get("label") == "Start from")
         mark = ws.mark()
         text = _send_and_wait(lab, ws, start, {"value": ROBOT_FILE})
         assert "“Start from”" in text and "is not one of its" in text
@@ -203,7 +203,7 @@ def test_a_gizmo_at_1e308_m_and_a_lopsided_limits_vector_are_refused():
     assert check_message(gizmo("/lab/ik", (1.0, 0.0, 0.0, 0.0), (0.5, 0.2, 0.1))) == ""
     with running_lab(robot="planar2") as (lab, session, ws):
         session.settle()
-        limits = next(u for u, m in widgets(ws).items() if m["type"] == "GuiVector2Message")
+        limits = widget(ws, lambda m: m["type"] == "GuiVector2Message")
         for value in ([10.0], [1.0, 2.0, 3.0]):
             text = _send_and_wait(lab, ws, limits, {"value": value})
             assert "expected 2 finite numbers" in text and "Limits" in text
