@@ -64,7 +64,7 @@ from .inverse import dls, nullspace_projector, pinv, solve_rates
 from .model import Axis, DHRow, Joint, NamedConfiguration, Robot
 from .numeric import as_configuration, chain_frames, fk, jacobian, jacobian_dot, joint_frames, link_frames
 from .singularity import SingularityReport, assess
-from .urdf import to_urdf
+from .urdf import robot_from_urdf, to_urdf
 
 __all__ = [
     "Robot",
@@ -99,6 +99,7 @@ __all__ = [
     "solve_rates",
     "SingularityReport",
     "assess",
+    "robot_from_urdf",
     "to_urdf",
     "cache_dir",
     "JacobianLabError",

@@ -27,6 +27,7 @@ import numpy.typing as npt
 from .conventions import PART_ROWS, FloatArray, Part
 from .errors import ArrayError, OptionError
 from .model import Robot
+from .numeric import chain_frames
 from .validation import finite_matrix, is_number, show
 
 __all__ = [
@@ -50,6 +51,7 @@ __all__ = [
     "as_jacobian",
     "check_rtol",
     "part_rows",
+    "is_planar_chain",
 ]
 
 DEFAULT_RTOL = 1e-9
@@ -305,3 +307,28 @@ def force_ellipsoid(
     with np.errstate(divide="ignore"):
         radii = np.where(sigma > tol, 1.0 / np.where(sigma > tol, sigma, 1.0), np.inf)
     return Ellipsoid(U, radii)
+
+
+_PLANAR_TOL = 1e-9
+
+
+def is_planar_chain(robot: Robot) -> bool:
+    """True when, at home and at a few other configurations (fixed seed, inside the limits), every
+    revolute axis is parallel to the base z axis and every prismatic axis perpendicular to it."""
+    n = robot.dof
+    if n == 0 or len(robot.axes) != n:
+        return False
+    lo, hi = robot.qlim
+    lo = np.where(np.isfinite(lo), lo, -np.pi)
+    hi = np.where(np.isfinite(hi), hi, np.pi)
+    rng = np.random.default_rng(5)
+    for q in [np.asarray(robot.home, float)] + [rng.uniform(lo, hi) for _ in range(3)]:
+        W, _ = chain_frames(robot, q)
+        for ax, frame in zip(robot.axes, W, strict=True):
+            z = frame[:3, 2]
+            along = abs(float(z[2]))
+            if ax.kind == "revolute" and abs(along - 1.0) > _PLANAR_TOL:
+                return False
+            if ax.kind != "revolute" and along > _PLANAR_TOL:
+                return False
+    return True

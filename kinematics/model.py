@@ -53,7 +53,8 @@ __all__ = ["Robot", "Joint", "Axis", "DHRow", "NamedConfiguration", "JointType",
 
 @dataclass(frozen=True, eq=False)
 class Robot:
-    """An immutable serial manipulator. Build it with :meth:`from_dh` or :meth:`from_urdf`.
+    """An immutable serial manipulator. Build it with :meth:`from_dh`, or from a URDF file
+    with :func:`kinematics.robot_from_urdf` (:mod:`kinematics.urdf`).
 
     Attributes:
         name: Identifier (library name or file stem).
@@ -311,13 +312,6 @@ class Robot:
             configurations=tuple(configurations),
             param_names={} if param_names is None else param_names,
         )
-
-    @classmethod
-    def from_urdf(cls, path: str, base_link: str | None = None, tip_link: str | None = None) -> Robot:
-        """Build the chain from ``base_link`` to ``tip_link`` of a URDF file (see :mod:`kinematics.urdf`)."""
-        from .urdf import robot_from_urdf
-
-        return robot_from_urdf(path, base_link=base_link, tip_link=tip_link)
 
 
 _P = TypeVar("_P")

@@ -23,7 +23,7 @@ import numpy as np
 
 import robots
 from kinematics import NamedConfiguration, Robot
-from kinematics.analysis import task_rows
+from kinematics.analysis import is_planar_chain, task_rows
 from kinematics.errors import RobotDefinitionError
 from kinematics.parts import CONVENTIONS, JOINT_TYPES
 from kinematics.urdf import to_urdf
@@ -198,7 +198,7 @@ def build(table: Table) -> Robot:
     rows = rows_si(table)
     same_joints = tuple(r.joint for r in table.rows) == table.kinds
     try:
-        return Robot.from_dh(
+        robot = Robot.from_dh(
             rows,
             table.convention,
             table.base,
@@ -210,6 +210,9 @@ def build(table: Table) -> Robot:
             source="Jacobian Lab, Build tab",
             configurations=table.configurations if same_joints else (),
         )
+        if is_planar_chain(robot):  # all axes along base z: its task is the planar rows, as the library's
+            robot = dataclasses.replace(robot, planar=True)
+        return robot
     except RobotDefinitionError as exc:
         text = str(exc)
         row = next((i + 1 for i in range(len(rows)) if f"DH row {i + 1}," in text), 0)

@@ -22,6 +22,7 @@ from kinematics.numeric import fk
 
 from .motion_state import MOTIONS, IkInfo, MotionState, Trace, readonly
 from .ranges import joint_ranges, twist_ranges
+from .self_motion import ROW_WORDS, climbed_along
 from .state import LabState, frozen
 
 __all__ = [
@@ -230,8 +231,14 @@ def _climb(state: LabState) -> LabState:
     moved, stopped = _moved(
         state, q_next, t, lambda q: sample(state, q, (q - q0) / FRAME_DT, m.trace, t, rows)
     )
+    w_start = float(manipulability(jacobian(state.robot, q0), rows))
+    moved = moved.replace(motion=climbed_along(moved.motion, q0, np.array(moved.q), w_start, w1))
     if not stopped and w1 - w0 <= 1e-6 * max(w0, 1e-12):
-        return moved.replace(playing=False, stopped=f"w reached a maximum with the tool held: w = {w1:.4g}")
+        held = ", ".join(ROW_WORDS[r] for r in rows)
+        return moved.replace(
+            playing=False,
+            stopped=f"w of the held rows ({held}) reached a maximum with the tool held: w = {w1:.4g}",
+        )
     return moved
 
 

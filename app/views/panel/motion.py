@@ -19,6 +19,7 @@ import viser.uplot as uplot
 
 import robots
 from kinematics import Robot
+from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_TEXT
 
 from ...core.actions import ApplyPreset, Play, ResetMotion, SelfMove, SetOption, StepOnce
@@ -127,9 +128,13 @@ class MotionPanel:
             if rows is not None:
                 with gui.add_folder("Redundancy: move with the tool held", expand_by_default=False):
                     held = ", ".join(ROW_TEXT[r] for r in rows)
+                    task = ", ".join(ROW_TEXT[r] for r in task_rows(robot))
                     gui.add_html(
                         f'<div class="jl-note">{robot.dof} joints, {len(rows)} task rows held ({held}): '
-                        f"the arm can move in the null space of J without moving the tool.</div>"
+                        f"the arm can move in the null space of J without moving the tool. "
+                        f"<b>Climb</b> raises w = √det(J Jᵀ) of these rows ({held})"
+                        + (f", not the banner's κ of all task rows ({task})." if task != held else ".")
+                        + "</div>"
                     )
                     self.self_slider = gui.add_slider(
                         "Self-motion s",
@@ -233,7 +238,7 @@ def _readout(state: LabState, snap: Snapshot) -> str:
     axes = "tool" if state.options.twist_frame == "tool" else "base"
     doing = {
         "resolved_rate": "holding v",
-        "climb": "climbing w",
+        "climb": "climbing w of the held rows",
         "path": "descending to the nearest singularity",
         "joints": "moving at q̇",
     }.get(state.motion.kind, "")

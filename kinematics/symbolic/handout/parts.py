@@ -10,7 +10,7 @@ import sympy as sp
 from ..steps.step import Step, lhs_mathml, step_notation
 from ..typeset.printing import Notation
 from ..typeset.render import KIND_TEXT
-from . import ROW_NAMES, Example, Handout, angle_parts, degrees_text
+from .content import ROW_NAMES, Example, Handout, angle_parts, degrees_text
 
 __all__ = [
     "handout_title",

@@ -23,9 +23,9 @@ from typing import cast
 
 import numpy as np
 
-from .conventions import FloatArray
-from .kernel import batched_jacobian, chain_single, jacobian_from_frames, kernel
-from .model import Robot
+from ..conventions import FloatArray
+from ..kernel import batched_jacobian, chain_single, jacobian_from_frames, kernel
+from ..model import Robot
 
 __all__ = ["descend_to_singularity", "sigma_ratio", "FD_STEP", "MAX_STEP", "POLISH_RATIO", "POLISH_STEPS"]
 
