@@ -196,10 +196,11 @@ def jacobian_force_propagation(robot: Robot, frame: str = "base", symbolic_param
 DERIVATIONS: dict[str, Callable[..., sp.Matrix]] = {
     "whitney": jacobian_whitney,
     "differentiation": jacobian_differentiation,
-    "velocity_propagation": jacobian_velocity_propagation,
-    "force_propagation": jacobian_force_propagation,
+    "propagation": jacobian_velocity_propagation,
+    "force": jacobian_force_propagation,
 }
-"""The derivations by name (Whitney's columns is the reference the others are compared with)."""
+"""The derivations by name, spelled as :data:`kinematics.steps.METHODS` spells them (Whitney's columns is
+the reference the others are compared with)."""
 
 
 @dataclass(frozen=True)

@@ -39,7 +39,7 @@ from ...core.state import LabState
 from ...viser_adapter import handle_uuid
 from .. import fmt
 from ..palette import joint_hex, joint_text_hex
-from .common import Dispatch, bind, bind_click, sync_value
+from .common import Dispatch, bind, bind_click, option_widget, show_option, sync_value
 from .course import accel_html, example_html, inverse_html
 from .readouts import ROW_NAMES
 from .style import slider_css
@@ -126,17 +126,21 @@ class ForwardPanel:
             bind_click(self.play, dispatch, lambda: Play(not self._playing))
             stop = gui.add_button("Stop (q̇ = 0)", icon=viser.Icon.PLAYER_STOP)
             bind_click(stop, dispatch, StopRates)
-            self.jdot = gui.add_checkbox(
-                "J̇ q̇ arrow at the tool",
-                initial_value=True,
-                hint="The tool's acceleration when the joints turn at constant rate (ẍ = J̇ q̇ when q̈ = 0)",
-            )
-            bind(self.jdot, dispatch, lambda v: SetOption("jdot_arrow", bool(v)))
+            self.jdot = option_widget(gui, dispatch, "jdot_arrow")
+
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return list(self.sliders)
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
 
     def show(self, state: LabState) -> None:
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(to_display(r, state.qd[i]), 6))
-        sync_value(self.jdot, bool(state.options.jdot_arrow))
+        show_option(self.jdot, "jdot_arrow", state.options.jdot_arrow)
         if self._playing != state.playing:
             self._playing = state.playing
             self.play.label = "Pause" if state.playing else "Play: move at these rates"
@@ -209,15 +213,7 @@ class InversePanel:
                 slider = _slider(gui, ROW_TEXT[r], self.ranges[r], "desired tool velocity, base axes")
                 bind(slider, dispatch, functools.partial(_set_desired, r, self.ranges[r]))
                 self.sliders[r] = slider
-            self.damping = gui.add_slider(
-                "damping λ",
-                min=0.0,
-                max=0.5,
-                step=0.005,
-                initial_value=0.0,
-                hint="0: pseudo-inverse J⁺; > 0: damped least squares (bounded rates, less accuracy)",
-            )
-            bind(self.damping, dispatch, lambda v: SetOption("damping", float(v)))
+            self.damping = option_widget(gui, dispatch, "damping")
             self._shown: tuple | None = None
             self.symbolic_button: viser.GuiButtonHandle | None = None
             self.symbolic = gui.add_html("")
@@ -228,10 +224,19 @@ class InversePanel:
                 )
             self._asked = False
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return [*self.sliders.values(), self.damping]
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
+
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():
             sync_value(slider, round(to_display(self.ranges[r], state.v_desired[r]), 6))
-        sync_value(self.damping, float(state.options.damping))
+        show_option(self.damping, "damping", state.options.damping)
         asked = state.options.symbolic_inverse
         if asked != self._asked and self.symbolic_button is not None:
             self.symbolic_button.label = "Hide the symbolic J⁻¹" if asked else "Symbolic J⁻¹ = adj J / det J"
@@ -314,6 +319,15 @@ class ForcePanel:
             zero = gui.add_button("Remove the force (F = 0)")
             bind_click(zero, dispatch, ClearWrench)
             self._idle = False
+
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return list(self.sliders.values())
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
 
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():

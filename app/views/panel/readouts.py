@@ -110,7 +110,22 @@ def lost_text(snap: Snapshot, planar: bool) -> str:
 
 def status_html(snap: Snapshot, state: LabState) -> str:
     """The coloured banner ("regular", "near singular: wrist", "singular: wrist") with κ, and one line
-    under it: the visited configuration's description, or why a motion stopped."""
+    under it: the visited configuration's description, or why a motion stopped.
+
+    The banner and the J(q) tab show it for the same redraw: the last one is kept (by identity).
+    """
+    last = _LAST_STATUS[0]  # one tuple, read and replaced whole: safe with tabs on several threads
+    if last is not None and last[0] is snap and last[1] is state:
+        return last[2]
+    html = _status_html(snap, state)
+    _LAST_STATUS[0] = (snap, state, html)
+    return html
+
+
+_LAST_STATUS: list[tuple[Snapshot, LabState, str] | None] = [None]
+
+
+def _status_html(snap: Snapshot, state: LabState) -> str:
     r = snap.report
     icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
     banner = (

@@ -23,6 +23,7 @@ from ...errors import JacobianLabError
 from ...model import Robot
 from ...numeric import as_configuration
 from ...numeric import jacobian as numeric_jacobian
+from ...steps import METHODS as STEP_METHODS
 from ..core import DEFAULT_TIMEOUT, check_timeout
 from ..model import build_model, check_frame
 from ..steps import METHODS, derivation_steps, dh_rows
@@ -49,37 +50,10 @@ HANDOUT_METHODS = (*METHODS, "all")
 
 ROW_NAMES = ROW_TEXT
 
-INTRO = {
-    "whitney": (
-        "Whitney's method (course 000, section 4): column i of J is [zᵢ₋₁ × (pₙ − pᵢ₋₁); zᵢ₋₁] for a "
-        "revolute joint and [zᵢ₋₁; 0] for a prismatic one, where zᵢ₋₁ is the axis of joint i and pᵢ₋₁ a "
-        "point on it (the third column and the origin of ⁰Tᵢ₋₁), and pₙ the tool origin."
-    ),
-    "differentiation": (
-        "Differentiating the forward kinematics (course 001, method 1; course 004): the v part of "
-        "column i is ∂p/∂qᵢ of the tool position p; the ω part comes from S = (∂R/∂qᵢ) Rᵀ, a skew matrix "
-        "[ω]×, as ω = (S₃₂, S₁₃, S₂₁)."
-    ),
-    "propagation": (
-        "Velocity propagation (course 000, section 3; course 001, method 2; Craig's outward iteration): "
-        "from the base outward, each link's angular velocity ω and the velocity v of its origin, in the "
-        "link's own axes: ω' = Rᵀ(ω + θ̇ ẑ), v' = Rᵀ(v + ω × p) (plus ḋ ẑ for a prismatic joint). J holds "
-        "the coefficients of the joint rates q̇ in the tool's [v; ω]."
-    ),
-    "force": (
-        "Force propagation (course 001, method 3; course 000, section 6; Craig's inward iteration): a "
-        "wrench [f; n] on the tool, in the tool axes, carried inward link by link (f = R f', "
-        "n = R n' + p × f); joint i's torque is the component along its axis. Since τ = Jᵀ F, the "
-        "coefficients of the wrench are Jᵀ: the transpose view of the same J."
-    ),
-}
-
-TITLES = {
-    "whitney": "Whitney's method: the columns of J",
-    "differentiation": "Differentiating the forward kinematics",
-    "propagation": "Velocity propagation, link by link",
-    "force": "Force propagation: τ = Jᵀ F",
-}
+INTRO = {k: STEP_METHODS[k].intro for k in METHODS}
+"""The paragraph that opens each method's section (from :data:`kinematics.steps.METHODS`)."""
+TITLES = {k: STEP_METHODS[k].title for k in METHODS}
+"""Each method's heading (from :data:`kinematics.steps.METHODS`)."""
 
 
 class HandoutError(JacobianLabError):
@@ -194,7 +168,7 @@ def build_handout(
     for m in methods:
         if progress is not None:
             progress(f"{m}: deriving the steps")
-        per[m] = derivation_steps(robot, m, frame, symbolic_params, deadline=deadline)  # type: ignore[arg-type]
+        per[m] = derivation_steps(robot, m, frame, symbolic_params, deadline=deadline)
     first = per[methods[0]]
     transforms = [s for s in first if s.section == "transforms"]
     result = [s for s in first if s.section == "result" and s.key in ("J", "detJ")]

@@ -52,9 +52,11 @@ from .step import DHRow, Step
 
 __all__ = ["METHODS", "Method", "derivation_steps", "dh_rows", "Step", "DHRow"]
 
-Method = Literal["whitney", "differentiation", "propagation", "force"]
-METHODS: tuple[str, ...] = ("whitney", "differentiation", "propagation", "force")
-"""The derivations :func:`derivation_steps` knows."""
+Method = str
+"""A key of :data:`METHODS`."""
+METHODS: tuple[str, ...] = tuple(METHOD_STEPS)
+"""The derivations :func:`derivation_steps` knows: the keys of :data:`.methods.METHOD_STEPS`, spelled as
+:data:`kinematics.steps.METHODS` spells them."""
 
 
 def dh_rows(robot: Robot, symbolic_params: bool = False) -> tuple[DHRow, ...]:

@@ -321,7 +321,7 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     return out, jt.expr.T, "tool"
 
 
-METHOD_STEPS: dict[str, Callable[[Context], tuple[list[Step], sp.Matrix, str]]] = {
+METHOD_STEPS: dict[str, Callable[[Context], tuple[list[Step], sp.Matrix, str]]] = {  # keys: kinematics.steps
     "whitney": whitney,
     "differentiation": differentiation,
     "propagation": propagation,
