@@ -18,7 +18,8 @@ import socket
 import sys
 import threading
 import time
-from collections.abc import Mapping
+import urllib.parse
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import viser
@@ -26,10 +27,19 @@ import viser
 from .services.catalog import RobotCatalog
 from .services.classroom import Classroom
 from .services.lifecycle import check_listen_address, wait_for_stop
+from .services.ratelimit import RoomLimits
 from .services.renderer import Renderer
 from .services.symbolic_service import SymbolicService
 from .tab.session import ClientSession
-from .viser_adapter import install_fast_prop_casts, install_icon_cache, install_message_limits, listen_on
+from .viser_adapter import (
+    allow_origins,
+    client_address,
+    install_fast_prop_casts,
+    install_icon_cache,
+    install_input_checks,
+    install_message_limits,
+    listen_on,
+)
 
 __all__ = ["serve", "Lab"]
 
@@ -48,6 +58,8 @@ class Lab:
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: With a token, classroom mode: the tab that types it presents and every
             other tab follows (see :mod:`app.services.classroom`).
+        allow_origin: Origins (``https://host[:port]``) of pages that may embed the lab and connect
+            to it; by default only the lab's own page may (:mod:`app.viser_adapter.handshake`).
         listen_socket: A listening socket to accept on instead of binding ``host`` and ``port``
             (shared by the worker processes of ``jacobian-lab serve --workers N``).
         xacro_args: ``NAME -> VALUE`` arguments of a ``.xacro`` file given as ``urdf`` or ``robot``.
@@ -66,6 +78,7 @@ class Lab:
         base_link: str | None = None,
         tip_link: str | None = None,
         presenter_token: str | None = None,
+        allow_origin: Sequence[str] = (),
         listen_socket: socket.socket | None = None,
         xacro_args: Mapping[str, str] | None = None,
     ) -> None:
@@ -78,7 +91,9 @@ class Lab:
         self.catalog.load(self.default_robot)  # fail before starting the server
         if listen_socket is None:
             check_listen_address(host, port)  # a clear error now, instead of a server that never listens
+        self.allowed_origins = allow_origins(allow_origin)  # pages of other sites may not connect
         install_message_limits()  # what one websocket message and one tab may cost
+        self.room = install_input_checks(RoomLimits())  # every value a tab sends, checked as it enters
         install_fast_prop_casts()
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
         self.symbolic = SymbolicService()
@@ -96,7 +111,11 @@ class Lab:
         self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
         self.sessions: dict[int, ClientSession] = {}
         self.renderer = Renderer()
-        self.classroom = Classroom(presenter_token) if presenter_token else None
+        self.classroom = (
+            Classroom(presenter_token, limits=self.room, address_of=self._address)
+            if presenter_token
+            else None
+        )
         self._gone: set[int] = set()
         self._lock = threading.Lock()
         self.server.on_client_connect(self._connect)
@@ -159,6 +178,9 @@ class Lab:
                 self.classroom.closed(client.client_id)
             session.close()
 
+    def _address(self, client_id: int) -> str:
+        return client_address(self.server, client_id)
+
     def _symbolic_restarted(self, notice: str) -> None:
         """Tell every tab that the symbolic worker stopped and was restarted (its request is retried)."""
         with self._lock:
@@ -201,6 +223,7 @@ def serve(
     base_link: str | None = None,
     tip_link: str | None = None,
     presenter_token: str | None = None,
+    allow_origin: Sequence[str] = (),
     xacro_args: Mapping[str, str] | None = None,
 ) -> Lab:
     """Start the browser app and print its URL.
@@ -213,6 +236,7 @@ def serve(
         block: Serve until Ctrl-C (then stop and return); ``False`` returns the running :class:`Lab`.
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: Classroom mode with this presenter token (see :class:`Lab`).
+        allow_origin: Origins of pages that may embed the lab (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -236,13 +260,16 @@ def serve(
         base_link=base_link,
         tip_link=tip_link,
         presenter_token=presenter_token,
+        allow_origin=allow_origin,
         xacro_args=xacro_args,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:
+        link = f"{lab.url}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
         print(
-            f"Classroom mode: type the presenter token {presenter_token} into “Presenter token” "
-            "in the tab you present from; every other tab follows it.",
+            f"Classroom mode: open {link} in the tab you present from (keep the link off the "
+            "projector; it fills in the presenter token, masked, and drops it from the address bar). "
+            "Every other tab follows that one.",
             flush=True,
         )
     if not block:

@@ -1,4 +1,4 @@
-"""Reading a user's file safely: a regular file, under a size cap, UTF-8 text.
+"""Reading and writing a user's file safely: a regular file, under a size cap, UTF-8 text, never blocking.
 
 Shared by the URDF reader and the robot-file loader (:mod:`robots`). A path
 that names a directory, a FIFO, a socket or a device (``/dev/urandom``) is
@@ -9,13 +9,14 @@ it is read cannot exceed the cap either.
 
 from __future__ import annotations
 
+import errno
 import os
 import stat
 from pathlib import Path
 
 from .errors import JacobianLabError
 
-__all__ = ["read_user_file", "decode_utf8", "MAX_FILE_BYTES"]
+__all__ = ["read_user_file", "write_user_file", "decode_utf8", "MAX_FILE_BYTES"]
 
 MAX_FILE_BYTES = 20 * 1024 * 1024
 """Largest robot file or URDF read [bytes] (the biggest real URDFs are a few hundred kB)."""
@@ -89,3 +90,38 @@ def decode_utf8(data: bytes, what: str, error: type[JacobianLabError]) -> str:
         raise error(
             f"{what} is not UTF-8 text: byte 0x{bad} at line {line}, column {column} (save the file as UTF-8)"
         ) from None
+
+
+def write_user_file(path: str | os.PathLike[str], data: bytes, named: bool = True) -> None:
+    """Write ``data`` to the regular file ``path`` (created, or truncated), never blocking.
+
+    A FIFO, a device, a socket or a directory at ``path`` is refused without being written (the
+    file is opened without blocking, then checked before a byte goes in). ``named``: the user
+    named ``path`` (``-o FILE``), so a symbolic link there is followed; a file the program names
+    inside an output folder (``named=False``) is never written through a link.
+
+    Raises:
+        OSError: ``path`` cannot be written, or is not a regular file (``strerror`` says which).
+    """
+    flags = os.O_WRONLY | os.O_CREAT | getattr(os, "O_NONBLOCK", 0)
+    if not named:
+        flags |= getattr(os, "O_NOFOLLOW", 0)
+    try:
+        fd = os.open(path, flags, 0o644)
+    except OSError as exc:
+        if exc.errno == errno.ENXIO:  # a FIFO with no reader
+            raise OSError(exc.errno, "it is a FIFO (named pipe), not a regular file", str(path)) from None
+        if exc.errno == errno.ELOOP and not named:
+            raise OSError(exc.errno, "it is a symbolic link (not followed)", str(path)) from None
+        raise
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            kind = next((k for check, k in _KINDS if check(mode)), "not a regular file")
+            raise OSError(errno.EINVAL, f"it is {kind}, not a regular file", str(path))
+        os.ftruncate(fd, 0)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view) :]
+    finally:
+        os.close(fd)

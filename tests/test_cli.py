@@ -144,6 +144,7 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "port": 8123,
             "block": True,
             "presenter_token": None,
+            "allow_origin": [],
             "xacro_args": None,
         }
     ]
@@ -193,8 +194,8 @@ def test_export_errors(tmp_path, capsys, forked):
     assert "invalid choice: 'pdf'" in capsys.readouterr().err
     assert main(["export", "planar2", "-o", str(tmp_path / "missing" / "J.tex")]) == 1
     assert "cannot write" in capsys.readouterr().err
-    assert main(["export", "planar2", "--timeout", "-3"]) == 1
-    assert "timeout" in capsys.readouterr().err
+    assert main(["export", "planar2", "--timeout", "-3"]) == 2  # a usage error, as argparse's own
+    assert "--timeout: expected a number more than 0" in capsys.readouterr().err
     assert main(["export", str(forked), "--tip", "nowhere"]) == 1
     assert "unknown tip_link 'nowhere'" in capsys.readouterr().err
     assert main(["export", "--help"]) == 0

@@ -65,6 +65,8 @@ def _upload(session, name: str, content: bytes) -> None:
         ws.send(message_class("FileTransferPart")(button, transfer, i, part))
     wait_until(lambda: session.errors > errors or session.state is not before or session.pending)
     session.settle()
+    wait_until(lambda: not session.commands.building, timeout=30)  # built away from the drawing thread
+    session.settle()
 
 
 _SOCKETS: dict[int, ViserWsClient] = {}

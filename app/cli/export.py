@@ -18,10 +18,13 @@ from pathlib import Path
 import robots
 from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
+from kinematics.files import write_user_file
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.typeset.ccode import c_identifier
 from kinematics.symbolic.typeset.export import FORMATS, ExportError, export, export_c, export_matlab
 from kinematics.urdf import parse_xacro_args
+
+from .args import MAX_TIMEOUT, bounded
 
 __all__ = ["main", "add_chain_arguments", "xacro_arguments", "StderrProgress", "write_output"]
 
@@ -120,7 +123,7 @@ def _parser() -> argparse.ArgumentParser:
     add_chain_arguments(p)
     p.add_argument(
         "--timeout",
-        type=float,
+        type=bounded(0.0, MAX_TIMEOUT, "s"),
         default=DEFAULT_TIMEOUT,
         metavar="SECONDS",
         help=f"simplification time limit (default: {DEFAULT_TIMEOUT:g} s)",
@@ -178,7 +181,7 @@ def write_output(text: str, output: str | None, command: str) -> int:
         sys.stdout.write(text)
         return 0
     try:
-        Path(output).write_text(text, encoding="utf-8")
+        write_user_file(output, text.encode("utf-8"))  # never blocks on a FIFO or a device
     except OSError as exc:
         print(f"jacobian-lab {command}: error: cannot write {output}: {exc.strerror}", file=sys.stderr)
         return 1

@@ -25,6 +25,7 @@ from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.handout import HANDOUT_METHODS, handout
 
+from .args import MAX_TIMEOUT, bounded
 from .export import StderrProgress, add_chain_arguments, write_output, xacro_arguments
 
 __all__ = ["main"]
@@ -57,7 +58,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--rates",
         nargs="+",
-        type=float,
+        type=bounded(-1e4, 1e4, open_low=False),
         metavar="QDOT",
         help="joint rates of the worked example: deg/s (revolute), m/s (prismatic)",
     )
@@ -73,7 +74,7 @@ def _parser() -> argparse.ArgumentParser:
     add_chain_arguments(p)
     p.add_argument(
         "--timeout",
-        type=float,
+        type=bounded(0.0, MAX_TIMEOUT, "s"),
         default=DEFAULT_TIMEOUT,
         metavar="SECONDS",
         help=f"time limit (default: {DEFAULT_TIMEOUT:g} s)",

@@ -62,7 +62,20 @@ def _build_parser() -> argparse.ArgumentParser:
         help="classroom mode: the tab where TOKEN is typed presents, every other tab follows",
     )
     present.add_argument(
-        "--presenter", action="store_true", help="classroom mode with a random presenter token (printed)"
+        "--presenter",
+        nargs="?",
+        const="",
+        metavar="TOKEN",
+        help="classroom mode; alone, with a random strong token and a presenter link (printed); a weak "
+        "TOKEN given by hand is warned about",
+    )
+    serve.add_argument(
+        "--allow-origin",
+        metavar="ORIGIN",
+        action="append",
+        default=[],
+        help="also let pages from ORIGIN (e.g. https://course.example.org) connect, for a deliberate "
+        "embedding; by default only the lab's own page may (repeatable)",
     )
     sub.add_parser("robots", help="list the library robots")
     sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
@@ -104,13 +117,26 @@ def _serve(args: argparse.Namespace) -> int:
         check_listen_address(args.host, args.port)
     except ValueError as exc:
         return _fail(str(exc))
-    token = args.presenter_token
-    if token is not None and not 1 <= len(token.strip()) <= 200:
-        return _fail("--presenter-token needs 1 to 200 characters (not only spaces)")
-    if args.presenter:
+    from app.viser_adapter.handshake import normalized_origin
+
+    try:
+        for origin in args.allow_origin:
+            normalized_origin(origin)
+    except ValueError as exc:
+        return _fail(f"--allow-origin: {exc}")
+    token = args.presenter_token if args.presenter_token is not None else args.presenter
+    if token == "" and args.presenter == "":  # --presenter alone
         from app.services.classroom import random_token
 
         token = random_token()
+    elif token is not None:
+        if not 1 <= len(token.strip()) <= 200:
+            return _fail("--presenter-token needs 1 to 200 characters (not only spaces)")
+        from app.services.classroom import token_weakness
+
+        weak = token_weakness(token)
+        if weak:
+            print(f"jacobian-lab: warning: {weak}", file=sys.stderr)
     from .workers import default_workers, serve_workers
 
     workers = args.workers if args.workers is not None else default_workers()
@@ -128,6 +154,7 @@ def _serve(args: argparse.Namespace) -> int:
             robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro)
         if workers > 1:
             options = {"robot": args.robot, "urdf": args.urdf, "base_link": args.base, "tip_link": args.tip}
+            options["allow_origin"] = args.allow_origin
             options["xacro_args"] = xacro
             return serve_workers(workers, options, host=args.host, port=args.port)
         from app.server import serve
@@ -141,6 +168,7 @@ def _serve(args: argparse.Namespace) -> int:
             port=args.port,
             block=True,
             presenter_token=token,
+            allow_origin=args.allow_origin,
             xacro_args=xacro,
         )
     except (JacobianLabError, ValueError, RuntimeError) as exc:

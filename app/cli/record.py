@@ -10,7 +10,6 @@ non-positive duration or frame rate) is one line on stderr and exit status 2.
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import sys
 from pathlib import Path
@@ -19,21 +18,12 @@ import robots
 from kinematics.errors import JacobianLabError
 
 from ..demo.record import DEFAULT_FPS, DEFAULT_SECONDS, UnknownPreset, check_preset, record, write_demo
+from .args import MAX_FPS, MAX_SECONDS, bounded
 from .export import add_chain_arguments, xacro_arguments
 
 __all__ = ["main"]
 
 PROG = "jacobian-lab record"
-
-
-def _positive(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text}")
-    return value
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -52,17 +42,18 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--seconds",
-        type=_positive,
+        type=bounded(0.0, MAX_SECONDS, "s"),
         default=DEFAULT_SECONDS,
         metavar="S",
-        help=f"longest recording (default: {DEFAULT_SECONDS:g} s; a preset may stop earlier)",
+        help=f"longest recording (default: {DEFAULT_SECONDS:g} s, at most {MAX_SECONDS:g}; a preset may stop "
+        "earlier)",
     )
     p.add_argument(
         "--fps",
-        type=_positive,
+        type=bounded(0.0, MAX_FPS),
         default=DEFAULT_FPS,
         metavar="F",
-        help=f"frames per second (default: {DEFAULT_FPS:g})",
+        help=f"frames per second (default: {DEFAULT_FPS:g}, at most {MAX_FPS:g})",
     )
     add_chain_arguments(p)
     return p

@@ -179,12 +179,20 @@ def rows_si(table: Table) -> list[dict[str, object]]:
     return out
 
 
+MAX_ROWS = 24
+"""Most rows of a table built in the browser (each row costs a slider, scene nodes and symbolic work
+for every redraw; real arms have at most a dozen joints)."""
+
+
 def build(table: Table) -> Robot:
     """The robot of ``table`` (named :data:`FILE_STEM`).
 
     Raises:
-        TableError: a bad field, or a table :meth:`Robot.from_dh` rejects (its message kept).
+        TableError: a bad field, more than :data:`MAX_ROWS` rows, or a table :meth:`Robot.from_dh`
+            rejects (its message kept).
     """
+    if len(table.rows) > MAX_ROWS:
+        raise TableError(0, "rows", f"a table has at most {MAX_ROWS} rows, this one has {len(table.rows)}")
     if table.convention not in CONVENTIONS:
         raise TableError(0, "convention", f"expected standard or modified, got {table.convention!r}")
     rows = rows_si(table)

@@ -28,6 +28,7 @@ import viser
 
 import robots
 from kinematics import Robot
+from kinematics.files import write_user_file
 from kinematics.singularity import nearest
 
 from ..core.actions import ApplyPreset, FollowPath, Play, Step
@@ -315,8 +316,8 @@ def write_demo(recording: Recording, out_dir: str | Path) -> Sequence[Path]:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     files = {out / name: data for name, data in demo_files(recording).items()}
-    for path, data in files.items():
-        path.write_bytes(data)
+    for path, data in files.items():  # names the user did not give: never written through a link
+        write_user_file(path, data, named=False)
     return list(files)
 
 

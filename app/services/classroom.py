@@ -1,7 +1,9 @@
 """Classroom mode: one presenter tab, a room of tabs that follow it.
 
 The server owns one :class:`Classroom` when it was started with a presenter token. A tab becomes the
-presenter by typing the token (compared in constant time; wrong tokens are rate-limited per tab).
+presenter by typing the token (compared in constant time; wrong tokens are rate-limited per address
+and per server by the server's :class:`~app.services.ratelimit.RoomLimits`, so reconnecting tabs gain
+nothing); a presenter that another tab replaces is told.
 Every other tab follows by default: each state the presenter's tab commits, with the snapshot it
 computed, is handed to the followers, which draw it without computing it again (one computation per
 presenter change, not one per follower). The presenter's camera is relayed too. A follower can leave
@@ -14,6 +16,7 @@ The classroom never touches viser: it calls the small :class:`Member` interface 
 from __future__ import annotations
 
 import hmac
+import math
 import secrets
 import threading
 import time
@@ -23,19 +26,49 @@ from typing import Protocol
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
+from .ratelimit import RoomLimits
 
-__all__ = ["Classroom", "Member", "random_token", "TOKEN_TRIES", "TOKEN_WINDOW"]
+__all__ = ["Classroom", "Member", "random_token", "token_weakness", "TOKEN_TRIES", "TOKEN_WINDOW"]
 
 TOKEN_TRIES = 5
-"""Wrong tokens a tab may type per :data:`TOKEN_WINDOW` seconds; more are refused unread."""
+"""Wrong tokens one address may type per :data:`TOKEN_WINDOW` seconds; more are refused unread."""
 TOKEN_WINDOW = 60.0
+STRONG_BITS = 64
+"""A token given by hand with less estimated randomness than this [bits] is warned about."""
+TAKEN_OVER = "Another tab took over as presenter: this tab now follows it."
 MAX_TOKEN_LENGTH = 200
 PRESENTER_LEFT = "The presenter has left: you keep what was shown and can explore on your own."
 
 
 def random_token() -> str:
-    """A fresh presenter token: four short words' worth of randomness, easy to read out in a room."""
-    return secrets.token_urlsafe(9)
+    """A fresh presenter token: 96 random bits in 16 URL-safe characters (never typed on the projector:
+    ``serve`` prints a presenter link that fills it in)."""
+    return secrets.token_urlsafe(12)
+
+
+def token_weakness(token: str) -> str:
+    """Why ``token`` is easy to guess (short, or little randomness for its characters), or ``""``.
+
+    The estimate is generous (length × log₂ of the character classes used): a dictionary word with a
+    digit (``lecture-7``) is weak; :func:`random_token`'s are strong.
+    """
+    pool = sum(
+        size
+        for size, present in (
+            (26, any(c.islower() for c in token)),
+            (26, any(c.isupper() for c in token)),
+            (10, any(c.isdigit() for c in token)),
+            (33, any(not c.isalnum() for c in token)),
+        )
+        if present
+    )
+    bits = len(token) * math.log2(max(pool, 2))
+    if len(token) < 12 or bits < STRONG_BITS:
+        return (
+            f"the presenter token {len(token)} characters long is easy to guess (about {bits:.0f} bits; "
+            f"use at least {STRONG_BITS}, or --presenter alone for a random one)"
+        )
+    return ""
 
 
 class Member(Protocol):
@@ -62,9 +95,18 @@ class Classroom:
     Args:
         token: The presenter token (the server's ``--presenter-token``).
         clock: Monotonic clock [s] (a fake one in tests of the rate limit).
+        limits: The server's limits, which count wrong tokens per address and per server (default:
+            the classroom's own, on ``clock``).
+        address_of: A tab's network address (its key is used when ``None``, or when unknown).
     """
 
-    def __init__(self, token: str, clock: Callable[[], float] = time.monotonic) -> None:
+    def __init__(
+        self,
+        token: str,
+        clock: Callable[[], float] = time.monotonic,
+        limits: RoomLimits | None = None,
+        address_of: Callable[[int], str] | None = None,
+    ) -> None:
         if not token or len(token) > MAX_TOKEN_LENGTH:
             raise ValueError(f"a presenter token needs 1 to {MAX_TOKEN_LENGTH} characters")
         self._token = token.encode("utf-8")
@@ -74,7 +116,8 @@ class Classroom:
         self._alone: set[int] = set()  # tabs exploring on their own
         self._presenter: int | None = None
         self._unsubscribe: Callable[[], None] | None = None
-        self._tries: dict[int, list[float]] = {}
+        self.limits = limits if limits is not None else RoomLimits(clock=clock)
+        self._address_of = address_of
         self.relayed = 0
 
     # ---------------------------------------------------------------- membership
@@ -95,7 +138,6 @@ class Classroom:
         with self._lock:
             self._members.pop(key, None)
             self._alone.discard(key)
-            self._tries.pop(key, None)
             was_presenter = key == self._presenter
             if was_presenter:
                 unsubscribe = self._stop_relay()
@@ -110,22 +152,15 @@ class Classroom:
         Returns:
             "" when it now presents, else why not (wrong token, too many tries).
         """
-        now = self._clock()
+        given = token.encode("utf-8")[: MAX_TOKEN_LENGTH * 4]
+        why = self.limits.try_token(self.address(key), hmac.compare_digest(given, self._token))
+        if why:
+            return why
         with self._lock:
-            tries = [t for t in self._tries.get(key, []) if now - t < TOKEN_WINDOW]
-            if len(tries) >= TOKEN_TRIES:
-                wait = TOKEN_WINDOW - (now - tries[0])
-                self._tries[key] = tries
-                return f"too many wrong tokens: try again in {max(1, round(wait))} s"
-            given = token.encode("utf-8")[: MAX_TOKEN_LENGTH * 4]
-            if not hmac.compare_digest(given, self._token):
-                tries.append(now)
-                self._tries[key] = tries
-                return "that is not the presenter token"
-            self._tries.pop(key, None)
             member = self._members.get(key)
             if member is None:
                 return "this tab is not connected"
+            replaced = self._presenter if self._presenter != key else None
             previous = self._stop_relay()
             self._presenter = key
             self._alone.discard(key)
@@ -142,14 +177,17 @@ class Classroom:
         state, snap = member.latest
         if snap is not None:
             self._relay(state, snap)
-        self._tell_all()
+        self._tell_all(personal={replaced: TAKEN_OVER} if replaced is not None else None)
         return ""
 
+    def address(self, key: int) -> str:
+        """The network address of tab ``key`` (what wrong tokens are counted by)."""
+        address = self._address_of(key) if self._address_of is not None else ""
+        return address or f"tab {key}"
+
     def wrong_tries(self, key: int) -> int:
-        """Wrong tokens tab ``key`` typed within the last :data:`TOKEN_WINDOW` seconds."""
-        now = self._clock()
-        with self._lock:
-            return sum(1 for t in self._tries.get(key, []) if now - t < TOKEN_WINDOW)
+        """Wrong tokens from tab ``key``'s address within the last :data:`TOKEN_WINDOW` seconds."""
+        return self.limits.wrong_tokens(self.address(key))
 
     def resign(self, key: int) -> None:
         """The presenter stops presenting (followers keep the last state)."""
@@ -229,9 +267,11 @@ class Classroom:
         for member in targets:
             member.mirror_camera(position, look_at, up)
 
-    def _tell_all(self, note: str = "") -> None:
+    def _tell_all(self, note: str = "", personal: dict[int, str] | None = None) -> None:
+        """Tell every tab its role, with ``note`` (or its own note in ``personal``) unless it presents."""
         with self._lock:
             members = list(self._members.items())
         for key, member in members:
             role = self.role(key)
-            member.role_changed(Role(**{**role.__dict__, "note": note if not role.presenting else ""}))
+            said = (personal or {}).get(key, note)
+            member.role_changed(Role(**{**role.__dict__, "note": said if not role.presenting else ""}))

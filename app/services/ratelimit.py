@@ -6,12 +6,13 @@ no asyncio), so it is tested on its own with a fake clock.
 
 from __future__ import annotations
 
+import threading
 import time
-from collections import OrderedDict
+from collections import OrderedDict, deque
 from collections.abc import Callable, Hashable
 from typing import Any
 
-__all__ = ["TokenBucket", "LeakyCounter", "LatestFirstQueue"]
+__all__ = ["TokenBucket", "LeakyCounter", "LatestFirstQueue", "TabLimiter", "RoomLimits"]
 
 
 class TokenBucket:
@@ -164,3 +165,148 @@ class TabLimiter:
     def pop_ready(self) -> list[Any]:
         """The waiting messages the rates allow now (at most one per queue)."""
         return [m for m in (self.other.pop_ready(), self.gui.pop_ready()) if m is not None]
+
+
+class RoomLimits:
+    """What every tab of one server may hold at once, and what was refused: one object, so that a
+    server of several processes could keep it in one shared place.
+
+    Uploads are counted from their start to their end (or their tab's): at most
+    ``uploads_per_tab`` at once per tab and ``bytes_in_flight`` declared bytes over the server,
+    each at most ``max_upload_bytes`` in parts of ``part_bytes``; a part that would take a transfer
+    past its declared size ends it.
+
+    Args:
+        max_upload_bytes: Largest file a tab may upload [bytes].
+        part_bytes: Size of an upload's parts [bytes] (the browser's).
+        uploads_per_tab: Uploads one tab may have in flight.
+        bytes_in_flight: Declared bytes of every upload in flight, over the server [bytes].
+        notices_per_second: Refusal notices a tab is shown per second (more are only logged).
+        token_tries_per_address, token_tries_per_server, token_window: Wrong presenter tokens one
+            address, and all addresses together, may try per window [s]; more are refused unread
+            (per address, not per tab: reconnecting tabs share their address's tries).
+        clock: Time source [s].
+
+    Attributes:
+        refusals: The last refusals, as (tab, text).
+        refused: How many messages were refused.
+    """
+
+    def __init__(
+        self,
+        max_upload_bytes: int = 2 * 1024 * 1024,
+        part_bytes: int = 512 * 1024,
+        uploads_per_tab: int = 2,
+        bytes_in_flight: int = 16 * 1024 * 1024,
+        notices_per_second: float = 4.0,
+        token_tries_per_address: int = 5,
+        token_tries_per_server: int = 30,
+        token_window: float = 60.0,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self.max_upload_bytes, self.part_bytes = max_upload_bytes, part_bytes
+        self.uploads_per_tab, self.bytes_in_flight = uploads_per_tab, bytes_in_flight
+        self.notices_per_second, self.clock = notices_per_second, clock
+        self.token_tries_per_address = token_tries_per_address
+        self.token_tries_per_server = token_tries_per_server
+        self.token_window = token_window
+        self._token_tries: deque[tuple[float, Hashable]] = deque()  # (time, address) of wrong tokens
+        self.refusals: deque[tuple[Hashable, str]] = deque(maxlen=200)
+        self.refused = 0
+        self._lock = threading.Lock()
+        self._uploads: dict[Hashable, list] = {}  # transfer → [tab, declared, received]
+        self._notices: OrderedDict[Hashable, TokenBucket] = OrderedDict()
+
+    # ---------------------------------------------------------------- uploads
+    def start_upload(self, tab: Hashable, transfer: Hashable, declared: int, parts: int) -> str:
+        """Count an upload in; ``""`` when it may go on, else why not."""
+        if not (isinstance(declared, int) and isinstance(parts, int)) or declared < 0:
+            return "its declared size is not a count of bytes"
+        if declared > self.max_upload_bytes:
+            return f"{declared} bytes is over the {self.max_upload_bytes} bytes a file may have"
+        if parts != -(-declared // self.part_bytes):
+            return f"{parts} parts for {declared} bytes (parts of {self.part_bytes} bytes)"
+        with self._lock:
+            if transfer in self._uploads:
+                return "it was started already"
+            mine = sum(1 for u in self._uploads.values() if u[0] == tab)
+            if mine >= self.uploads_per_tab:
+                return f"this tab already has {mine} uploads under way: wait for them to finish"
+            total = sum(u[1] for u in self._uploads.values())
+            if total + declared > self.bytes_in_flight:
+                return "the server is receiving too many files right now: try again in a moment"
+            self._uploads[transfer] = [tab, declared, 0]
+        return ""
+
+    def receive_part(self, transfer: Hashable, size: int) -> str:
+        """Count ``size`` bytes of a part in; ``""`` when it fits the declared size, else why not."""
+        with self._lock:
+            upload = self._uploads.get(transfer)
+            if upload is None:
+                return "it was not started"
+            if size > self.part_bytes or upload[2] + size > upload[1]:
+                return f"its parts bring more than the {upload[1]} bytes it declared"
+            upload[2] += size
+        return ""
+
+    def end_upload(self, transfer: Hashable) -> None:
+        """The upload finished or was dropped."""
+        with self._lock:
+            self._uploads.pop(transfer, None)
+
+    def end_tab(self, tab: Hashable) -> None:
+        """The tab went: its uploads end."""
+        with self._lock:
+            for transfer in [t for t, u in self._uploads.items() if u[0] == tab]:
+                del self._uploads[transfer]
+            self._notices.pop(tab, None)
+
+    def uploads_in_flight(self, tab: Hashable | None = None) -> tuple[int, int]:
+        """(uploads, declared bytes) in flight, of ``tab`` or of the whole server."""
+        with self._lock:
+            mine = [u for u in self._uploads.values() if tab is None or u[0] == tab]
+            return len(mine), sum(u[1] for u in mine)
+
+    # ---------------------------------------------------------------- presenter tokens
+    def _recent_tries(self) -> deque[tuple[float, Hashable]]:
+        now = self.clock()
+        while self._token_tries and now - self._token_tries[0][0] >= self.token_window:
+            self._token_tries.popleft()
+        return self._token_tries
+
+    def try_token(self, address: Hashable, right: bool) -> str:
+        """One presenter token from ``address``: ``""`` when it is ``right`` and may be taken, else why
+        not (a wrong one is counted; over the limits, even a right one is refused unread)."""
+        with self._lock:
+            now, tries = self.clock(), self._recent_tries()
+            mine = [t for t, a in tries if a == address]
+            if len(mine) >= self.token_tries_per_address:
+                wait = self.token_window - (now - mine[0])
+                return f"too many wrong tokens from this computer: try again in {max(1, round(wait))} s"
+            if len(tries) >= self.token_tries_per_server:
+                wait = self.token_window - (now - tries[0][0])
+                return f"too many wrong tokens in this room: try again in {max(1, round(wait))} s"
+            if right:
+                return ""
+            tries.append((now, address))
+            return "that is not the presenter token"
+
+    def wrong_tokens(self, address: Hashable | None = None) -> int:
+        """Wrong tokens within the window, from ``address`` or from anywhere."""
+        with self._lock:
+            return sum(1 for _, a in self._recent_tries() if address is None or a == address)
+
+    # ---------------------------------------------------------------- refusals
+    def refuse(self, tab: Hashable, text: str) -> bool:
+        """Record a refusal; whether the tab should be told now (a few notices per second at most)."""
+        with self._lock:
+            self.refused += 1
+            self.refusals.append((tab, text))
+            bucket = self._notices.pop(tab, None)
+            if bucket is None:
+                rate = self.notices_per_second
+                bucket = TokenBucket(rate, max(1, int(2 * rate)), self.clock)
+            self._notices[tab] = bucket
+            while len(self._notices) > 1000:
+                self._notices.popitem(last=False)
+            return bucket.take()

@@ -11,6 +11,8 @@ session's next draw.
 
 from __future__ import annotations
 
+import threading
+from collections import deque
 from collections.abc import Callable
 from concurrent.futures import Future
 from typing import Any
@@ -41,12 +43,16 @@ from ..services.symbolic_service import SymbolicService, SymbolicUnavailable
 from .following import Following
 from .notices import Notices
 from .recorder import TabRecorder, demo_zip
-from .robots import TabCatalog
+from .robots import TabCatalog, display_name
 
-__all__ = ["CommandRunner", "LOOKING"]
+__all__ = ["CommandRunner", "LOOKING", "MAX_QUEUED_DOWNLOADS"]
 
 LOOKING = "looking for the nearest singularity…"
 """What the status says while the nearest singularity is looked for."""
+
+
+MAX_QUEUED_DOWNLOADS = 4
+"""Symbolic downloads one tab may have waiting behind the one being prepared."""
 
 
 class CommandRunner:
@@ -79,6 +85,12 @@ class CommandRunner:
         self.client, self.catalog, self.symbolic = client, catalog, symbolic
         self.recorder, self.following, self.notices = recorder, following, notices
         self._dispatch, self._shown, self._closed = dispatch, shown, closed
+        self._jobs_lock = threading.Lock()
+        self._upload_job = 0
+        self._upload_future: Future[SetRobot] | None = None
+        self._building = False
+        self._downloads: deque[str] = deque()  # this tab's downloads waiting behind the one in flight
+        self._download_busy = False
 
     def run(self, state: LabState, command: Command) -> Action | Redraw | None:
         """Carry out ``command`` on ``state`` (the state reduced so far in this batch)."""
@@ -94,8 +106,8 @@ class CommandRunner:
             robot = self.catalog.load_chain(state.robot_name, command.tip_link)
             return SetRobot(state.robot_name, robot, chain=command.tip_link)
         if isinstance(command, UploadRobot):
-            name = self.catalog.add_upload(command.filename, command.content, command.refused_size)
-            return SetRobot(name, self.catalog.load(name))
+            self._upload(command)
+            return None
         if isinstance(command, RequestDownload):
             self._download(state, command.label)
         elif isinstance(command, (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)):
@@ -109,6 +121,48 @@ class CommandRunner:
         else:
             raise ValueError(f"{type(command).__name__} is drawn by the session, not run as a command")
         return None
+
+    # ------------------------------------------------------------------ uploads
+    @property
+    def building(self) -> bool:
+        """Whether an uploaded robot is being read and built (the tab shows "Building…")."""
+        with self._jobs_lock:
+            return self._building
+
+    def _upload(self, command: UploadRobot) -> None:
+        """Read and build an uploaded robot away from the drawing thread (its cost grows with the file),
+        one at a time per tab: a newer upload cancels the older (whose result is dropped)."""
+        with self._jobs_lock:
+            self._upload_job += 1
+            self._building = True
+            job, older = self._upload_job, self._upload_future
+        if older is not None:  # outside the lock: cancelling runs its done callback here, which takes it
+            older.cancel()
+        shown = display_name(command.filename)
+        remove_note = self.notices.preparing("Building…", f"the robot of {shown}")
+
+        def build() -> SetRobot:
+            name = self.catalog.add_upload(command.filename, command.content, command.refused_size)
+            return SetRobot(name, self.catalog.load(name))
+
+        def done(future: Future[SetRobot]) -> None:
+            remove_note()
+            with self._jobs_lock:
+                stale = job != self._upload_job
+            try:
+                if not (stale or future.cancelled() or self._closed()):
+                    self._dispatch(future.result())
+            except Exception as exc:
+                self.notices.error(exc)
+            finally:
+                if not stale:
+                    with self._jobs_lock:
+                        self._building = False
+
+        future = background().submit(build)
+        with self._jobs_lock:
+            self._upload_future = future
+        future.add_done_callback(done)
 
     # ------------------------------------------------------------------ the nearest singularity
     def _find_singularity(self, state: LabState) -> None:
@@ -155,17 +209,42 @@ class CommandRunner:
 
     # ------------------------------------------------------------------ downloads
     def _download(self, state: LabState, label: str) -> None:
-        robot, frame = state.robot, state.options.jacobian_frame
-        file = robot_file(robot, label)  # the robot itself (robot file, URDF); else its symbolic J
+        """Send the robot's file at once, or queue its symbolic J: one of this tab's exports is with the
+        symbolic worker at a time, the others wait here (at most :data:`MAX_QUEUED_DOWNLOADS`), so one
+        tab's downloads queue behind each other, not in front of other tabs'."""
+        file = robot_file(state.robot, label)  # the robot itself (robot file, URDF); else its symbolic J
         if file is not None:
             self.client.send_file_download(*file, save_immediately=True)
             return
+        with self._jobs_lock:
+            if len(self._downloads) >= MAX_QUEUED_DOWNLOADS:
+                waiting = len(self._downloads)
+            else:
+                self._downloads.append(label)
+                waiting = 0
+        if waiting:
+            self.notices.notify(
+                "Download not queued",
+                f"{waiting} downloads of this tab are waiting: try again once they are done.",
+            )
+            return
+        self._next_download(state)
+
+    def _next_download(self, state: LabState) -> None:
+        with self._jobs_lock:
+            if self._download_busy or not self._downloads:
+                return
+            self._download_busy = True
+            label = self._downloads.popleft()
+        robot, frame = state.robot, state.options.jacobian_frame
         remove_note = self.notices.preparing(
             f"Preparing J(q) as {label}…", f"{robot.title or robot.name}, {frame} axes"
         )
 
         def ready(future: Future[tuple[str, bytes]]) -> None:
             remove_note()
+            with self._jobs_lock:
+                self._download_busy = False
             if self._closed():
                 return
             try:
@@ -176,5 +255,12 @@ class CommandRunner:
                 self.notices.error(exc)
             else:
                 self.client.send_file_download(filename, content, save_immediately=True)
+            self._next_download(state)
 
-        self.symbolic.export(robot, label, frame).add_done_callback(ready)
+        try:
+            self.symbolic.export(robot, label, frame).add_done_callback(ready)
+        except Exception:
+            with self._jobs_lock:
+                self._download_busy = False
+            remove_note()
+            raise

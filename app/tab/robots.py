@@ -29,11 +29,22 @@ from ..core.build_table import BUILT_NAME, robot_toml
 from ..services.catalog import RobotCatalog
 from ..viser_adapter import MAX_UPLOAD_BYTES
 
-__all__ = ["TabCatalog", "MAX_UPLOAD_BYTES", "MAX_PRIVATE_ROBOTS", "display_name"]
+__all__ = [
+    "TabCatalog",
+    "MAX_UPLOAD_BYTES",
+    "MAX_PRIVATE_ROBOTS",
+    "MAX_UPLOAD_JOINTS",
+    "MAX_UPLOAD_DOF",
+    "display_name",
+]
 
 # Largest URDF a tab may upload [bytes] (real arm URDFs are a few to a few hundred kB): checked
 # on the websocket before any part is buffered, and again here.
 MAX_PRIVATE_ROBOTS = 8
+MAX_UPLOAD_JOINTS = 200
+"""Most ``<joint>`` elements an uploaded URDF may have (real arms with hands have a few dozen)."""
+MAX_UPLOAD_DOF = 24
+"""Most moving joints of an uploaded robot's chain (each costs a slider and scene nodes per redraw)."""
 """Uploads one tab keeps (the oldest is forgotten first)."""
 _SUFFIX = " (uploaded)"
 
@@ -120,6 +131,11 @@ class TabCatalog:
                 "program that may read files); expand it on your machine (xacro arm.urdf.xacro > arm.urdf) "
                 "and upload the .urdf, or start the lab with --urdf arm.urdf.xacro"
             )
+        joints = bytes(content).count(b"<joint")  # before parsing: an upper bound, cheap
+        if joints > MAX_UPLOAD_JOINTS:
+            raise UrdfError(
+                f"upload {shown!r} has {joints} joints; an uploaded URDF may have at most {MAX_UPLOAD_JOINTS}"
+            )
         stem = Path(shown).stem or "upload"
         try:
             robot = robot_from_urdf_string(bytes(content), name=stem)
@@ -127,6 +143,11 @@ class TabCatalog:
             raise UrdfError(f"upload {shown!r}: {exc}") from None
         except RecursionError:
             raise UrdfError(f"upload {shown!r}: the XML is nested too deeply") from None
+        if robot.dof > MAX_UPLOAD_DOF:
+            raise UrdfError(
+                f"upload {shown!r}: its chain has {robot.dof} moving joints; "
+                f"at most {MAX_UPLOAD_DOF} are shown"
+            )
         with self._lock:
             name = display_name(robot.name, 48) + _SUFFIX
             while name in self._private or name in self.shared.names():

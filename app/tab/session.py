@@ -54,6 +54,12 @@ log = logging.getLogger(__name__)
 
 MAX_REDRAWS_PER_SECOND = 40.0
 """A tab is redrawn at most this often; faster input is coalesced (all of it is reduced, drawn once)."""
+COST_SHARE = 4.0
+"""After a visit that took t seconds of CPU (over :data:`COSTLY`), a tab waits COST_SHARE · t before
+the next: a slider redraw of a few ms is not held back; rebuilding a large robot over and over takes
+at most 1/(1 + COST_SHARE) of the renderer."""
+COSTLY = 0.02
+"""A visit taking more CPU than this [s] (a robot rebuilt, not a redraw) delays the tab's next."""
 
 
 class ClientSession:
@@ -81,6 +87,7 @@ class ClientSession:
         self.renderer = renderer if renderer is not None else Renderer()
         self._drawing = threading.local()
         self._last_redraw = 0.0
+        self._last_cost = 0.0
         self._subscribers: list[Callable[[LabState, Snapshot], None]] = []
         self.notices = Notices(client, lambda: self._closed)
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
@@ -119,8 +126,10 @@ class ClientSession:
         self.renderer.schedule(self)
 
     def next_visit(self) -> float:
-        """When this tab may be redrawn again [monotonic s] (at most MAX_REDRAWS_PER_SECOND)."""
-        return self._last_redraw + 1.0 / MAX_REDRAWS_PER_SECOND
+        """When this tab may be redrawn again [monotonic s]: at most MAX_REDRAWS_PER_SECOND, and a tab
+        whose last visit was costly (a robot rebuilt) waits COST_SHARE times that cost, so that no tab
+        takes more than a fair share of the one renderer whatever its input asks for."""
+        return self._last_redraw + max(1.0 / MAX_REDRAWS_PER_SECOND, COST_SHARE * self._last_cost)
 
     @property
     def pending(self) -> bool:
@@ -157,6 +166,7 @@ class ClientSession:
         """
         with self._queue_lock:
             messages, self._queue = coalesced(self._queue), []
+        started = time.thread_time()  # the CPU this tab's visit takes, not time spent waiting for others
         if messages and not self._closed:
             with self.lock:
                 batch = Batch(self.state)
@@ -174,6 +184,8 @@ class ClientSession:
                         self.screen.draw_symbols(self.symbols)
                 except Exception as exc:  # the tab keeps its last good state on screen
                     self.notices.error(exc)
+        cost = time.thread_time() - started
+        self._last_cost = min(cost, 1.0) if cost > COSTLY else 0.0
         with self._queue_lock:
             if self._queue and not self._closed:
                 return True

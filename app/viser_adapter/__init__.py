@@ -10,6 +10,8 @@ Wrapped:
 * :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
 * :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
   to one client through ``client._websock_connection``.
+* :func:`client_address` — the IP a tab connected from (the server's connection table), by which
+  wrong presenter tokens are counted.
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
@@ -17,6 +19,12 @@ Wrapped:
   handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``; only
   an upload's parts (512 KiB, the browser's) may exceed the message limit, and an upload
   declared over :data:`MAX_UPLOAD_BYTES` is never buffered (:func:`upload_too_large`).
+* :func:`install_input_checks` — every value a tab sends, checked where it enters (:mod:`.gate`):
+  replaces ``GuiApi._handle_gui_updates`` and its upload handlers; :func:`check_message` is called
+  by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on).
+* :func:`allow_origins` and :func:`handshake_refusal` — the Host and Origin of every HTTP request and
+  websocket handshake checked (:mod:`.handshake`, through the ``process_request`` viser passes to
+  ``serve``, replaced by :func:`install_message_limits`).
 * :func:`listen_on` — the same ``serve`` wrapper accepting on a listening socket shared by several
   worker processes (``jacobian-lab serve --workers N``) instead of binding host and port.
 * :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
@@ -30,13 +38,14 @@ Wrapped:
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of five modules (:mod:`.core`, :mod:`.limits`, :mod:`.props`, :mod:`.mirror`, :mod:`.icons`),
-so each stays short; nothing outside this package touches viser's private API.
+A package of seven modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
+:mod:`.mirror`, :mod:`.icons`), so each stays short; nothing outside this package touches viser's private API.
 """
 
 from .core import (
     TESTED_VISER,
     ViserApiChanged,
+    client_address,
     clip,
     handle_uuid,
     is_removed,
@@ -46,6 +55,8 @@ from .core import (
     scene_handles,
     set_page_title,
 )
+from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
+from .handshake import allow_origins, handshake_refusal
 from .icons import install_icon_cache
 from .limits import (
     MAX_UPLOAD_BYTES,
@@ -69,6 +80,13 @@ __all__ = [
     "is_removed",
     "scene_handles",
     "node_props",
+    "install_input_checks",
+    "uninstall_input_checks",
+    "check_message",
+    "check_gui_value",
+    "room_limits",
+    "allow_origins",
+    "handshake_refusal",
     "MessageLimits",
     "install_message_limits",
     "listen_on",
@@ -83,4 +101,5 @@ __all__ = [
     "update_props",
     "set_pose",
     "clip",
+    "client_address",
 ]

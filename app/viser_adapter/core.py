@@ -20,6 +20,7 @@ __all__ = [
     "scene_handles",
     "node_props",
     "clip",
+    "client_address",
 ]
 
 log = logging.getLogger(__name__)
@@ -146,3 +147,18 @@ def node_props(handle: Any) -> dict[str, Any]:
         return {**vars(impl.props), "position": impl.position, "wxyz": impl.wxyz, "visible": impl.visible}
 
     return _private("node_props", "handle._impl.props / position / wxyz / visible", get)
+
+
+def client_address(server: viser.ViserServer, client_id: int) -> str:
+    """The network address (IP) tab ``client_id`` connected from, or ``""`` once it has gone.
+
+    Through the server's connection table (``server._websock_server._live_connections``).
+    """
+    connections = _private(
+        "client_address",
+        "ViserServer._websock_server._live_connections",
+        lambda: server._websock_server._live_connections,
+    )
+    connection = connections.get(client_id)
+    address = getattr(connection, "remote_address", None)
+    return str(address[0]) if isinstance(address, tuple) and address else ""

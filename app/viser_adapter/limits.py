@@ -14,6 +14,8 @@ from typing import Any
 
 from ..services.ratelimit import TabLimiter
 from .core import ViserApiChanged, _private, clip
+from .gate import check_message, room_limits
+from .handshake import checked_process_request
 
 __all__ = [
     "MessageLimits",
@@ -52,6 +54,8 @@ class MessageLimits:
         accepted: Messages passed on to viser, over all connections.
         dropped: Messages replaced by a newer state while waiting, or refused (too many waiting).
         malformed: Messages that could not be decoded (logged in one bounded line each).
+        refused: Messages refused by :func:`.gate.check_message` (a value out of range, a form's
+            dirty flag, ...).
         closed: Connections closed for violating a limit (too large or too many messages).
     """
 
@@ -64,6 +68,7 @@ class MessageLimits:
     accepted: int = 0
     dropped: int = 0
     malformed: int = 0
+    refused: int = 0
     closed: int = 0
     _lock: threading.Lock = dataclasses.field(default_factory=threading.Lock, repr=False)
 
@@ -172,9 +177,11 @@ def _checked_upload(message: Any, size: int, limits: MessageLimits) -> tuple[Any
 
 def _serve_with_limit(*args: Any, **kwargs: Any) -> Any:
     """``websockets.asyncio.server.serve`` as viser calls it (``serve(handler, host, port, ...)``), with
-    our ``max_size``, and on the listening socket given to :func:`listen_on` instead of host and port."""
+    our ``max_size``, every request's Host and Origin checked (:mod:`.handshake`), and on the listening
+    socket given to :func:`listen_on` instead of host and port."""
     if _limits is not None:
         kwargs["max_size"] = _frame_limit(_limits)
+    kwargs["process_request"] = checked_process_request(kwargs.get("process_request"))
     if _listen_socket is not None:
         args = args[:1]
         kwargs.pop("host", None)
@@ -227,6 +234,7 @@ async def _guarded_consumer(
     peer = clip(getattr(websocket, "remote_address", "?"), 60)
     import websockets.exceptions as wse
 
+    why = ""
     closing = False  # once closed for flooding, frames still buffered are discarded, not counted again
     try:
         while True:
@@ -250,12 +258,21 @@ async def _guarded_consumer(
                 if not isinstance(raw, bytes):
                     raise TypeError(f"a text frame of {len(raw)} characters")
                 message = message_class.deserialize(raw)
-                message, refused = _checked_upload(message, len(raw), limits)
+                why = check_message(message)
+                if not why:
+                    message, refused = _checked_upload(message, len(raw), limits)
             except Exception as exc:  # a hostile or broken client must not end the server's loop
                 if not refused:
                     limits.count("malformed")
                     log.warning("dropped a message from %s: %s: %s", peer, type(exc).__name__, clip(exc))
                     continue
+            if why and not refused:
+                limits.count("refused")
+                room = room_limits()
+                if room is not None:
+                    room.refuse(peer, f"{type(message).__name__}: {why}")
+                log.warning("refused a message of %s: %s", peer, clip(why))
+                continue
             if refused:
                 closing = True
                 limits.count("closed")

@@ -123,18 +123,28 @@ def folder(create: bool = True) -> Path | None:
 
 
 def _read(path: Path) -> bytes | None:
-    flags = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0)
+    """The bytes of a cache entry, or ``None``: never through a link, never blocking (a FIFO or a
+    device there is ignored with a warning, as is anything but a private regular file of this user)."""
+    flags = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
     try:
         fd = os.open(path, flags)
-    except OSError:
+    except FileNotFoundError:
         return None
-    with os.fdopen(fd, "rb") as f:
-        st = os.fstat(f.fileno())
+    except OSError as exc:  # a link, or a socket
+        _warn(f"symbolic cache: ignoring {path} ({exc.strerror})")
+        return None
+    try:
+        st = os.fstat(fd)
         mine = not hasattr(os, "getuid") or st.st_uid == os.getuid()
         if not stat.S_ISREG(st.st_mode) or not mine or st.st_mode & 0o022 or st.st_size > MAX_BYTES:
             _warn(f"symbolic cache: ignoring {path} (not a private regular file of this user)")
             return None
-        return f.read(MAX_BYTES + 1)
+        with os.fdopen(os.dup(fd), "rb") as f:
+            return f.read(MAX_BYTES + 1)
+    except OSError:
+        return None
+    finally:
+        os.close(fd)
 
 
 def load(key: str) -> object | None:

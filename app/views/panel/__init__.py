@@ -29,7 +29,7 @@ from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
-from .classroom import ClassroomPanel
+from .classroom import ClassroomPanel, token_js
 from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
@@ -84,6 +84,8 @@ class PanelView:
         self.status = gui.add_html("", order=2)
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
+        if self.classroom is not None:  # masked, and filled from the presenter link
+            run_javascript(client, token_js(handle_uuid(self.classroom.token)))
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
         self.tabs = {tab.name: self.views.add_tab(tab.label, tab.icon) for tab in TABS}

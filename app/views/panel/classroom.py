@@ -1,6 +1,8 @@
 """The classroom controls of one tab (shown when the server runs with a presenter token).
 
-A text input "Presenter token" (typing the token makes this tab the presenter: no other click), one
+A text input "Presenter token", masked like a password (typing the token makes this tab the presenter:
+no other click; the presenter link ``serve`` prints, ``…/#presenter=TOKEN``, fills it in and drops the
+token from the address bar, so it is never typed or shown where the room can read it), one
 button that says what it does next ("Explore on my own", "Follow the presenter", "Stop presenting")
 and a line saying what the tab is: presenting (and how many tabs follow), following (read-only),
 or exploring alone.
@@ -8,13 +10,47 @@ or exploring alone.
 
 from __future__ import annotations
 
+import json
+
 import viser
 
 from ...core.commands import ClaimPresenter, Command, ExploreAlone, FollowPresenter, StopPresenting
 from ...core.role import Role
 from .common import Dispatch, bind, sync_value
 
-__all__ = ["ClassroomPanel", "compact_title"]
+__all__ = ["ClassroomPanel", "compact_title", "token_js"]
+
+_TOKEN_JS = """(() => {
+  const uuid = %s;
+  const hash = new URLSearchParams(location.hash.slice(1));
+  const token = hash.get("presenter");
+  if (token !== null) {  // the presenter link: never left in the address bar
+    hash.delete("presenter");
+    const rest = hash.toString();
+    history.replaceState(null, "", location.pathname + location.search + (rest ? "#" + rest : ""));
+  }
+  let tries = 0;
+  const timer = setInterval(() => {
+    const root = document.getElementById(uuid);
+    const input = root && (root.tagName === "INPUT" ? root : root.querySelector("input"));
+    if (!input) { if (++tries > 200) clearInterval(timer); return; }
+    clearInterval(timer);
+    input.type = "password";
+    input.autocomplete = "off";
+    input.spellcheck = false;
+    input.style.setProperty("-webkit-text-security", "disc");
+    if (token) {
+      const set = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set;
+      set.call(input, token);
+      input.dispatchEvent(new Event("input", {bubbles: true}));
+    }
+  }, 50);
+})();"""
+
+
+def token_js(uuid: str) -> str:
+    """A page script masking the token input (DOM id ``uuid``) and filling it from the presenter link."""
+    return _TOKEN_JS % json.dumps(uuid)
 
 
 class ClassroomPanel:

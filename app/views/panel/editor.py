@@ -146,6 +146,10 @@ class EditorPanel:
 
     def start_from(self, name: str) -> None:
         """Replace the table by ``name``'s DH table (a library robot) or by :data:`EMPTY`'s one row."""
+        if name not in self.start.options:  # a library robot's name, never a path (checked again here)
+            self.error = f"“Start from” takes one of its options: {name[:60]!r} is not one of them."
+            self._show_summary()
+            return
         try:
             table = dt.empty() if name == EMPTY else dt.from_robot(robots.load(name))
         except JacobianLabError as exc:
@@ -179,6 +183,10 @@ class EditorPanel:
         rows, i, n = list(self.table.rows), self.selected, len(self.table.rows)
         order: list[int | None] = list(range(n))
         if label == ROW_BUTTONS[0]:
+            if n >= dt.MAX_ROWS:
+                self.error = f"A table has at most {dt.MAX_ROWS} rows: remove one before adding another."
+                self._show_summary()
+                return
             rows.insert(i + 1, dt.Row(a=0.3))
             order.insert(i + 1, None)
             i += 1
