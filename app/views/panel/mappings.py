@@ -40,6 +40,7 @@ from .. import fmt
 from ..palette import joint_hex, joint_text_hex
 from .common import Dispatch, bind, bind_click, sync_value
 from .course import accel_html, example_html, inverse_html
+from .errata import erratum_html
 from .readouts import ROW_NAMES
 from .style import slider_css
 
@@ -335,7 +336,8 @@ class ForcePanel:
             self.robot,
             [full] * self.robot.dof,
             f"Joint torques τ = Jᵀ F that hold the wrench (full bar: {fmt.number(full)} N·m or N). "
-            "At a singularity a force along the lost direction needs no torque at all.",
+            "At a singularity a force along the lost direction needs no torque at all."
+            + erratum_html("forces"),
         )
 
     def remove(self) -> None:

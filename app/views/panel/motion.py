@@ -30,6 +30,7 @@ from ...viser_adapter import handle_uuid
 from .. import fmt
 from ..palette import joint_hex
 from .common import Dispatch, bind, sync_value
+from .errata import erratum_html
 
 __all__ = ["MotionPanel", "MapsPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 
@@ -123,6 +124,7 @@ class MotionPanel:
             self.redundant = rows is not None
             self.self_slider: viser.GuiSliderHandle | None = None
             self.self_chart = None
+            self.notes: list[viser.GuiHtmlHandle] = []  # the course's error beside the climb
             if rows is not None:
                 with gui.add_folder("Redundancy: move with the tool held", expand_by_default=False):
                     held = ", ".join(_ROW_NAMES[r] for r in rows)
@@ -141,6 +143,7 @@ class MotionPanel:
                     bind(self.self_slider, dispatch, lambda v: SelfMove(float(v)))
                     climb = gui.add_button("Climb manipulability", icon=viser.Icon.TRENDING_UP)
                     climb.on_click(lambda _: dispatch(Play(True, "climb")))
+                    self.notes.append(gui.add_html(f'<div class="jl">{erratum_html("gradient")}</div>'))
                     self.self_chart = gui.add_uplot(
                         (np.zeros(1), np.zeros(1)),
                         ({"label": "s"}, {"label": "w", "stroke": "#3b5bdb", "width": 2}),
