@@ -7,10 +7,13 @@ from __future__ import annotations
 import pathlib
 import re
 
+import numpy as np
 import pytest
-from app_helpers import assert_all_finite
+from app_helpers import assert_all_finite, wait_until
 
 from app.core.actions import ChooseRobot, SetRate, SetWrench
+from app.core.numbers import NumberError, parse_number
+from app.views.camera import in_view
 from app.views.panel.errata import ERRATA
 
 COURSE = next(
@@ -76,3 +79,96 @@ def test_the_gradient_sign_is_said_beside_the_climb(session):
     assert any("course 004, slide 17" in t and "(I − J⁺J) ∇w" in t for t in shown)
     choose(session, "puma560")  # not redundant: no climb, no note
     assert not session.panel.motion.notes
+
+
+# ---------------------------------------------------------------------- item 11: typed numbers
+def _editor(session):
+    session.panel.robot.value = session.panel.robot.options[0]
+    editor = session.panel.editor
+    editor.start.value = "empty table (one joint)"
+    session.settle()
+    return editor
+
+
+@pytest.mark.parametrize(
+    ("typed", "value"),
+    [("1e-3", 1e-3), ("0.15005", 0.15005), (" −0.25 ", -0.25), ("+.5", 0.5), ("2.5E1", 25.0), (3, 3.0)],
+)
+def test_parse_number_keeps_what_is_typed(typed, value):
+    assert parse_number(typed) == value
+
+
+@pytest.mark.parametrize(
+    ("typed", "words"),
+    [
+        ("0,3", "use a point for decimals (0.3)"),
+        ("1e400", "too large"),
+        ("1e-", "is not a number"),
+        ("1_000", "is not a number"),
+        ("nan", "is not a number"),
+        ("inf", "is not a number"),
+        ("", "empty"),
+        ("0x10", "is not a number"),
+        (True, "expected a number"),
+        (float("nan"), "NaN"),
+    ],
+)
+def test_parse_number_refuses_in_words(typed, words):
+    with pytest.raises(NumberError, match=re.escape(words)):
+        parse_number(typed)
+    with pytest.raises(NumberError, match="beyond ±100 m"):
+        parse_number("1400", 100.0, "m")
+
+
+def test_the_build_tab_keeps_1e_minus_3_and_refuses_a_decimal_comma_and_1e400(session):
+    editor = _editor(session)
+    editor.a.value = "1e-3"
+    session.settle()
+    assert editor.error == "" and editor.a.value == "1e-3"  # the box keeps what was typed
+    assert session.state.robot.dh[0].a == 1e-3  # and the arm is 1 mm long, not −13 m
+    good = session.state.robot
+    for typed, words in (("0,3", "use a point for decimals (0.3)"), ("1e400", "too large")):
+        editor.a.value = typed
+        session.settle()
+        assert words in editor.error and words in _text(editor.problem.content)
+        assert editor.a.value == typed and session.state.robot is good  # nothing silently built
+    assert_all_finite(session)
+
+
+def test_reset_view_brings_the_camera_back_after_a_long_arm(session):
+    editor = _editor(session)
+    cam = session.client.camera
+
+    def distance() -> float:
+        return float(np.linalg.norm(np.asarray(cam.position) - np.asarray(cam.look_at)))
+
+    editor.a.value = "90"  # a 90 m arm: the camera glides out to see it
+    session.settle()
+    wait_until(lambda: distance() > 50)
+    editor.a.value = "0.3"  # the arm is 0.3 m again, the camera stays out there (the user's view)
+    session.settle()
+    assert distance() > 50
+    session.panel.reset_view.value = True  # the View tab's button
+    session.settle()
+    assert distance() < 3.0
+    extent = session.scene.extent
+    view = session.camera.view()
+    assert in_view(view, extent).all()  # the whole arm in the picture
+
+
+def test_the_course_velocity_typed_keeps_its_digits(session):
+    choose(session, "trr")
+    inverse = session.panel.inverse
+    vx = inverse.sliders[0]
+    assert vx.precision >= 3  # the box keeps 17.256, not 17.2
+    vx.value = 17.256
+    inverse.sliders[1].value = -20.13
+    inverse.sliders[2].value = 0.5
+    session.settle()
+    assert session.state.v_desired[:3].tolist() == [17.256, -20.13, 0.5]
+    rates = session.snapshot.rates  # the course's (0.5 m/s, 90°/s, 45°/s), to its rounding of v
+    assert abs(rates[0] - 0.5) < 1e-3 and abs(np.degrees(rates[1]) - 90) < 0.05
+    bars = _text(inverse.rates.content)
+    assert "90°/s" in bars and "45°/s" in bars and "90.8" not in bars
+    readout = _text(session.panel.motion.readout.content)
+    assert "17.256" in readout and "−20.13" in readout

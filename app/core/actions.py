@@ -50,6 +50,7 @@ __all__ = [
     "Mirror",
     "Redraw",
     "ToggleRecording",
+    "ResetView",
     "EditRobot",
     "UploadRobot",
     "COMMANDS",
@@ -278,6 +279,12 @@ class Redraw:
 
 
 @dataclass(frozen=True)
+class ResetView:
+    """Frame the whole arm again from the robot's default direction (a command: the camera is the tab's,
+    not the state's), e.g. after a very large robot moved the camera far away."""
+
+
+@dataclass(frozen=True)
 class ToggleRecording:
     """Start recording what this tab shows, or stop and download it as a demo that needs no server
     (a command)."""
@@ -322,6 +329,7 @@ COMMANDS = (
     FindSingularity,
     UploadRobot,
     ToggleRecording,
+    ResetView,
     *CLASSROOM,
 )
 """Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
@@ -360,4 +368,5 @@ Action = (
     | EditRobot
     | UploadRobot
     | ToggleRecording
+    | ResetView
 )

@@ -41,6 +41,7 @@ from .actions import (
     ReplaceState,
     RequestDownload,
     ResetMotion,
+    ResetView,
     SelfMove,
     SetConfiguration,
     SetDesired,
@@ -214,7 +215,14 @@ def _reduce(state: LabState, action: Action) -> LabState:
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )
-        case ClaimPresenter() | StopPresenting() | ExploreAlone() | FollowPresenter() | ToggleRecording():
+        case (
+            ClaimPresenter()
+            | StopPresenting()
+            | ExploreAlone()
+            | FollowPresenter()
+            | ToggleRecording()
+            | ResetView()
+        ):
             raise InvalidAction(
                 f"{type(action).__name__} is a command the session carries out, not a state change"
             )

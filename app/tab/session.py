@@ -54,6 +54,7 @@ from ..core.actions import (
     Redraw,
     ReplaceState,
     RequestDownload,
+    ResetView,
     SetConfiguration,
     SetJoint,
     SetRobot,
@@ -255,6 +256,9 @@ class ClientSession:
         if isinstance(action, ToggleRecording):
             self._toggle_recording(state)
             return state
+        if isinstance(action, ResetView):
+            self._reset_view(state)
+            return state
         if isinstance(action, FindSingularity):
             self._find_singularity(state)
             return state.replace(playing=False, stopped="looking for the nearest singularity…")
@@ -383,11 +387,16 @@ class ClientSession:
         pad = 0.18 * self.scene.size  # link meshes and labels reach beyond the points drawn
         edited = state.robot_name == old.robot_name == BUILT_NAME  # the Build tab: keep the user's view
         if rebuild and not edited:
-            direction = FROM_ABOVE if state.robot.planar else facing(self.scene.extent)
-            self.camera.frame(self.scene.extent, pad, direction, glide=False)
+            self._reset_view(state)
         elif jump or edited:
             self.camera.frame_if_needed(self.scene.extent, pad)
         self._tell_subscribers(state, snap)
+
+    def _reset_view(self, state: LabState) -> None:
+        """Frame the whole arm from the robot's default direction (as when it was chosen)."""
+        if self.scene is not None:
+            direction = FROM_ABOVE if state.robot.planar else facing(self.scene.extent)
+            self.camera.frame(self.scene.extent, 0.18 * self.scene.size, direction, glide=False)
 
     def _tell_subscribers(self, state: LabState, snap: Snapshot) -> None:
         for fn in list(self._subscribers):

@@ -24,7 +24,7 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.actions import ChooseChain, ChooseRobot, SetOption, ToggleRecording
+from ...core.actions import ChooseChain, ChooseRobot, ResetView, SetOption, ToggleRecording
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...services.classroom import Role
@@ -39,6 +39,7 @@ from .matrix import MatrixPanel
 from .motion import MapsPanel, MotionPanel, slider_ids
 from .readouts import measures_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
+from .typed import NUMBER_GUARD_JS
 
 __all__ = ["PanelView", "PANEL_WIDTH"]
 
@@ -94,6 +95,7 @@ class PanelView:
         gui.main_panel.set_width(PANEL_WIDTH)
         gui.add_html(BASE_CSS + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
+        run_javascript(client, NUMBER_GUARD_JS)
         set_page_title(client, PAGE_TITLE)
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
         bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
@@ -114,6 +116,8 @@ class PanelView:
         self.tab_build = self.views.add_tab("Build", viser.Icon.TOOL)
         self.views.dock_below(gui.main_panel)
         with self.tab_view:
+            self.reset_view = gui.add_button("Reset view: frame the arm", icon=viser.Icon.FOCUS_CENTERED)
+            self.reset_view.on_click(lambda _: dispatch(ResetView()))
             self.toggles = {}
             for key, label, hint in _TOGGLES:
                 box = gui.add_checkbox(label, initial_value=getattr(state.options, key), hint=hint)

@@ -231,7 +231,7 @@ def _button(label: str) -> Play | StepOnce | ResetMotion:
 def _readout(state: LabState, snap: Snapshot) -> str:
     rows = snap.rows
     v = [state.v_desired[r] if r < 3 else math.degrees(state.v_desired[r]) for r in rows]
-    parts = ", ".join(f"{_ROW_NAMES[r]} {fmt.number(x)}" for r, x in zip(rows, v, strict=True))
+    parts = ", ".join(f"{_ROW_NAMES[r]} {fmt.number(x, 5)}" for r, x in zip(rows, v, strict=True))
     axes = "tool" if state.options.twist_frame == "tool" else "base"
     doing = {
         "resolved_rate": "holding v",
