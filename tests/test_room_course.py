@@ -9,9 +9,9 @@ import re
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, wait_until
+from app_helpers import assert_all_finite, scene_node, wait_until
 
-from app.core.actions import ChooseRobot, SetRate, SetWrench
+from app.core.actions import ChooseRobot, GoTo, SetRate, SetWrench, UploadRobot
 from app.core.numbers import NumberError, parse_number
 from app.views.camera import in_view
 from app.views.panel.errata import ERRATA
@@ -172,3 +172,70 @@ def test_the_course_velocity_typed_keeps_its_digits(session):
     assert "90°/s" in bars and "45°/s" in bars and "90.8" not in bars
     readout = _text(session.panel.motion.readout.content)
     assert "17.256" in readout and "−20.13" in readout
+
+
+# ---------------------------------------------------------------------- item 14: one name per joint
+_OTHER_SYMBOL = re.compile(r"\b(?!q\d\b)[A-Za-zθ]{1,6}_?\d+\b")  # d3, A1, joint4: a second name
+_MIXED = """<?xml version="1.0"?>
+<robot name="mixed">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/><link name="l4"/>
+  JOINTS
+</robot>
+"""
+
+
+def _mixed_urdf() -> bytes:
+    """The issue's upload: joints named q1, q2, elbow_joint, q4."""
+    joints = []
+    for k, name in enumerate(("q1", "q2", "elbow_joint", "q4")):
+        axis = "0 0 1" if k % 2 == 0 else "0 1 0"
+        joints.append(
+            f'<joint name="{name}" type="revolute"><parent link="{"base" if k == 0 else f"l{k}"}"/>'
+            f'<child link="l{k + 1}"/><origin xyz="0.2 0 0.1"/><axis xyz="{axis}"/>'
+            '<limit lower="-2" upper="2" effort="1" velocity="1"/></joint>'
+        )
+    return _MIXED.replace("JOINTS", "\n  ".join(joints)).encode()
+
+
+@pytest.mark.parametrize("name", ["stanford", "iiwa14", "ur5", "trr", "puma560", "uploaded"])
+def test_every_joint_has_one_name_on_screen(session, name):
+    if name == "uploaded":
+        session.dispatch(UploadRobot("mixed.urdf", _mixed_urdf()))
+        session.settle()
+        assert session.state.robot.dof == 4 and session.errors == 0
+    else:
+        choose(session, name)
+    robot, p = session.state.robot, session.panel
+    labels = [s.label for s in p.joints.sliders]
+    for i, label in enumerate(labels):
+        assert label.startswith(f"q{i + 1}") and not label[len(f"q{i + 1}")].isdigit(), label
+        assert not _OTHER_SYMBOL.search(label), label  # no d3, A1 or elbow_joint beside q3
+    arm_labels = [scene_node(session, f"/lab/arm/label_{j}").text for j in range(robot.dof)]
+    assert arm_labels == [f"q{j + 1}" for j in range(robot.dof)]
+    rates = [s.label for s in p.forward.sliders]
+    assert all(r.startswith(f"q̇{i + 1} ") for i, r in enumerate(rates))
+    if name == "stanford":
+        assert labels[2] == "q3 boom [m]"
+    if name == "uploaded":
+        assert labels[2] == "q3 elbow [°]"
+
+
+def test_the_course_word_for_a_boundary_singularity(session):
+    """002 calls the TRR's stretched arm a boundary singularity (the robot file's word); the banner
+    says so, with what the geometry finds."""
+    choose(session, "trr")
+    session.dispatch(GoTo("stretched"))
+    session.settle()
+    banner = _text(session.panel.status.content)
+    assert "singular: boundary (elbow)" in banner
+    choose(session, "puma560")
+    session.dispatch(GoTo("elbow_singular"))
+    session.settle()
+    assert "singular: elbow" in _text(session.panel.status.content)
+    assert "singular: boundary" not in _text(session.panel.status.content)
+
+
+def test_the_dh_table_shows_the_files_numbers(session):
+    choose(session, "puma560")
+    table = _text(session.panel.derive.table.content)
+    assert "0.15005" in table and "0.4318" in table

@@ -11,6 +11,7 @@ from kinematics import Robot
 
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
+from ...core.words import status_words
 from .. import fmt
 from ..palette import status_hex
 
@@ -67,9 +68,10 @@ def status_html(snap: Snapshot, state: LabState) -> str:
     under it: the visited configuration's description, or why a motion stopped."""
     r = snap.report
     icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
+    words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration)
     banner = (
         f'<div class="jl-status" style="background:{status_hex(r.status)}" data-status="{r.status}">'
-        f"<span>{icon}</span><span>{fmt.escape(r.text())}</span>"
+        f"<span>{icon}</span><span>{fmt.escape(words)}</span>"
         f'<small style="margin-left:auto">κ = {fmt.number(r.condition)}</small></div>'
     )
     robot = state.robot
