@@ -13,6 +13,7 @@ from app_helpers import assert_all_finite, scene_node, wait_until
 
 from app.core.actions import ChooseRobot, GoTo, SetRate, SetWrench, UploadRobot
 from app.core.numbers import NumberError, parse_number
+from app.core.snapshot.derive import METHODS
 from app.views.camera import in_view
 from app.views.panel.errata import ERRATA
 
@@ -239,3 +240,61 @@ def test_the_dh_table_shows_the_files_numbers(session):
     choose(session, "puma560")
     table = _text(session.panel.derive.table.content)
     assert "0.15005" in table and "0.4318" in table
+
+
+# ---------------------------------------------------------------------- item 12: the Derive tab
+def _walk(session, method: str, step: int) -> None:
+    session.panel.derive.method.value = METHODS[method]
+    session.settle()
+    session.panel.derive.step.value = step + 1
+    session.settle()
+    assert session.state.options.derive == method and session.state.options.derive_step == step
+
+
+def test_trr_velocity_propagation_draws_every_links_velocity_readably(session):
+    """On the TRR's 24 m arm at the course's rates (0.5 m/s, 90°/s, 45°/s), v₁ = 0.5 m/s and
+    v₃ ≈ 26.6 m/s: each vₖ is drawn along its true direction and long enough to see, each labelled."""
+    choose(session, "trr")
+    for i, rate in enumerate((0.5, np.pi / 2, np.pi / 4)):
+        session.dispatch(SetRate(i, rate))
+    _walk(session, "propagation", 2)
+    d, size = session.snapshot.derive, session.scene.size
+    thin = scene_node(session, "/lab/derive/thin_arrows").points
+    thick = scene_node(session, "/lab/derive/arrows").points
+    drawn = np.concatenate([thin, thick])
+    vectors = drawn[:, 1] - drawn[:, 0]
+    for k, link in enumerate(d.links[:3]):
+        v = np.asarray(link.v, float)
+        if np.linalg.norm(v) < 1e-9:
+            continue
+        unit = v / np.linalg.norm(v)  # an arrow from this link's origin along vₖ, at least 8 % of the arm
+        match = [
+            w
+            for s, w in zip(drawn[:, 0], vectors, strict=True)
+            if np.allclose(s, link.origin, atol=1e-5) and np.allclose(w / np.linalg.norm(w), unit, atol=1e-5)
+        ]
+        assert match and np.linalg.norm(match[0]) >= 0.08 * size - 1e-6, k
+    texts = {scene_node(session, f"/lab/derive/label_{k}").text for k in range(6)}
+    assert {"v₁", "v₂", "v₃", "ω₃"} <= texts or {"v₂", "v₃", "ω₃"} <= texts
+
+
+def test_a_new_robot_starts_its_walk_at_joint_1(session):
+    choose(session, "puma560")
+    _walk(session, "propagation", 5)
+    choose(session, "trr")
+    assert session.state.options.derive_step == 0 and session.panel.derive.step.value == 1
+    assert "Step 1 of 3" in _text(session.panel.derive.body.content)
+
+
+def test_course_letters_reach_the_derive_tabs_steps(session):
+    """With "Course letters", the Derive tab's ⁰Tᵢ and every step use the file's letters (the TRR's
+    l₁, l₂, l₃), not its numbers; without, the numbers."""
+    choose(session, "trr")
+    _walk(session, "dh", 1)
+    formula = session.panel.derive.formula
+    wait_until(lambda: "⁰T₂" in formula.content and "<math" in formula.content, timeout=120)
+    assert "<msub><mi>l</mi><mn>2</mn></msub>" not in formula.content
+    session.panel.matrix.letters.value = True
+    session.settle()
+    wait_until(lambda: "<msub><mi>l</mi><mn>2</mn></msub>" in formula.content, timeout=120)
+    assert "⁰T₂" in formula.content
