@@ -11,7 +11,8 @@ from app_helpers import assert_all_finite, running_lab, wait_until
 from wsclient import ViserWsClient
 
 import robots
-from app.core.actions import ApplyPreset, ExploreAlone, Play, SetJoint
+from app.core.actions import ApplyPreset, Play, SetJoint
+from app.core.commands import ExploreAlone
 from app.services.classroom import PRESENTER_LEFT, TOKEN_TRIES, TOKEN_WINDOW, Classroom
 
 TOKEN = "lecture-7"

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from app_helpers import assert_all_finite, scene_node, wait_until
 
-from app.core.actions import ChooseRobot, GoTo, SetRate, SetWrench, UploadRobot
+from app.core.actions import GoTo, SetRate, SetWrench
+from app.core.commands import ChooseRobot, UploadRobot
 from app.core.numbers import NumberError, parse_number
 from app.core.snapshot.derive import METHODS
 from app.views.camera import in_view
