@@ -35,6 +35,7 @@ __all__ = [
     "Mirror",
     "Redraw",
     "ResetView",
+    "PageReport",
 ]
 
 
@@ -109,6 +110,15 @@ class ResetView:
 
 
 @dataclass(frozen=True)
+class PageReport:
+    """What the tab's page reports (JSON, hostile until checked by
+    :func:`app.core.page_state.parse_report`): on (re)connection its address (robot, q, tab) and a
+    presenter's reconnect key; later the tab the user opened."""
+
+    text: str
+
+
+@dataclass(frozen=True)
 class ToggleRecording:
     """Start recording what this tab shows, or stop and download it as a demo that needs no server
     ."""
@@ -149,6 +159,7 @@ Command = (
     | Mirror
     | Redraw
     | ResetView
+    | PageReport
 )
 """Everything the session carries out itself (a union, told apart by type)."""
 

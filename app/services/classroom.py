@@ -24,13 +24,26 @@ from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
 
-__all__ = ["Classroom", "Member", "random_token", "TOKEN_TRIES", "TOKEN_WINDOW"]
+__all__ = [
+    "Classroom",
+    "Member",
+    "random_token",
+    "TOKEN_TRIES",
+    "TOKEN_WINDOW",
+    "RESUME_GRACE",
+    "PRESENTER_AWAY",
+]
 
 TOKEN_TRIES = 5
 """Wrong tokens a tab may type per :data:`TOKEN_WINDOW` seconds; more are refused unread."""
 TOKEN_WINDOW = 60.0
 MAX_TOKEN_LENGTH = 200
-PRESENTER_LEFT = "The presenter has left: you keep what was shown and can explore on your own."
+RESUME_GRACE = 120.0
+"""A presenter whose tab closed (a reload, a lost connection) may come back this long [s] with its
+reconnect key, and keeps its role and its state; the followers follow it again."""
+PRESENTER_AWAY = (
+    "The presenter's connection dropped: you keep what was shown, and follow again when it is back."
+)
 
 
 def random_token() -> str:
@@ -49,6 +62,8 @@ class Member(Protocol):
     def scene_messages(self) -> tuple: ...
 
     def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None: ...
+
+    def mirror_tab(self, label: str) -> None: ...
 
     def role_changed(self, role: Role) -> None: ...
 
@@ -76,6 +91,12 @@ class Classroom:
         self._unsubscribe: Callable[[], None] | None = None
         self._tries: dict[int, list[float]] = {}
         self.relayed = 0
+        # Reconnection: a random key per presenter (never the token), the last state it showed, and
+        # until when a closed presenter may come back; the tab it has open.
+        self._resume_key = ""
+        self._resume_until: float | None = None
+        self._last: tuple[LabState, Snapshot] | None = None
+        self._tab = ""
 
     # ---------------------------------------------------------------- membership
     def join(self, key: int, member: Member) -> None:
@@ -87,6 +108,8 @@ class Classroom:
             state, snap = presenter.latest
             if snap is not None:
                 member.mirror(state, snap)
+            if self._tab:
+                member.mirror_tab(self._tab)
         self._tell_all()
 
     def closed(self, key: int) -> None:
@@ -99,9 +122,10 @@ class Classroom:
             was_presenter = key == self._presenter
             if was_presenter:
                 unsubscribe = self._stop_relay()
+                self._resume_until = self._clock() + RESUME_GRACE  # it may come back with its key
         if unsubscribe is not None:  # never under our lock: it takes the session's
             unsubscribe()
-        self._tell_all(PRESENTER_LEFT if was_presenter else "")
+        self._tell_all(PRESENTER_AWAY if was_presenter else "")
 
     # ---------------------------------------------------------------- the presenter
     def claim(self, key: int, token: str) -> str:
@@ -123,9 +147,42 @@ class Classroom:
                 self._tries[key] = tries
                 return "that is not the presenter token"
             self._tries.pop(key, None)
-            member = self._members.get(key)
-            if member is None:
+            if key not in self._members:
                 return "this tab is not connected"
+            self._resume_key, self._resume_until, self._last = secrets.token_urlsafe(24), None, None
+        self._present(key, None)
+        return ""
+
+    def resume(self, key: int, resume_key: str) -> tuple[LabState, Snapshot] | None | bool:
+        """Tab ``key`` comes back with the presenter's reconnect key (a reload, a lost connection, a new
+        tab of the same browser): it presents again, without the token, if the key is the current one
+        and the presenter is still connected or closed less than :data:`RESUME_GRACE` ago.
+
+        Returns:
+            False when refused; else the state and snapshot the presenter last showed, for the tab to
+            take over (``None`` when there is none).
+        """
+        with self._lock:
+            current = self._resume_key
+            fresh = self._presenter is not None or (
+                self._resume_until is not None and self._clock() <= self._resume_until
+            )
+            ok = bool(current) and fresh and hmac.compare_digest(resume_key.encode(), current.encode())
+            if not ok or key not in self._members:
+                return False
+            last, self._resume_until = self._last, None
+        self._present(key, last)
+        return last
+
+    def resume_key(self, key: int) -> str:
+        """The reconnect key of tab ``key`` if it presents (its page keeps it), else ""."""
+        with self._lock:
+            return self._resume_key if key == self._presenter else ""
+
+    def _present(self, key: int, restore: tuple[LabState, Snapshot] | None) -> None:
+        """Make tab ``key`` the presenter; relay what it shows (or ``restore``: what it showed before)."""
+        with self._lock:
+            member = self._members[key]
             previous = self._stop_relay()
             self._presenter = key
             self._alone.discard(key)
@@ -139,11 +196,13 @@ class Classroom:
                 self._unsubscribe, unsubscribe = unsubscribe, None
         if unsubscribe is not None:  # it was replaced meanwhile
             unsubscribe()
-        state, snap = member.latest
-        if snap is not None:
-            self._relay(state, snap)
+        if restore is not None:
+            member.mirror(*restore)  # the tab takes over the state; its commit is relayed
+        else:
+            state, snap = member.latest
+            if snap is not None:
+                self._relay(state, snap)
         self._tell_all()
-        return ""
 
     def wrong_tries(self, key: int) -> int:
         """Wrong tokens tab ``key`` typed within the last :data:`TOKEN_WINDOW` seconds."""
@@ -157,6 +216,7 @@ class Classroom:
             if key != self._presenter:
                 return
             unsubscribe = self._stop_relay()
+            self._resume_key, self._resume_until, self._last, self._tab = "", None, None, ""
         if unsubscribe is not None:
             unsubscribe()
         self._tell_all("The presenter stopped presenting: explore on your own.")
@@ -184,6 +244,8 @@ class Classroom:
             state, snap = presenter.latest
             if snap is not None:
                 member.mirror(state, snap)
+            if self._tab:
+                member.mirror_tab(self._tab)
         self._tell_all()
 
     def role(self, key: int) -> Role:
@@ -215,6 +277,7 @@ class Classroom:
         with self._lock:
             targets = [self._members[k] for k in self._following_keys()]
             presenter = self._members.get(self._presenter) if self._presenter is not None else None
+            self._last = (state, snapshot)
         scene = presenter.scene_messages if presenter is not None else ()
         for member in targets:
             member.mirror(state, snapshot, scene)
@@ -228,6 +291,16 @@ class Classroom:
             targets = [self._members[k] for k in self._following_keys()]
         for member in targets:
             member.mirror_camera(position, look_at, up)
+
+    def tab(self, key: int, label: str) -> None:
+        """The presenter opened the tab ``label``: the followers open it too."""
+        with self._lock:
+            if key != self._presenter:
+                return
+            self._tab = label
+            targets = [self._members[k] for k in self._following_keys()]
+        for member in targets:
+            member.mirror_tab(label)
 
     def _tell_all(self, note: str = "") -> None:
         with self._lock:

@@ -27,7 +27,7 @@ import viser
 
 from ..core.actions import Action, Step
 from ..core.build_table import BUILT_NAME
-from ..core.commands import Message, Mirror, Redraw, ResetView
+from ..core.commands import Message, Mirror, PageReport, Redraw, ResetView
 from ..core.role import Role
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
@@ -42,6 +42,7 @@ from .camera import TabCamera
 from .commands import CommandRunner
 from .following import Following
 from .notices import Notices
+from .page import PageLink
 from .recorder import TabRecorder
 from .robots import TabCatalog
 from .screen import Screen
@@ -89,6 +90,11 @@ class ClientSession:
             self.key, classroom, self.dispatch, self.notices, self.ticker.stop, self.camera,
             self.subscribe, lambda: self.latest, lambda: self.screen.scene_messages,
         )  # fmt: skip
+        self.page = PageLink(
+            client, self.dispatch, self.catalog.names, self.catalog.load,
+            lambda title, body: self.notices.notify(title, body), lambda: self._closed,
+        )  # fmt: skip
+        self.page.following, self.following.page = self.following, self.page
         self.symbols = TabSymbols(
             symbolic, lambda: self.panel, self.lock, lambda: self._closed, self.notices.error
         )
@@ -195,6 +201,8 @@ class ClientSession:
             batch.take(message)
         elif isinstance(message, ResetView):
             self.camera.reset(self.screen.scene, batch.state)
+        elif isinstance(message, PageReport):
+            self.page.take(message.text)
         else:
             result = self.commands.run(batch.state, message)
             if isinstance(result, Redraw):
@@ -228,6 +236,7 @@ class ClientSession:
         self.symbols.update(state, None if rebuild else old)
         if not following:  # a follower's camera is the presenter's
             self.camera.after_commit(self.screen.scene, state, old, rebuild, jump)
+        self.page.update(state)  # a reload or a server restart comes back to this robot and q
         for fn in list(self._subscribers):
             try:
                 fn(state, snap)
@@ -294,6 +303,7 @@ class ClientSession:
         if self._own_renderer:
             self.renderer.close()
         self.camera.close()
+        self.page.close()
         with self.lock:
             self.symbols.release()
             self._subscribers.clear()

@@ -25,7 +25,7 @@ from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
 from ...core.actions import SetOption
-from ...core.commands import ChooseChain, ChooseRobot, ResetView, ToggleRecording
+from ...core.commands import ChooseChain, ChooseRobot, PageReport, ResetView, ToggleRecording
 from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
@@ -38,11 +38,15 @@ from .joints import JointsPanel, configurations_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .matrix import MatrixPanel
 from .motion import MapsPanel, MotionPanel, slider_ids
+from .page import page_js as page_state_js
 from .readouts import measures_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import NUMBER_GUARD_JS
 
-__all__ = ["PanelView", "PANEL_WIDTH"]
+__all__ = ["PanelView", "PANEL_WIDTH", "TAB_LABELS"]
+
+TAB_LABELS = ("J(q)", "v = J q̇", "q̇ = J⁺v", "τ = JᵀF", "Motion", "Maps", "Derive", "View", "Build")
+"""The tabs of the views of J, in order (the page keeps the open one in its address)."""
 
 PANEL_WIDTH = 400
 """Width of the docked panel [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
@@ -97,6 +101,11 @@ class PanelView:
         gui.add_html(BASE_CSS + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
         run_javascript(client, NUMBER_GUARD_JS)
+        # The page's channel back (its address, a presenter's reconnect key, the open tab): a text
+        # input the page script hides and fills (app.views.panel.page).
+        self.report = gui.add_text("page", "", order=10_000)
+        bind(self.report, dispatch, lambda v: PageReport(str(v)) if str(v) else None)
+        run_javascript(client, page_state_js(handle_uuid(self.report)))
         set_page_title(client, PAGE_TITLE)
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
         bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
@@ -106,15 +115,15 @@ class PanelView:
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
-        self.tab_matrix = self.views.add_tab("J(q)", viser.Icon.MATH)
-        self.tab_forward = self.views.add_tab("v = J q̇", viser.Icon.ARROW_UP_RIGHT)
-        self.tab_inverse = self.views.add_tab("q̇ = J⁺v", viser.Icon.ARROW_BACK_UP)
-        self.tab_force = self.views.add_tab("τ = JᵀF", viser.Icon.WEIGHT)
-        self.tab_motion = self.views.add_tab("Motion", viser.Icon.PLAYER_PLAY)
-        self.tab_maps = self.views.add_tab("Maps", viser.Icon.MAP)
-        self.tab_derive = self.views.add_tab("Derive", viser.Icon.STAIRS)
-        self.tab_view = self.views.add_tab("View", viser.Icon.EYE)
-        self.tab_build = self.views.add_tab("Build", viser.Icon.TOOL)
+        icons = (
+            viser.Icon.MATH, viser.Icon.ARROW_UP_RIGHT, viser.Icon.ARROW_BACK_UP, viser.Icon.WEIGHT,
+            viser.Icon.PLAYER_PLAY, viser.Icon.MAP, viser.Icon.STAIRS, viser.Icon.EYE, viser.Icon.TOOL,
+        )  # fmt: skip
+        tabs = [self.views.add_tab(label, icon) for label, icon in zip(TAB_LABELS, icons, strict=True)]
+        (
+            self.tab_matrix, self.tab_forward, self.tab_inverse, self.tab_force, self.tab_motion,
+            self.tab_maps, self.tab_derive, self.tab_view, self.tab_build,
+        ) = tabs  # fmt: skip
         self.views.dock_below(gui.main_panel)
         with self.tab_view:
             self.reset_view = gui.add_button("Reset view: frame the arm", icon=viser.Icon.FOCUS_CENTERED)
