@@ -1,6 +1,6 @@
 """What a tab's page keeps across a reload or a server restart, read back as hostile input.
 
-The page keeps the tab's robot, q and open tab in its address (``#robot=puma560&q=0,0.5,…&tab=Motion``)
+The page keeps the tab's robot, q and open tab in its address (``?robot=puma560&q=0,0.5,…&tab=Motion``)
 and a presenter's reconnect key in its local storage; on every (re)connection its script reports
 them (:mod:`app.views.panel.page`). Anyone can edit an address, so everything is checked like a
 widget value: a bounded JSON object of known keys, a robot of the catalogue, q of the robot's
@@ -82,7 +82,7 @@ def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
 
 
 def _address(address: str) -> tuple[str, tuple[float, ...] | None, str]:
-    fields = parse_qs(address.lstrip("#"), keep_blank_values=False, max_num_fields=8)
+    fields = parse_qs(address.lstrip("?#"), keep_blank_values=False, max_num_fields=8)
     robot = fields.get("robot", [""])[0]
     if robot and not _NAME.fullmatch(robot):
         raise PageError("the address names no robot this lab can show")

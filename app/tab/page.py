@@ -63,6 +63,7 @@ class PageLink:
         self.tab = ""  # the tab the page has open (as last reported)
         self._wanted = ""
         self._written_at = 0.0
+        self._loaded = False  # the address is written only once the page has told its own
         self._timer: threading.Timer | None = None
         self._lock = threading.Lock()
         self._beat()
@@ -81,29 +82,40 @@ class PageLink:
             if self.following is not None:
                 self.following.tab_opened(report.tab)
             return
+        with self._lock:
+            self._loaded = True
         if report.resume and self.following is not None and self.following.resume(report.resume):
             return  # the presenter is back, with the state it showed
-        self._restore(report)
+        if not self._restore(report):
+            self._dispatch_address()  # else the restored state's commit writes it
 
-    def _restore(self, report: PageReport) -> None:
+    def _dispatch_address(self) -> None:
+        """Write the wanted address now that the page has told its own (restores come after)."""
+        with self._lock:
+            pending = self._wanted and self._wanted != self.address and self._timer is None
+        if pending:
+            self._write()
+
+    def _restore(self, report: PageReport) -> bool:
+        """Dispatch the address's robot and q; True when something was dispatched."""
         if not report.robot:
-            return
+            return False
         if report.robot not in self._names():
             self._notify(
                 "The page's address was not used",
                 f"there is no robot “{report.robot[:60]}” in this lab (an upload or a Build-tab robot "
                 "lives only as long as its tab)",
             )
-            return
+            return False
         self._dispatch(ChooseRobot(report.robot))
-        if report.q is None:
-            return
-        try:
-            q = checked_q(self._load(report.robot), report.q)
-        except PageError as exc:
-            self._notify("The address's joint values were not used", str(exc))
-            return
-        self._dispatch(SetConfiguration(q))
+        if report.q is not None:
+            try:
+                q = checked_q(self._load(report.robot), report.q)
+            except PageError as exc:
+                self._notify("The address's joint values were not used", str(exc))
+            else:
+                self._dispatch(SetConfiguration(q))
+        return True
 
     # ------------------------------------------------------------------ server → page
     def update(self, state: LabState) -> None:
@@ -111,7 +123,7 @@ class PageLink:
         address = page_address(state.robot_name, list(state.q))
         with self._lock:
             self._wanted = address
-            if address == self.address or self._timer is not None:
+            if address == self.address or self._timer is not None or not self._loaded:
                 return
             wait = self._written_at + ADDRESS_EVERY - time.monotonic()
             if wait > 0:

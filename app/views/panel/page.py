@@ -1,5 +1,7 @@
-"""The page script that keeps a tab's robot, q and open tab in the page's address, and a presenter's
-reconnect key in the browser's local storage, and reports them on every (re)connection.
+"""The page script that keeps a tab's robot, q and open tab in the page's address (its query string,
+``?robot=puma560&q=0,0.5,…&tab=Motion``: never the fragment, which breaks viser's reconnection),
+and a presenter's reconnect key in the browser's local storage, and reports them on every
+(re)connection.
 
 The server never sees the page's address (viser), so the script writes a JSON report into a hidden
 text input of the panel (``report``): ``{"kind": "load", "address": …, "resume": …, "tab": …}``
@@ -23,6 +25,8 @@ _JS = r"""
 (() => {
   const REPORT = %(report)s, STORAGE = %(storage)s, LOST = %(lost)s;
   const w = window;
+  const initial = location.search.slice(1);  // read before anything rewrites it
+  let reported = false;  // the server's address is taken only after the page has told its own
   const findInput = () => {
     const label = document.querySelector(`label[for="${REPORT}"]`);
     if (!label) return null;
@@ -42,35 +46,45 @@ _JS = r"""
     input.dispatchEvent(new Event("input", { bubbles: true }));
     return true;
   };
-  const fields = () => new URLSearchParams(location.hash.slice(1));
+  // The query string, never the fragment: viser's client opens its websocket at the page's
+  // address minus the query, and a WebSocket address with a fragment is refused (no reconnection).
+  const fields = () => new URLSearchParams(location.search);
+  const write = (f) => {
+    const text = f.toString().replace(/%%2C/g, ",");
+    history.replaceState(null, "", location.pathname + (text ? "?" + text : ""));
+  };
   const setField = (name, value) => {
     const f = fields();
     if (value) f.set(name, value); else f.delete(name);
-    history.replaceState(null, "", "#" + f.toString().replace(/%%2C/g, ","));
+    write(f);
   };
   const tabs = () => Array.from(document.querySelectorAll("[role=tab]"));
-  const openTab = () => {
-    const t = tabs().find((b) => b.getAttribute("aria-selected") === "true");
-    return t ? t.textContent.trim() : "";
-  };
   const showTab = (label) => {
     const t = tabs().find((b) => b.textContent.trim() === label);
-    if (t && t.getAttribute("aria-selected") !== "true") t.click();
+    if (t && t.getAttribute("aria-selected") !== "true") {
+      // viser's dock tabs select on the pointer going down, not on a click alone.
+      for (const type of ["pointerdown", "mousedown", "pointerup", "mouseup", "click"]) {
+        const Event_ = type.startsWith("pointer") ? PointerEvent : MouseEvent;
+        t.dispatchEvent(new Event_(type, { bubbles: true, cancelable: true, button: 0 }));
+      }
+    }
     return Boolean(t);
   };
   const api = {
     address: (text) => {  // robot and q from the server; the tab stays the page's
+      if (!reported) return;
       const f = new URLSearchParams(text), tab = fields().get("tab");
       if (tab) f.set("tab", tab);
-      history.replaceState(null, "", "#" + f.toString().replace(/%%2C/g, ","));
+      write(f);
     },
     remember: (key) => {
       try { if (key) localStorage.setItem(STORAGE, key); else localStorage.removeItem(STORAGE); }
       catch (e) { /* storage refused: a reload then needs the token again */ }
     },
     showTab: (label) => {
+      // Kept for 4 s: the panel may redraw its tabs as the restored robot arrives.
       let tries = 0;
-      const go = () => { if (!showTab(label) && ++tries < 50) setTimeout(go, 100); };
+      const go = () => { showTab(label); if (++tries < 20) setTimeout(go, 200); };
       go();
     },
   };
@@ -80,11 +94,9 @@ _JS = r"""
     document.addEventListener("click", (ev) => {
       const t = ev.target.closest && ev.target.closest("[role=tab]");
       if (!t) return;
-      setTimeout(() => {
-        const label = openTab();
-        setField("tab", label);
-        w.__jacobianLabSend && w.__jacobianLabSend({ kind: "tab", tab: label });
-      }, 0);
+      const label = t.textContent.trim();  // the clicked tab (it is selected after this event)
+      setField("tab", label);
+      w.__jacobianLabSend && w.__jacobianLabSend({ kind: "tab", tab: label });
     }, true);
   }
   w.__jacobianLabSend = send;
@@ -109,14 +121,15 @@ _JS = r"""
   // The report of this (re)connection: the address, the kept key and the open tab.
   let tries = 0;
   const report = () => {
-    const f = fields();
+    const f = new URLSearchParams(initial);
     const ok = send({
       kind: "load",
-      address: location.hash.slice(1),
+      address: initial,
       resume: (() => { try { return localStorage.getItem(STORAGE) || ""; } catch (e) { return ""; } })(),
       tab: "",
     });
     if (!ok && ++tries < 100) { setTimeout(report, 100); return; }
+    reported = true;
     if (ok && f.get("tab")) api.showTab(f.get("tab"));
   };
   report();

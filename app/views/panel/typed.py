@@ -32,8 +32,10 @@ NUMBER_GUARD_JS = r"""
     tip.textContent = text;
     const r = el.getBoundingClientRect();
     const left = Math.max(4, Math.min(r.right - 280, window.innerWidth - 290));
+    const below = r.bottom + 70 < window.innerHeight;  // else above the box
+    const where = below ? `top:${r.bottom + 4}px` : `bottom:${window.innerHeight - r.top + 4}px`;
     tip.style.cssText =
-      `position:fixed;z-index:10000;left:${left}px;top:${r.bottom + 4}px;width:280px;` +
+      `position:fixed;z-index:10000;left:${left}px;${where};width:280px;` +
       "background:#fff4f4;color:#96001a;border:1px solid #96001a;border-radius:4px;" +
       "padding:4px 6px;font:13px/1.35 system-ui,sans-serif;display:block";
     clearTimeout(timer);
@@ -48,15 +50,65 @@ NUMBER_GUARD_JS = r"""
     setter.call(el, text);
     el.dispatchEvent(new Event("input", { bubbles: true }));
   };
+  // Exponent form typed key by key ("1e-3"): held here, shown in the tip, and written out as a
+  // plain decimal on Enter, Tab, leaving the box or a pause (the box itself would drop the "e").
+  let pending = null, pendingBox = null, pendingTimer = 0;
+  const commit = () => {
+    clearTimeout(pendingTimer);
+    if (pending === null) return;
+    const text = pending, el = pendingBox;
+    pending = null;
+    const x = Number(text.replace("\u2212", "-"));
+    if (NUMBER.test(text) && Number.isFinite(x) && Math.abs(x) < 1e12) {
+      put(el, written(x));
+      say(el, `${text} written as ${written(x)}.`);
+    } else {
+      say(el, `“${text}” is not a number: nothing was changed.`);
+    }
+  };
+  const hold = (el, text) => {
+    pending = text;
+    pendingBox = el;
+    say(el, `“${text}”: keep typing the exponent; Enter (or a pause) writes it as a plain decimal.`);
+    clearTimeout(pendingTimer);
+    pendingTimer = setTimeout(commit, 1500);
+  };
+  document.addEventListener("focusout", (ev) => { if (ev.target === pendingBox) commit(); }, true);
   document.addEventListener("keydown", (ev) => {
     const el = ev.target;
-    if (!isNumberBox(el) || ev.ctrlKey || ev.metaKey || ev.altKey || ev.key.length !== 1) return;
+    if (!isNumberBox(el) || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+    if (pending !== null && el === pendingBox) {
+      if (ev.key === "Enter" || ev.key === "Tab") {
+        commit();
+        if (ev.key === "Enter") ev.preventDefault();
+        return;
+      }
+      if (ev.key === "Escape") { pending = null; ev.preventDefault(); say(el, "Exponent dropped."); return; }
+      if (ev.key === "Backspace") {
+        ev.preventDefault();
+        const shorter = pending.slice(0, -1);
+        if (/[eE]/.test(shorter)) hold(el, shorter); else { pending = null; say(el, "Exponent dropped."); }
+        return;
+      }
+      if (ev.key.length === 1) {
+        ev.preventDefault();
+        ev.stopPropagation();
+        if (/[0-9+\-]/.test(ev.key)) hold(el, pending + ev.key);
+        else say(el, `“${ev.key}” is not part of an exponent.`);
+      }
+      return;
+    }
+    if (ev.key.length !== 1) return;
     if (ev.key === ",") {
       ev.preventDefault();
       say(el, "Use a point for decimals: 0.3, not 0,3.");
     } else if (ev.key === "e" || ev.key === "E") {
       ev.preventDefault();
-      say(el, "Type a plain decimal (0.001, not 1e-3); a pasted 1e-3 is written out for you.");
+      if (PLAIN.test(el.value) && el.value.trim() !== "") hold(el, el.value.trim() + "e");
+      else say(el, "Type the number before its exponent (1e-3).");
+    } else if ((ev.key === "-" || ev.key === "+") && (el.selectionStart || 0) > 0) {
+      ev.preventDefault();
+      say(el, "A sign goes first: −0.5, not 0.5−.");
     } else if (!/[0-9.\-+]/.test(ev.key)) {
       ev.preventDefault();
       say(el, `“${ev.key}” is not part of a number.`);
@@ -68,6 +120,7 @@ NUMBER_GUARD_JS = r"""
     const text = (ev.clipboardData || window.clipboardData).getData("text");
     if (PLAIN.test(text)) return;
     ev.preventDefault();
+    ev.stopPropagation();  // the box's own paste handler would insert a mangled copy
     const shown = text.trim().slice(0, 30);
     if (COMMA.test(text)) {
       say(el, `“${shown}”: use a point for decimals (${shown.replace(",", ".")}).`);
