@@ -18,6 +18,7 @@ import socket
 import sys
 import threading
 import time
+from collections.abc import Mapping
 from pathlib import Path
 
 import viser
@@ -49,6 +50,7 @@ class Lab:
             other tab follows (see :mod:`app.services.classroom`).
         listen_socket: A listening socket to accept on instead of binding ``host`` and ``port``
             (shared by the worker processes of ``jacobian-lab serve --workers N``).
+        xacro_args: ``NAME -> VALUE`` arguments of a ``.xacro`` file given as ``urdf`` or ``robot``.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -65,12 +67,13 @@ class Lab:
         tip_link: str | None = None,
         presenter_token: str | None = None,
         listen_socket: socket.socket | None = None,
+        xacro_args: Mapping[str, str] | None = None,
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
             files.append(robot)
             robot = None
-        self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link)
+        self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link, xacro_args=xacro_args)
         self.default_robot = robot or self.catalog.default()
         self.catalog.load(self.default_robot)  # fail before starting the server
         if listen_socket is None:
@@ -186,7 +189,7 @@ class Lab:
 
 
 def _is_path(text: str) -> bool:
-    return Path(text).suffix.lower() in (".toml", ".urdf") or "/" in text or "\\" in text
+    return Path(text).suffix.lower() in (".toml", ".urdf", ".xacro") or "/" in text or "\\" in text
 
 
 def serve(
@@ -198,6 +201,7 @@ def serve(
     base_link: str | None = None,
     tip_link: str | None = None,
     presenter_token: str | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -232,6 +236,7 @@ def serve(
         base_link=base_link,
         tip_link=tip_link,
         presenter_token=presenter_token,
+        xacro_args=xacro_args,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:

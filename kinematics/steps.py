@@ -21,11 +21,14 @@ With mimic axes (URDF) one joint drives several axes: every step is per axis, an
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any, Literal, cast
 
 import numpy as np
+import numpy.typing as npt
 
+from .conventions import FloatArray
 from .errors import ArrayError
 from .model import Robot
 from .numeric import as_configuration, chain_frames, fk, link_frames
@@ -42,6 +45,11 @@ __all__ = [
     "JointLoad",
     "force_propagation",
     "DIFF_STEP",
+    "JointDerivative",
+    "StepMethod",
+    "METHODS",
+    "DERIVATIONS",
+    "PATH_POINTS",
 ]
 
 DIFF_STEP = 1e-6
@@ -68,19 +76,19 @@ class WhitneyColumn:
     joint: int
     multiplier: float
     kind: JointType
-    z: np.ndarray
-    p: np.ndarray
-    r: np.ndarray
-    linear: np.ndarray
-    angular: np.ndarray
+    z: FloatArray
+    p: FloatArray
+    r: FloatArray
+    linear: FloatArray
+    angular: FloatArray
 
     @property
-    def column(self) -> np.ndarray:
+    def column(self) -> FloatArray:
         """The column (6,) [linear; angular] this axis adds to J (times ``multiplier``)."""
         return self.multiplier * np.concatenate([self.linear, self.angular])
 
 
-def whitney(robot: Robot, q: object) -> tuple[WhitneyColumn, ...]:
+def whitney(robot: Robot, q: npt.ArrayLike) -> tuple[WhitneyColumn, ...]:
     """Whitney's construction of every column of J at ``q``: one :class:`WhitneyColumn` per axis.
 
     Summing ``column`` over the axes of joint j gives column j of :func:`kinematics.jacobian`.
@@ -120,17 +128,17 @@ class DerivativeColumn:
     """
 
     joint: int
-    dp: np.ndarray
-    S: np.ndarray
-    omega: np.ndarray
+    dp: FloatArray
+    S: FloatArray
+    omega: FloatArray
 
     @property
-    def column(self) -> np.ndarray:
+    def column(self) -> FloatArray:
         return np.concatenate([self.dp, self.omega])
 
 
 def differentiation(
-    robot: Robot, q: object, h: float = DIFF_STEP, joints: Sequence[int] | None = None
+    robot: Robot, q: npt.ArrayLike, h: float = DIFF_STEP, joints: Sequence[int] | None = None
 ) -> tuple[DerivativeColumn, ...]:
     """Columns of J as the derivative of the forward kinematics (central differences, step ``h``):
     every joint's, or those of ``joints``, in that order."""
@@ -161,27 +169,22 @@ class LinkVelocity:
     """
 
     frame: int
-    origin: np.ndarray
-    R: np.ndarray
-    omega: np.ndarray
-    v: np.ndarray
+    origin: FloatArray
+    R: FloatArray
+    omega: FloatArray
+    v: FloatArray
 
     @property
-    def omega_own(self) -> np.ndarray:
+    def omega_own(self) -> FloatArray:
         """ω in the frame's own axes (Craig's ⁱωᵢ)."""
-        return self.R.T @ self.omega
-
-    @property
-    def v_own(self) -> np.ndarray:
-        """v in the frame's own axes (Craig's ⁱvᵢ)."""
-        return self.R.T @ self.v
+        return cast(FloatArray, self.R.T @ self.omega)
 
 
-def _axis_rates(robot: Robot, qd: np.ndarray) -> np.ndarray:
+def _axis_rates(robot: Robot, qd: FloatArray) -> FloatArray:
     return np.array([ax.multiplier * qd[ax.joint_index] for ax in robot.axes])
 
 
-def propagation(robot: Robot, q: object, qd: object) -> tuple[LinkVelocity, ...]:
+def propagation(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike) -> tuple[LinkVelocity, ...]:
     """ωₖ and vₖ of every link frame and of the tool, outward from frame 0 (at rest).
 
     Link by link: ωₖ = ωₖ₋₁ + q̇ₖ zₖ (revolute), vₖ = vₖ₋₁ + ωₖ₋₁ × (oₖ − oₖ₋₁) + (rotation about
@@ -230,14 +233,14 @@ class JointLoad:
     joint: int
     multiplier: float
     kind: JointType
-    p: np.ndarray
-    z: np.ndarray
-    force: np.ndarray
-    moment: np.ndarray
+    p: FloatArray
+    z: FloatArray
+    force: FloatArray
+    moment: FloatArray
     load: float
 
 
-def force_propagation(robot: Robot, q: object, wrench: object) -> tuple[JointLoad, ...]:
+def force_propagation(robot: Robot, q: npt.ArrayLike, wrench: npt.ArrayLike) -> tuple[JointLoad, ...]:
     """The wrench ``[f; n]`` at the tool point (base axes) carried inward, last axis first.
 
     τⱼ = Σ over the axes of joint j of ``multiplier · load``: equal to (Jᵀ F)ⱼ.
@@ -256,3 +259,141 @@ def force_propagation(robot: Robot, q: object, wrench: object) -> tuple[JointLoa
         load = float(z @ moment) if ax.kind == "revolute" else float(z @ f)
         out.append(JointLoad(k, ax.joint_index, float(ax.multiplier), ax.kind, p, z, f.copy(), moment, load))
     return tuple(out)
+
+
+PATH_POINTS = 41
+"""Points of the tool path of a differentiation step (:class:`JointDerivative`)."""
+
+
+@dataclass(frozen=True)
+class JointDerivative:
+    """One differentiation step: joint j's derivative and the tool path as qⱼ alone sweeps about q.
+
+    Attributes:
+        derivative: ∂/∂qⱼ of the forward kinematics (:func:`differentiation`).
+        path: Tool points (PATH_POINTS, 3) [m] as qⱼ moves ±30° (±a tenth of ``reach`` for a slide).
+    """
+
+    derivative: DerivativeColumn
+    path: np.ndarray
+
+
+def _sweep_step(robot: Robot, q: np.ndarray, j: int, reach: float) -> JointDerivative:
+    half = np.radians(30.0) if robot.joints[j].kind == "revolute" else 0.1 * max(reach, 0.1)
+    Q = np.repeat(np.asarray(q, dtype=float)[None], PATH_POINTS, axis=0)
+    Q[:, j] += np.linspace(-half, half, PATH_POINTS)
+    return JointDerivative(differentiation(robot, q, joints=(j,))[0], fk(robot, Q)[:, :3, 3])
+
+
+def _unit(n: int, j: int) -> FloatArray:
+    return cast(FloatArray, np.eye(n)[j])
+
+
+def _whitney_column(robot: Robot, q: npt.ArrayLike, j: int) -> FloatArray:
+    column = np.zeros(6)
+    for c in whitney(robot, q):
+        if c.joint == j:
+            column = column + c.column
+    return column
+
+
+def _propagated_column(robot: Robot, q: npt.ArrayLike, j: int) -> FloatArray:
+    tool = propagation(robot, q, _unit(robot.dof, j))[-1]
+    return np.concatenate([tool.v, tool.omega])
+
+
+def _force_column(robot: Robot, q: npt.ArrayLike, j: int) -> FloatArray:
+    """Column j of J as row j of Jᵀ: τⱼ for a unit force or moment along each base axis."""
+    loads = [
+        [float(x.multiplier * x.load) for x in force_propagation(robot, q, _unit(6, r)) if x.joint == j]
+        for r in range(6)
+    ]
+    return np.array([sum(row, 0.0) for row in loads], dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class StepMethod:
+    """One of the course's ways through J, as numbers (the symbolic steps of the same key are in
+    :data:`kinematics.symbolic.steps.methods.METHODS`; the app's Derive tab and the handout read both).
+
+    Attributes:
+        key: The one spelling of the method (``Options.derive``, ``handout --method``, symbolic steps).
+        label: Its name with its formula (the Derive tab's dropdown).
+        title: Heading of its section in a handout.
+        intro: The paragraph that opens that section.
+        inputs: What a step needs besides q: "" nothing, "rates" q̇ (n,), "wrench" [f; n] (6,).
+        step: ``step(robot, q, joint, inputs, reach)`` → the numbers of one step (``None``: DH frames).
+        column: ``column(robot, q, joint)`` → column ``joint`` of J (6,) as this method builds it.
+        symbols: Key prefixes of its symbolic steps for one joint (see :mod:`kinematics.symbolic.steps`).
+    """
+
+    key: str
+    label: str
+    title: str
+    intro: str
+    inputs: Literal["", "rates", "wrench"]
+    step: Callable[[Robot, np.ndarray, int, np.ndarray, float], Any] | None
+    column: Callable[[Robot, np.ndarray, int], np.ndarray] | None
+    symbols: tuple[str, ...]
+
+
+METHODS: dict[str, StepMethod] = {
+    m.key: m
+    for m in (
+        StepMethod("dh", "DH frames: Aᵢ and ⁰Tᵢ", "DH frames", "", "", None, None, ("A", "T0_")),
+        StepMethod(
+            "whitney",
+            "Whitney: Jᵢ = zᵢ₋₁ × (pₙ − pᵢ₋₁)",
+            "Whitney's method: the columns of J",
+            "Whitney's method (course 000, section 4): column i of J is [zᵢ₋₁ × (pₙ − pᵢ₋₁); zᵢ₋₁] for a "
+            "revolute joint and [zᵢ₋₁; 0] for a prismatic one, where zᵢ₋₁ is the axis of joint i and pᵢ₋₁ a "
+            "point on it (the third column and the origin of ⁰Tᵢ₋₁), and pₙ the tool origin.",
+            "",
+            lambda robot, q, j, inputs, reach: whitney(robot, q),
+            _whitney_column,
+            ("whitney.",),
+        ),
+        StepMethod(
+            "differentiation",
+            "Differentiation: ∂p/∂qᵢ",
+            "Differentiating the forward kinematics",
+            "Differentiating the forward kinematics (course 001, method 1; course 004): the v part of "
+            "column i is ∂p/∂qᵢ of the tool position p; the ω part comes from S = (∂R/∂qᵢ) Rᵀ, a skew matrix "
+            "[ω]×, as ω = (S₃₂, S₁₃, S₂₁).",
+            "",
+            lambda robot, q, j, inputs, reach: _sweep_step(robot, q, j, reach),
+            lambda robot, q, j: differentiation(robot, q, joints=(j,))[0].column,
+            ("diff.",),
+        ),
+        StepMethod(
+            "propagation",
+            "Velocity propagation: ωᵢ, vᵢ",
+            "Velocity propagation, link by link",
+            "Velocity propagation (course 000, section 3; course 001, method 2; Craig's outward iteration): "
+            "from the base outward, each link's angular velocity ω and the velocity v of its origin, in the "
+            "link's own axes: ω' = Rᵀ(ω + θ̇ ẑ), v' = Rᵀ(v + ω × p) (plus ḋ ẑ for a prismatic joint). J holds "
+            "the coefficients of the joint rates q̇ in the tool's [v; ω].",
+            "rates",
+            lambda robot, q, j, inputs, reach: propagation(robot, q, inputs),
+            _propagated_column,
+            ("prop.",),
+        ),
+        StepMethod(
+            "force",
+            "Force propagation: τ = Jᵀ F",
+            "Force propagation: τ = Jᵀ F",
+            "Force propagation (course 001, method 3; course 000, section 6; Craig's inward iteration): a "
+            "wrench [f; n] on the tool, in the tool axes, carried inward link by link (f = R f', "
+            "n = R n' + p × f); joint i's torque is the component along its axis. Since τ = Jᵀ F, the "
+            "coefficients of the wrench are Jᵀ: the transpose view of the same J.",
+            "wrench",
+            lambda robot, q, j, inputs, reach: force_propagation(robot, q, inputs),
+            _force_column,
+            ("force.",),
+        ),
+    )
+}
+"""Every method by key, in the order the Derive tab lists them (the DH frames first)."""
+
+DERIVATIONS: tuple[str, ...] = tuple(k for k, m in METHODS.items() if m.column is not None)
+"""The keys of the methods that build J (every one but the DH frames)."""

@@ -49,22 +49,11 @@ from .actions import (
 )
 from .build_table import edited_state
 from .motion_rules import FRAME_DT, MotionRefused
+from .options import OPTION
 from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
-from .snapshot.derive import METHODS
 from .state import LabState, Options, default_options, frozen
 
 __all__ = ["reduce", "InvalidAction", "named_configuration_at"]
-
-_FLOAT_OPTIONS = {"scale": (0.1, 3.0), "damping": (0.0, 1.0), "speed": (0.05, 2.0)}
-_CHOICES = {
-    "jacobian_frame": ("base", "tool"),
-    "twist_frame": ("base", "tool"),
-    "ik_method": ("dls", "newton"),
-    "ik_mode": ("position", "pose"),
-    "derive": tuple(METHODS),
-    "representation": ("geometric", "zyx", "zyz"),
-}
-_JOINT_OPTIONS = ("map_i", "map_j")
 
 
 class InvalidAction(ValueError):
@@ -190,7 +179,7 @@ def _reduce(state: LabState, action: Action) -> LabState:
         case ResetMotion():
             return motion_rules.reset(state)
         case ApplyPreset(name=name, q=q, twist=twist, frame=frame, speed=speed):
-            speed = min(max(_finite(speed, "preset speed"), 0.05), 2.0)
+            speed = min(max(_finite(speed, "preset speed"), OPTION["speed"].lo), OPTION["speed"].hi)
             after = motion_rules.apply_preset(state, name, q, twist, frame, speed)
             return after.replace(configuration=named_configuration_at(after, after.q))
         case GoToRepresentationSingularity(convention=convention):
@@ -232,21 +221,22 @@ def _representation_singularity(state: LabState, convention: object) -> LabState
 
 
 def _option(options: Options, name: str, value: object, n: int) -> Options:
-    fields = {f.name: f for f in dataclasses.fields(Options)}
-    if name not in fields:
+    """``options`` with ``name`` set to ``value``, checked against its row of :data:`OPTION`."""
+    fields = {f.name for f in dataclasses.fields(Options)}
+    if name not in fields or name not in OPTION:
         raise InvalidAction(f"unknown display option {name!r}; options are {sorted(fields)}")
-    if name in _FLOAT_OPTIONS:
-        lo, hi = _FLOAT_OPTIONS[name]
-        value = min(max(_finite(value, name), lo), hi)
-    elif name in _JOINT_OPTIONS:
+    row = OPTION[name]
+    if row.kind == "float":
+        value = min(max(_finite(value, name), row.lo), row.hi)
+    elif row.kind == "joint":
         value = _index(value, n, "map joint")
-    elif name == "derive_step":  # the Derive tab's previous/next buttons: clamped, never refused
+    elif row.kind == "step":  # the Derive tab's previous/next buttons: clamped, never refused
         if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
-            raise InvalidAction(f"derive_step is a joint index (an integer), got {value!r}")
+            raise InvalidAction(f"{name} is a joint index (an integer), got {value!r}")
         value = min(max(int(value), 0), n - 1)
-    elif name in _CHOICES:
-        if value not in _CHOICES[name]:
-            raise InvalidAction(f"{name} must be one of {_CHOICES[name]}, got {value!r}")
+    elif row.kind == "choice":
+        if value not in row.choices:
+            raise InvalidAction(f"{name} must be one of {row.choices}, got {value!r}")
     elif not isinstance(value, bool):
         raise InvalidAction(f"{name} is on or off (a bool), got {value!r}")
     changes: dict[str, Any] = {name: value}

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
-from typing import Literal
 
 import numpy as np
 
@@ -23,10 +22,9 @@ from kinematics import Robot
 from kinematics.analysis import task_rows
 
 from .motion_state import MotionState
+from .options import Frame, Options
 
 __all__ = ["Options", "LabState", "Frame", "frozen", "default_options"]
-
-Frame = Literal["base", "tool"]
 
 
 def frozen(values: object, length: int | None = None) -> np.ndarray:
@@ -36,71 +34,6 @@ def frozen(values: object, length: int | None = None) -> np.ndarray:
         raise ValueError(f"expected {length} values, got shape {a.shape}")
     a.flags.writeable = False
     return a
-
-
-@dataclass(frozen=True)
-class Options:
-    """What the tab chose to see.
-
-    Attributes:
-        frames: Draw a triad at every DH/link frame and at the tool.
-        labels: Name the joint axes in the 3-D view.
-        columns: Draw the linear parts of J's columns as arrows from the tool point.
-        angular_columns: Draw the angular parts of J's columns on the joint axes.
-        velocity_ellipsoid: Draw the translational manipulability ellipsoid.
-        rotational_ellipsoid: Draw the rotational (angular velocity) ellipsoid.
-        force_ellipsoid: Draw the translational force ellipsoid (semi-axes 1/σ).
-        scale: Multiplier on the automatic arrow and ellipsoid size.
-        jacobian_frame: Frame of the Jacobian shown in the panel ("base" or "tool").
-        damping: λ of damped least squares for q̇ = J⁺ v (0: the pseudo-inverse) [same units as J].
-        twist_frame: Axes of the desired tool twist v ("base", or "tool": held in the moving tool axes).
-        speed: Playback speed of every motion (1: real time; 0.1: ten times slower).
-        gizmo: Show the drag handle at the tool ("drive the tool": IK every frame).
-        ik_method: "dls" (damped least squares) or "newton" (the course's J⁻¹, J⁺ when not square).
-        ik_mode: "position" (the tool point follows the handle) or "pose" (the whole tool frame).
-        workspace: Show the workspace cloud (tool points of random configurations coloured by w).
-        joint_map: Compute and show the map of w over two joints.
-        map_i, map_j: The two joints of the map (indices).
-        derive: The course derivation the Derive tab walks through ("" none, "dh", "whitney",
-            "differentiation", "propagation", "force"; see :mod:`app.core.snapshot.derive`).
-        derive_step: Its step: joint i (0-based), row i + 1 of the DH table.
-        representation: What the J(q) tab shows: "geometric" J, or the analytic J_A with
-            roll-pitch-yaw ("zyx") or Euler ZYZ ("zyz") angles.
-        jdot_arrow: Draw J̇ q̇ (the tool's acceleration when the joints turn at constant rate) at the
-            tool while joint rates are set.
-        course_letters: Write the symbolic J, det J and J⁻¹ with the DH parameters as letters (l₁, a₂, d₄ …).
-        symbolic_inverse: Show the symbolic J⁻¹ = adj(J) / det J (asked for with a button: it takes seconds).
-    """
-
-    frames: bool = False
-    labels: bool = True
-    columns: bool = True
-    angular_columns: bool = False
-    velocity_ellipsoid: bool = True
-    rotational_ellipsoid: bool = False
-    force_ellipsoid: bool = False
-    scale: float = 1.0
-    jacobian_frame: Frame = "base"
-    damping: float = 0.0
-    twist_frame: Frame = "base"
-    speed: float = 1.0
-    gizmo: bool = False
-    ik_method: Literal["dls", "newton"] = "dls"
-    ik_mode: Literal["position", "pose"] = "position"
-    workspace: bool = False
-    joint_map: bool = False
-    map_i: int = 1
-    map_j: int = 2
-    derive: str = ""
-    derive_step: int = 0
-    representation: Literal["geometric", "zyx", "zyz"] = "geometric"
-    jdot_arrow: bool = True
-    course_letters: bool = False
-    symbolic_inverse: bool = False
-
-
-GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")
-"""Options that say which Jacobian glyphs are drawn: their defaults depend on the robot's task."""
 
 
 def default_options(robot: Robot, keep: Options | None = None) -> Options:

@@ -345,7 +345,7 @@ def _steps_mathml(
         raise SymbolicUnavailable("symbolic steps not available (kinematics.symbolic is missing)") from exc
     return tuple(
         (s.joint, s.key, s.title_html(), s.mathml(STEP_WIDTH_PX))
-        for s in derivation_steps(robot, method, symbolic_params=letters, timeout=timeout)  # type: ignore[arg-type]
+        for s in derivation_steps(robot, method, symbolic_params=letters, timeout=timeout)
     )
 
 

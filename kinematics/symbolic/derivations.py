@@ -115,7 +115,7 @@ def jacobian_differentiation(robot: Robot, frame: str = "base", symbolic_params:
 def chain_elements(model: SymbolicModel) -> list[tuple[str, sp.Matrix | sp.Expr, int]]:
     """The chain as ("fixed", T, axis) and ("revolute"/"prismatic", axis value, axis) elements, base to
     tool; ``axis`` is the index of the axis the element belongs to (−1: the base, m: the tool)."""
-    steps: list = [("fixed", model.base, -1)]
+    steps: list[tuple[str, sp.Matrix, int]] = [("fixed", model.base, -1)]
     for k, (kind, value, pj, jc) in enumerate(
         zip(model.kinds, model.axis_value, model.parent_joint, model.joint_child, strict=True)
     ):
@@ -196,10 +196,11 @@ def jacobian_force_propagation(robot: Robot, frame: str = "base", symbolic_param
 DERIVATIONS: dict[str, Callable[..., sp.Matrix]] = {
     "whitney": jacobian_whitney,
     "differentiation": jacobian_differentiation,
-    "velocity_propagation": jacobian_velocity_propagation,
-    "force_propagation": jacobian_force_propagation,
+    "propagation": jacobian_velocity_propagation,
+    "force": jacobian_force_propagation,
 }
-"""The derivations by name (Whitney's columns is the reference the others are compared with)."""
+"""The derivations by name, spelled as :data:`kinematics.steps.METHODS` spells them (Whitney's columns is
+the reference the others are compared with)."""
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,8 @@ import numpy as np
 from kinematics.analytic_jacobian import analytic_parts
 from kinematics.inverse import pinv
 
+from ..options import OPTION
+
 __all__ = [
     "InverseView",
     "AnalyticView",
@@ -29,11 +31,7 @@ __all__ = [
     "analytic_view",
 ]
 
-REPRESENTATIONS = {
-    "geometric": "geometric J",
-    "zyx": "analytic J_A, roll-pitch-yaw (ZYX)",
-    "zyz": "analytic J_A, Euler ZYZ",
-}
+REPRESENTATIONS = dict(zip(OPTION["representation"].choices, OPTION["representation"].labels, strict=True))
 """Option value → the label of the J(q) tab's "Representation" dropdown."""
 
 

@@ -14,7 +14,6 @@ screen.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Sequence
 from typing import Any
 
@@ -24,14 +23,14 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.actions import SetOption
 from ...core.commands import ChooseChain, ChooseRobot, PageReport, ResetView, ToggleRecording
+from ...core.options import options_of
 from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
 from .classroom import ClassroomPanel
-from .common import Dispatch, bind, sync_value
+from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
@@ -39,36 +38,15 @@ from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .matrix import MatrixPanel
 from .motion import MapsPanel, MotionPanel, slider_ids
 from .page import page_js as page_state_js
-from .readouts import measures_html, source_html, status_html
+from .readouts import source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import NUMBER_GUARD_JS
 
 __all__ = ["PanelView", "PANEL_WIDTH", "TAB_LABELS"]
 
-TAB_LABELS = ("J(q)", "v = J q̇", "q̇ = J⁺v", "τ = JᵀF", "Motion", "Maps", "Derive", "View", "Build")
-"""The tabs of the views of J, in order (the page keeps the open one in its address)."""
 
 PANEL_WIDTH = 400
 """Width of the docked panel [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
-
-_TOGGLES = (
-    (
-        "velocity_ellipsoid",
-        "Velocity ellipsoid",
-        "Translational manipulability ellipsoid at the tool point: "
-        "semi-axes σᵢ along the left singular vectors of the base-frame linear rows of J.",
-    ),
-    ("rotational_ellipsoid", "Rotational ellipsoid", "Angular-velocity ellipsoid (ω rows of J)."),
-    (
-        "force_ellipsoid",
-        "Force ellipsoid",
-        "Semi-axes 1/σᵢ along the same directions (capped at a singularity).",
-    ),
-    ("columns", "Columns Jᵢ (linear part)", "Tool-point velocity produced by each joint alone at unit rate."),
-    ("angular_columns", "Columns Jᵢ (angular part)", "Drawn on each joint axis."),
-    ("frames", "Frames 0…n and tool", "A triad for every DH / link frame and the tool frame."),
-    ("labels", "Joint labels", "Name each joint axis in the 3-D view."),
-)
 
 _LEGEND = (
     "**Colours.** Each joint has one colour: slider, axis, column arrow and bars. "
@@ -115,33 +93,18 @@ class PanelView:
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
-        icons = (
-            viser.Icon.MATH, viser.Icon.ARROW_UP_RIGHT, viser.Icon.ARROW_BACK_UP, viser.Icon.WEIGHT,
-            viser.Icon.PLAYER_PLAY, viser.Icon.MAP, viser.Icon.STAIRS, viser.Icon.EYE, viser.Icon.TOOL,
-        )  # fmt: skip
-        tabs = [self.views.add_tab(label, icon) for label, icon in zip(TAB_LABELS, icons, strict=True)]
-        (
-            self.tab_matrix, self.tab_forward, self.tab_inverse, self.tab_force, self.tab_motion,
-            self.tab_maps, self.tab_derive, self.tab_view, self.tab_build,
-        ) = tabs  # fmt: skip
+        self.tabs = {tab.name: self.views.add_tab(tab.label, tab.icon) for tab in TABS}
         self.views.dock_below(gui.main_panel)
-        with self.tab_view:
+        with self.tabs["about"]:
             self.reset_view = gui.add_button("Reset view: frame the arm", icon=viser.Icon.FOCUS_CENTERED)
             self.reset_view.on_click(lambda _: dispatch(ResetView()))
             self.toggles = {}
-            for key, label, hint in _TOGGLES:
-                box = gui.add_checkbox(label, initial_value=getattr(state.options, key), hint=hint)
-                bind(box, dispatch, functools.partial(_option, key))
-                self.toggles[key] = box
-            self.scale = gui.add_slider(
-                "Glyph scale",
-                min=0.1,
-                max=3.0,
-                step=0.05,
-                initial_value=state.options.scale,
-                hint="1: a column of 1 m/rad is drawn 0.5 m long",
-            )
-            bind(self.scale, dispatch, lambda v: SetOption("scale", float(v)))
+            for row in options_of("view"):
+                if row.kind == "bool":
+                    self.toggles[row.name] = option_widget(
+                        gui, dispatch, row.name, getattr(state.options, row.name)
+                    )
+            self.scale = option_widget(gui, dispatch, "scale", state.options.scale)
             gui.add_markdown(_LEGEND)
             self.record = gui.add_button("Record a demo", icon=viser.Icon.PLAYER_RECORD)
             self.record.on_click(lambda _: dispatch(ToggleRecording()))
@@ -149,17 +112,17 @@ class PanelView:
                 '<div class="jl-note">Records the 3-D view until you press again, then downloads it as a '
                 "folder (zip) that plays from any web server, with no Python behind it.</div>"
             )
-        with self.tab_build:
+        with self.tabs["build"]:
             self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100)
         self.joints: JointsPanel | None = None
-        self.forward: ForwardPanel | None = None
-        self.inverse: InversePanel | None = None
-        self.force: ForcePanel | None = None
-        self.matrix: MatrixPanel | None = None
-        self.motion: MotionPanel | None = None
-        self.maps: MapsPanel | None = None
-        self.derive: DerivePanel | None = None
-        self.about: viser.GuiHtmlHandle | None = None
+        self.parts: dict[str, TabView] = {}
+        """The tabs' views for the current robot, by tab name (also ``panel.<name>``)."""
+
+    def __getattr__(self, name: str) -> Any:
+        """``panel.matrix``, ``panel.derive`` …: the view of tab ``name`` (``None`` before a robot)."""
+        if name in _TAB_NAMES:
+            return self.__dict__.get("parts", {}).get(name)
+        raise AttributeError(name)
 
     def build_robot(
         self,
@@ -197,28 +160,14 @@ class PanelView:
         self.source.content = source_html(robot, shown, meshes)
         self.source.visible = bool(robot.urdf_path)
         self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3)
-        with self.tab_matrix:
-            self.gui.add_html('<div class="jl-views-marker"></div>', order=0)
-            self.matrix = MatrixPanel(self.gui, self.dispatch, robot, order=100)
-        with self.tab_forward:
-            self.forward = ForwardPanel(self.gui, self.dispatch, robot, order=100)
-        with self.tab_inverse:
-            self.inverse = InversePanel(self.gui, self.dispatch, robot, rows, order=100, presets=presets)
-        with self.tab_force:
-            self.force = ForcePanel(self.gui, self.dispatch, robot, order=100)
-        with self.tab_motion:
-            self.motion = MotionPanel(self.gui, self.dispatch, robot, presets, order=100)
-        with self.tab_maps:
-            self.maps = MapsPanel(self.gui, self.dispatch, robot, slider_ids(self.joints.sliders), order=100)
-        with self.tab_derive:
-            self.derive = DerivePanel(self.gui, self.dispatch, robot, order=100)
-        with self.tab_view:
-            self.about = self.gui.add_html(configurations_html(robot), order=200)
-        sliders = [*self.joints.sliders, *self.forward.sliders, *self.inverse.sliders.values()]
-        sliders += [*self.force.sliders.values(), self.inverse.damping, self.scale, self.motion.speed]
-        sliders.append(self.derive.step)
-        if self.motion.self_slider is not None:
-            sliders.append(self.motion.self_slider)
+        context = TabContext(self.gui, self.dispatch, robot, rows, presets, slider_ids(self.joints.sliders))
+        for tab in TABS:
+            if tab.build is not None:
+                with self.tabs[tab.name]:
+                    self.parts[tab.name] = tab.build(context)
+        sliders = [*self.joints.sliders, self.scale]
+        for part in self.parts.values():
+            sliders += getattr(part, "stepped", ())
         run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
 
     def set_robot_names(self, names: Sequence[str]) -> None:
@@ -231,46 +180,21 @@ class PanelView:
         if self.chain is not None:
             self.chain.remove()
             self.chain = None
-        parts = (
-            self.joints,
-            self.forward,
-            self.inverse,
-            self.force,
-            self.matrix,
-            self.motion,
-            self.maps,
-            self.derive,
-            self.about,
-        )
-        for part in parts:
+        for part in (self.joints, *self.parts.values()):
             if part is not None:
                 part.remove()
-        self.joints = self.forward = self.inverse = self.force = self.matrix = self.about = None
-        self.motion = self.maps = self.derive = None
+        self.joints = None
+        self.parts = {}
 
     def draw(self, state: LabState, snap: Snapshot) -> None:
         """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes)."""
-        assert self.joints and self.forward and self.inverse and self.force and self.matrix
-        assert self.motion and self.maps and self.derive
+        assert self.joints is not None
         sync_value(self.robot, state.robot_name)
         self.joints.show(state.q, state.configuration)
-        self.forward.show(state)
-        self.inverse.show(state)
-        self.force.show(state)
-        self.matrix.show(state.options.jacobian_frame)
-        self.matrix.show_course(state, snap)
         self._show_options(state.options)
-        status = status_html(snap, state)
-        self.status.content = status
-        self.matrix.update(
-            snap.J_shown, snap.rows, state.options.jacobian_frame, status, measures_html(snap, state.robot)
-        )
-        self.forward.update(snap, state)
-        self.inverse.update(snap, state)
-        self.force.update(snap, state)
-        self.motion.draw(state, snap)
-        self.maps.draw(state, snap)
-        self.derive.draw(state, snap)
+        self.status.content = status_html(snap, state)
+        for part in self.parts.values():
+            part.draw(state, snap)
 
     def show_recording(self, recording: bool) -> None:
         """The record button says what a click does next."""
@@ -284,13 +208,68 @@ class PanelView:
 
     def _show_options(self, options: Options) -> None:
         for key, box in self.toggles.items():
-            sync_value(box, getattr(options, key))
-        sync_value(self.scale, float(options.scale))
+            show_option(box, key, getattr(options, key))
+        show_option(self.scale, "scale", options.scale)
+
+
+class About:
+    """The View tab's list of the robot's named configurations."""
+
+    def __init__(self, c: TabContext) -> None:
+        self.html = c.gui.add_html(configurations_html(c.robot), order=200)
+
+    @property
+    def content(self) -> str:
+        return str(self.html.content)
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        pass
+
+    def remove(self) -> None:
+        self.html.remove()
+
+
+def _matrix(c: TabContext) -> MatrixPanel:
+    c.gui.add_html('<div class="jl-views-marker"></div>', order=0)
+    return MatrixPanel(c.gui, c.dispatch, c.robot, order=100)
+
+
+TABS: tuple[Tab, ...] = (
+    Tab("matrix", "J(q)", viser.Icon.MATH, _matrix),
+    Tab(
+        "forward",
+        "v = J q̇",
+        viser.Icon.ARROW_UP_RIGHT,
+        lambda c: ForwardPanel(c.gui, c.dispatch, c.robot, 100),
+    ),
+    Tab(
+        "inverse",
+        "q̇ = J⁺v",
+        viser.Icon.ARROW_BACK_UP,
+        lambda c: InversePanel(c.gui, c.dispatch, c.robot, c.rows, order=100, presets=c.presets),
+    ),
+    Tab("force", "τ = JᵀF", viser.Icon.WEIGHT, lambda c: ForcePanel(c.gui, c.dispatch, c.robot, order=100)),
+    Tab(
+        "motion",
+        "Motion",
+        viser.Icon.PLAYER_PLAY,
+        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100),
+    ),
+    Tab(
+        "maps", "Maps", viser.Icon.MAP, lambda c: MapsPanel(c.gui, c.dispatch, c.robot, c.joint_sliders, 100)
+    ),
+    Tab("derive", "Derive", viser.Icon.STAIRS, lambda c: DerivePanel(c.gui, c.dispatch, c.robot, order=100)),
+    Tab("about", "View", viser.Icon.EYE, About),
+    Tab("build", "Build", viser.Icon.TOOL, None),
+)
+
+TAB_LABELS = tuple(tab.label for tab in TABS)
+"""The tabs of the views of J, in order (the page keeps the open one in its address)."""
+"""The panel's tabs, in the order they are shown. A tab is one module (its view) and one entry here;
+its options are rows of :data:`app.core.options.OPTIONS`. The View tab ("about") also holds the
+option table's glyph toggles and the Build tab the robot editor, both built once per tab."""
+_TAB_NAMES = frozenset(tab.name for tab in TABS)
 
 
 def _chain_label(chain: ChainInfo) -> str:
     return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"
-
-
-def _option(key: str, value: Any) -> SetOption:
-    return SetOption(key, bool(value))

@@ -1,17 +1,36 @@
-"""Small helpers shared by the panel modules: binding inputs to actions, showing values."""
+"""What the panel modules share: binding inputs to actions, showing values, the widgets of the option
+table, and the tab protocol (a tab is one module plus one entry in :data:`app.views.panel.TABS`)."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol
 
 import viser
 
+import robots
+from kinematics import Robot
+
+from ...core.actions import Action, SetOption
 from ...core.commands import Message
+from ...core.options import OPTION
+from ...core.snapshot import Snapshot
+from ...core.state import LabState
 from ...viser_adapter import is_removed
 
-__all__ = ["sync_value", "bind", "bind_click", "Dispatch"]
+__all__ = [
+    "sync_value",
+    "bind",
+    "bind_click",
+    "Dispatch",
+    "option_widget",
+    "show_option",
+    "Tab",
+    "TabContext",
+    "TabView",
+]
 
 Dispatch = Callable[[Message], None]
 
@@ -51,3 +70,95 @@ def sync_value(handle: Any, value: float | str | bool) -> None:
     elif current == value:
         return
     handle.value = value
+
+
+def option_widget(
+    gui: viser.GuiApi, dispatch: Dispatch, name: str, initial: Any = None, **kwargs: Any
+) -> Any:
+    """The widget of option ``name`` as its row of :data:`app.core.options.OPTION` describes it (a
+    checkbox, a slider over its range, a dropdown of its choices' labels), bound to ``SetOption``.
+
+    ``initial``: the value shown first (default: the row's default); ``kwargs`` go to viser
+    (``order``, ``disabled`` …).
+    """
+    row = OPTION[name]
+    value = row.default if initial is None else initial
+    hint = row.hint or None
+    if row.kind == "bool":
+        box = gui.add_checkbox(row.label, initial_value=bool(value), hint=hint, **kwargs)
+        bind(box, dispatch, lambda v: SetOption(name, bool(v)))
+        return box
+    if row.kind == "float":
+        slider = gui.add_slider(
+            row.label, min=row.lo, max=row.hi, step=row.step, initial_value=float(value), hint=hint, **kwargs
+        )
+        bind(slider, dispatch, lambda v: SetOption(name, float(v)))
+        return slider
+    if row.kind == "choice":
+        shown = row.labels or row.choices
+        menu = gui.add_dropdown(row.label, shown, initial_value=row.label_of(value), hint=hint, **kwargs)
+
+        def chosen(label: Any) -> Action | None:
+            choice = row.value_of(str(label))
+            return None if choice is None else SetOption(name, choice)
+
+        bind(menu, dispatch, chosen)
+        return menu
+    raise ValueError(f"option {name!r} ({row.kind}) has no widget of its own kind: its tab builds it")
+
+
+def show_option(handle: Any, name: str, value: Any) -> None:
+    """Show option ``name``'s ``value`` on its widget (a choice by its label)."""
+    row = OPTION[name]
+    if row.kind == "choice":
+        sync_value(handle, row.label_of(value))
+    elif row.kind == "float":
+        sync_value(handle, float(value))
+    else:
+        sync_value(handle, value)
+
+
+@dataclass(frozen=True)
+class TabContext:
+    """What a tab's view is built from, once per robot.
+
+    Attributes:
+        gui: The tab's GUI (widgets added under the tab's handle).
+        dispatch: Where its widgets send actions.
+        robot: The robot shown; rows: its task rows; presets: its resolved-rate presets.
+        joint_sliders: The ids of the joint sliders (always visible above the tabs).
+    """
+
+    gui: viser.GuiApi
+    dispatch: Dispatch
+    robot: Robot
+    rows: tuple[int, ...]
+    presets: Sequence[robots.MotionPreset]
+    joint_sliders: Sequence[str]
+
+
+class TabView(Protocol):
+    """One tab's widgets for one robot: drawn on every redraw, removed on a robot switch.
+
+    A view may also list ``stepped``: its sliders whose step the page must honour (typed values).
+    """
+
+    def draw(self, state: LabState, snap: Snapshot) -> None: ...
+
+    def remove(self) -> None: ...
+
+
+@dataclass(frozen=True)
+class Tab:
+    """One entry of the panel's list of tabs (:data:`app.views.panel.TABS`).
+
+    Attributes:
+        name: The panel's attribute for its view (``panel.matrix``) and the tab's key.
+        label: The tab's title; icon: its icon.
+        build: Makes the view for a robot, inside the tab (``None``: the tab has no per-robot view).
+    """
+
+    name: str
+    label: str
+    icon: Any  # a viser.Icon (its type, IconName, is not public)
+    build: Callable[[TabContext], TabView] | None

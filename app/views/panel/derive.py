@@ -1,7 +1,7 @@
 """The Derive tab: the DH table, then the course's derivations walked through joint by joint.
 
 The DH table always shows the current joint variables (θᵢ or dᵢ, in the joint's colour).
-A dropdown picks what to walk through (:data:`app.core.snapshot.derive.METHODS`); a slider and
+A dropdown picks what to walk through (:data:`kinematics.steps.METHODS`); a slider and
 Previous/Next buttons pick the step (joint i); the step's numbers at q are shown with the
 check against J, its vectors are drawn in the 3-D view (:mod:`app.views.scene.derive`) and, below,
 the same step in symbols (:func:`kinematics.symbolic.derivation_steps`, typeset in the symbolic
@@ -18,14 +18,11 @@ from kinematics import Robot
 
 from ...core.actions import SetOption
 from ...core.snapshot import Snapshot
-from ...core.snapshot.derive import METHODS
 from ...core.state import LabState
-from .common import Dispatch, bind, sync_value
+from .common import Dispatch, bind, option_widget, show_option, sync_value
 from .derive_html import dh_table_html, formulas_html, step_html
 
 __all__ = ["DerivePanel"]
-
-_LABELS = {label: key for key, label in METHODS.items()}
 
 
 class DerivePanel:
@@ -36,14 +33,7 @@ class DerivePanel:
         self.dispatch = dispatch
         self._step = 0
         self._method = ""
-        self.method = gui.add_dropdown(
-            "Walk through",
-            tuple(METHODS.values()),
-            initial_value=METHODS[""],
-            order=order,
-            hint="Pick one of the course's derivations of J and step through it joint by joint.",
-        )
-        bind(self.method, dispatch, lambda v: SetOption("derive", _LABELS[v]) if v in _LABELS else None)
+        self.method = option_widget(gui, dispatch, "derive", order=order)
         self.step = gui.add_slider(
             "Joint i",
             min=1,
@@ -75,13 +65,18 @@ class DerivePanel:
         delta = -1 if str(event.target.value).startswith("◀") else 1
         self.dispatch(SetOption("derive_step", self._step + delta))
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return [self.step]
+
     def draw(self, state: LabState, snap: Snapshot) -> None:
         options = state.options
         self._step = options.derive_step
         self._method = options.derive
         walking = bool(options.derive)
         self.table.content = dh_table_html(self.robot, snap.q, options.derive_step if walking else None)
-        sync_value(self.method, METHODS.get(options.derive, METHODS[""]))
+        show_option(self.method, "derive", options.derive)
         sync_value(self.step, float(options.derive_step + 1))
         self.step.visible = self.buttons.visible = walking
         self.body.visible = walking

@@ -21,6 +21,7 @@ import numpy as np
 import viser
 
 from kinematics import Robot
+from kinematics.conventions import ROW_TEXT, WRENCH_TEXT
 
 from ...core.actions import (
     ApplyPreset,
@@ -38,16 +39,13 @@ from ...core.state import LabState
 from ...viser_adapter import handle_uuid
 from .. import fmt
 from ..palette import joint_hex, joint_text_hex
-from .common import Dispatch, bind, bind_click, sync_value
+from .common import Dispatch, bind, bind_click, option_widget, show_option, sync_value
 from .course import accel_html, example_html, inverse_html
 from .errata import erratum_html
 from .readouts import ROW_NAMES
 from .style import slider_css
 
 __all__ = ["ForwardPanel", "InversePanel", "ForcePanel", "bars_html", "vector_table_html"]
-
-_TWIST_ROWS = ("vx", "vy", "vz", "ωx", "ωy", "ωz")
-_WRENCH_ROWS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
 
 
 def _display(kind: str, value: float) -> tuple[float, str]:
@@ -136,17 +134,21 @@ class ForwardPanel:
             bind_click(self.play, dispatch, lambda: Play(not self._playing))
             stop = gui.add_button("Stop (q̇ = 0)", icon=viser.Icon.PLAYER_STOP)
             bind_click(stop, dispatch, StopRates)
-            self.jdot = gui.add_checkbox(
-                "J̇ q̇ arrow at the tool",
-                initial_value=True,
-                hint="The tool's acceleration when the joints turn at constant rate (ẍ = J̇ q̇ when q̈ = 0)",
-            )
-            bind(self.jdot, dispatch, lambda v: SetOption("jdot_arrow", bool(v)))
+            self.jdot = option_widget(gui, dispatch, "jdot_arrow")
+
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return list(self.sliders)
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
 
     def show(self, state: LabState) -> None:
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(to_display(r, state.qd[i]), 6))
-        sync_value(self.jdot, bool(state.options.jdot_arrow))
+        show_option(self.jdot, "jdot_arrow", state.options.jdot_arrow)
         if self._playing != state.playing:
             self._playing = state.playing
             self.play.label = "Pause" if state.playing else "Play: move at these rates"
@@ -216,18 +218,10 @@ class InversePanel:
             self.course = gui.add_html("")
             self.sliders = {}
             for r in rows:
-                slider = _slider(gui, _TWIST_ROWS[r], self.ranges[r], "desired tool velocity, base axes")
+                slider = _slider(gui, ROW_TEXT[r], self.ranges[r], "desired tool velocity, base axes")
                 bind(slider, dispatch, functools.partial(_set_desired, r, self.ranges[r]))
                 self.sliders[r] = slider
-            self.damping = gui.add_slider(
-                "damping λ",
-                min=0.0,
-                max=0.5,
-                step=0.005,
-                initial_value=0.0,
-                hint="0: pseudo-inverse J⁺; > 0: damped least squares (bounded rates, less accuracy)",
-            )
-            bind(self.damping, dispatch, lambda v: SetOption("damping", float(v)))
+            self.damping = option_widget(gui, dispatch, "damping")
             self._shown: tuple | None = None
             self.symbolic_button: viser.GuiButtonHandle | None = None
             self.symbolic = gui.add_html("")
@@ -238,10 +232,19 @@ class InversePanel:
                 )
             self._asked = False
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return [*self.sliders.values(), self.damping]
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
+
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():
             sync_value(slider, round(to_display(self.ranges[r], state.v_desired[r]), 6))
-        sync_value(self.damping, float(state.options.damping))
+        show_option(self.damping, "damping", state.options.damping)
         asked = state.options.symbolic_inverse
         if asked != self._asked and self.symbolic_button is not None:
             self.symbolic_button.label = "Hide the symbolic J⁻¹" if asked else "Symbolic J⁻¹ = adj J / det J"
@@ -317,13 +320,22 @@ class ForcePanel:
             self.sliders = {}
             self._bounds: dict[int, tuple[float, float]] = {}
             for r in rows:
-                slider = _slider(gui, _WRENCH_ROWS[r], self.ranges[r], "applied at the tool point, base axes")
+                slider = _slider(gui, WRENCH_TEXT[r], self.ranges[r], "applied at the tool point, base axes")
                 bind(slider, dispatch, functools.partial(_set_wrench, r))
                 self.sliders[r] = slider
                 self._bounds[r] = (float(slider.min), float(slider.max))
             zero = gui.add_button("Remove the force (F = 0)")
             bind_click(zero, dispatch, ClearWrench)
             self._idle = False
+
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return list(self.sliders.values())
+
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        self.show(state)
+        self.update(snap, state)
 
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():

@@ -17,17 +17,16 @@ import viser
 
 from kinematics import Robot
 
-from ...core.actions import GoToRepresentationSingularity, SetOption
+from ...core.actions import GoToRepresentationSingularity
 from ...core.commands import RequestDownload
 from ...core.downloads import EXPORT_FORMATS
 from ...core.snapshot import Snapshot
-from ...core.snapshot.course import REPRESENTATIONS
 from ...core.state import LabState
 from .. import fmt
 from ..palette import joint_hex, joint_text_hex
-from .common import Dispatch, bind, bind_click, sync_value
+from .common import Dispatch, bind_click, option_widget, show_option
 from .course import analytic_html
-from .readouts import ROW_NAMES
+from .readouts import ROW_NAMES, measures_html, status_html
 
 __all__ = ["matrix_html", "MatrixPanel"]
 
@@ -86,18 +85,8 @@ class MatrixPanel:
         self._head = _head(robot)  # the same for every redraw of this robot
         self.root = gui.add_folder(None, order=order)
         with self.root:
-            self.frame = gui.add_dropdown(
-                "Frame of J", ("base", "tool"), initial_value="base", hint="Axes in which J is written"
-            )
-            bind(self.frame, dispatch, lambda v: SetOption("jacobian_frame", str(v)))
-            self.representation = gui.add_dropdown(
-                "Representation",
-                tuple(REPRESENTATIONS.values()),
-                initial_value=REPRESENTATIONS["geometric"],
-                hint="Geometric J (rows [v; ω]) or the analytic J_A (rows [v; φ̇], φ: Euler angles)",
-            )
-            keys = {label: key for key, label in REPRESENTATIONS.items()}
-            bind(self.representation, dispatch, lambda v: SetOption("representation", keys[str(v)]))
+            self.frame = option_widget(gui, dispatch, "jacobian_frame")
+            self.representation = option_widget(gui, dispatch, "representation")
             self.numeric = gui.add_html("")
             self.analytic = gui.add_html("")
             self.go_singular: viser.GuiButtonHandle | None = None
@@ -115,27 +104,29 @@ class MatrixPanel:
             with gui.add_folder("Symbolic J(q)", expand_by_default=False):
                 self.letters: viser.GuiCheckboxHandle | None = None
                 if robot.dh is not None:
-                    self.letters = gui.add_checkbox(
-                        "Course letters (l₁, a₂, d₄ …)",
-                        initial_value=False,
-                        hint="DH lengths and offsets as letters; det J, its factors, singular sets below J",
-                    )
-                    bind(self.letters, dispatch, lambda v: SetOption("course_letters", bool(v)))
+                    self.letters = option_widget(gui, dispatch, "course_letters")
                 self.symbolic = gui.add_html(_mathml_html("", "computing the symbolic form…"))
                 self.download = gui.add_button_group("Download J(q)", tuple(EXPORT_FORMATS))
                 self.download.on_click(lambda event: dispatch(RequestDownload(event.target.value)))
 
+    def draw(self, state: LabState, snap: Snapshot) -> None:
+        frame = state.options.jacobian_frame
+        self.show(frame)
+        self.show_course(state, snap)
+        status, measures = status_html(snap, state), measures_html(snap, state.robot)
+        self.update(snap.J_shown, snap.rows, frame, status, measures)
+
     def show(self, frame: str) -> None:
-        sync_value(self.frame, frame)
+        show_option(self.frame, "jacobian_frame", frame)
 
     def show_course(self, state: LabState, snap: Snapshot) -> None:
         """The representation chosen, φ, M(φ) and J_A (or why J_A does not exist), the letters box."""
         o = state.options
-        sync_value(self.representation, REPRESENTATIONS[o.representation])
+        show_option(self.representation, "representation", o.representation)
         if o.representation != "geometric":
             self._convention = o.representation
         if self.letters is not None:
-            sync_value(self.letters, bool(o.course_letters))
+            show_option(self.letters, "course_letters", o.course_letters)
         self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows)
 
     def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:

@@ -19,6 +19,8 @@ import viser.uplot as uplot
 
 import robots
 from kinematics import Robot
+from kinematics.analysis import task_rows
+from kinematics.conventions import ROW_TEXT
 
 from ...core.actions import ApplyPreset, Play, ResetMotion, SelfMove, SetOption, StepOnce
 from ...core.commands import FindSingularity
@@ -30,16 +32,13 @@ from ...core.state import LabState
 from ...viser_adapter import handle_uuid
 from .. import fmt
 from ..palette import joint_hex
-from .common import Dispatch, bind, sync_value
+from .common import Dispatch, bind, option_widget, show_option, sync_value
 from .errata import erratum_html
 
 __all__ = ["MotionPanel", "MapsPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 
 OWN_TWIST = "your own v (set in q̇ = J⁺v)"
 PLAY_BUTTONS = ("Play", "Pause", "Step", "Reset")
-_METHODS = {"DLS (damped)": "dls", "Newton (J⁻¹, J⁺)": "newton"}
-_MODES = {"tool position": "position", "tool pose": "pose"}
-_ROW_NAMES = ("vx", "vy", "vz", "ωx", "ωy", "ωz")
 _CHART_HEIGHT = 150
 
 
@@ -96,29 +95,13 @@ class MotionPanel:
                 colors = [joint_hex(i) for i in range(robot.dof)]
                 self.rates = _chart(gui, "joint rates", names, colors, "°/s, m/s")
                 self.about = gui.add_html("")
-                self.frame = gui.add_dropdown(
-                    "v in axes", ("base", "tool"), hint="tool: v is held in the moving tool's own axes"
-                )
-                bind(self.frame, dispatch, lambda v: SetOption("twist_frame", str(v)))
-                self.speed = gui.add_slider(
-                    "Speed",
-                    min=0.05,
-                    max=2.0,
-                    step=0.05,
-                    initial_value=1.0,
-                    hint="1: real time; 0.1: ten times slower",
-                )
-                bind(self.speed, dispatch, lambda v: SetOption("speed", float(v)))
+                self.frame = option_widget(gui, dispatch, "twist_frame")
+                self.speed = option_widget(gui, dispatch, "speed")
             # Drive the tool: IK every frame while the handle is dragged.
             with gui.add_folder("Drive the tool (IK)", expand_by_default=False):
-                self.gizmo = gui.add_checkbox("Drag handle at the tool", initial_value=False)
-                bind(self.gizmo, dispatch, lambda v: SetOption("gizmo", bool(v)))
-                self.method = gui.add_dropdown(
-                    "Method", tuple(_METHODS), hint="q_{k+1} = q_k + J⁺ (y_d − k(q_k))"
-                )
-                bind(self.method, dispatch, lambda v: SetOption("ik_method", _METHODS[str(v)]))
-                self.mode = gui.add_dropdown("Follow", tuple(_MODES))
-                bind(self.mode, dispatch, lambda v: SetOption("ik_mode", _MODES[str(v)]))
+                self.gizmo = option_widget(gui, dispatch, "gizmo")
+                self.method = option_widget(gui, dispatch, "ik_method")
+                self.mode = option_widget(gui, dispatch, "ik_mode")
                 self.ik = gui.add_html("")
             # Redundancy: self-motion and the manipulability climb, the tool held.
             rows = redundancy_rows(robot)
@@ -128,10 +111,14 @@ class MotionPanel:
             self.notes: list[viser.GuiHtmlHandle] = []  # the course's error beside the climb
             if rows is not None:
                 with gui.add_folder("Redundancy: move with the tool held", expand_by_default=False):
-                    held = ", ".join(_ROW_NAMES[r] for r in rows)
+                    held = ", ".join(ROW_TEXT[r] for r in rows)
+                    task = ", ".join(ROW_TEXT[r] for r in task_rows(robot))
                     gui.add_html(
                         f'<div class="jl-note">{robot.dof} joints, {len(rows)} task rows held ({held}): '
-                        f"the arm can move in the null space of J without moving the tool.</div>"
+                        f"the arm can move in the null space of J without moving the tool. "
+                        f"<b>Climb</b> raises w = √det(J Jᵀ) of these rows ({held})"
+                        + (f", not the banner's κ of all task rows ({task})." if task != held else ".")
+                        + "</div>"
                     )
                     self.self_slider = gui.add_slider(
                         "Self-motion s",
@@ -163,14 +150,18 @@ class MotionPanel:
             return None
         return ApplyPreset(p.name, tuple(map(float, p.q)), tuple(map(float, p.twist)), p.frame, p.speed)
 
+    @property
+    def stepped(self) -> list[Any]:
+        """Its sliders whose step the page honours."""
+        return [self.speed] + ([self.self_slider] if self.self_slider is not None else [])
+
     def draw(self, state: LabState, snap: Snapshot) -> None:
         o, m = state.options, state.motion
         sync_value(self.preset, m.preset if m.preset in self.presets else OWN_TWIST)
-        sync_value(self.frame, o.twist_frame)
-        sync_value(self.speed, float(o.speed))
-        sync_value(self.gizmo, o.gizmo)
-        sync_value(self.method, next(k for k, v in _METHODS.items() if v == o.ik_method))
-        sync_value(self.mode, next(k for k, v in _MODES.items() if v == o.ik_mode))
+        for handle, name in ((self.frame, "twist_frame"), (self.speed, "speed"), (self.gizmo, "gizmo")):
+            show_option(handle, name, getattr(o, name))
+        show_option(self.method, "ik_method", o.ik_method)
+        show_option(self.mode, "ik_mode", o.ik_mode)
         if self.self_slider is not None:
             sync_value(self.self_slider, float(round(m.s, 6)))
         key = (
@@ -232,11 +223,11 @@ def _button(label: str) -> Play | StepOnce | ResetMotion:
 def _readout(state: LabState, snap: Snapshot) -> str:
     rows = snap.rows
     v = [state.v_desired[r] if r < 3 else math.degrees(state.v_desired[r]) for r in rows]
-    parts = ", ".join(f"{_ROW_NAMES[r]} {fmt.number(x, 5)}" for r, x in zip(rows, v, strict=True))
+    parts = ", ".join(f"{ROW_TEXT[r]} {fmt.number(x, 5)}" for r, x in zip(rows, v, strict=True))
     axes = "tool" if state.options.twist_frame == "tool" else "base"
     doing = {
         "resolved_rate": "holding v",
-        "climb": "climbing w",
+        "climb": "climbing w of the held rows",
         "path": "descending to the nearest singularity",
         "joints": "moving at q̇",
     }.get(state.motion.kind, "")
@@ -287,16 +278,8 @@ class MapsPanel:
         self.root = gui.add_folder(None, order=order)
         names = [f"q{i + 1}" for i in range(robot.dof)]
         with self.root:
-            self.cloud = gui.add_checkbox(
-                "Workspace cloud",
-                initial_value=False,
-                hint="20,000 tool points of random configurations, coloured by w (yellow: high, purple: low)",
-            )
-            bind(self.cloud, dispatch, lambda v: SetOption("workspace", bool(v)))
-            self.show_map = gui.add_checkbox(
-                "Joint-space map of w", initial_value=False, disabled=robot.dof < 2
-            )
-            bind(self.show_map, dispatch, lambda v: SetOption("joint_map", bool(v)))
+            self.cloud = option_widget(gui, dispatch, "workspace")
+            self.show_map = option_widget(gui, dispatch, "joint_map", disabled=robot.dof < 2)
             self.i = gui.add_dropdown("x axis", names, initial_value=names[1 if robot.dof >= 3 else 0])
             bind(self.i, dispatch, functools.partial(_map_joint, "map_i", names))
             self.j = gui.add_dropdown(
@@ -309,8 +292,8 @@ class MapsPanel:
     def draw(self, state: LabState, snap: Snapshot) -> None:
         o = state.options
         names = [f"q{i + 1}" for i in range(self.robot.dof)]
-        sync_value(self.cloud, o.workspace)
-        sync_value(self.show_map, o.joint_map)
+        show_option(self.cloud, "workspace", o.workspace)
+        show_option(self.show_map, "joint_map", o.joint_map)
         sync_value(self.i, names[o.map_i])
         sync_value(self.j, names[o.map_j])
         jm = snap.joint_map

@@ -5,9 +5,18 @@ robot (nodes built once), updated for every snapshot (nodes moved, inside
 the session's ``atomic`` batch), and removed when the tab switches robot
 or leaves. After each update :attr:`SceneView.extent` holds the points the
 camera must keep in view.
+
+The arm is always drawn; everything drawn on it is a glyph: one module here and one entry in
+:data:`GLYPHS` (a :class:`Glyph`: a name and how to build its :class:`GlyphView` from a
+:class:`SceneContext`). Whether a glyph shows is an option of :mod:`app.core.options` it reads
+from the state in ``update``.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Protocol
 
 import numpy as np
 import viser
@@ -23,7 +32,62 @@ from .derive import DeriveScene
 from .drive import DriveView
 from .overlays import Overlays
 
-__all__ = ["SceneView", "ArmGeometry"]
+__all__ = ["SceneView", "ArmGeometry", "Glyph", "GlyphView", "SceneContext", "GLYPHS"]
+
+
+@dataclass(frozen=True)
+class SceneContext:
+    """What a glyph is built from, once per robot.
+
+    Attributes:
+        scene: The tab's scene (or a whole server's, for ``jacobian-lab record``).
+        robot: The robot drawn; geometry: the arm's drawn geometry (``geometry.size``: its length [m]).
+        dispatch: Where a glyph that takes input (the drag handle) sends actions.
+        root: The scene path under which the glyph puts its nodes.
+    """
+
+    scene: viser.SceneApi
+    robot: Robot
+    geometry: ArmGeometry
+    dispatch: Dispatch
+    root: str
+
+
+class GlyphView(Protocol):
+    """One glyph's nodes for one robot: moved on every snapshot, removed on a robot switch."""
+
+    @property
+    def extent(self) -> np.ndarray:
+        """The points (N, 3) [m] it drew at the last update (the camera keeps them in view)."""
+        ...
+
+    def update(self, snap: Snapshot, state: LabState) -> None: ...
+
+    def remove(self) -> None: ...
+
+
+@dataclass(frozen=True)
+class Glyph:
+    """One entry of :data:`GLYPHS`: ``scene.<name>`` is the view ``build`` makes."""
+
+    name: str
+    build: Callable[[SceneContext], GlyphView]
+
+
+GLYPHS: tuple[Glyph, ...] = (
+    Glyph(
+        "overlays",
+        lambda c: Overlays(c.scene, c.geometry, c.robot.dof, c.robot.planar, f"{c.root}/jacobian"),
+    ),
+    Glyph("accel", lambda c: AccelArrow(c.scene, c.geometry.size, f"{c.root}/jacobian")),
+    Glyph(
+        "drive", lambda c: DriveView(c.scene, c.dispatch, c.geometry.size, c.robot.planar, f"{c.root}/drive")
+    ),
+    Glyph("derive", lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive")),
+)
+"""What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
+J̇ q̇; the drag handle and motion traces; the Derive tab's step."""
+_GLYPH_NAMES = frozenset(g.name for g in GLYPHS)
 
 
 class SceneView:
@@ -41,12 +105,15 @@ class SceneView:
         root: str = "/lab",
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
-        self.overlays = Overlays(client.scene, self.arm.geometry, robot.dof, robot.planar, f"{root}/jacobian")
-        self.derive = DeriveScene(client.scene, robot, self.arm.geometry, f"{root}/derive")
-        self.accel = AccelArrow(client.scene, self.size, f"{root}/jacobian")
-        self.drive = DriveView(
-            client.scene, dispatch or (lambda action: None), self.size, robot.planar, f"{root}/drive"
-        )
+        ignore: Dispatch = lambda action: None  # noqa: E731  (a recorded scene takes no input)
+        context = SceneContext(client.scene, robot, self.arm.geometry, dispatch or ignore, root)
+        self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
+
+    def __getattr__(self, name: str) -> Any:
+        """``scene.overlays``, ``scene.derive`` …: the view of glyph ``name``."""
+        if name in _GLYPH_NAMES and "glyphs" in self.__dict__:
+            return self.__dict__["glyphs"][name]
+        raise AttributeError(name)
 
     @property
     def size(self) -> float:
@@ -56,21 +123,17 @@ class SceneView:
     @property
     def extent(self) -> np.ndarray:
         """Points (N, 3) [m] of everything drawn at the last update: arm, ellipsoids, arrow tips."""
-        parts = [self.overlays.extent, self.drive.extent, self.accel.extent, self.derive.extent]
+        parts = [g.extent for g in self.glyphs.values()]
         return np.concatenate([x for x in parts if len(x)]) if any(len(x) for x in parts[1:]) else parts[0]
 
     def update(self, snap: Snapshot, state: LabState) -> None:
         """Move every node to ``snap`` (call inside ``client.atomic()``)."""
         self.arm.update(snap, state.options)
-        self.overlays.update(snap, state)
-        self.accel.update(snap, state)
-        self.drive.update(snap, state)
-        self.derive.update(snap, state)
+        for glyph in self.glyphs.values():
+            glyph.update(snap, state)
 
     def remove(self) -> None:
         """Remove every node (on robot switch or disconnect)."""
-        self.drive.remove()
-        self.derive.remove()
-        self.accel.remove()
-        self.overlays.remove()
+        for glyph in reversed(self.glyphs.values()):
+            glyph.remove()
         self.arm.remove()
