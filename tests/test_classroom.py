@@ -13,7 +13,7 @@ from wsclient import ViserWsClient
 import robots
 from app.core.actions import ApplyPreset, Play, SetJoint
 from app.core.commands import ExploreAlone
-from app.services.classroom import PRESENTER_LEFT, TOKEN_TRIES, TOKEN_WINDOW, Classroom
+from app.services.classroom import PRESENTER_AWAY, TOKEN_TRIES, TOKEN_WINDOW, Classroom
 
 TOKEN = "lecture-7"
 
@@ -186,7 +186,7 @@ def test_tokens_are_rate_limited_per_tab():
     assert room_.claim(1, "right") == ""  # after the window: it takes over
     assert room_.role(1).presenting and not room_.role(2).presenting
     room_.closed(1)
-    assert b.role.note == PRESENTER_LEFT and not b.role.following
+    assert b.role.note == PRESENTER_AWAY and not b.role.following
     with pytest.raises(ValueError):
         Classroom("")
 

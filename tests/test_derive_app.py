@@ -159,12 +159,13 @@ def test_force_step_is_the_transpose(session):
     assert f"{fixed(tau[0], 3)}".rstrip("0").rstrip(".") in body
 
 
-def test_switching_robot_keeps_the_walk_and_clamps_the_step(session):
+def test_switching_robot_keeps_the_walk_and_starts_at_joint_1(session):
+    """A new robot's walk starts at its first joint, not at the last robot's step (issue 21)."""
     choose(session, "puma560")
     walk(session, "whitney", 5)
     choose(session, "planar2")
-    assert session.state.options.derive == "whitney" and session.state.options.derive_step == 1
-    assert "Step 2 of 2" in text(session.panel.derive.body.content)
+    assert session.state.options.derive == "whitney" and session.state.options.derive_step == 0
+    assert "Step 1 of 2" in text(session.panel.derive.body.content)
 
 
 @pytest.mark.parametrize("method", [m for m in METHODS if m])

@@ -55,14 +55,20 @@ def _downloads(session, monkeypatch) -> list[tuple[str, bytes]]:
     return sent
 
 
+def _limits(editor, lo: float, hi: float) -> None:
+    """Type the lower, then the upper limit."""
+    editor.lower.value = str(lo)
+    editor.upper.value = str(hi)
+
+
 def test_an_edit_draws_the_robot_of_the_table_live(session):
     editor = _editor(session)
-    handles = (editor.a, editor.alpha, editor.d, editor.theta, editor.limits, editor.row)
-    editor.a.value = 0.7
-    editor.alpha.value = 90.0
-    editor.d.value = 0.25
-    editor.theta.value = 30.0
-    editor.limits.value = (-90.0, 120.0)
+    handles = (editor.a, editor.alpha, editor.d, editor.theta, editor.lower, editor.upper, editor.row)
+    editor.a.value = "0.7"
+    editor.alpha.value = "90.0"
+    editor.d.value = "0.25"
+    editor.theta.value = "30.0"
+    _limits(editor, -90.0, 120.0)
     session.settle()
     state = session.state
     assert state.robot_name == BUILT_NAME and state.robot is editor.built and editor.error == ""
@@ -70,7 +76,7 @@ def test_an_edit_draws_the_robot_of_the_table_live(session):
     _same_jacobian(state.robot, expected)
     np.testing.assert_allclose(state.robot.qlim[:, 0], np.radians([-90.0, 120.0]))
     # The editor's own widgets were not rebuilt; the robot dropdown offers the built robot.
-    assert (editor.a, editor.alpha, editor.d, editor.theta, editor.limits, editor.row) == handles
+    assert (editor.a, editor.alpha, editor.d, editor.theta, editor.lower, editor.upper, editor.row) == handles
     assert BUILT_NAME in session.panel.robot.options and session.panel.robot.value == BUILT_NAME
     assert "0.7" in editor.summary.content and "drawn live" in editor.summary.content
     assert session.errors == 0
@@ -79,13 +85,13 @@ def test_an_edit_draws_the_robot_of_the_table_live(session):
 
 def test_rows_added_removed_and_moved_keep_the_joint_values_of_unchanged_rows(session):
     editor = _editor(session)
-    editor.a.value = 0.4
+    editor.a.value = "0.4"
     editor.rows.value = ADD  # row 2 after row 1, selected
     editor.kind.value = "prismatic"
-    editor.limits.value = (0.0, 0.3)
-    editor.theta.value = 90.0
+    _limits(editor, 0.0, 0.3)
+    editor.theta.value = "90.0"
     editor.rows.value = ADD  # row 3
-    editor.a.value = 0.2
+    editor.a.value = "0.2"
     session.settle()
     assert editor.row.options == ("1", "2", "3") and editor.row.value == "3"
     r1, r2, r3 = (
@@ -105,7 +111,7 @@ def test_rows_added_removed_and_moved_keep_the_joint_values_of_unchanged_rows(se
     np.testing.assert_allclose(session.state.q[:2], [0.1, math.radians(40.0)])
     assert editor.row.value == "2"
 
-    editor.alpha.value = -90.0  # a number changed: every joint value stays
+    editor.alpha.value = "-90.0"  # a number changed: every joint value stays
     session.settle()
     r1b = ("revolute", 0.4, -90.0, 0.0, 0.0, -180.0, 180.0)
     _same_jacobian(session.state.robot, Robot.from_dh(_rows(r2, r1b, r3)))
@@ -130,7 +136,7 @@ def test_starting_from_the_puma_gives_the_pumas_jacobian(session):
     editor.start.value = "puma560"
     session.settle()
     assert editor.row.options == tuple("123456") and editor.convention.value == "standard"
-    assert editor.alpha.value == pytest.approx(90.0)  # degrees on screen
+    assert editor.alpha.value == "90"  # degrees on screen, shortest exact form
     puma = robots.load("puma560")
     _same_jacobian(session.state.robot, puma, samples=8)
     np.testing.assert_allclose(session.state.q, puma.home)  # at the Puma's home, not mid-limits
@@ -145,33 +151,37 @@ def test_starting_from_the_puma_gives_the_pumas_jacobian(session):
 @pytest.mark.parametrize(
     ("field", "value", "named"),
     [
-        ("a", float("nan"), "Row 1, a [m]: expected a finite number, got NaN"),
-        ("alpha", "ninety", "Row 1, α [°]: 'ninety' is not a number"),
-        ("d", float("inf"), "Row 1, d [m]"),
+        ("a", "nan", "Row 1, a [m]: “nan” is not a number"),
+        ("alpha", "ninety", "Row 1, α [°]: “ninety” is not a number"),
+        ("d", "1e400", "Row 1, d [m]: “1e400” is too large"),
         ("limits", (50.0, -50.0), "Row 1, lower limit: the lower limit 50 is above the upper limit -50"),
-        ("a", 1e16, "Row 1, a [m]: DH row 1, key 'a'"),  # refused by Robot.from_dh
+        ("a", "1e16", "Row 1, a [m]: 1e+16 is beyond ±100"),
+        ("a", "0,3", "Row 1, a [m]: “0,3”: use a point for decimals (0.3)"),
+        ("d", "1e-", "Row 1, d [m]: “1e-” is not a number"),
     ],
 )
 def test_a_bad_value_is_named_and_the_last_good_robot_stays(session, field, value, named):
     editor = _editor(session)
-    editor.a.value = 0.6
+    editor.a.value = "0.6"
+    if field == "limits":
+        editor.upper.value = str(value[1])  # a good robot with the upper limit, then the bad lower one
     session.settle()
     good = session.state.robot
-    if isinstance(value, str):  # viser refuses text in a number input; the editor checks it anyway
-        editor.set_field(field, value)
+    if field == "limits":
+        editor.lower.value = str(value[0])
     else:
-        getattr(editor, field).value = value
+        getattr(editor, field).value = value  # typed into the text box as it is
     session.settle()
     assert named in editor.error
     assert "⚠" in editor.summary.content and named.split(":")[0] in editor.summary.content
     assert session.state.robot is good and session.errors == 0
     assert_all_finite(session)
-    editor.theta.value = 5.0  # changing another field does not hide the bad one
+    editor.theta.value = "5.0"  # changing another field does not hide the bad one
     assert named.split(":")[0] in editor.error and session.state.robot is good
-    editor.theta.value = 0.0
-    for name, mended in (("a", 0.55), ("alpha", 0.0), ("d", 0.0)):
-        editor.set_field(name, mended)
-    editor.limits.value = (-170.0, 170.0)
+    editor.theta.value = "0.0"
+    for name, mended in (("a", "0.55"), ("alpha", "0"), ("d", "0")):
+        getattr(editor, name).value = mended
+    _limits(editor, -170.0, 170.0)
     session.settle()
     assert editor.error == "" and session.state.robot is not good
     _same_jacobian(session.state.robot, Robot.from_dh(_rows(("revolute", 0.55, 0, 0, 0, -170, 170))))
@@ -189,10 +199,10 @@ def test_the_robot_file_download_loads_back_with_the_same_jacobian(session, monk
     sent = _downloads(session, monkeypatch)
     editor.start.value = "puma560_mdh"  # a tool transform, modified DH
     editor.row.value = "2"
-    editor.d.value = 0.1234
+    editor.d.value = "0.1234"
     editor.rows.value = ADD
     editor.kind.value = "prismatic"
-    editor.limits.value = (-0.2, 0.4)
+    _limits(editor, -0.2, 0.4)
     session.settle()
     built = session.state.robot
     editor.download.value = "TOML"
@@ -217,7 +227,7 @@ def test_a_robot_file_keeps_the_home_it_started_from(session, monkeypatch, tmp_p
     sent = _downloads(session, monkeypatch)
     editor.start.value = "puma560"
     editor.row.value = "3"
-    editor.a.value = 0.05
+    editor.a.value = "0.05"
     editor.download.value = "TOML"
     session.settle()
     (tmp_path / sent[0][0]).write_bytes(sent[0][1])
@@ -228,7 +238,7 @@ def test_a_robot_file_keeps_the_home_it_started_from(session, monkeypatch, tmp_p
 
 def test_the_symbolic_j_buttons_use_the_existing_export(session, monkeypatch):
     editor = _editor(session)
-    editor.a.value = 0.5
+    editor.a.value = "0.5"
     session.settle()
     asked = []
     monkeypatch.setattr(
@@ -245,11 +255,11 @@ def test_the_symbolic_j_buttons_use_the_existing_export(session, monkeypatch):
 def test_the_arm_is_drawn_from_the_table(session):
     """The scene follows the table: the tool point moves out with a, a prismatic row gets its box."""
     editor = _editor(session)
-    editor.a.value = 0.8
+    editor.a.value = "0.8"
     session.settle()
     tool = session.snapshot.link_frames[-1][:3, 3]
     assert np.linalg.norm(tool) == pytest.approx(0.8)
-    editor.a.value = 1.2
+    editor.a.value = "1.2"
     session.settle()
     assert np.linalg.norm(session.snapshot.link_frames[-1][:3, 3]) == pytest.approx(1.2)
     assert "/lab/arm/prismatic" not in _scene_names(session)
@@ -273,7 +283,7 @@ def test_an_edit_keeps_the_users_view_a_new_robot_is_framed(session, monkeypatch
     framed: list[dict] = []
     real = session.camera.frame
     monkeypatch.setattr(session.camera, "frame", lambda *a, **k: framed.append(k) or real(*a, **k))
-    editor.a.value = 0.52  # the same built robot, edited: the camera is not re-aimed
+    editor.a.value = "0.52"  # the same built robot, edited: the camera is not re-aimed
     session.settle()
     assert session.state.robot.dh[0].a == pytest.approx(0.52)
     assert not [k for k in framed if k.get("glide") is False]

@@ -18,9 +18,15 @@ TOKEN = "Xq7-vR2pLw9sKd4TzY"
 UPDATE = message_class("GuiUpdateMessage")
 
 
+def _is_token_box(m: dict) -> bool:
+    return m["type"] == "GuiTextMessage" and m.get("props", {}).get("label") == "Presenter token"
+
+
 def _token_box(ws: ViserWsClient) -> str:
-    wait_until(lambda: any(m["type"] == "GuiTextMessage" for m in widgets(ws).values()), timeout=60)
-    return next(u for u, m in widgets(ws).items() if m["type"] == "GuiTextMessage")
+    """The uuid of the "Presenter token" input (the page has other text inputs: the Build tab's, the
+    page's own report)."""
+    wait_until(lambda: any(_is_token_box(m) for m in widgets(ws).values()), timeout=60)
+    return next(u for u, m in widgets(ws).items() if _is_token_box(m))
 
 
 def _notice(ws: ViserWsClient, mark: int, title: str) -> str:

@@ -28,6 +28,7 @@ from kinematics.errors import RobotDefinitionError
 from kinematics.parts import CONVENTIONS, JOINT_TYPES
 from kinematics.urdf import to_urdf
 
+from .numbers import NumberError, parse_number
 from .ranges import joint_ranges
 from .state import LabState, default_options, frozen
 
@@ -138,16 +139,18 @@ def from_robot(robot: Robot) -> Table:
     return Table(tuple(rows), robot.convention, robot.base, robot.tool, robot.name, home, kinds)
 
 
-def _number(value: object, row: int, field: str) -> float:
-    if isinstance(value, bool):
-        raise TableError(row, field, f"expected a number, got {value!r}")
+MAX_LENGTH = 100.0
+"""Largest |a|, |d| or prismatic limit the editor takes [m]: a lab arm, not a 1400 m one."""
+MAX_ANGLE = 3600.0
+"""Largest |α|, |θ| or revolute limit the editor takes [°]."""
+
+
+def _number(value: object, row: int, field: str, unit: str) -> float:
+    bound = MAX_ANGLE if unit == "°" else MAX_LENGTH
     try:
-        x = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError, OverflowError):
-        raise TableError(row, field, f"{str(value)[:30]!r} is not a number") from None
-    if not math.isfinite(x):
-        raise TableError(row, field, "expected a finite number, got " + ("NaN" if math.isnan(x) else "∞"))
-    return x
+        return parse_number(value, bound, unit)
+    except NumberError as exc:
+        raise TableError(row, field, str(exc)) from None
 
 
 def rows_si(table: Table) -> list[dict[str, object]]:
@@ -160,7 +163,9 @@ def rows_si(table: Table) -> list[dict[str, object]]:
     for i, r in enumerate(table.rows, start=1):
         if r.joint not in JOINT_TYPES:
             raise TableError(i, "joint", f"expected revolute or prismatic, got {str(r.joint)[:30]!r}")
-        v = {k: _number(getattr(r, k), i, k) for k in ("a", "alpha", "d", "theta", "lo", "hi")}
+        limit_unit = "°" if r.joint == "revolute" else "m"
+        units = {"a": "m", "alpha": "°", "d": "m", "theta": "°", "lo": limit_unit, "hi": limit_unit}
+        v = {k: _number(getattr(r, k), i, k, u) for k, u in units.items()}
         if v["lo"] > v["hi"]:
             raise TableError(i, "lo", f"the lower limit {v['lo']:g} is above the upper limit {v['hi']:g}")
         rev = r.joint == "revolute"

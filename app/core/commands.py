@@ -34,6 +34,8 @@ __all__ = [
     "FollowPresenter",
     "Mirror",
     "Redraw",
+    "ResetView",
+    "PageReport",
     "SymbolicResult",
 ]
 
@@ -103,6 +105,21 @@ class Redraw:
 
 
 @dataclass(frozen=True)
+class ResetView:
+    """Frame the whole arm again from the robot's default direction (the camera is the tab's, not
+    the state's), e.g. after a very large robot moved the camera far away."""
+
+
+@dataclass(frozen=True)
+class PageReport:
+    """What the tab's page reports (JSON, hostile until checked by
+    :func:`app.core.page_state.parse_report`): on (re)connection its address (robot, q, tab) and a
+    presenter's reconnect key; later the tab the user opened."""
+
+    text: str
+
+
+@dataclass(frozen=True)
 class ToggleRecording:
     """Start recording what this tab shows, or stop and download it as a demo that needs no server
     ."""
@@ -155,6 +172,8 @@ Command = (
     | FollowPresenter
     | Mirror
     | Redraw
+    | ResetView
+    | PageReport
     | SymbolicResult
 )
 """Everything the session carries out itself (a union, told apart by type)."""

@@ -54,7 +54,7 @@ def default_options(robot: Robot, keep: Options | None = None) -> Options:
         # q1 of most arms turns everything about the base axis and leaves w unchanged: map q2, q3.
         map_i=1 if robot.dof >= 3 else 0,
         map_j=2 if robot.dof >= 3 else min(1, robot.dof - 1),
-        derive_step=min(base.derive_step, robot.dof - 1),
+        derive_step=0,  # a new robot's walk starts at its joint 1, not at the last robot's step
     )
 
 

@@ -28,7 +28,16 @@ from ..core.snapshot import Snapshot
 from ..core.state import LabState
 from .ratelimit import RoomLimits
 
-__all__ = ["Classroom", "Member", "random_token", "token_weakness", "TOKEN_TRIES", "TOKEN_WINDOW"]
+__all__ = [
+    "Classroom",
+    "Member",
+    "random_token",
+    "token_weakness",
+    "TOKEN_TRIES",
+    "TOKEN_WINDOW",
+    "RESUME_GRACE",
+    "PRESENTER_AWAY",
+]
 
 TOKEN_TRIES = 5
 """Wrong tokens one address may type per :data:`TOKEN_WINDOW` seconds; more are refused unread."""
@@ -37,7 +46,12 @@ STRONG_BITS = 64
 """A token given by hand with less estimated randomness than this [bits] is warned about."""
 TAKEN_OVER = "Another tab took over as presenter: this tab now follows it."
 MAX_TOKEN_LENGTH = 200
-PRESENTER_LEFT = "The presenter has left: you keep what was shown and can explore on your own."
+RESUME_GRACE = 120.0
+"""A presenter whose tab closed (a reload, a lost connection) may come back this long [s] with its
+reconnect key, and keeps its role and its state; the followers follow it again."""
+PRESENTER_AWAY = (
+    "The presenter's connection dropped: you keep what was shown, and follow again when it is back."
+)
 
 
 def random_token() -> str:
@@ -83,6 +97,8 @@ class Member(Protocol):
 
     def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None: ...
 
+    def mirror_tab(self, label: str) -> None: ...
+
     def role_changed(self, role: Role) -> None: ...
 
     @property
@@ -119,6 +135,12 @@ class Classroom:
         self.limits = limits if limits is not None else RoomLimits(clock=clock)
         self._address_of = address_of
         self.relayed = 0
+        # Reconnection: a random key per presenter (never the token), the last state it showed, and
+        # until when a closed presenter may come back; the tab it has open.
+        self._resume_key = ""
+        self._resume_until: float | None = None
+        self._last: tuple[LabState, Snapshot] | None = None
+        self._tab = ""
 
     # ---------------------------------------------------------------- membership
     def join(self, key: int, member: Member) -> None:
@@ -130,6 +152,8 @@ class Classroom:
             state, snap = presenter.latest
             if snap is not None:
                 member.mirror(state, snap)
+            if self._tab:
+                member.mirror_tab(self._tab)
         self._tell_all()
 
     def closed(self, key: int) -> None:
@@ -141,9 +165,10 @@ class Classroom:
             was_presenter = key == self._presenter
             if was_presenter:
                 unsubscribe = self._stop_relay()
+                self._resume_until = self._clock() + RESUME_GRACE  # it may come back with its key
         if unsubscribe is not None:  # never under our lock: it takes the session's
             unsubscribe()
-        self._tell_all(PRESENTER_LEFT if was_presenter else "")
+        self._tell_all(PRESENTER_AWAY if was_presenter else "")
 
     # ---------------------------------------------------------------- the presenter
     def claim(self, key: int, token: str) -> str:
@@ -157,10 +182,43 @@ class Classroom:
         if why:
             return why
         with self._lock:
-            member = self._members.get(key)
-            if member is None:
+            if key not in self._members:
                 return "this tab is not connected"
-            replaced = self._presenter if self._presenter != key else None
+            self._resume_key, self._resume_until, self._last = secrets.token_urlsafe(24), None, None
+        self._present(key, None)
+        return ""
+
+    def resume(self, key: int, resume_key: str) -> tuple[LabState, Snapshot] | None | bool:
+        """Tab ``key`` comes back with the presenter's reconnect key (a reload, a lost connection, a new
+        tab of the same browser): it presents again, without the token, if the key is the current one
+        and the presenter is still connected or closed less than :data:`RESUME_GRACE` ago.
+
+        Returns:
+            False when refused; else the state and snapshot the presenter last showed, for the tab to
+            take over (``None`` when there is none).
+        """
+        with self._lock:
+            current = self._resume_key
+            fresh = self._presenter is not None or (
+                self._resume_until is not None and self._clock() <= self._resume_until
+            )
+            ok = bool(current) and fresh and hmac.compare_digest(resume_key.encode(), current.encode())
+            if not ok or key not in self._members:
+                return False
+            last, self._resume_until = self._last, None
+        self._present(key, last)
+        return last
+
+    def resume_key(self, key: int) -> str:
+        """The reconnect key of tab ``key`` if it presents (its page keeps it), else ""."""
+        with self._lock:
+            return self._resume_key if key == self._presenter else ""
+
+    def _present(self, key: int, restore: tuple[LabState, Snapshot] | None) -> None:
+        """Make tab ``key`` the presenter; relay what it shows (or ``restore``: what it showed before)."""
+        with self._lock:
+            member = self._members[key]
+            replaced = self._presenter if self._presenter not in (key, None) else None
             previous = self._stop_relay()
             self._presenter = key
             self._alone.discard(key)
@@ -174,11 +232,13 @@ class Classroom:
                 self._unsubscribe, unsubscribe = unsubscribe, None
         if unsubscribe is not None:  # it was replaced meanwhile
             unsubscribe()
-        state, snap = member.latest
-        if snap is not None:
-            self._relay(state, snap)
+        if restore is not None:
+            member.mirror(*restore)  # the tab takes over the state; its commit is relayed
+        else:
+            state, snap = member.latest
+            if snap is not None:
+                self._relay(state, snap)
         self._tell_all(personal={replaced: TAKEN_OVER} if replaced is not None else None)
-        return ""
 
     def address(self, key: int) -> str:
         """The network address of tab ``key`` (what wrong tokens are counted by)."""
@@ -195,6 +255,7 @@ class Classroom:
             if key != self._presenter:
                 return
             unsubscribe = self._stop_relay()
+            self._resume_key, self._resume_until, self._last, self._tab = "", None, None, ""
         if unsubscribe is not None:
             unsubscribe()
         self._tell_all("The presenter stopped presenting: explore on your own.")
@@ -222,6 +283,8 @@ class Classroom:
             state, snap = presenter.latest
             if snap is not None:
                 member.mirror(state, snap)
+            if self._tab:
+                member.mirror_tab(self._tab)
         self._tell_all()
 
     def role(self, key: int) -> Role:
@@ -253,6 +316,7 @@ class Classroom:
         with self._lock:
             targets = [self._members[k] for k in self._following_keys()]
             presenter = self._members.get(self._presenter) if self._presenter is not None else None
+            self._last = (state, snapshot)
         scene = presenter.scene_messages if presenter is not None else ()
         for member in targets:
             member.mirror(state, snapshot, scene)
@@ -266,6 +330,16 @@ class Classroom:
             targets = [self._members[k] for k in self._following_keys()]
         for member in targets:
             member.mirror_camera(position, look_at, up)
+
+    def tab(self, key: int, label: str) -> None:
+        """The presenter opened the tab ``label``: the followers open it too."""
+        with self._lock:
+            if key != self._presenter:
+                return
+            self._tab = label
+            targets = [self._members[k] for k in self._following_keys()]
+        for member in targets:
+            member.mirror_tab(label)
 
     def _tell_all(self, note: str = "", personal: dict[int, str] | None = None) -> None:
         """Tell every tab its role, with ``note`` (or its own note in ``personal``) unless it presents."""

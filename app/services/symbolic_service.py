@@ -257,15 +257,17 @@ class SymbolicService:
         key = (robot.fingerprint(), "inverse", bool(letters))
         return self._want(key, _inverse_mathml, robot, bool(letters), self.timeout)
 
-    def steps(self, robot: Robot, method: str) -> SymbolicFuture:
+    def steps(self, robot: Robot, method: str, letters: bool = False) -> SymbolicFuture:
         """A future of the steps of one derivation of J (``method``: "whitney", "differentiation",
-        "propagation" or "force") as (joint, key, caption HTML, MathML) tuples, for the Derive tab;
-        release with :meth:`release_steps`."""
-        return self._want((robot.fingerprint(), "steps", method), _steps_mathml, robot, method, self.timeout)
+        "propagation" or "force") as (joint, key, caption HTML, MathML) tuples, for the Derive tab
+        (``letters``: the DH lengths and offsets as the course's letters, every step, ⁰Tᵢ and the
+        tool's included); release with :meth:`release_steps`."""
+        key = (robot.fingerprint(), "steps", method, bool(letters))
+        return self._want(key, _steps_mathml, robot, method, self.timeout, bool(letters))
 
-    def release_steps(self, robot: Robot, method: str) -> None:
+    def release_steps(self, robot: Robot, method: str, letters: bool = False) -> None:
         """One client no longer waits for the steps of ``method`` for ``robot``."""
-        self._release((robot.fingerprint(), "steps", method))
+        self._release((robot.fingerprint(), "steps", method, bool(letters)))
 
     def _want(self, key: tuple, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
         with self._lock:
@@ -333,7 +335,9 @@ def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:
     return inverse_mathml(robot, symbolic_params=letters, timeout=timeout)
 
 
-def _steps_mathml(robot: Robot, method: str, timeout: float) -> tuple[tuple[int | None, str, str, str], ...]:
+def _steps_mathml(
+    robot: Robot, method: str, timeout: float, letters: bool = False
+) -> tuple[tuple[int | None, str, str, str], ...]:
     """In the worker process: every step of one derivation, its caption and its MathML (panel width)."""
     try:
         from kinematics.symbolic import derivation_steps
@@ -341,7 +345,7 @@ def _steps_mathml(robot: Robot, method: str, timeout: float) -> tuple[tuple[int 
         raise SymbolicUnavailable("symbolic steps not available (kinematics.symbolic is missing)") from exc
     return tuple(
         (s.joint, s.key, s.title_html(), s.mathml(STEP_WIDTH_PX))
-        for s in derivation_steps(robot, method, timeout=timeout)
+        for s in derivation_steps(robot, method, symbolic_params=letters, timeout=timeout)
     )
 
 

@@ -9,13 +9,15 @@ replaces it with the presenter's state, snapshot and scene messages; a refused i
 
 from __future__ import annotations
 
+import time
+
 from ..core.actions import Action, DriveTool
 from ..core.commands import Message, Mirror
 from ..core.reducer import reduce
 from ..core.state import LabState
 from .camera import is_jump
 
-__all__ = ["Batch", "coalesced"]
+__all__ = ["Batch", "coalesced", "VisitPace", "MAX_REDRAWS_PER_SECOND"]
 
 
 class Batch:
@@ -62,3 +64,39 @@ def coalesced(messages: list[Message]) -> list[Message]:
         for a, b in zip(messages, [*messages[1:], None], strict=True)
         if not (isinstance(a, DriveTool) and isinstance(b, DriveTool))
     ]
+
+
+MAX_REDRAWS_PER_SECOND = 40.0
+"""A tab is redrawn at most this often; faster input is coalesced (all of it is reduced, drawn once)."""
+COST_SHARE = 4.0
+"""After a visit that took t seconds of CPU (over :data:`COSTLY`), a tab waits COST_SHARE · t before
+the next: a slider redraw of a few ms is not held back; rebuilding a large robot over and over takes
+at most 1/(1 + COST_SHARE) of the renderer."""
+COSTLY = 0.02
+"""A visit taking more CPU than this [s] (a robot rebuilt, not a redraw) delays the tab's next."""
+
+
+class VisitPace:
+    """When a tab may be visited again: at most :data:`MAX_REDRAWS_PER_SECOND`, and a tab whose last
+    visit was costly waits :data:`COST_SHARE` times that cost, so that no tab takes more than a fair
+    share of the one renderer whatever its input asks for. Costs are the visiting thread's CPU time
+    (not time spent waiting for other tabs)."""
+
+    def __init__(self) -> None:
+        self._last_redraw = 0.0
+        self._cost = 0.0
+        self._started = 0.0
+
+    def start(self) -> None:
+        self._started = time.thread_time()
+
+    def finish(self) -> None:
+        cost = time.thread_time() - self._started
+        self._cost = min(cost, 1.0) if cost > COSTLY else 0.0
+
+    def redrawn(self) -> None:
+        self._last_redraw = time.monotonic()
+
+    def next_visit(self) -> float:
+        """[monotonic s]"""
+        return self._last_redraw + max(1.0 / MAX_REDRAWS_PER_SECOND, COST_SHARE * self._cost)

@@ -166,6 +166,12 @@ class TabCamera:
         elif jump or edited:
             self.frame_if_needed(scene.extent, pad)
 
+    def reset(self, scene: Any, state: LabState) -> None:
+        """Frame the whole of ``scene`` from the robot's default direction (the View tab's Reset view)."""
+        if scene is not None:
+            direction = FROM_ABOVE if state.robot.planar else facing(scene.extent)
+            self.frame(scene.extent, PAD * scene.size, direction, glide=False)
+
     def frame_across(self, points: np.ndarray, pad: float, axes: np.ndarray) -> None:
         """At a singular configuration: glide so that ``axes`` (k, 3), the lost directions, lie across
         the view (:func:`~app.views.camera.across`), or only re-frame if they already do."""

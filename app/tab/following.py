@@ -25,6 +25,7 @@ from ..core.commands import (
     FollowPresenter,
     Message,
     Mirror,
+    PageReport,
     Redraw,
     RequestDownload,
     StopPresenting,
@@ -43,7 +44,7 @@ TOKEN_PAUSE = 0.6
 """A typed presenter token is tried once the typing has paused this long [s]."""
 READ_ONLY_EVERY = 5.0
 """A follower that moves an input is reminded at most this often [s] that its inputs follow."""
-_ALWAYS = (*CLASSROOM, RequestDownload, ToggleRecording)
+_ALWAYS = (*CLASSROOM, RequestDownload, ToggleRecording, PageReport)
 """What a follower may still send."""
 
 
@@ -87,6 +88,7 @@ class Following:
         self._told_read_only = 0.0
         self._typed_token = ""
         self._token_timer: threading.Timer | None = None
+        self.page: Any = None  # the tab's PageLink (app.tab.page), set by the session
 
     @property
     def following(self) -> bool:
@@ -126,6 +128,28 @@ class Following:
         if not self._closed and self.role.following:
             self._camera.look(position, look_at, up)
 
+    def mirror_tab(self, label: str) -> None:
+        """Open the tab the presenter has open."""
+        if not self._closed and self.role.following and self.page is not None:
+            self.page.show_tab(label)
+
+    # ------------------------------------------------------------------ the page (app.tab.page)
+    def resume(self, key: str) -> bool:
+        """The page came back with a presenter's reconnect key: present again (with the state shown
+        before) if the classroom takes it; True when it did."""
+        if self.classroom is None or self.classroom.resume(self.key, key) is False:
+            if self.page is not None:
+                self.page.remember("")  # stale: forget it
+            return False
+        if self.page is not None:
+            self.page.remember(key)
+        return True
+
+    def tab_opened(self, label: str) -> None:
+        """The user opened tab ``label``: a presenter's followers open it too."""
+        if self.classroom is not None and self.role.presenting:
+            self.classroom.tab(self.key, label)
+
     def role_changed(self, role: Role) -> None:
         """The classroom says what this tab now is (redrawn on the renderer's next visit)."""
         following_before = self.role.following
@@ -147,6 +171,8 @@ class Following:
             self._claim(command)
         elif isinstance(command, StopPresenting):
             self.classroom.resign(self.key)
+            if self.page is not None:
+                self.page.remember("")
         elif isinstance(command, ExploreAlone):
             self.classroom.explore_alone(self.key)
         elif isinstance(command, FollowPresenter):
@@ -168,6 +194,10 @@ class Following:
         why = self.classroom.claim(self.key, command.token)
         if why:
             self._notices.notify("Not the presenter", why, seconds=6.0)
+        elif self.page is not None:  # the page keeps the reconnect key (never the token)
+            self.page.remember(self.classroom.resume_key(self.key))
+            if self.page.tab:
+                self.classroom.tab(self.key, self.page.tab)
 
     def camera_moved(self, camera: Any) -> None:
         """The presenter's camera moved: relay it to the followers."""

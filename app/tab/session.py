@@ -17,7 +17,6 @@ in any message is logged and shown to this tab only (:class:`~app.tab.notices.No
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import threading
 import time
@@ -27,7 +26,7 @@ import viser
 
 from ..core.actions import Action, Step
 from ..core.build_table import BUILT_NAME
-from ..core.commands import Message, Mirror, Redraw, SymbolicResult
+from ..core.commands import Message, Mirror, PageReport, Redraw, ResetView, SymbolicResult
 from ..core.role import Role
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
@@ -37,29 +36,22 @@ from ..services.renderer import Renderer
 from ..services.symbolic_service import SymbolicService
 from ..views.panel import PanelView
 from ..views.scene import SceneView
-from .batch import Batch, coalesced
+from .batch import MAX_REDRAWS_PER_SECOND, Batch, VisitPace, coalesced
 from .camera import TabCamera
 from .commands import CommandRunner
 from .following import Following
 from .notices import Notices
+from .page import PageLink
 from .recorder import TabRecorder
 from .robots import TabCatalog
 from .screen import Screen
+from .subscribers import Subscribers
 from .symbols import TabSymbols
 from .ticker import Ticker
 
 __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 
 log = logging.getLogger(__name__)
-
-MAX_REDRAWS_PER_SECOND = 40.0
-"""A tab is redrawn at most this often; faster input is coalesced (all of it is reduced, drawn once)."""
-COST_SHARE = 4.0
-"""After a visit that took t seconds of CPU (over :data:`COSTLY`), a tab waits COST_SHARE · t before
-the next: a slider redraw of a few ms is not held back; rebuilding a large robot over and over takes
-at most 1/(1 + COST_SHARE) of the renderer."""
-COSTLY = 0.02
-"""A visit taking more CPU than this [s] (a robot rebuilt, not a redraw) delays the tab's next."""
 
 
 class ClientSession:
@@ -86,9 +78,8 @@ class ClientSession:
         self._own_renderer = renderer is None
         self.renderer = renderer if renderer is not None else Renderer()
         self._drawing = threading.local()
-        self._last_redraw = 0.0
-        self._last_cost = 0.0
-        self._subscribers: list[Callable[[LabState, Snapshot], None]] = []
+        self.pace = VisitPace()
+        self.subscribers = Subscribers(self.key)
         self.notices = Notices(client, lambda: self._closed)
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.camera = TabCamera(client)
@@ -96,6 +87,11 @@ class ClientSession:
             self.key, classroom, self.dispatch, self.notices, self.ticker.stop, self.camera,
             self.subscribe, lambda: self.latest, lambda: self.screen.scene_messages,
         )  # fmt: skip
+        self.page = PageLink(
+            client, self.dispatch, self.catalog.names, self.catalog.load,
+            lambda title, body: self.notices.notify(title, body), lambda: self._closed,
+        )  # fmt: skip
+        self.page.following, self.following.page = self.following, self.page
         self.symbols = TabSymbols(symbolic, self.dispatch)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
@@ -126,10 +122,8 @@ class ClientSession:
         self.renderer.schedule(self)
 
     def next_visit(self) -> float:
-        """When this tab may be redrawn again [monotonic s]: at most MAX_REDRAWS_PER_SECOND, and a tab
-        whose last visit was costly (a robot rebuilt) waits COST_SHARE times that cost, so that no tab
-        takes more than a fair share of the one renderer whatever its input asks for."""
-        return self._last_redraw + max(1.0 / MAX_REDRAWS_PER_SECOND, COST_SHARE * self._last_cost)
+        """When this tab may be redrawn again [monotonic s] (:class:`~app.tab.batch.VisitPace`)."""
+        return self.pace.next_visit()
 
     @property
     def pending(self) -> bool:
@@ -166,7 +160,7 @@ class ClientSession:
         """
         with self._queue_lock:
             messages, self._queue = coalesced(self._queue), []
-        started = time.thread_time()  # the CPU this tab's visit takes, not time spent waiting for others
+        self.pace.start()
         if messages and not self._closed:
             with self.lock:
                 batch = Batch(self.state)
@@ -184,8 +178,7 @@ class ClientSession:
                         self.screen.draw_symbols(self.symbols)
                 except Exception as exc:  # the tab keeps its last good state on screen
                     self.notices.error(exc)
-        cost = time.thread_time() - started
-        self._last_cost = min(cost, 1.0) if cost > COSTLY else 0.0
+        self.pace.finish()
         with self._queue_lock:
             if self._queue and not self._closed:
                 return True
@@ -206,6 +199,10 @@ class ClientSession:
             batch.force = batch.force or not isinstance(message, Step)  # undo what the input shows
         elif isinstance(message, Action):
             batch.take(message)
+        elif isinstance(message, ResetView):
+            self.camera.reset(self.screen.scene, batch.state)
+        elif isinstance(message, PageReport):
+            self.page.take(message.text)
         else:
             result = self.commands.run(batch.state, message)
             if isinstance(result, Redraw):
@@ -232,30 +229,20 @@ class ClientSession:
             self._drawing.active = False
         self.state, self.snapshot = state, snap
         self.redraws += 1
-        self._last_redraw = time.monotonic()
+        self.pace.redrawn()
         if state.playing and not following:  # a follower moves with the presenter's clock
             self.ticker.start()
         else:
             self.ticker.stop()
         if not following:  # a follower's camera is the presenter's
             self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap)
-        for fn in list(self._subscribers):
-            try:
-                fn(state, snap)
-            except Exception:
-                log.exception("a subscriber of client %s failed", self.client.client_id)
+        self.page.update(state)  # a reload or a server restart comes back to this robot and q
+        self.subscribers.tell(state, snap)
 
     def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]:
         """Call ``fn(state, snapshot)`` after every commit (the classroom, a recorder); returns the
         unsubscribe function."""
-        with self.lock:
-            self._subscribers.append(fn)
-
-        def unsubscribe() -> None:
-            with self.lock, contextlib.suppress(ValueError):
-                self._subscribers.remove(fn)
-
-        return unsubscribe
+        return self.subscribers.add(fn)
 
     # ------------------------------------------------------------------ what the tab shows
     @property
@@ -305,6 +292,7 @@ class ClientSession:
         if self._own_renderer:
             self.renderer.close()
         self.camera.close()
+        self.page.close()
         with self.lock:
             self.symbols.release()
-            self._subscribers.clear()
+            self.subscribers.clear()

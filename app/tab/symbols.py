@@ -137,7 +137,10 @@ class TabSymbols:
             before.options.symbolic_inverse,
         ):
             self._jacobian_and_inverse(state)
-        if before is None or o.derive != before.options.derive:
+        if before is None or (o.derive, o.course_letters) != (
+            before.options.derive,
+            before.options.course_letters,
+        ):
             self._steps(state)
 
     def _jacobian_and_inverse(self, state: LabState) -> None:
@@ -160,8 +163,9 @@ class TabSymbols:
 
     def _steps(self, state: LabState) -> None:
         derive = state.options.derive
+        letters = state.options.course_letters and state.robot.dh is not None
         if self.steps.want(
-            (state.robot, "whitney" if derive == "dh" else derive) if derive else None,
+            (state.robot, "whitney" if derive == "dh" else derive, letters) if derive else None,
             "working out the step in symbols… (the numbers above are live)",
             _steps_ready,
         ):

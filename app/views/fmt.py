@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import html
 import math
+import re
 
-__all__ = ["number", "quantity", "fixed", "escape", "cleaned", "MINUS"]
+__all__ = ["number", "quantity", "fixed", "escape", "cleaned", "MINUS", "joint_label", "joint_words"]
 
 MINUS = "\u2212"
 _SUPERSCRIPT = str.maketrans(
@@ -89,3 +90,32 @@ def cleaned(values: object, rel: float = 1e-9) -> list[float]:
     finite = [abs(x) for x in xs if math.isfinite(x)]
     big = max(finite, default=0.0)
     return [0.0 if math.isfinite(x) and abs(x) <= rel * big else x for x in xs]
+
+
+_SYMBOL = re.compile(r"(?:[A-Za-zθ]{1,6}_?\d+|joint|link)", re.IGNORECASE)
+
+
+def joint_words(name: str, robot_name: str = "") -> str:
+    """The describing words of a joint's name, without the symbol it carries: "d3 boom" → "boom",
+    "A1" → "", "elbow_joint" → "elbow", "panda_joint4" (robot "panda") → "", "q4 wrist 1" → "wrist 1".
+
+    The app calls every joint qᵢ (the columns of J, the bars, the charts); a name's own symbol
+    (d3, A1, joint4) would be a second name for the same joint on the same screen.
+    """
+    words = [w for w in re.split(r"[\s_]+", name) if w]
+    drop = {robot_name.lower()} if robot_name else set()
+    kept = [w for w in words if not _SYMBOL.fullmatch(w) and w.lower() not in drop]
+    return " ".join(kept)
+
+
+def joint_label(i: int, name: str, robot_name: str = "", width: int = 13) -> str:
+    """Joint ``i``'s one name on screen: "q3" and the describing words of its own name, cut at a word
+    to at most ``width`` characters ("q1 shoulder pan", "q3 boom", "q1")."""
+    label = f"q{i + 1}"
+    words = joint_words(name, robot_name).split()
+    shown: list[str] = []
+    for w in words:
+        if len(" ".join([*shown, w])) > width:
+            break
+        shown.append(w)
+    return f"{label} {' '.join(shown)}" if shown else label

@@ -58,17 +58,43 @@ def html(robot: Robot, d: Derivation, snap: Snapshot) -> str:
 
 
 def draw(robot: Robot, d: Derivation, snap: Snapshot, unit: float, lin: float) -> Drawn:
+    """Every link's vₖ and ωₖ up to frame i, each readable: the longest of each kind drawn 0.35 × the
+    arm's size and none shorter than 0.08 × (a 0.5 m/s slide beside 26 m/s on the TRR's 24 m arm stays
+    visible); a label at every vₖ's tip and at ωᵢ's."""
     last = d.axes[-1]
+    links = d.numbers[: last + 1]
+    size = unit / 0.2  # the arm's size × the glyph scale
     thick: list = []
     thin: list = []
-    for k, link in enumerate(d.numbers[: last + 1]):
+    labels: list = []
+    v_draw = _readable([link.v for link in links], size)
+    w_draw = _readable([link.omega for link in links], size)
+    for k, (link, v, w) in enumerate(zip(links, v_draw, w_draw, strict=True)):
         target = thick if k == last else thin
-        target.append((link.origin, link.v * lin, TWIST_RGB))
-        target.append((link.origin, link.omega * unit, TWIST_ANGULAR_RGB))
-    link = d.numbers[last]
-    i = d.joint + 1
-    labels = [(f"v{sub(i)}", link.origin + link.v * lin), (f"ω{sub(i)}", link.origin + link.omega * unit)]
-    return thick, thin, [], labels
+        if v is not None:
+            target.append((link.origin, v, TWIST_RGB))
+            labels.append((f"v{sub(k + 1)}", link.origin + v))
+        if w is not None:
+            target.append((link.origin, w, TWIST_ANGULAR_RGB))
+    if w_draw[last] is not None:
+        labels.append((f"ω{sub(last + 1)}", d.numbers[last].origin + w_draw[last]))
+    return thick, thin, [], labels[-6:]
+
+
+def _readable(vectors: list, size: float) -> list[np.ndarray | None]:
+    """Drawn vectors of one kind: the longest 0.35 × ``size``, none shorter than 0.08 × ``size``
+    (direction kept), a zero vector not drawn (``None``)."""
+    norms = [float(np.linalg.norm(v)) for v in vectors]
+    top = max(norms, default=0.0)
+    if not math.isfinite(top) or top <= 1e-12:
+        return [None] * len(vectors)
+    out: list[np.ndarray | None] = []
+    for v, n in zip(vectors, norms, strict=True):
+        if n <= 1e-9 * top:
+            out.append(None)
+            continue
+        out.append(np.asarray(v, float) / n * max(0.35 * size * n / top, 0.08 * size))
+    return out
 
 
 VIEW = MethodView(METHODS["propagation"], html, draw)

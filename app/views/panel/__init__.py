@@ -23,7 +23,7 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.commands import ChooseChain, ChooseRobot, ToggleRecording
+from ...core.commands import ChooseChain, ChooseRobot, PageReport, ResetView, ToggleRecording
 from ...core.options import options_of
 from ...core.role import Role
 from ...core.snapshot import Snapshot
@@ -39,10 +39,12 @@ from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .matrix import MatrixPanel
 from .motion import MapsPanel, MotionPanel, slider_ids
+from .page import page_js as page_state_js
 from .readouts import source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
+from .typed import NUMBER_GUARD_JS
 
-__all__ = ["PanelView", "PANEL_WIDTH"]
+__all__ = ["PanelView", "PANEL_WIDTH", "TAB_LABELS"]
 
 
 _LEGEND = (
@@ -76,6 +78,12 @@ class PanelView:
         gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
         run_javascript(client, LAYOUT_JS)
+        run_javascript(client, NUMBER_GUARD_JS)
+        # The page's channel back (its address, a presenter's reconnect key, the open tab): a text
+        # input the page script hides and fills (app.views.panel.page).
+        self.report = gui.add_text("page", "", order=10_000)
+        bind(self.report, dispatch, lambda v: PageReport(str(v)) if str(v) else None)
+        run_javascript(client, page_state_js(handle_uuid(self.report)))
         set_page_title(client, PAGE_TITLE)
         self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
         bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
@@ -91,6 +99,8 @@ class PanelView:
         self.tabs = {tab.name: self.views.add_tab(tab.label, tab.icon) for tab in TABS}
         self.views.dock_below(gui.main_panel)
         with self.tabs["about"]:
+            self.reset_view = gui.add_button("Reset view: frame the arm", icon=viser.Icon.FOCUS_CENTERED)
+            self.reset_view.on_click(lambda _: dispatch(ResetView()))
             self.toggles = {}
             for row in options_of("view"):
                 if row.kind == "bool":
@@ -260,6 +270,9 @@ TABS: tuple[Tab, ...] = (
     Tab("about", "View", viser.Icon.EYE, About),
     Tab("build", "Build", viser.Icon.TOOL, None),
 )
+
+TAB_LABELS = tuple(tab.label for tab in TABS)
+"""The tabs of the views of J, in order (the page keeps the open one in its address)."""
 """The panel's tabs, in the order they are shown. A tab is one module (its view) and one entry here;
 its options are rows of :data:`app.core.options.OPTIONS`. The View tab ("about") also holds the
 option table's glyph toggles and the Build tab the robot editor, both built once per tab."""

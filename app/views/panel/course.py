@@ -20,6 +20,7 @@ from ...core.snapshot.course import REPRESENTATIONS, AnalyticView, InverseView
 from ...core.state import LabState
 from .. import fmt
 from ..palette import joint_hex, joint_text_hex
+from .errata import erratum_html
 from .readouts import ROW_NAMES
 
 __all__ = ["inverse_html", "example_html", "analytic_html", "grid_html", "J_INV", "J_PLUS"]
@@ -137,6 +138,7 @@ def analytic_html(view: AnalyticView | None, robot: Robot, rank: int, rows: tupl
         f'<div class="jl-note">M(φ), with ω = M(φ) φ̇ (kinematics.analytic_jacobian calls it B(φ)); '
         f"det M = {fmt.number(view.det_M, 4)}</div>" + grid_html(view.M, m_heads, rate_heads, 3)
     )
+    parts.append(erratum_html("M"))
     if view.singular:
         which = "pitch β = ±90°" if view.convention == "zyx" else "θ = 0 or 180°"
         parts.append(
@@ -167,5 +169,6 @@ def accel_html(jdot_qd: np.ndarray | None) -> str:
         f'<tr class="accel"><th class="rowname">J̇ q̇</th>{cells}</tr></table>'
         '<div class="jl-note">ẍ = J q̈ + J̇ q̇; here q̈ = 0 (constant rates), so ẍ = J̇ q̇: the tool '
         "accelerates although every joint turns steadily. v̇ in m/s², ω̇ in °/s², base axes; "
-        "violet arrow at the tool (drawn 0.5 m per m/s²).</div></div>"
+        "violet arrow at the tool (drawn 0.5 m per m/s²).</div>"
+        f"{erratum_html('jdot')}</div>"
     )

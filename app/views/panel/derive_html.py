@@ -25,8 +25,13 @@ from ..palette import joint_text_hex
 __all__ = ["dh_table_html", "step_html", "matrix4_html", "formulas_html"]
 
 
-def _angle(x: float) -> str:
-    return fmt.quantity(math.degrees(x), "°", 4)
+def _angle(x: float, digits: int = 4) -> str:
+    return fmt.quantity(math.degrees(x), "°", digits)
+
+
+_DH_DIGITS = 6
+"""Significant digits of the DH table's constants: the robot file's own numbers (the Puma's
+d₃ = 0.15005 m, the value the formulas use), not 0.15."""
 
 
 def dh_table_html(robot: Robot, q: np.ndarray, selected: int | None) -> str:
@@ -66,14 +71,14 @@ def _dh_parts(robot: Robot) -> tuple[str, tuple[tuple[str, str], ...], str]:
         color = joint_text_hex(j)
         var = f"q{sub(j + 1)}"
         if row.joint == "revolute":
-            theta = f"{var} + {_angle(row.theta)}" if abs(row.theta) > 1e-12 else var
+            theta = f"{var} + {_angle(row.theta, _DH_DIGITS)}" if abs(row.theta) > 1e-12 else var
             theta = f'<b style="color:{color}">{theta} = {mark}</b>'
-            d = fmt.quantity(row.d, "m", 4)
+            d = fmt.quantity(row.d, "m", _DH_DIGITS)
         else:
-            d = f"{var} + {fmt.quantity(row.d, 'm', 4)}" if abs(row.d) > 1e-12 else var
+            d = f"{var} + {fmt.quantity(row.d, 'm', _DH_DIGITS)}" if abs(row.d) > 1e-12 else var
             d = f'<b style="color:{color}">{d} = {mark}</b>'
-            theta = _angle(row.theta)
-        a, alpha = fmt.quantity(row.a, "m", 4), _angle(row.alpha)
+            theta = _angle(row.theta, _DH_DIGITS)
+        a, alpha = fmt.quantity(row.a, "m", _DH_DIGITS), _angle(row.alpha, _DH_DIGITS)
         cells = (str(j + 1), theta, d, a, alpha) if standard else (str(j + 1), alpha, a, theta, d)
         before, after = "".join(f"<td>{c}</td>" for c in cells).split(mark)
         rows.append((before, after))

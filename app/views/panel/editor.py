@@ -94,11 +94,14 @@ class EditorPanel:
             self.summary = gui.add_html("")
             self.row = gui.add_dropdown("Edit row", ("1",), hint="The row the inputs below edit.")
             self.kind = gui.add_dropdown("Joint", ("revolute", "prismatic"))
-            self.a = gui.add_number("a [m]", 0.0, step=1e-5, hint="Link length: along x(i)")
-            self.alpha = gui.add_number("α [°]", 0.0, step=0.01, hint="Link twist: about x(i)")
-            self.d = gui.add_number("d [m]", 0.0, step=1e-5, hint="Link offset: along z(i-1)")
-            self.theta = gui.add_number("θ offset [°]", 0.0, step=0.01, hint="Added to q (revolute)")
-            self.limits = gui.add_vector2("Limits [°]", (-180.0, 180.0), step=0.01, hint="lower, upper")
+            # Text boxes, read by app.core.numbers: what is typed is kept ("1e-3", "0.15005"), and
+            # what is not a number is refused in words (a number box would mangle it silently).
+            self.a = gui.add_text("a [m]", "0", hint="Link length: along x(i)")
+            self.alpha = gui.add_text("α [°]", "0", hint="Link twist: about x(i)")
+            self.d = gui.add_text("d [m]", "0", hint="Link offset: along z(i-1)")
+            self.theta = gui.add_text("θ offset [°]", "0", hint="Added to q (revolute)")
+            self.lower = gui.add_text("Lower limit [°]", "-180", hint="The joint's lower limit")
+            self.upper = gui.add_text("Upper limit [°]", "180", hint="The joint's upper limit")
             self.problem = gui.add_html("")  # the message again, in sight of the inputs
             self.rows = gui.add_button_group("Rows", ROW_BUTTONS)
             self.download = gui.add_button_group("Download", tuple(DOWNLOADS))
@@ -112,9 +115,8 @@ class EditorPanel:
         self._on(self.convention, lambda v: self._edit(convention=str(v)))
         self._on(self.row, lambda v: self.select(int(str(v)) - 1) if str(v).isdigit() else None)
         self._on(self.kind, lambda v: self.set_field("joint", v))
-        for field, handle in (("a", self.a), ("alpha", self.alpha), ("d", self.d), ("theta", self.theta)):
+        for field, handle in self._fields():
             self._on(handle, functools.partial(self.set_field, field))
-        self._on(self.limits, self.set_limits)
         self.rows.on_click(lambda event: self._guarded(self.row_operation, event.target.value))
         self.download.on_click(lambda event: dispatch(RequestDownload(DOWNLOADS[str(event.target.value)])))
         self.upload.on_upload(lambda event: self._uploaded(event.target.value))
@@ -166,8 +168,19 @@ class EditorPanel:
             self._show_inputs()
             self._show_summary()
 
+    def _fields(self) -> tuple[tuple[str, viser.GuiTextHandle], ...]:
+        return (
+            ("a", self.a),
+            ("alpha", self.alpha),
+            ("d", self.d),
+            ("theta", self.theta),
+            ("lo", self.lower),
+            ("hi", self.upper),
+        )
+
     def set_field(self, field: str, value: object) -> None:
-        """Set ``field`` ("joint", "a", "alpha", "d", "theta") of the selected row to ``value`` (degrees)."""
+        """Set ``field`` ("joint", "a", "alpha", "d", "theta", "lo", "hi") of the selected row to
+        ``value`` as typed (degrees; checked when the table is built)."""
         row = self.table.rows[self.selected]
         changes: dict[str, Any] = {field: value}
         row = row.with_kind(str(value)) if field == "joint" else dataclasses.replace(row, **changes)
@@ -247,11 +260,11 @@ class EditorPanel:
             _set(self.row, str(self.selected + 1))
             _set(self.convention, self.table.convention)
             _set(self.kind, row.joint)
-            for handle, field in ((self.a, "a"), (self.alpha, "alpha"), (self.d, "d"), (self.theta, "theta")):
-                _set(handle, _shown(getattr(row, field)))
-            _set(self.limits, (_shown(row.lo), _shown(row.hi)))
+            for field, handle in self._fields():
+                _set(handle, _typed(getattr(row, field)))
             revolute = row.joint == "revolute"
-            self.limits.label = "Limits [°]" if revolute else "Limits [m]"
+            self.lower.label = "Lower limit [°]" if revolute else "Lower limit [m]"
+            self.upper.label = "Upper limit [°]" if revolute else "Upper limit [m]"
             self.theta.label = "θ offset [°]" if revolute else "θ [°]"
             self.d.label = "d [m]" if revolute else "d offset [m]"
         finally:
@@ -287,12 +300,14 @@ def _set(handle: Any, value: object) -> None:
     handle.value = value
 
 
-def _shown(value: object) -> float:
-    """A float for an input (a bad value typed stays as the input shows it; NaN for text)."""
+def _typed(value: object) -> str:
+    """What an input shows: the text as typed, or a number in its shortest exact form (0.15005)."""
+    if isinstance(value, str):
+        return value
     try:
-        return float(value)  # type: ignore[arg-type]
+        return format(float(value), ".12g")  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):
-        return float("nan")
+        return str(value)
 
 
 def _cell(value: object) -> str:

@@ -28,10 +28,10 @@ MOVED = "— (moved)"
 """What the configuration dropdown shows when the arm is at no named configuration."""
 
 
-def slider_label(i: int, name: str, unit: str) -> str:
-    """A short slider label: the joint's own name when short ("q2 shoulder"), else "q3"; and the unit."""
-    short = name if len(name) <= 12 else f"q{i + 1}"
-    return f"{short} [{unit}]"
+def slider_label(i: int, name: str, unit: str, robot_name: str = "") -> str:
+    """A slider label: the joint's one name, qᵢ (as in the columns of J), with the describing words of
+    its own name ("q3 boom", "q1", "q3 elbow") and the unit."""
+    return f"{fmt.joint_label(i, name, robot_name)} [{unit}]"
 
 
 def configuration_label(name: str) -> str:
@@ -52,7 +52,7 @@ class JointsPanel:
             for i, (joint, r) in enumerate(zip(robot.joints, self.ranges, strict=True)):
                 value = min(max(to_display(r, robot.home[i]), r.lo), r.hi)
                 slider = gui.add_slider(
-                    slider_label(i, joint.name, r.unit),
+                    slider_label(i, joint.name, r.unit, robot.name),
                     min=r.lo,
                     max=r.hi,
                     step=r.step,

@@ -41,6 +41,7 @@ from .. import fmt
 from ..palette import joint_hex, joint_text_hex
 from .common import Dispatch, bind, bind_click, option_widget, show_option, sync_value
 from .course import accel_html, example_html, inverse_html
+from .errata import erratum_html
 from .readouts import ROW_NAMES
 from .style import slider_css
 
@@ -87,7 +88,7 @@ def vector_table_html(rows: tuple[int, ...], columns: list[tuple[str, np.ndarray
     body = []
     for label, twist, css in columns:
         shown = fmt.cleaned([twist[r] if r < 3 else math.degrees(twist[r]) for r in rows])
-        cells = "".join(f"<td>{fmt.number(x)}</td>" for x in shown)
+        cells = "".join(f"<td>{fmt.number(x, 5)}</td>" for x in shown)  # the course's 17.256
         body.append(f'<tr class="{css}"><th class="rowname">{label}</th>{cells}</tr>')
     units = "v in m/s, ω in °/s" if any(r >= 3 for r in rows) else "m/s"
     return (
@@ -96,10 +97,17 @@ def vector_table_html(rows: tuple[int, ...], columns: list[tuple[str, np.ndarray
     )
 
 
+TYPED_DIGITS = 4
+"""Decimals a slider's box keeps when a value is typed (the course's v = 17.256 m/s, 89.98 °/s); the
+slider's step only sets how far one drag or arrow key moves."""
+
+
 def _slider(gui: viser.GuiApi, label: str, r: Range, hint: str) -> viser.GuiSliderHandle:
-    return gui.add_slider(
+    slider = gui.add_slider(
         f"{label} [{r.unit}]", min=r.lo, max=r.hi, step=r.step, initial_value=0.0, hint=hint
     )
+    slider.precision = max(int(slider.precision), TYPED_DIGITS)
+    return slider
 
 
 class ForwardPanel:
@@ -347,7 +355,8 @@ class ForcePanel:
             self.robot,
             [full] * self.robot.dof,
             f"Joint torques τ = Jᵀ F that hold the wrench (full bar: {fmt.number(full)} N·m or N). "
-            "At a singularity a force along the lost direction needs no torque at all.",
+            "At a singularity a force along the lost direction needs no torque at all."
+            + erratum_html("forces"),
         )
 
     def remove(self) -> None:

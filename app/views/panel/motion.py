@@ -33,6 +33,7 @@ from ...viser_adapter import handle_uuid
 from .. import fmt
 from ..palette import joint_hex
 from .common import Dispatch, bind, option_widget, show_option, sync_value
+from .errata import erratum_html
 
 __all__ = ["MotionPanel", "MapsPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 
@@ -118,6 +119,7 @@ class MotionPanel:
             self.redundant = rows is not None
             self.self_slider: viser.GuiSliderHandle | None = None
             self.self_chart = None
+            self.notes: list[viser.GuiHtmlHandle] = []  # the course's error beside the climb
             if rows is not None:
                 with gui.add_folder("Redundancy: move with the tool held", expand_by_default=False):
                     held = ", ".join(ROW_TEXT[r] for r in rows)
@@ -140,6 +142,7 @@ class MotionPanel:
                     bind(self.self_slider, dispatch, lambda v: SelfMove(float(v)))
                     climb = gui.add_button("Climb manipulability", icon=viser.Icon.TRENDING_UP)
                     climb.on_click(lambda _: dispatch(Play(True, "climb")))
+                    self.notes.append(gui.add_html(f'<div class="jl">{erratum_html("gradient")}</div>'))
                     self.self_chart = gui.add_uplot(
                         (np.zeros(1), np.zeros(1)),
                         ({"label": "s"}, {"label": "w", "stroke": "#3b5bdb", "width": 2}),
@@ -261,7 +264,7 @@ def _readout(state: LabState, snap: Snapshot, pending: bool = False) -> str:
         )
     rows = snap.rows
     v = [state.v_desired[r] if r < 3 else math.degrees(state.v_desired[r]) for r in rows]
-    parts = ", ".join(f"{ROW_TEXT[r]} {fmt.number(x)}" for r, x in zip(rows, v, strict=True))
+    parts = ", ".join(f"{ROW_TEXT[r]} {fmt.number(x, 5)}" for r, x in zip(rows, v, strict=True))
     axes = "tool" if state.options.twist_frame == "tool" else "base"
     doing = {
         "resolved_rate": "holding v",

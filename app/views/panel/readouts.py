@@ -12,6 +12,7 @@ from kinematics.conventions import ROW_HTML
 
 from ...core.snapshot import Loss, Snapshot
 from ...core.state import LabState
+from ...core.words import status_words
 from .. import fmt
 from ..palette import status_hex
 
@@ -128,9 +129,10 @@ _LAST_STATUS: list[tuple[Snapshot, LabState, str] | None] = [None]
 def _status_html(snap: Snapshot, state: LabState) -> str:
     r = snap.report
     icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
+    words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration)
     banner = (
         f'<div class="jl-status" style="background:{status_hex(r.status)}" data-status="{r.status}">'
-        f"<span>{icon}</span><span>{fmt.escape(r.text())}</span>"
+        f"<span>{icon}</span><span>{fmt.escape(words)}</span>"
         f'<small style="margin-left:auto">κ = {fmt.number(r.condition)}</small></div>'
     )
     robot = state.robot

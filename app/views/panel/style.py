@@ -61,6 +61,7 @@ BASE_CSS = """
 .jl-vec td { text-align: right; padding: 1px 4px; white-space: nowrap; }
 .jl-vec tr.lost td { color: #96001a; font-weight: 700; }
 .jl-warn { color: #96001a; font-weight: 600; font-size: 13px; }
+.jl-erratum { color: #5c3c00; background: #fff4d6; border-left: 3px solid #b8860b; padding: 2px 6px; margin: 4px 0; font-size: 12.5px; }
 .jl-conf { margin: 2px 0 0 0; padding-left: 1.1em; font-size: 12.5px; color: #3d434b; }
 .jl-conf li { margin: 1px 0; }
 .jl-conf b { color: #1f2328; }

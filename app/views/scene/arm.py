@@ -263,10 +263,9 @@ class ArmView:
 
 
 def _short(j: int, name: str) -> str:
-    """Label of joint ``j`` in the 3-D view: its first word when short ("q1 waist" → "q1"), else "q{j+1}"
-    (like the columns of J), so long URDF names ("panda_joint4") never crowd the view."""
-    words = name.split()
-    return words[0] if words and len(words[0]) <= 6 else f"q{j + 1}"
+    """Label of joint ``j`` in the 3-D view: "q{j+1}", its one name (like the columns of J and the
+    sliders), whatever symbol its own name carries (d3, A1, panda_joint4)."""
+    return f"q{j + 1}"
 
 
 def _nice(x: float) -> float:

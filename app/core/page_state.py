@@ -1,0 +1,122 @@
+"""What a tab's page keeps across a reload or a server restart, read back as hostile input.
+
+The page keeps the tab's robot, q and open tab in its address (``?robot=puma560&q=0,0.5,…&tab=Motion``)
+and a presenter's reconnect key in its local storage; on every (re)connection its script reports
+them (:mod:`app.views.panel.page`). Anyone can edit an address, so everything is checked like a
+widget value: a bounded JSON object of known keys, a robot of the catalogue, q of the robot's
+joint count, finite, clamped to its slider ranges, and a tab of the panel's.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from dataclasses import dataclass
+from urllib.parse import parse_qs, quote
+
+from kinematics import Robot
+
+from .ranges import joint_ranges
+
+__all__ = ["PageReport", "PageError", "parse_report", "page_address", "checked_q", "MAX_REPORT"]
+
+MAX_REPORT = 4096
+"""Longest report a page may send [characters]."""
+_SECRET = re.compile(r"[A-Za-z0-9_\-]{16,64}")
+_NAME = re.compile(r"[^\x00-\x1f\x7f]{1,120}")
+
+
+class PageError(ValueError):
+    """A report or an address that cannot be taken; the message says what is wrong, in words."""
+
+
+@dataclass(frozen=True)
+class PageReport:
+    """One report of the page.
+
+    Attributes:
+        kind: "load" (the page (re)connected: restore) or "tab" (the user opened a tab).
+        resume: The presenter's reconnect key kept by the page ("" when none).
+        robot: The robot named in the address ("" when none).
+        q: The joint values of the address [rad | m] (unchecked against a robot), or ``None``.
+        tab: The open tab's label ("" when none).
+    """
+
+    kind: str
+    resume: str = ""
+    robot: str = ""
+    q: tuple[float, ...] | None = None
+    tab: str = ""
+
+
+def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
+    """The page's report ``text`` (JSON), checked.
+
+    Raises:
+        PageError: not text, too long, not a JSON object, an unknown kind, a bad key, robot, q or tab.
+    """
+    if not isinstance(text, str) or len(text) > MAX_REPORT:
+        raise PageError("the page's report is not text of at most 4096 characters")
+    try:
+        data = json.loads(text)
+    except ValueError:
+        raise PageError("the page's report is not JSON") from None
+    if not isinstance(data, dict) or data.get("kind") not in ("load", "tab"):
+        raise PageError("the page's report is not a load or tab report")
+    tab = data.get("tab", "")
+    if not isinstance(tab, str) or (tab and tab not in tabs):
+        raise PageError(f"there is no tab {str(tab)[:40]!r}")
+    if data["kind"] == "tab":
+        return PageReport("tab", tab=tab)
+    resume = data.get("resume", "")
+    if not isinstance(resume, str) or (resume and not _SECRET.fullmatch(resume)):
+        resume = ""  # a stale or edited key is not an error: the tab simply does not present
+    address = data.get("address", "")
+    if not isinstance(address, str):
+        raise PageError("the page's address is not text")
+    robot, q, tab_in_address = _address(address)
+    if tab_in_address and tab_in_address not in tabs:
+        tab_in_address = ""  # an edited tab name: the default tab
+    return PageReport("load", resume, robot, q, tab_in_address or tab)
+
+
+def _address(address: str) -> tuple[str, tuple[float, ...] | None, str]:
+    fields = parse_qs(address.lstrip("?#"), keep_blank_values=False, max_num_fields=8)
+    robot = fields.get("robot", [""])[0]
+    if robot and not _NAME.fullmatch(robot):
+        raise PageError("the address names no robot this lab can show")
+    q: tuple[float, ...] | None = None
+    if "q" in fields:
+        parts = fields["q"][0].split(",")
+        if len(parts) > 64:
+            raise PageError("the address's q has more than 64 joints")
+        try:
+            q = tuple(float(p) for p in parts)
+        except ValueError:
+            raise PageError("the address's q is not a list of numbers") from None
+        if not all(math.isfinite(x) for x in q):
+            raise PageError("the address's q is not finite")
+    return robot, q, fields.get("tab", [""])[0]
+
+
+def checked_q(robot: Robot, q: tuple[float, ...]) -> tuple[float, ...]:
+    """``q`` [rad | m] for ``robot``: its joint count, each value clamped to the joint's slider range.
+
+    Raises:
+        PageError: a joint count other than the robot's.
+    """
+    if len(q) != robot.dof:
+        raise PageError(f"the address's q has {len(q)} values, {robot.name} has {robot.dof} joints")
+    return tuple(r.clamp_si(x) for r, x in zip(joint_ranges(robot), q, strict=True))
+
+
+def page_address(robot_name: str, q: tuple[float, ...] | list[float]) -> str:
+    """The address fragment of a robot and q (6 decimals: µrad and µm), e.g. ``robot=trr&q=5,1.047198,…``."""
+    values = ",".join(_short(float(x)) for x in q)
+    return f"robot={quote(robot_name, safe='')}&q={values}"
+
+
+def _short(x: float) -> str:
+    text = f"{x:.6f}".rstrip("0").rstrip(".")
+    return "0" if text in ("", "-0") else text
