@@ -46,6 +46,9 @@ class Lab:
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: With a token, classroom mode: the tab that types it presents and every
             other tab follows (see :mod:`app.services.classroom`).
+        symbolic: The service that computes the symbolic J, J⁻¹, steps and exports (default: a new
+            :class:`~app.services.symbolic_service.SymbolicService` with worker processes). The lab
+            closes it on :meth:`stop`. Tests pass an immediate in-process fake.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -61,6 +64,7 @@ class Lab:
         base_link: str | None = None,
         tip_link: str | None = None,
         presenter_token: str | None = None,
+        symbolic: SymbolicService | None = None,
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
@@ -73,7 +77,7 @@ class Lab:
         install_message_limits()  # what one websocket message and one tab may cost
         install_fast_prop_casts()
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
-        self.symbolic = SymbolicService()
+        self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
         self.server = viser.ViserServer(host=host, port=port, verbose=False)

@@ -1,4 +1,5 @@
-"""Shared test settings: hypothesis profiles."""
+"""Shared test settings and fixtures: hypothesis profiles, a private cache, and a running lab per module
+(with the immediate fake symbolic service, or the real one for the tests of the symbolic J)."""
 
 from __future__ import annotations
 
@@ -35,16 +36,27 @@ def _private_cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def lab_client():
-    """One running lab (a free port) and one websocket client per test module; always stopped."""
+    """One running lab (a free port) and one websocket client per test module; always stopped. Its
+    symbolic service is :class:`fakes.FakeSymbolicService` (immediate placeholders, no worker)."""
     from app_helpers import running_lab
 
     with running_lab() as (lab, session, ws):
         yield lab, session, ws
 
 
-@pytest.fixture
-def session(lab_client):
-    """The module's session, reset to a fresh state of the default robot, so each test stands alone."""
+@pytest.fixture(scope="module")
+def symbolic_lab_client():
+    """:func:`lab_client` with the real symbolic service (worker processes): for the tests of the
+    symbolic J, J⁻¹, steps and exports in the app (mark them ``slow``)."""
+    from app_helpers import running_lab
+
+    from app.services.symbolic_service import SymbolicService
+
+    with running_lab(symbolic=SymbolicService()) as (lab, session, ws):
+        yield lab, session, ws
+
+
+def _fresh(lab_client):
     from app.core.actions import ReplaceState
     from app.core.state import LabState
 
@@ -53,3 +65,15 @@ def session(lab_client):
     session.settle()
     assert session.state.configuration == "home"
     return session
+
+
+@pytest.fixture
+def session(lab_client):
+    """The module's session, reset to a fresh state of the default robot, so each test stands alone."""
+    return _fresh(lab_client)
+
+
+@pytest.fixture
+def symbolic_session(symbolic_lab_client):
+    """:func:`session` of the lab with the real symbolic service."""
+    return _fresh(symbolic_lab_client)

@@ -8,8 +8,9 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 from pathlib import Path
+
+from fakes import poll  # noqa: F401  (the tests import it from here too)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -45,17 +46,6 @@ def children(pid: int) -> list[int]:
         for p in session_processes(os.getsid(pid))
         if p != pid and (proc_stat(p) or ["", "0"])[1] == str(pid)
     ]
-
-
-def poll(predicate, timeout: float = 30.0, what: str = "condition"):
-    end = time.monotonic() + timeout
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.monotonic() > end:
-            raise AssertionError(f"{what} not reached within {timeout} s")
-        time.sleep(0.02)
 
 
 def cmdline(pid: int) -> str:

@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 import pytest
+from fakes import random_q
 from hypothesis import given
 from hypothesis import strategies as st
-from kinematics_helpers import random_q
 
 import robots
 from kinematics import (

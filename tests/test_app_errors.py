@@ -6,7 +6,8 @@ import math
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, nonfinite_paths, wait_until
+from app_helpers import assert_all_finite, nonfinite_paths
+from fakes import poll
 from wsclient import ViserWsClient
 
 from app.core.actions import GoTo
@@ -34,7 +35,7 @@ def test_an_error_is_shown_to_that_client_only(lab_client, session, monkeypatch)
     assert session.errors == errors + 1
     assert session.state.q[0] == pytest.approx(math.radians(13.0))
     with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as other:
-        wait_until(lambda: len(lab.sessions) == 2)
+        poll(lambda: len(lab.sessions) == 2)
         second = lab.session()
         assert second is not session and second.errors == 0
         second.panel.joints.sliders[0].value = -40.0
@@ -42,7 +43,7 @@ def test_an_error_is_shown_to_that_client_only(lab_client, session, monkeypatch)
         assert session.state.q[0] == pytest.approx(math.radians(13.0))
         assert second.state.q[0] == pytest.approx(math.radians(-40.0))
         assert other.wait_for(lambda m: m["type"] == "SceneNodeUpdateMessage")
-    wait_until(lambda: len(lab.sessions) == 1)
+    poll(lambda: len(lab.sessions) == 1)
 
 
 def test_a_nonfinite_value_from_the_page_is_refused(lab_client, session):
@@ -50,7 +51,7 @@ def test_a_nonfinite_value_from_the_page_is_refused(lab_client, session):
     q = session.state.q.copy()
     errors = session.errors
     ws.set_value(handle_uuid(session.panel.joints.sliders[2]), math.nan)
-    wait_until(lambda: session.errors == errors + 1)
+    poll(lambda: session.errors == errors + 1)
     np.testing.assert_array_equal(session.state.q, q)
     session.panel.joints.sliders[0].value = 5.0  # the next event redraws as usual
     session.settle()

@@ -7,7 +7,8 @@ import math
 
 import numpy as np
 import pytest
-from app_helpers import running_lab, wait_until
+from app_helpers import running_lab
+from fakes import POLL_TIMEOUT, FakeClock, poll
 from wsclient import ViserWsClient
 
 import robots
@@ -27,16 +28,8 @@ from app.views.palette import (
 )
 
 
-class FakeClock:
-    def __init__(self) -> None:
-        self.now = 100.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
 def test_ticker_dispatches_the_elapsed_time_as_steps():
-    clock = FakeClock()
+    clock = FakeClock(100.0)
     got: list[float] = []
     ticker = Ticker(lambda action: got.append(action.dt), rate=30.0, clock=clock)
     ticker._last = clock()
@@ -51,7 +44,7 @@ def test_playing_moves_the_joints_in_time_on_a_fake_clock():
     """The reducer integrates q̇ over the ticker's steps: q(t) = q0 + q̇ t, exactly."""
     puma = robots.load("puma560")
     state = reduce(reduce(LabState.initial("puma560", puma), SetRate(1, 0.2)), Play(True))
-    clock = FakeClock()
+    clock = FakeClock(100.0)
     ticker = Ticker(lambda a: None, rate=30.0, clock=clock)
     ticker._last = clock()
     steps = []
@@ -73,7 +66,7 @@ def test_a_tab_plays_on_its_own_ticker_and_stops_when_closed():
         session.settle()
         assert session.ticker.running
         q0 = session.state.q[0]
-        wait_until(lambda: session.state.q[0] > q0 + 0.05, timeout=10)  # moving by itself
+        poll(lambda: session.state.q[0] > q0 + 0.05)  # moving by itself
         assert session.panel.forward.play.label == "Pause"
         session.dispatch(Play(False))
         session.settle()
@@ -159,7 +152,7 @@ def test_a_tab_closed_while_its_session_is_built_is_forgotten(monkeypatch):
     class SlowSession(ClientSession):
         def __init__(self, *args, **kwargs):
             building.set()
-            assert release.wait(30)
+            assert release.wait(POLL_TIMEOUT)
             super().__init__(*args, **kwargs)
             built.append(self)
 
@@ -168,12 +161,12 @@ def test_a_tab_closed_while_its_session_is_built_is_forgotten(monkeypatch):
     try:
         ws = ViserWsClient(f"ws://127.0.0.1:{lab.port}")
         ws.__enter__()
-        wait_until(building.is_set)
+        poll(building.is_set)
         ws.__exit__(None, None, None)  # the tab closes while its session is being built
-        wait_until(lambda: lab.server.get_clients() == {})
+        poll(lambda: lab.server.get_clients() == {})
         release.set()
-        wait_until(lambda: len(built) == 1)
-        wait_until(lambda: built[0].closed)
+        poll(lambda: len(built) == 1)
+        poll(lambda: built[0].closed)
         assert lab.sessions == {}
     finally:
         release.set()

@@ -13,7 +13,8 @@ import math
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, scene_node, wait_until
+from app_helpers import assert_all_finite, scene_node
+from fakes import poll
 
 import robots
 from app.core.actions import (
@@ -159,7 +160,7 @@ def test_a_burst_of_actions_is_coalesced_into_few_redraws(session):
     before = session.redraws
     with session.lock:  # hold the tab as a long redraw would
         session.dispatch(SetJoint(0, 0.5))
-        wait_until(lambda: session.queued == 0)  # the renderer took it and waits for the lock
+        poll(lambda: session.queued == 0)  # the renderer took it and waits for the lock
         for k in range(200):
             session.dispatch(SetJoint(0, 0.001 * k))  # returns at once: queued for the next visit
         assert session.queued == 200 and session.pending
@@ -391,22 +392,27 @@ def test_enlarged_matrix_follows_the_sliders_and_closes(session):
     assert not session.panel.matrix.enlarged
 
 
-def test_symbolic_form_of_a_small_robot(session):
+@pytest.mark.slow
+def test_symbolic_form_of_a_small_robot(symbolic_session):
+    session = symbolic_session
     session.panel.robot.value = "planar2"  # small: a quick symbolic form
     session.settle()
-    wait_until(lambda: "computing" not in session.panel.matrix.symbolic.content, timeout=90)
+    poll(lambda: "computing" not in session.panel.matrix.symbolic.content)
     content = session.panel.matrix.symbolic.content
-    assert "<math" in content, content[:300]
+    # J of the 2R arm in the shorthand s₁₂ = sin(θ₁ + θ₂): its first entry −s₁ − s₁₂
+    assert "<math" in content and "<msub><mi>s</mi><mn>12</mn></msub>" in content, content[:300]
 
 
-def test_download_sends_the_file(lab_client, session):
-    _, _, ws = lab_client
+@pytest.mark.slow
+def test_download_sends_the_file(symbolic_lab_client, symbolic_session):
+    _, _, ws = symbolic_lab_client
+    session = symbolic_session
     session.dispatch(ChooseRobot("planar2"))
     session.settle()
     mark = ws.mark()
     errors = session.errors
     session.dispatch(RequestDownload("JSON"))
-    _, msg = ws.wait_for(lambda m: m["type"] == "FileTransferStartDownload", after=mark, timeout=90)
+    _, msg = ws.wait_for(lambda m: m["type"] == "FileTransferStartDownload", after=mark)
     assert msg["filename"] == "planar2_J_base.json"
     _, part = ws.wait_for(lambda m: m["type"] == "FileTransferPart", after=mark)
     assert bytes(part["content"]).lstrip().startswith(b"{")

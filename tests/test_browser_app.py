@@ -17,9 +17,10 @@ import pytest
 from browser_helpers import (
     VIEWPORT,
     app_page,
+    canvas_box,
     steady_canvas,
-    wait,
 )
+from fakes import poll
 
 from app.server import Lab
 from app.viser_adapter import handle_uuid
@@ -38,11 +39,11 @@ def test_app_in_chromium_at_1280x720(tmp_path):
     out_dir.mkdir(parents=True, exist_ok=True)
     lab = Lab(port=0)
     with app_page(lab) as (page, session, errors):
-        wait(lambda: session.snapshot is not None and page.locator(".jl-matrix").count() > 0)
-        wait(lambda: page.title() == "Jacobian Lab")
+        poll(lambda: session.snapshot is not None and page.locator(".jl-matrix").count() > 0)
+        poll(lambda: page.title() == "Jacobian Lab")
 
         # The 3-D view is the largest thing on screen, and joints and J are both in sight.
-        box = page.locator("canvas").first.bounding_box()
+        box = canvas_box(page)
         share = box["width"] * box["height"] / (VIEWPORT["width"] * VIEWPORT["height"])
         assert share >= 0.55, f"the 3-D view has {share:.0%} of the window"
         last_slider = page.locator("[role=slider]").nth(session.state.robot.dof - 1).bounding_box()
@@ -61,10 +62,10 @@ def test_app_in_chromium_at_1280x720(tmp_path):
         thumb.first.focus()
         for _ in range(8):
             page.keyboard.press("ArrowRight")
-        wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.0), abs=1e-6))
+        poll(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.0), abs=1e-6))
         page.keyboard.press("Shift+ArrowRight")
-        wait(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.1), abs=1e-6))
-        wait(lambda: page.locator(".jl-matrix").first.inner_text() != matrix_before)
+        poll(lambda: session.state.q[1] == pytest.approx(q_before + math.radians(8.1), abs=1e-6))
+        poll(lambda: page.locator(".jl-matrix").first.inner_text() != matrix_before)
         canvas_after = steady_canvas(page)
         np.testing.assert_allclose(session.client.camera.position, camera_before, atol=1e-6)
         changed = np.abs(canvas_after - canvas_before).max(axis=-1) > 30
@@ -73,7 +74,7 @@ def test_app_in_chromium_at_1280x720(tmp_path):
         # A singular configuration reads out in words and as ∞.
         page.get_by_label("Configuration", exact=True).first.click()
         page.get_by_role("option", name="wrist singular (singular)", exact=True).click()
-        wait(lambda: "singular: wrist" in page.locator(".jl-status").first.inner_text())
+        poll(lambda: "singular: wrist" in page.locator(".jl-status").first.inner_text())
         assert "∞" in page.locator(".jl-status").first.inner_text()
         body = page.locator("body").inner_text()
         assert "NaN" not in body and "nan" not in body.split()
@@ -86,7 +87,7 @@ def test_app_in_chromium_at_1280x720(tmp_path):
         enlarge = page.get_by_role("button", name="Enlarge J (Esc closes)")
         for close in ("Escape", "x", "outside"):
             enlarge.click()
-            wait(lambda: _modal_open(page))
+            poll(lambda: _modal_open(page))
             assert session.panel.matrix.enlarged
             if close == "Escape":
                 page.keyboard.press("Escape")
@@ -94,8 +95,8 @@ def test_app_in_chromium_at_1280x720(tmp_path):
                 page.locator(".jl-close-x").click()
             else:
                 page.mouse.click(8, VIEWPORT["height"] - 8)
-            wait(lambda: not _modal_open(page))
-            wait(lambda: not session.panel.matrix.enlarged)
+            poll(lambda: not _modal_open(page))
+            poll(lambda: not session.panel.matrix.enlarged)
     assert not errors, errors
     assert session.errors == 0
 
@@ -110,25 +111,25 @@ def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
         page.get_by_role("tab", name="Motion").click()
         page.get_by_label("Preset", exact=True).first.click()
         page.get_by_role("option", name="straight line into the wrist singularity", exact=True).click()
-        wait(lambda: session.state.motion.preset == "straight line into the wrist singularity")
+        poll(lambda: session.state.motion.preset == "straight line into the wrist singularity")
         before = steady_canvas(page)
         page.get_by_role("button", name="Play", exact=True).click()
-        wait(lambda: session.state.playing)
+        poll(lambda: session.state.playing)
         # Nothing else is touched: the arm moves by itself until it stops, saying why.
-        wait(lambda: not session.state.playing, timeout=60)
+        poll(lambda: not session.state.playing)
         assert session.state.stopped.startswith("stopped:")
         assert len(session.state.motion.trace) > 60
         after = steady_canvas(page)
         changed = np.abs(after - before).max(axis=-1) > 30
         assert changed.mean() > 0.01, f"the 3-D view barely changed ({changed.mean():.4%} of pixels)"
         page.get_by_text("joint rates", exact=True).first.scroll_into_view_if_needed()
-        wait(lambda: page.locator(".uplot").count() >= 3)
+        poll(lambda: page.locator(".uplot").count() >= 3)
         assert page.locator(".uplot canvas").first.bounding_box()["width"] > 200
         page.screenshot(path=str(out_dir / "app_motion.png"))
 
         page.get_by_role("tab", name="Maps").click()
         page.get_by_label("Joint-space map of w", exact=True).first.check()
-        wait(lambda: page.locator(".jl-map img").count() > 0)
+        poll(lambda: page.locator(".jl-map img").count() > 0)
         q_before = np.array(session.state.q)
         image = page.locator(".jl-map img").first
         image.scroll_into_view_if_needed()
@@ -137,8 +138,8 @@ def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
         jm = session.snapshot.joint_map
         want_i = jm.lo[0] + 0.25 * (jm.hi[0] - jm.lo[0])
         want_j = jm.hi[1] - 0.5 * (jm.hi[1] - jm.lo[1])
-        wait(lambda: abs(math.degrees(session.state.q[jm.i]) - want_i) < 1.0)
-        wait(lambda: abs(math.degrees(session.state.q[jm.j]) - want_j) < 1.0)
+        poll(lambda: abs(math.degrees(session.state.q[jm.i]) - want_i) < 1.0)
+        poll(lambda: abs(math.degrees(session.state.q[jm.j]) - want_j) < 1.0)
         others = [k for k in range(len(q_before)) if k not in (jm.i, jm.j)]
         np.testing.assert_allclose(np.array(session.state.q)[others], q_before[others])
         page.screenshot(path=str(out_dir / "app_maps.png"))

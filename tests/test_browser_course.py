@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from browser_helpers import VIEWPORT, app_page, wait
+from browser_helpers import VIEWPORT, app_page
+from fakes import poll
 
 from app.server import Lab
 
@@ -29,14 +30,14 @@ def test_trr_course_example_in_three_clicks(tmp_path):
         # Click 1: the robot.
         page.get_by_label("Robot", exact=True).first.click()
         page.get_by_role("option", name="trr", exact=True).click()
-        wait(lambda: session.state.robot_name == "trr")
+        poll(lambda: session.state.robot_name == "trr")
         # Click 2: the tab. Click 3: the course's example.
         page.get_by_role("tab", name="q̇ = J⁺v").click()
         page.get_by_role("button", name="Course example").click()
-        wait(lambda: float(session.state.v_desired[0]) == pytest.approx(17.256))
+        poll(lambda: float(session.state.v_desired[0]) == pytest.approx(17.256))
 
         inverse = page.locator(".jl-matrix").filter(has_text="q̇1")
-        wait(lambda: "0.9647" in page.locator("body").inner_text())
+        poll(lambda: "0.9647" in page.locator("body").inner_text())
         text = page.locator("body").inner_text()
         for figure in ("−0.5464", "0.9647", "0.7879", "10.35"):
             assert figure in text, figure

@@ -11,8 +11,8 @@ import pytest
 from browser_helpers import (
     app_page,
     steady_canvas,
-    wait,
 )
+from fakes import poll
 
 from app.server import Lab
 from app.views.fmt import fixed
@@ -31,10 +31,10 @@ def test_derive_tab_in_chromium_walks_whitney_on_the_puma(tmp_path):
         before = steady_canvas(page)
         page.get_by_label("Walk through", exact=True).first.click()
         page.get_by_role("option", name="Whitney: Jᵢ = zᵢ₋₁ × (pₙ − pᵢ₋₁)", exact=True).click()
-        wait(lambda: session.state.options.derive == "whitney")
+        poll(lambda: session.state.options.derive == "whitney")
         for _ in range(2):
             page.get_by_role("button", name="Next ▶", exact=True).click()
-        wait(lambda: session.state.options.derive_step == 2)
+        poll(lambda: session.state.options.derive_step == 2)
         page.get_by_text("Step 3 of 6: joint 3", exact=False).first.wait_for()
         # The step's numbers, computed here from DH frame 2: z₂ × (pₙ − p₂).
         L = link_frames(session.state.robot, session.state.q)

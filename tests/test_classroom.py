@@ -7,7 +7,8 @@ import contextlib
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, running_lab, wait_until
+from app_helpers import assert_all_finite, running_lab
+from fakes import POLL_TIMEOUT, FakeClock, poll
 from wsclient import ViserWsClient
 
 import robots
@@ -25,11 +26,11 @@ def room(n_followers: int = 2):
         try:
             for c in clients:
                 c.start()
-            wait_until(lambda: len(lab.sessions) == 1 + n_followers)
+            poll(lambda: len(lab.sessions) == 1 + n_followers)
             others = [s for s in lab.sessions.values() if s is not first]
             first.panel.classroom.token.value = TOKEN  # as typed: no other click
             first.settle()
-            wait_until(lambda: first.role.presenting)
+            poll(lambda: first.role.presenting)
             yield lab, first, others
         finally:
             for c in clients:
@@ -43,14 +44,14 @@ def settle(*sessions) -> None:
 
 def test_a_presenter_moves_and_every_follower_draws_the_same_snapshot():
     with room() as (lab, presenter, followers):
-        wait_until(lambda: all(f.role.following for f in followers))
+        poll(lambda: all(f.role.following for f in followers))
         settle(presenter)
         assert presenter.role.followers == 2
         assert "2 tabs follow" in presenter.panel.classroom.status.content
         computed = presenter.redraws
         presenter.dispatch(SetJoint(2, -0.7))
         settle(presenter)
-        wait_until(lambda: all(f.state.q[2] == pytest.approx(-0.7) for f in followers))
+        poll(lambda: all(f.state.q[2] == pytest.approx(-0.7) for f in followers))
         settle(*followers)
         for f in followers:
             # One computation per presenter change: the followers draw the presenter's own snapshot.
@@ -62,23 +63,23 @@ def test_a_presenter_moves_and_every_follower_draws_the_same_snapshot():
 
 def test_a_followers_own_input_is_read_only_and_undone():
     with room(1) as (lab, presenter, (follower,)):
-        wait_until(lambda: follower.role.following)
+        poll(lambda: follower.role.following)
         q_before = np.array(follower.state.q)
         slider = follower.panel.joints.sliders[1]
         slider.value = float(slider.value) + 20.0  # the student drags a slider
         settle(follower)
         assert np.array(follower.state.q) == pytest.approx(q_before)
-        wait_until(lambda: float(slider.value) == pytest.approx(np.degrees(q_before[1]), abs=1e-6))
+        poll(lambda: float(slider.value) == pytest.approx(np.degrees(q_before[1]), abs=1e-6))
 
 
 def test_leave_explore_and_come_back():
     with room(1) as (lab, presenter, (follower,)):
-        wait_until(lambda: follower.role.following)
+        poll(lambda: follower.role.following)
         settle(follower)  # what the tab shows (the button says what a click will do)
         button = follower.panel.classroom.button
         assert button.label == "Explore on my own"
         button.value = True  # a click
-        wait_until(lambda: not follower.role.following)
+        poll(lambda: not follower.role.following)
         settle(follower)
         assert button.label == "Follow the presenter"
         follower.dispatch(SetJoint(0, 0.4))  # its own inputs work again
@@ -86,18 +87,18 @@ def test_leave_explore_and_come_back():
         settle(presenter, follower)
         assert follower.state.q[0] == pytest.approx(0.4)
         button.value = True  # follow again: it jumps to what the presenter shows
-        wait_until(lambda: follower.role.following)
-        wait_until(lambda: follower.state.q[0] == pytest.approx(-0.3))
+        poll(lambda: follower.role.following)
+        poll(lambda: follower.state.q[0] == pytest.approx(-0.3))
 
 
 def test_a_presenters_motion_plays_on_the_followers_without_their_clocks():
     with room(1) as (lab, presenter, (follower,)):
-        wait_until(lambda: follower.role.following)
+        poll(lambda: follower.role.following)
         p = robots.motions("puma560")[0]
         presenter.dispatch(ApplyPreset(p.name, tuple(p.q), tuple(p.twist), p.frame, 0.3))
         presenter.dispatch(Play(True, "resolved_rate"))
         settle(presenter)
-        wait_until(lambda: follower.state.playing and len(follower.state.motion.trace) > 5)
+        poll(lambda: follower.state.playing and len(follower.state.motion.trace) > 5)
         assert not follower.ticker.running  # moved by the presenter's clock only
         assert (
             follower.state.motion.trace is presenter.state.motion.trace
@@ -105,12 +106,12 @@ def test_a_presenters_motion_plays_on_the_followers_without_their_clocks():
         )
         presenter.dispatch(Play(False))
         settle(presenter)
-        wait_until(lambda: not follower.state.playing)
+        poll(lambda: not follower.state.playing)
 
 
 def test_the_camera_follows_the_presenter():
     with room(1) as (lab, presenter, (follower,)):
-        wait_until(lambda: follower.role.following)
+        poll(lambda: follower.role.following)
         lab.classroom.camera(presenter.key, (2.0, -1.0, 1.5), (0.1, 0.0, 0.3), (0.0, 0.0, 1.0))
         assert np.asarray(follower.client.camera.position) == pytest.approx([2.0, -1.0, 1.5])
         assert np.asarray(follower.client.camera.look_at) == pytest.approx([0.1, 0.0, 0.3])
@@ -120,24 +121,24 @@ def test_the_camera_follows_the_presenter():
 
 def test_wrong_tokens_change_nothing():
     with room(1) as (lab, presenter, (follower,)):
-        wait_until(lambda: follower.role.following)
+        poll(lambda: follower.role.following)
         follower.panel.classroom.token.value = "lecture-8"
-        wait_until(lambda: lab.classroom.wrong_tries(follower.key) == 1)
+        poll(lambda: lab.classroom.wrong_tries(follower.key) == 1)
         assert presenter.role.presenting and not follower.role.presenting and follower.role.following
 
 
 def test_the_presenter_leaving_leaves_the_followers_where_they_were():
     with running_lab(presenter_token=TOKEN) as (lab, _, _ws):
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as presenter_ws:
-            wait_until(lambda: len(lab.sessions) == 2)
+            poll(lambda: len(lab.sessions) == 2)
             presenter = lab.session()
             follower = next(s for s in lab.sessions.values() if s is not presenter)
             presenter.panel.classroom.token.value = TOKEN
-            wait_until(lambda: follower.role.following)
+            poll(lambda: follower.role.following)
             presenter.dispatch(SetJoint(1, 0.9))
-            wait_until(lambda: follower.state.q[1] == pytest.approx(0.9))
+            poll(lambda: follower.state.q[1] == pytest.approx(0.9))
         presenter_ws.close()
-        wait_until(lambda: not follower.role.presenter)
+        poll(lambda: not follower.role.presenter)
         settle(follower)
         assert not follower.role.following and follower.state.q[1] == pytest.approx(0.9)
         follower.dispatch(SetJoint(1, 0.2))  # explores on its own now
@@ -145,16 +146,8 @@ def test_the_presenter_leaving_leaves_the_followers_where_they_were():
         assert follower.state.q[1] == pytest.approx(0.2)
 
 
-class FakeClock:
-    def __init__(self) -> None:
-        self.now = 1000.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
 def test_tokens_are_rate_limited_per_tab():
-    clock = FakeClock()
+    clock = FakeClock(1000.0)
     room_ = Classroom("right", clock=clock)
 
     class Tab:
@@ -196,7 +189,7 @@ def test_followers_draw_a_robot_only_the_presenter_has():
     from kinematics import Robot, jacobian
 
     with room(1) as (lab, presenter, (follower,)):
-        wait_until(lambda: follower.role.following)
+        poll(lambda: follower.role.following)
         rows = [
             {"joint": "revolute", "a": 0.4, "alpha": 0.0, "d": 0.0, "theta": 0.0},
             {"joint": "revolute", "a": 0.3, "alpha": 0.0, "d": 0.0, "theta": 0.0},
@@ -204,7 +197,7 @@ def test_followers_draw_a_robot_only_the_presenter_has():
         built = Robot.from_dh(rows, "standard", name="built")
         presenter.dispatch(EditRobot("(built in the browser)", built, ()))
         settle(presenter)
-        wait_until(lambda: follower.state.robot is built)
+        poll(lambda: follower.state.robot is built)
         settle(follower)
         assert follower.errors == 0
         assert follower.snapshot.J_base == pytest.approx(jacobian(built, follower.state.q))
@@ -221,16 +214,16 @@ def test_a_followers_browser_gets_the_presenters_scene():
 
     with running_lab(presenter_token=TOKEN) as (lab, presenter, _ws):
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as student:
-            wait_until(lambda: len(lab.sessions) == 2)
+            poll(lambda: len(lab.sessions) == 2)
             follower = next(s for s in lab.sessions.values() if s is not presenter)
             presenter.panel.classroom.token.value = TOKEN
-            wait_until(lambda: follower.role.following)
+            poll(lambda: follower.role.following)
             settle(presenter, follower)
             for value in (-0.4, 0.3, 0.8):
                 mark = student.mark()
                 presenter.dispatch(SetJoint(1, value))
                 settle(presenter)
-                wait_until(lambda value=value: follower.state.q[1] == pytest.approx(value))
+                poll(lambda value=value: follower.state.q[1] == pytest.approx(value))
                 settle(follower)
                 arm = scene_node(presenter, "/lab/arm/cylinders")
                 want = np.asarray(arm.batched_positions, dtype=np.float32).ravel()
@@ -244,11 +237,11 @@ def test_a_followers_browser_gets_the_presenters_scene():
                         and np.allclose(np.asarray(positions, dtype=np.float32).ravel(), want, atol=1e-6)
                     )
 
-                student.wait_for(got_it, after=mark, timeout=10)
+                student.wait_for(got_it, after=mark)
             # Exploring alone again: the follower's own scene is rebuilt and drawn from its state.
             follower.dispatch(ExploreAlone())
             settle(follower)
-            wait_until(lambda: not follower.role.following)
+            poll(lambda: not follower.role.following)
             follower.dispatch(SetJoint(0, 0.5))
             settle(follower)
             own = np.asarray(scene_node(follower, "/lab/arm/cylinders").batched_positions).reshape(-1, 3)
@@ -263,7 +256,7 @@ def test_typing_the_token_key_by_key_tries_it_once():
         token = follower.panel.classroom.token
         for k in range(1, len(TOKEN) + 1):
             token.value = TOKEN[:k]  # as typed, key by key
-        wait_until(lambda: follower.role.presenting)
+        poll(lambda: follower.role.presenting)
         assert not presenter.role.presenting and presenter.role.following
         assert lab.classroom.wrong_tries(follower.key) == 0
 
@@ -310,14 +303,14 @@ def test_the_presenter_closing_while_it_redraws_does_not_deadlock():
     def redraw():  # the presenter's commit: its session lock held, then the relay
         with session_lock:
             started.set()
-            unsubscribing.wait(5)
+            unsubscribing.wait(POLL_TIMEOUT)
             relays[-1](None, None)  # the subscriber the classroom gave the presenter's session
         done.append("redraw")
 
     started = threading.Event()
     a = threading.Thread(target=redraw, daemon=True)
     a.start()
-    started.wait(5)
+    started.wait(POLL_TIMEOUT)
     b = threading.Thread(target=lambda: (room_.closed(1), done.append("closed")), daemon=True)
     b.start()
     a.join(10)

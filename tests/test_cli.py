@@ -8,6 +8,7 @@ import time
 
 import numpy as np
 import pytest
+from fakes import poll
 from kinematics_helpers import import_source
 
 import robots
@@ -61,11 +62,11 @@ def test_serve_with_a_missing_urdf_fails_clearly(capsys, tmp_path):
     ("port", "shown"), [("99999", "99999"), ("65536", "65536"), ("-1", "-1"), ("http", "'http'")]
 )
 def test_serve_refuses_a_port_outside_the_range(capsys, port, shown):
-    start = time.perf_counter()
+    start = time.thread_time()  # refused before any work: CPU time, which a busy machine cannot inflate
     assert main(["serve", "--port", port]) == 2
     err = capsys.readouterr().err
     assert f"argument --port: expected a port number from 0 to 65535, got {shown}" in err
-    assert time.perf_counter() - start < 2.0
+    assert time.thread_time() - start < 2.0
 
 
 def test_serve_refuses_a_host_that_does_not_resolve(capsys):
@@ -191,9 +192,7 @@ def test_progress_only_after_a_second():
     slow = io.StringIO()
     with export_command._StderrProgress(slow, after=0.05) as progress:
         progress("simplifying J: entry 3/36")
-        deadline = time.monotonic() + 5.0
-        while "simplifying" not in slow.getvalue() and time.monotonic() < deadline:
-            time.sleep(0.01)
+        poll(lambda: "simplifying" in slow.getvalue(), what="the progress line")
     lines = slow.getvalue().splitlines()
     assert "simplifying J: entry 3/36" in lines[0]
     assert lines[-1].endswith("done")

@@ -14,7 +14,8 @@ import re
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, scene_node, wait_until
+from app_helpers import assert_all_finite, scene_node
+from fakes import poll
 
 import robots
 from app.core.actions import ChooseRobot, GoTo, GoToRepresentationSingularity, SetConfiguration, SetRate
@@ -245,7 +246,9 @@ def test_jdot_qd_arrow_and_readout_match_finite_differences(session):
     assert_all_finite(session)
 
 
-def test_course_letters_in_the_symbolic_j(session):
+@pytest.mark.slow
+def test_course_letters_in_the_symbolic_j(symbolic_session):
+    session = symbolic_session
     choose(session, "trr")
     letters = session.panel.matrix.letters
     assert letters is not None
@@ -256,19 +259,19 @@ def test_course_letters_in_the_symbolic_j(session):
     def shown() -> str:
         return session.panel.matrix.symbolic.content
 
-    wait_until(lambda: "letters" in shown(), timeout=120)
+    poll(lambda: "letters" in shown())
     html = shown()
     assert "<msub><mi>l</mi><mn>2</mn></msub>" in html and "<msub><mi>l</mi><mn>3</mn></msub>" in html
     assert "<mi>det</mi>" in html  # det J = −l2 l3 s3 and its singular set under J
     letters.value = False
     session.settle()
-    wait_until(lambda: "letters" not in shown() and "<math" in shown(), timeout=120)
+    poll(lambda: "letters" not in shown() and "<math" in shown())
     assert "<msub><mi>l</mi><mn>3</mn></msub>" not in shown()  # numbers again: 5, 8
     # The symbolic J⁻¹, on demand: the TRR's file names its letters, so J⁻¹ is in them.
     session.panel.inverse.symbolic_button.value = True
     session.settle()
     assert session.state.options.symbolic_inverse
-    wait_until(lambda: "<math" in session.panel.inverse.symbolic.content, timeout=120)
+    poll(lambda: "<math" in session.panel.inverse.symbolic.content)
     inv = session.panel.inverse.symbolic.content
     assert "<msub><mi>l</mi><mn>3</mn></msub>" in inv and "<mi>adj</mi>" in inv
     session.panel.inverse.symbolic_button.value = True  # hides it

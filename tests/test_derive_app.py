@@ -10,7 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, running_lab, scene_node, wait_until
+from app_helpers import assert_all_finite, running_lab, scene_node
+from fakes import poll
 
 from app.core.actions import ChooseRobot, SetJoint, SetRate, SetWrench
 from app.core.snapshot.derive import METHODS
@@ -190,19 +191,21 @@ def test_a_urdf_robot_has_no_dh_table_but_every_walk():
             assert_all_finite(session)
 
 
-def test_each_step_is_shown_in_symbols_too(session):
+@pytest.mark.slow
+def test_each_step_is_shown_in_symbols_too(symbolic_session):
     """The symbolic worker types the step's formulas; the tab shows the ones of the current joint
     (and the assembled J and det J at the last one)."""
+    session = symbolic_session
     choose(session, "planar2")
     walk(session, "whitney", 1)
     formula = session.panel.derive.formula
-    wait_until(lambda: "<math" in formula.content, timeout=60)
+    poll(lambda: "<math" in formula.content)
     assert "Column 2 = z₁ × (pₙ − p₁)" in formula.content
     assert "Column 1" not in formula.content  # only this joint's steps
     assert "det J" in formula.content and "sin(q2) = 0" in formula.content  # the last step
     walk(session, "whitney", 0)
     assert "Column 1 = z₀ × (pₙ − p₀)" in formula.content and "det J" not in formula.content
     walk(session, "propagation", 0)
-    wait_until(lambda: "ω" in formula.content and "<math" in formula.content, timeout=60)
+    poll(lambda: "ω" in formula.content and "<math" in formula.content)
     walk(session, "dh", 1)
-    wait_until(lambda: "A₂" in formula.content and "⁰T₂" in formula.content, timeout=60)
+    poll(lambda: "A₂" in formula.content and "⁰T₂" in formula.content)

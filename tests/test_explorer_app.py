@@ -9,7 +9,8 @@ import math
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, scene_node, wait_until
+from app_helpers import assert_all_finite, scene_node
+from fakes import poll
 
 import robots
 from app.core.actions import ChooseRobot, FindSingularity, Play, SetOption, Step
@@ -69,7 +70,7 @@ def test_the_play_buttons_drive_the_ticker(session):
     _click(motion.buttons, "Play")
     session.settle()
     assert session.state.playing and session.ticker.running
-    wait_until(lambda: len(session.state.motion.trace) > 5)  # moving by itself on the tab's ticker
+    poll(lambda: len(session.state.motion.trace) > 5)  # moving by itself on the tab's ticker
     q_seen.append(np.array(session.state.q))
     _click(motion.buttons, "Pause")
     session.settle()
@@ -92,8 +93,8 @@ def _click(buttons, label: str) -> None:
 def test_the_nearest_singularity_is_found_off_the_drawing_thread_and_played_back(session):
     assert session.snapshot.report.status == "regular"  # the Puma at home
     session.dispatch(FindSingularity())
-    wait_until(lambda: session.state.motion.kind == "path", timeout=30)
-    wait_until(lambda: not session.state.playing, timeout=30)
+    poll(lambda: session.state.motion.kind == "path")
+    poll(lambda: not session.state.playing)
     state = session.state
     assert state.stopped.startswith("found:") and "singularity" in state.stopped
     J = jacobian(state.robot, state.q)

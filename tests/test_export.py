@@ -7,6 +7,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
+from fakes import random_configurations
 from kinematics_helpers import import_source
 
 import kinematics
@@ -15,14 +16,6 @@ from kinematics.symbolic import jacobian_mathml
 from kinematics.symbolic.typeset import export as ex
 
 MATHML = "{http://www.w3.org/1998/Math/MathML}"
-
-
-def random_configurations(robot, count=4, seed=3):
-    rng = np.random.default_rng(seed)
-    lim = robot.qlim
-    lo = np.where(np.isfinite(lim[0]), lim[0], -np.pi)
-    hi = np.where(np.isfinite(lim[1]), lim[1], np.pi)
-    return rng.uniform(lo, hi, size=(count, robot.dof))
 
 
 @pytest.mark.parametrize(
@@ -39,7 +32,7 @@ def test_python_module_matches_numeric_jacobian(tmp_path, name, frame, params):
     robot = robots.load(name)
     module = import_source(tmp_path / f"J_{name}.py", ex.export(robot, "python", frame, params), f"J_{name}")
     assert module.ROBOT == name and module.FRAME == frame and module.FINGERPRINT == robot.fingerprint()
-    qs = random_configurations(robot)
+    qs = random_configurations(robot, 4, seed=3)
     for q in qs:
         np.testing.assert_allclose(module.J(q), kinematics.jacobian(robot, q, frame), atol=1e-9, rtol=0)
     np.testing.assert_allclose(

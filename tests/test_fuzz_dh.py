@@ -33,7 +33,7 @@ from kinematics import (
 
 N_TABLES = 400
 N_CONFIGURATIONS = 300
-MAX_SECONDS_PER_CASE = 0.5
+MAX_SECONDS_PER_CASE = 0.5  # [CPU s of this thread]: another job on the machine cannot inflate it
 MAX_BYTES_PER_CASE = 20 * 1024 * 1024
 
 KEYS = ["joint", "a", "alpha", "d", "theta", "qlim", "name"]
@@ -196,7 +196,7 @@ def check_robot(robot: Robot, rng: random.Random) -> None:
 def run_case(case: object, label: str) -> str:
     """Run ``case()`` with NumPy warnings as errors, in a time and memory bound; "ok" or "refused"."""
     tracemalloc.reset_peak()
-    start = time.perf_counter()
+    start = time.thread_time()
     # NumPy's default error handling (warn on overflow, invalid and division by zero; underflow
     # to zero is harmless) with every warning turned into an error.
     with warnings.catch_warnings(), np.errstate(over="warn", invalid="warn", divide="warn", under="ignore"):
@@ -207,7 +207,7 @@ def run_case(case: object, label: str) -> str:
         except JacobianLabError as exc:
             assert str(exc), label
             outcome = "refused"
-    seconds = time.perf_counter() - start
+    seconds = time.thread_time() - start
     assert seconds < MAX_SECONDS_PER_CASE, f"{label} took {seconds:.2f} s"
     assert tracemalloc.get_traced_memory()[1] < MAX_BYTES_PER_CASE, f"{label} used too much memory"
     return outcome

@@ -18,7 +18,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 import sympy as sp
-from browser_helpers import ARGS, CHROMIUM, require_browser
+from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
 from test_export_latex import display_formulas, katex  # noqa: F401  (katex is a fixture)
 
 import robots
@@ -173,7 +173,7 @@ def test_html_fits_1280_px_in_chromium(tmp_path):
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
         try:
-            page = browser.new_page(viewport={"width": 1280, "height": 900})
+            page = new_page(browser, {"width": 1280, "height": 900})
             for path in pages:
                 page.goto(path.as_uri())
                 assert page.evaluate("document.documentElement.scrollWidth") <= 1280, path.name

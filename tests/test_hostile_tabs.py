@@ -13,6 +13,7 @@ import msgspec
 import numpy as np
 import viser
 import websockets.sync.client
+from fakes import POLL_TIMEOUT
 from server_process import Server, rss_bytes
 from wsclient import ViserWsClient
 
@@ -29,9 +30,7 @@ def _is_scene(m: dict) -> bool:
 
 
 def _slider(ws: ViserWsClient, prefix: str = "q2 ") -> str:
-    _, msg = ws.wait_for(
-        lambda m: m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith(prefix), timeout=60
-    )
+    _, msg = ws.wait_for(lambda m: m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith(prefix))
     return msg["uuid"]
 
 
@@ -55,7 +54,7 @@ def _round_trip(ws: ViserWsClient, uuid: str, value: float) -> float:
     """Slider change → first scene message back on this tab [ms]."""
     mark = ws.mark()
     sent = ws.set_value(uuid, value)
-    received, _ = ws.wait_for(_is_scene, after=mark, timeout=30)
+    received, _ = ws.wait_for(_is_scene, after=mark)
     return (received - sent) * 1e3
 
 
@@ -64,7 +63,7 @@ def test_a_49_mib_message_is_refused_without_memory_or_log_growth(tmp_path):
     try:
         with ViserWsClient(server.url()) as good:
             uuid = _slider(good)
-            good.wait_for(_is_scene, timeout=60)
+            good.wait_for(_is_scene)
             _round_trip(good, uuid, 10.0)
             rss_before = rss_bytes(server.pid)
             log_before = server.log.stat().st_size + sum(map(len, server.out))
@@ -77,7 +76,7 @@ def test_a_49_mib_message_is_refused_without_memory_or_log_growth(tmp_path):
                 try:
                     bad.send(huge)
                     while True:
-                        bad.recv(timeout=30)
+                        bad.recv(timeout=POLL_TIMEOUT)
                 except websockets.exceptions.ConnectionClosed as exc:
                     closed_by_server = exc.rcvd is not None and exc.rcvd.code == 1009
                 except (ConnectionResetError, BrokenPipeError):  # reset while still sending: refused too
@@ -98,8 +97,8 @@ def test_5000_slider_messages_from_one_tab_do_not_stall_another(tmp_path):
         with ViserWsClient(server.url()) as good, ViserWsClient(server.url()) as hostile:
             uuid = _slider(good)
             hostile_uuid = _slider(hostile)
-            good.wait_for(_is_scene, timeout=60)
-            hostile.wait_for(_is_scene, timeout=60)
+            good.wait_for(_is_scene)
+            hostile.wait_for(_is_scene)
             for i in range(5):  # warm up
                 _round_trip(good, uuid, float(i))
             done = threading.Event()

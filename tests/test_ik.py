@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from kinematics_helpers import random_q
+from fakes import random_q
 from scipy.spatial.transform import Rotation
 
 import robots

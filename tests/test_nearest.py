@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from kinematics_helpers import random_q
+from fakes import random_q
 
 import robots
 from kinematics import ConfigurationError, JacobianLabError, OptionError, jacobian, singular_values, task_rows

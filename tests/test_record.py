@@ -14,7 +14,6 @@ import os
 import socket
 import subprocess
 import sys
-import time
 import urllib.request
 from pathlib import Path
 
@@ -22,7 +21,8 @@ import msgspec
 import numpy as np
 import pytest
 import zstandard
-from browser_helpers import ARGS, CHROMIUM, close_notifications, image, require_browser
+from browser_helpers import ARGS, CHROMIUM, close_notifications, image, new_page, require_browser
+from fakes import poll
 
 import robots
 from app.cli.main import main
@@ -242,16 +242,6 @@ def _free_port(lo: int = 8600, hi: int = 8699) -> int:
     raise AssertionError(f"no free port in {lo}..{hi}")
 
 
-def _poll(predicate, timeout: float, what: str):
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        value = predicate()
-        if value is not None and value is not False:
-            return value
-        time.sleep(0.05)
-    raise AssertionError(f"{what}: not within {timeout:g} s")
-
-
 def _answers(url: str) -> bool:
     try:
         with urllib.request.urlopen(url, timeout=1) as response:
@@ -283,16 +273,16 @@ def test_the_recorded_demo_plays_from_a_static_server_in_chromium(tmp_path):
     )
     errors: list[str] = []
     try:
-        _poll(lambda: _answers(f"http://127.0.0.1:{port}/index.html"), 20, "http.server answering")
+        poll(lambda: _answers(f"http://127.0.0.1:{port}/index.html"), what="http.server answering")
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
             try:
-                page = browser.new_page(viewport={"width": 1280, "height": 720})
+                page = new_page(browser)
                 page.on("pageerror", lambda exc: errors.append(str(exc)))
                 page.goto(f"http://127.0.0.1:{port}/")
-                _poll(lambda: CLIENT_PAGE in page.url, 30, "index.html sending the browser to the player")
+                poll(lambda: CLIENT_PAGE in page.url, what="index.html sending the browser to the player")
                 assert page.url.endswith(f"?playbackPath={RECORDING}")
-                page.wait_for_selector("canvas", timeout=120_000)
+                page.wait_for_selector("canvas")
                 assert page.title().startswith(robots.load("puma560").title)
                 close_notifications(page)
                 canvas = page.locator("canvas").first
@@ -301,13 +291,13 @@ def test_the_recorded_demo_plays_from_a_static_server_in_chromium(tmp_path):
                     shot = image(canvas.screenshot())
                     return shot if (np.abs(shot - shot[5, 5]).max(axis=-1) > 60).mean() > 0.01 else None
 
-                first = _poll(drawn, 120, "the scene drawn on the canvas")
+                first = poll(drawn, what="the scene drawn on the canvas")
 
                 def moved() -> bool:
                     now = image(canvas.screenshot())
                     return bool((np.abs(now - first).max(axis=-1) > 40).mean() > 0.002)
 
-                _poll(moved, 120, "the arm moving while the demo plays")
+                poll(moved, what="the arm moving while the demo plays")
                 page.screenshot(path=str(shots / "record_demo_puma560.png"))
             finally:
                 browser.close()

@@ -7,7 +7,7 @@ import io
 import zipfile
 
 import numpy as np
-from app_helpers import wait_until
+from fakes import FakeClock, poll
 from test_record import _last, read_viser
 
 import robots
@@ -18,18 +18,10 @@ from app.tab.recorder import FPS, TabRecorder
 from kinematics import fk
 
 
-class FakeClock:
-    def __init__(self) -> None:
-        self.now = 50.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
 def test_frames_are_resampled_at_a_steady_rate_keeping_the_last_robot():
     puma, panda = robots.load("puma560"), robots.load("panda")
     subscribers = []
-    clock = FakeClock()
+    clock = FakeClock(50.0)
     recorder = TabRecorder(lambda fn: subscribers.append(fn) or (lambda: subscribers.remove(fn)), clock)
     first = LabState.initial("puma560", puma)
     recorder.start(first, compute(first))
@@ -66,7 +58,7 @@ def test_record_from_the_gui_downloads_a_demo_that_replays_what_was_done(session
     button.value = True  # "Stop and download the demo"
     session.settle()
     assert button.label == "Record a demo"
-    wait_until(lambda: sent, timeout=60)
+    poll(lambda: sent)
     name, data = sent[0]
     assert name == "jacobian-lab-demo.zip"
     files = zipfile.ZipFile(io.BytesIO(data))

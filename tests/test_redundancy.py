@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from kinematics_helpers import random_q
+from fakes import random_q
 
 import robots
 from kinematics import ConfigurationError, JacobianLabError, OptionError, fk, jacobian, manipulability

@@ -32,7 +32,7 @@ def _start_with_tab(tmp_path: Path, code: str) -> tuple[Server, list[int]]:
     """A server with one tab that received the symbolic J, and the server's children then."""
     server = Server(tmp_path, code)
     with ViserWsClient(server.url()) as ws:
-        ws.wait_for(_has_mathml, timeout=120)
+        ws.wait_for(_has_mathml)
     kids = children(server.pid)
     assert any("spawn_main" in cmdline(p) for p in kids), [cmdline(p) for p in kids]
     assert any("resource_tracker" in cmdline(p) for p in kids), [cmdline(p) for p in kids]
@@ -53,7 +53,7 @@ def test_a_stop_signal_leaves_no_process_behind(tmp_path, sig):
     try:
         os.kill(server.pid, sig)
         server.proc.wait(30)
-        poll(lambda: not session_processes(server.pid), 10, "no process of the server's session left")
+        poll(lambda: not session_processes(server.pid), what="no process of the server's session left")
         assert not any(alive(p) for p in kids)
     finally:
         server.cleanup()
@@ -65,8 +65,8 @@ def test_wait_for_stop_stops_the_lab_cleanly(tmp_path, sig):
     try:
         os.kill(server.pid, sig)
         assert server.proc.wait(30) == 0, server.log.read_text()[-2000:]
-        poll(lambda: any(f"stopped by {sig.name}" in line for line in server.out), 5, "the reason printed")
-        poll(lambda: not session_processes(server.pid), 10, "no process of the server's session left")
+        poll(lambda: any(f"stopped by {sig.name}" in line for line in server.out), what="the reason printed")
+        poll(lambda: not session_processes(server.pid), what="no process of the server's session left")
     finally:
         server.cleanup()
 
@@ -77,7 +77,7 @@ def test_the_worker_exits_by_itself_when_the_server_is_killed(tmp_path):
         os.kill(server.pid, signal.SIGKILL)
         server.proc.wait(10)
         start = time.monotonic()
-        poll(lambda: not session_processes(server.pid), 10, "the orphaned worker and tracker gone")
+        poll(lambda: not session_processes(server.pid), what="the orphaned worker and tracker gone")
         assert time.monotonic() - start < 5.0
     finally:
         server.cleanup()
@@ -88,21 +88,19 @@ def test_a_killed_worker_is_replaced_for_the_next_request(tmp_path):
     try:
         (worker,) = server.workers()
         os.kill(worker, signal.SIGKILL)
-        poll(lambda: not alive(worker), 10, "the worker gone")
+        poll(lambda: not alive(worker), what="the worker gone")
         with ViserWsClient(server.url()) as ws:  # a later tab starts, and asks for a new J
             _, frame = ws.wait_for(
                 lambda m: m["type"] == "GuiDropdownMessage" and m["props"]["label"] == "Frame of J",
                 timeout=60,
             )
-            ws.wait_for(_has_mathml, timeout=60)
+            ws.wait_for(_has_mathml)
             mark = ws.mark()
             ws.set_value(frame["uuid"], "tool")
             # The tool-frame J, which only a new worker can compute (the first one was killed).
-            _, msg = ws.wait_for(
-                lambda m: _has_mathml(m) and "in tool axes" in str(m), after=mark, timeout=120
-            )
+            _, msg = ws.wait_for(lambda m: _has_mathml(m) and "in tool axes" in str(m), after=mark)
             assert "could not start" not in str(ws.messages)
-        poll(lambda: len(server.workers()) == 1, 10, "one new worker")
+        poll(lambda: len(server.workers()) == 1, what="one new worker")
         (new_worker,) = server.workers()
         assert new_worker != worker
         assert "the symbolic worker stopped and was restarted" in server.log.read_text()

@@ -1,4 +1,10 @@
-"""Every step of an export keeps to its time limit, says what it skipped, and stays exact."""
+"""Every step of an export keeps to its time limit, says what it skipped, and stays exact.
+
+The time limit is wall-clock (a teacher waits for the export), but what these tests hold is the work
+done: the CPU time of the thread that runs the export (``time.thread_time``), which another job on
+the machine cannot inflate. Under load the limit passes after less work, so the bound still holds;
+an export that ignored its limit would work on for minutes and fail it.
+"""
 
 from __future__ import annotations
 
@@ -17,7 +23,7 @@ from kinematics.symbolic.typeset import export as ex
 from kinematics.transforms import rot_x, rot_z, trans
 
 TIMEOUT = 5.0
-MARGIN = 10.0  # a bound, not a benchmark: SymPy steps in flight finish after the deadline
+MARGIN = 10.0  # [CPU s] a bound, not a benchmark: SymPy steps in flight finish after the deadline
 
 
 def twisted_arm(n: int = 6) -> Robot:
@@ -51,9 +57,10 @@ def cold(tmp_path, monkeypatch):
 
 
 def timed_export(robot, fmt, timeout=TIMEOUT):
-    start = time.monotonic()
+    """The export and the CPU seconds this thread spent on it."""
+    start = time.thread_time()
     text = ex.export(robot, fmt, timeout=timeout)
-    return text, time.monotonic() - start
+    return text, time.thread_time() - start
 
 
 def test_latex_export_of_a_hard_arm_keeps_to_the_timeout(cold):
@@ -89,7 +96,8 @@ def test_python_export_of_a_hard_arm_is_late_but_exact(cold, tmp_path):
 
 def test_seven_twisted_joints_still_return(cold):
     """The one product of the chain being expanded when the deadline passes finishes first: with
-    seven twisted joints that takes several seconds (measured: 13 s in all on a busy 2-core machine)."""
+    seven twisted joints that takes several seconds (measured: 13 s in all on a busy 2-core machine,
+    about 8 s of CPU)."""
     text, seconds = timed_export(twisted_arm(7), "latex")
     assert seconds < TIMEOUT + 2 * MARGIN and "time limit" in text
 
@@ -104,9 +112,11 @@ def test_partial_work_is_cached(cold):
 
 
 def test_generated_urdf_like_chain_exports_complete_and_readable(cold):
+    """Complete within a minute's work: the limit given is generous (a loaded machine must not cut
+    it short), the work done is bounded in CPU seconds."""
     robot = urdf_like_chain()
-    text, seconds = timed_export(robot, "latex", timeout=60)
-    assert seconds < 60 + MARGIN
+    text, seconds = timed_export(robot, "latex", timeout=600)
+    assert seconds < 60
     assert "time limit" not in text and "snapped to exact multiples of pi/12" in text
     assert len(text) < 60_000
     d = symbolic.derive(robot, timeout=60)

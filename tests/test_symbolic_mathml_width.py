@@ -7,17 +7,15 @@ Chromium lays out MathML natively; each ``<math display="block">`` of
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import pytest
+from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
 
 import kinematics
 import robots
 from kinematics.symbolic import jacobian_mathml
 
-CHROMIUM = "/usr/bin/chromium"
-ARGS = ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
 DATA = Path(__file__).resolve().parent / "data"
 PANEL = 600
 
@@ -27,18 +25,10 @@ pytestmark = pytest.mark.browser
 @pytest.fixture(scope="module")
 def measure():
     """A function: HTML fragment -> (widest block formula [px], widest legend/note line [px])."""
-    missing = [] if os.path.exists(CHROMIUM) else [CHROMIUM]
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        missing.append("the playwright package")
-    if missing:
-        if os.environ.get("CI"):
-            pytest.fail(f"needs {' and '.join(missing)}")
-        pytest.skip(f"needs {' and '.join(missing)}")
+    sync_playwright = require_browser()
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-        page = browser.new_page(viewport={"width": 1000, "height": 800})
+        page = new_page(browser, {"width": 1000, "height": 800})
 
         def run(fragment: str) -> tuple[float, float]:
             page.set_content(f'<div id="panel" style="width: {PANEL}px; font-size: 16px">{fragment}</div>')

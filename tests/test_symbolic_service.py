@@ -8,17 +8,10 @@ import time
 from pathlib import Path
 
 import pytest
+from fakes import poll
 
 import robots
 from app.services.symbolic_service import WORKER_RESTARTED, SymbolicService, SymbolicUnavailable, WorkerPool
-
-
-def _poll(predicate, timeout: float = 20.0) -> None:
-    end = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > end:
-            raise AssertionError("condition not reached in time")
-        time.sleep(0.01)
 
 
 def _gone(pid: int) -> bool:
@@ -61,12 +54,12 @@ def test_a_killed_worker_is_restarted_and_the_next_request_succeeds(service):
     assert "<math" in first.result(120)
     (pid,) = service.worker_pids()
     os.kill(pid, signal.SIGKILL)
-    _poll(lambda: _gone(pid))
+    poll(lambda: _gone(pid))
     second = service.mathml(robot, "tool")
     assert second.result(120) == jacobian_mathml(robot, frame="tool", timeout=60.0)
     assert second.restarted and not first.restarted
     assert service.restarts == 1
-    _poll(lambda: notices == [WORKER_RESTARTED])  # announced from a thread of its own
+    poll(lambda: notices == [WORKER_RESTARTED])  # announced from a thread of its own
     assert service.last_notice == WORKER_RESTARTED
     (new_pid,) = service.worker_pids()
     assert new_pid != pid
@@ -78,15 +71,15 @@ def test_a_worker_killed_mid_computation_runs_it_again_once(tmp_path):
     try:
         flag = str(tmp_path / "go")
         future = pool.submit(_pid_once, flag)
-        _poll(lambda: len(pool.pids()) == 1)
+        poll(lambda: len(pool.pids()) == 1)
         (pid,) = pool.pids()
         os.kill(pid, signal.SIGKILL)
-        _poll(lambda: future.restarted)
+        poll(lambda: future.restarted)
         Path(flag).touch()
         new_pid = future.result(60)
         assert new_pid != pid and not _gone(new_pid)
         assert pool.restarts == 1
-        _poll(lambda: notices == [WORKER_RESTARTED])
+        poll(lambda: notices == [WORKER_RESTARTED])
     finally:
         pool.close()
 
@@ -109,6 +102,6 @@ def test_close_ends_the_worker_and_refuses_more_work():
     pool = WorkerPool()
     pid = pool.submit(os.getpid).result(60)
     pool.close()
-    _poll(lambda: _gone(pid))
+    poll(lambda: _gone(pid))
     with pytest.raises(RuntimeError, match="closed"):
         pool.submit(os.getpid)

@@ -7,6 +7,7 @@ import time
 import numpy as np
 import pytest
 import sympy as sp
+from fakes import random_configurations
 
 import kinematics
 import robots
@@ -16,14 +17,6 @@ from kinematics.symbolic import SymbolicError
 
 def q_symbols(n):
     return sp.symbols(f"q1:{n + 1}", real=True)
-
-
-def random_configurations(robot, count=4, seed=2):
-    rng = np.random.default_rng(seed)
-    lim = robot.qlim
-    lo = np.where(np.isfinite(lim[0]), lim[0], -np.pi)
-    hi = np.where(np.isfinite(lim[1]), lim[1], np.pi)
-    return rng.uniform(lo, hi, size=(count, robot.dof))
 
 
 def kinds(det):
@@ -94,7 +87,7 @@ def test_det_matches_numeric(name):
     robot = robots.load(name)
     d = symbolic.determinant(robot)
     f = sp.lambdify([list(q_symbols(robot.dof))], d.expr)
-    for q in random_configurations(robot):
+    for q in random_configurations(robot, 4, seed=2):
         J = kinematics.jacobian(robot, q)[list(d.rows)]
         assert float(f(q)) == pytest.approx(np.linalg.det(J), abs=1e-9)
 
@@ -105,7 +98,7 @@ def test_redundant_arm_gram_determinant(name):
     d = symbolic.determinant(robot)
     assert d.gram and len(d.minors) == 7 and d.expr is not None
     f = sp.lambdify([list(q_symbols(robot.dof))], d.expr)
-    for q in random_configurations(robot, 2):
+    for q in random_configurations(robot, 2, seed=2):
         J = kinematics.jacobian(robot, q)
         assert float(f(q)) == pytest.approx(np.linalg.det(J @ J.T), rel=1e-8, abs=1e-12)
     if name == "iiwa14":  # every 6×6 minor vanishes with sin q4: the stretched elbow
@@ -133,7 +126,7 @@ def test_analytic_jacobian(convention, singular):
     assert A.singular_values == singular
     assert A.condition == (sp.cos(A.angles[1]) if convention == "zyx" else sp.sin(A.angles[1]))
     f = sp.lambdify([list(q_symbols(6)), list(A.angles)], A.JA)
-    for q in random_configurations(robot, 3):
+    for q in random_configurations(robot, 3, seed=2):
         phi = kinematics.euler_angles(kinematics.fk(robot, q), convention)
         expected = kinematics.analytic_jacobian(robot, q, convention)
         np.testing.assert_allclose(np.array(f(q, phi), dtype=float), expected, atol=1e-9)
@@ -150,7 +143,7 @@ def test_large_determinant_is_declined_quickly():
         for i in range(6)
     ]
     robot = kinematics.Robot.from_dh(rows, name="odd6")
-    start = time.perf_counter()
+    start = time.thread_time()  # the work done, which another job on the machine cannot inflate
     d = symbolic.determinant(robot, use_cache=False)
-    assert time.perf_counter() - start < 30
+    assert time.thread_time() - start < 30
     assert d.expr is None and d.singular_sets == () and "not computed" in d.notes[0]

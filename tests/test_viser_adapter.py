@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 import viser
 import websockets.sync.client
+from fakes import POLL_TIMEOUT, poll
 from packaging.specifiers import SpecifierSet
 from wsclient import ViserWsClient
 
@@ -30,14 +31,6 @@ except ImportError:  # Python 3.10
     import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def _poll(predicate, timeout: float = 10.0) -> None:
-    end = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > end:
-            raise AssertionError("condition not reached in time")
-        time.sleep(0.01)
 
 
 @pytest.fixture
@@ -53,7 +46,7 @@ def server():
 def connected(server):
     """(server, client handle, websocket client) with one connected tab."""
     with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
-        _poll(lambda: len(server.get_clients()) == 1)
+        poll(lambda: len(server.get_clients()) == 1)
         (client,) = server.get_clients().values()
         yield server, client, ws
 
@@ -88,7 +81,7 @@ def test_errors_name_the_function_and_the_viser_version():
 def test_run_javascript_reaches_only_that_client(connected):
     server, client, ws = connected
     with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as other:
-        _poll(lambda: len(server.get_clients()) == 2)
+        poll(lambda: len(server.get_clients()) == 2)
         mark, other_mark = ws.mark(), other.mark()
         va.run_javascript(client, "window.__probe = 41 + 1;")
         _, msg = ws.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=mark)
@@ -121,7 +114,7 @@ def test_handle_uuid_is_the_id_the_page_sends_updates_for(connected):
     seen = threading.Event()
     slider.on_update(lambda _: seen.set())
     ws.set_value(uuid, 0.25)
-    assert seen.wait(5.0)
+    assert seen.wait(POLL_TIMEOUT)
     assert slider.value == 0.25
 
 
@@ -300,14 +293,14 @@ def _camera() -> bytes:
 def test_a_message_over_the_size_limit_closes_that_connection_only(limited):
     server, limits = limited
     with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as good:
-        _poll(lambda: len(server.get_clients()) == 1)
+        poll(lambda: len(server.get_clients()) == 1)
         with _raw_client(server.get_port()) as bad:  # as its very first message
             with pytest.raises(websockets.exceptions.ConnectionClosed) as info:
                 bad.send(b"\x00" * (64 * 1024))
                 while True:  # the frames queued before the close, then the close frame
-                    bad.recv(timeout=10)
+                    bad.recv(timeout=POLL_TIMEOUT)
             assert info.value.rcvd is not None and info.value.rcvd.code == 1009
-        _poll(lambda: limits.closed == 1)
+        poll(lambda: limits.closed == 1)
         (client,) = server.get_clients().values()
         mark = good.mark()
         va.run_javascript(client, "1")
@@ -322,20 +315,20 @@ def test_a_flood_is_dropped_beyond_the_rate_and_then_closed(limited):
     update = va.message_class("GuiUpdateMessage")
     with _raw_client(server.get_port()) as bad:
         bad.send(_camera())
-        _poll(lambda: len(server.get_clients()) == 1)
+        poll(lambda: len(server.get_clients()) == 1)
         start = time.monotonic()
         with pytest.raises(websockets.exceptions.ConnectionClosed) as info:
             for i in range(1, 5001):
                 bad.send(_encode(update(va.handle_uuid(slider), {"value": float(i)})))
             while True:
-                bad.recv(timeout=10)
+                bad.recv(timeout=POLL_TIMEOUT)
         elapsed = time.monotonic() - start
     assert info.value.rcvd is not None and info.value.rcvd.code == 1008
-    _poll(lambda: limits.closed == 1)
+    poll(lambda: limits.closed == 1)
     assert limits.dropped >= 100
     # Accepted: the camera message, the burst and what the rate allowed until the close.
     assert 20 <= limits.accepted <= 20 + 50.0 * elapsed + 2
-    _poll(lambda: len(calls) == limits.accepted - 1)
+    poll(lambda: len(calls) == limits.accepted - 1)
 
 
 def test_over_the_rate_only_the_latest_value_of_an_input_waits_and_it_arrives(limited):
@@ -343,10 +336,10 @@ def test_over_the_rate_only_the_latest_value_of_an_input_waits_and_it_arrives(li
     slider = server.gui.add_slider("q", min=0.0, max=100.0, step=1.0, initial_value=0.0)
     update = va.message_class("GuiUpdateMessage")
     with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
-        _poll(lambda: len(server.get_clients()) == 1)
+        poll(lambda: len(server.get_clients()) == 1)
         for i in range(1, 61):  # 60 changes at once: 20 pass (the GUI burst), the rest wait
             ws.send_bytes(_encode(update(va.handle_uuid(slider), {"value": float(i)})))
-        _poll(lambda: slider.value == 60.0)
+        poll(lambda: slider.value == 60.0)
         assert limits.closed == 0
         # The waiting changes of one slider collapse into its latest value: far fewer than 60 pass on.
         assert limits.accepted < 1 + 20 + 5
@@ -359,13 +352,13 @@ def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
     update = va.message_class("GuiUpdateMessage")
     caplog.set_level(logging.WARNING)
     with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
-        _poll(lambda: len(server.get_clients()) == 1)
+        poll(lambda: len(server.get_clients()) == 1)
         ws.send(update(va.handle_uuid(slider), {"value": "9" * 5000 + "x"}))  # float() quotes the value
-        _poll(lambda: any("could not convert" in r.getMessage() for r in caplog.records))
+        poll(lambda: any("could not convert" in r.getMessage() for r in caplog.records))
         ws.send_bytes(b"\xc1 not msgpack")
-        _poll(lambda: limits.malformed == 1)
+        poll(lambda: limits.malformed == 1)
         ws.set_value(va.handle_uuid(slider), 0.7)  # the connection still works
-        _poll(lambda: slider.value == 0.7)
+        poll(lambda: slider.value == 0.7)
     lines = [r.getMessage() for r in caplog.records if r.name == "app.viser_adapter"]
     assert len(lines) == 2
     assert all(len(line) < 700 for line in lines), [len(line) for line in lines]
@@ -375,18 +368,18 @@ def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
 
 @pytest.mark.browser
 def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
-    from browser_helpers import ARGS, CHROMIUM, require_browser
+    from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
 
     sync_playwright = require_browser()
     server.on_client_connect(lambda client: va.set_page_title(client, "Jacobian Lab"))
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
         try:
-            page = browser.new_page(viewport={"width": 800, "height": 600})
+            page = new_page(browser, {"width": 800, "height": 600})
             page.goto(f"http://127.0.0.1:{server.get_port()}")
-            page.wait_for_function("document.title === 'Jacobian Lab'", timeout=30000)
+            page.wait_for_function("document.title === 'Jacobian Lab'")
             page.evaluate("document.title = 'Viser'")  # as a page reset would
-            page.wait_for_function("document.title === 'Jacobian Lab'", timeout=10000)
+            page.wait_for_function("document.title === 'Jacobian Lab'")
         finally:
             browser.close()
 
@@ -403,20 +396,20 @@ def test_only_an_upload_part_may_exceed_the_message_limit(limited):
     content = b"x" * (va.UPLOAD_PART_BYTES + 10)
     with _raw_client(server.get_port()) as tab:
         tab.send(_camera())
-        _poll(lambda: len(server.get_clients()) == 1)
+        poll(lambda: len(server.get_clients()) == 1)
         tab.send(_encode(start(uuid, "t1", "a.urdf", "text/xml", 2, len(content))))
         tab.send(_encode(part(uuid, "t1", 0, content[: va.UPLOAD_PART_BYTES])))
         tab.send(_encode(part(uuid, "t1", 1, content[va.UPLOAD_PART_BYTES :])))
-        _poll(lambda: len(got) == 1)
+        poll(lambda: len(got) == 1)
         assert got[0].content == content and va.upload_too_large(got[0]) is None
         tab.send(_encode(start(uuid, "t2", "big.urdf", "text/xml", 100, 50 * 1024 * 1024)))
-        _poll(lambda: len(got) == 2)
+        poll(lambda: len(got) == 2)
         assert got[1].content == b"" and va.upload_too_large(got[1]) == ("big.urdf", 50 * 1024 * 1024)
         assert limits.closed == 0
         update = va.message_class("GuiUpdateMessage")
         with pytest.raises(websockets.exceptions.ConnectionClosed) as info:
             tab.send(_encode(update(uuid, {"value": "y" * 20_000})))  # decodable, over 8 KiB
             while True:
-                tab.recv(timeout=10)
+                tab.recv(timeout=POLL_TIMEOUT)
         assert info.value.rcvd is not None and info.value.rcvd.code == 1009
-    _poll(lambda: limits.closed == 1)
+    poll(lambda: limits.closed == 1)
