@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import logging
 import multiprocessing
+import os
 import socket
 import sys
 import threading
@@ -27,7 +28,7 @@ from .services.lifecycle import check_listen_address, wait_for_stop
 from .services.renderer import Renderer
 from .services.symbolic_service import SymbolicService
 from .tab.session import ClientSession
-from .viser_adapter import install_fast_prop_casts, install_icon_cache, install_message_limits
+from .viser_adapter import install_fast_prop_casts, install_icon_cache, install_message_limits, listen_on
 
 __all__ = ["serve", "Lab"]
 
@@ -49,6 +50,8 @@ class Lab:
         symbolic: The service that computes the symbolic J, J⁻¹, steps and exports (default: a new
             :class:`~app.services.symbolic_service.SymbolicService` with worker processes). The lab
             closes it on :meth:`stop`. Tests pass an immediate in-process fake.
+        listen_socket: A listening socket to accept on instead of binding ``host`` and ``port``
+            (shared by the worker processes of ``jacobian-lab serve --workers N``).
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -65,6 +68,7 @@ class Lab:
         tip_link: str | None = None,
         presenter_token: str | None = None,
         symbolic: SymbolicService | None = None,
+        listen_socket: socket.socket | None = None,
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
@@ -73,14 +77,21 @@ class Lab:
         self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link)
         self.default_robot = robot or self.catalog.default()
         self.catalog.load(self.default_robot)  # fail before starting the server
-        check_listen_address(host, port)  # a clear error now, instead of a server that never listens
+        if listen_socket is None:
+            check_listen_address(host, port)  # a clear error now, instead of a server that never listens
         install_message_limits()  # what one websocket message and one tab may cost
         install_fast_prop_casts()
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
         self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
-        self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        if listen_socket is not None:  # one of several worker processes accepting on one socket
+            port = listen_socket.getsockname()[1]
+            listen_on(listen_socket)
+        try:
+            self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        finally:
+            listen_on(None)
         self.server.scene.set_up_direction("+z")
         self.server.initial_camera.position = (1.3, -1.5, 0.9)
         self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
@@ -132,6 +143,8 @@ class Lab:
             self._gone.discard(client.client_id)
             if not gone:
                 self.sessions[client.client_id] = session
+            open_tabs = len(self.sessions)
+        log.info("tab %d connected (%d open in process %d)", client.client_id, open_tabs, os.getpid())
         if gone:  # the tab closed while its session was being built
             session.close()
         elif self.classroom is not None:

@@ -59,20 +59,31 @@ CLK_TCK = os.sysconf("SC_CLK_TCK")
 
 
 def start_server(
-    robot: str, limits: bool, port: int = 0, root: Path | None = None, log: Path | None = None
+    robot: str,
+    limits: bool,
+    port: int = 0,
+    root: Path | None = None,
+    log: Path | None = None,
+    workers: int | None = None,
 ) -> tuple[subprocess.Popen, int]:
     """The app (from the checkout ``root``, default this one) in its own process on ``port``; its port.
 
-    The server's log (stderr) goes to ``log`` (appended) when given, else nowhere."""
+    ``workers``: None serves from one process with ``app.server.serve`` (as every version can); a number
+    runs ``jacobian-lab serve --workers N``. The server's log (stderr) goes to ``log`` (appended) when
+    given, else nowhere."""
     pre = "from app.viser_adapter import install_message_limits; install_message_limits(); " if limits else ""
     code = (
         pre
         + f"from app.server import serve; serve(robot={robot!r}, host='127.0.0.1', port={port}, block=True)"
     )
+    command = ["-c", code]
+    if workers is not None:
+        command = ["-m", "app.cli.main", "serve", "--robot", robot, "--port", str(port)]
+        command += ["--workers", str(workers)]
     root = root or Path(__file__).resolve().parents[1]
     env = dict(os.environ, PYTHONUNBUFFERED="1", PYTHONPATH=str(root))
     proc = subprocess.Popen(
-        [sys.executable, "-u", "-c", code],
+        [sys.executable, "-u", *command],
         stdout=subprocess.PIPE,
         stderr=log.open("a") if log is not None else subprocess.DEVNULL,
         text=True,
@@ -87,16 +98,40 @@ def start_server(
     raise RuntimeError("the server did not start")
 
 
+def _stat(pid: int) -> list[str] | None:
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except OSError:  # the process just ended
+        return None
+
+
+def tree(pid: int) -> list[int]:
+    """``pid`` and every live descendant (the workers of ``serve --workers``, symbolic workers)."""
+    parents: dict[int, int] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit() and (fields := _stat(int(entry.name))) is not None:
+            parents[int(entry.name)] = int(fields[1])
+    found, frontier = [pid], [pid]
+    while frontier:
+        frontier = [p for p, parent in parents.items() if parent in frontier]
+        found += frontier
+    return found
+
+
 def cpu_seconds(pid: int) -> float:
-    """User + system CPU time of process ``pid`` so far [s]."""
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / CLK_TCK
+    """User + system CPU time so far of process ``pid`` and its live descendants [s] (a descendant that
+    ended during the run leaves its time in its parent's children counters, not counted here)."""
+    total = 0
+    for p in tree(pid):
+        if (fields := _stat(p)) is not None:
+            total += int(fields[11]) + int(fields[12])
+    return total / CLK_TCK
 
 
 def switches(pid: int) -> int:
-    """Voluntary context switches of every thread of process ``pid`` so far (a thread hand-off each)."""
+    """Voluntary context switches of every thread of process ``pid`` and its descendants so far."""
     total = 0
-    for status in Path(f"/proc/{pid}/task").glob("*/status"):
+    for status in (s for p in tree(pid) for s in Path(f"/proc/{p}/task").glob("*/status")):
         try:
             text = status.read_text()
         except OSError:  # a thread that just ended
@@ -343,6 +378,14 @@ def main() -> int:
     parser.add_argument(
         "--together", action="store_true", help="all tabs connect at once (else one after another)"
     )
+    parser.add_argument(
+        "--workers",
+        type=int,
+        nargs="+",
+        default=None,
+        help="serve with `jacobian-lab serve --workers N` for each N given (side by side; "
+        "default: one process through app.server.serve)",
+    )
     parser.add_argument("--server-log", type=Path, default=None, help="append the server's log to this file")
     parser.add_argument(
         "--app-root",
@@ -361,9 +404,9 @@ def main() -> int:
     columns += ("CPU %", "ms/change", "switches", "client %")
     widths = (5, 8, 8, 10, 8, 8, 8, 8, 6, 9, 8, 8)
     header = " ".join(f"{c:>{w}}" for c, w in zip(columns, widths, strict=True))
-    print(header + ("   flood (sent, closed)" if args.hostile else ""))
-    for n in args.tabs:
-        proc, port = start_server(args.robot, args.limits, args.port, args.app_root, args.server_log)
+    print("workers " + header + ("   flood (sent, closed)" if args.hostile else ""))
+    for n, workers in [(n, w) for n in args.tabs for w in (args.workers or [None])]:
+        proc, port = start_server(args.robot, args.limits, args.port, args.app_root, args.server_log, workers)
         try:
             r = asyncio.run(
                 run(
@@ -388,7 +431,8 @@ def main() -> int:
         p50, p95, p99 = np.percentile(s, [50, 95, 99]) if len(s) else (np.nan,) * 3
         mx = s.max() if len(s) else np.nan
         line = (
-            f"{n:>5} {('yes' if args.hostile else 'no'):>8} {r['changes']:>8} {r['unanswered']:>10} "
+            f"{workers or '-':>7} {n:>5} {('yes' if args.hostile else 'no'):>8} "
+            f"{r['changes']:>8} {r['unanswered']:>10} "
             f"{p50:>8.1f} {p95:>8.1f} {p99:>8.1f} {mx:>8.1f} {r['cpu']:>6.0f} {r['cpu_per_change']:>9.2f} "
             f"{r['switches_per_change']:>8.1f} "
             f"{r['client_cpu']:>8.0f}"

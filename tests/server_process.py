@@ -10,8 +10,6 @@ import sys
 import threading
 from pathlib import Path
 
-from fakes import poll  # noqa: F401  (the tests import it from here too)
-
 ROOT = Path(__file__).resolve().parents[1]
 
 

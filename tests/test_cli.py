@@ -117,7 +117,24 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
 
     calls = []
     monkeypatch.setattr(app.server, "serve", lambda **kwargs: calls.append(kwargs))
-    assert main(["serve", "--urdf", str(forked), "--base", "base", "--tip", "aux", "--port", "8123"]) == 0
+    assert (
+        main(
+            [
+                "serve",
+                "--urdf",
+                str(forked),
+                "--base",
+                "base",
+                "--tip",
+                "aux",
+                "--port",
+                "8123",
+                "--workers",
+                "1",
+            ]
+        )
+        == 0
+    )
     assert calls == [
         {
             "robot": None,

@@ -14,7 +14,8 @@ import time
 from pathlib import Path
 
 import pytest
-from server_process import Server, alive, children, cmdline, poll, session_processes
+from fakes import poll
+from server_process import Server, alive, children, cmdline, session_processes
 from wsclient import ViserWsClient
 
 from app.services.lifecycle import check_listen_address

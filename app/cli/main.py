@@ -47,6 +47,14 @@ def _build_parser() -> argparse.ArgumentParser:
     add_chain_arguments(serve)
     serve.add_argument("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1)")
     serve.add_argument("--port", type=_port, default=8080, help="port (default 8080; 0 picks a free one)")
+    serve.add_argument(
+        "--workers",
+        type=_workers,
+        default=None,
+        metavar="N",
+        help="server processes behind the one address (default: one per core, at most 16; "
+        "1: a single process; classroom mode uses 1)",
+    )
     present = serve.add_mutually_exclusive_group()
     present.add_argument(
         "--presenter-token",
@@ -65,6 +73,18 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     sub.add_parser("record", help="record a demo that plays from any static web server", add_help=False)
     return parser
+
+
+def _workers(text: str) -> int:
+    from .workers import WORKER_CAP
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number of processes, got {text!r}") from None
+    if not 1 <= value <= WORKER_CAP:
+        raise argparse.ArgumentTypeError(f"expected 1 to {WORKER_CAP} processes, got {value}")
+    return value
 
 
 def _fail(message: str) -> int:
@@ -91,9 +111,23 @@ def _serve(args: argparse.Namespace) -> int:
         from app.services.classroom import random_token
 
         token = random_token()
+    from .workers import default_workers, serve_workers
+
+    workers = args.workers if args.workers is not None else default_workers()
+    if token is not None and workers > 1:
+        if args.workers is not None:
+            print(
+                "jacobian-lab: classroom mode serves from one process (the presenter's followers must "
+                f"share its process); --workers {workers} ignored",
+                file=sys.stderr,
+            )
+        workers = 1
     try:  # fail before the server starts (and before viser is imported)
         if args.urdf or args.robot:
             robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip)
+        if workers > 1:
+            options = {"robot": args.robot, "urdf": args.urdf, "base_link": args.base, "tip_link": args.tip}
+            return serve_workers(workers, options, host=args.host, port=args.port)
         from app.server import serve
 
         serve(
@@ -106,7 +140,7 @@ def _serve(args: argparse.Namespace) -> int:
             block=True,
             presenter_token=token,
         )
-    except JacobianLabError as exc:
+    except (JacobianLabError, ValueError, RuntimeError) as exc:
         return _fail(str(exc))
     except KeyboardInterrupt:
         pass

@@ -17,6 +17,8 @@ Wrapped:
   handler at call time) and the ``max_size`` viser passes to ``websockets``' ``serve``; only
   an upload's parts (512 KiB, the browser's) may exceed the message limit, and an upload
   declared over :data:`MAX_UPLOAD_BYTES` is never buffered (:func:`upload_too_large`).
+* :func:`listen_on` — the same ``serve`` wrapper accepting on a listening socket shared by several
+  worker processes (``jacobian-lab serve --workers N``) instead of binding host and port.
 * :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
   ``queue_message`` and the messages' ``owner``), for a presenter's followers.
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
@@ -50,6 +52,7 @@ from .limits import (
     UPLOAD_PART_BYTES,
     MessageLimits,
     install_message_limits,
+    listen_on,
     uninstall_message_limits,
     upload_too_large,
 )
@@ -68,6 +71,7 @@ __all__ = [
     "node_props",
     "MessageLimits",
     "install_message_limits",
+    "listen_on",
     "uninstall_message_limits",
     "upload_too_large",
     "MAX_UPLOAD_BYTES",

@@ -6,6 +6,7 @@ import asyncio
 import dataclasses
 import inspect
 import logging
+import socket
 import threading
 import traceback
 from collections.abc import Callable
@@ -72,6 +73,7 @@ class MessageLimits:
 
 
 _limits: MessageLimits | None = None
+_listen_socket: socket.socket | None = None
 _original: dict[str, Any] = {}
 
 
@@ -169,10 +171,28 @@ def _checked_upload(message: Any, size: int, limits: MessageLimits) -> tuple[Any
 
 
 def _serve_with_limit(*args: Any, **kwargs: Any) -> Any:
-    """``websockets.asyncio.server.serve`` as viser calls it, with our ``max_size``."""
+    """``websockets.asyncio.server.serve`` as viser calls it (``serve(handler, host, port, ...)``), with
+    our ``max_size``, and on the listening socket given to :func:`listen_on` instead of host and port."""
     if _limits is not None:
         kwargs["max_size"] = _frame_limit(_limits)
+    if _listen_socket is not None:
+        args = args[:1]
+        kwargs.pop("host", None)
+        kwargs.pop("port", None)
+        kwargs["sock"] = _listen_socket
     return _original["websockets"].asyncio.server.serve(*args, **kwargs)
+
+
+def listen_on(sock: socket.socket | None) -> None:
+    """Make the next viser server of this process accept on ``sock`` (a listening socket shared by
+    several worker processes) instead of binding its own host and port; ``None`` undoes it.
+
+    Needs :func:`install_message_limits` first (its ``serve`` wrapper passes the socket on).
+    """
+    global _listen_socket
+    if sock is not None and not _original:
+        raise RuntimeError("listen_on: call install_message_limits() first")
+    _listen_socket = sock
 
 
 class _Overlay:

@@ -1,0 +1,259 @@
+"""``jacobian-lab serve --workers N``: one address, N server processes, a parent that supervises them.
+
+A single Python process draws every tab under one interpreter lock, so one server saturates one core
+(about 3.5 ms of CPU per slider change: 60 tabs moving a slider five times a second need more than a
+core). Here the parent binds the listening socket once and starts N worker processes ("spawn", so it
+works the same on Linux, macOS and Windows). Each worker runs a whole :class:`~app.server.Lab` that
+*accepts on the shared socket* instead of binding its own port. The operating system hands each new
+connection to one of the workers waiting in ``accept``, and a tab's websocket stays with the worker
+that accepted it for its whole life (viser's page is the same from any worker). On Linux and macOS
+every worker accepts on the same socket; on Windows the socket is passed with ``socket.share`` by
+multiprocessing and accepting from several processes works the same way.
+
+The parent:
+
+* prints the address once every worker is ready, and which worker is which process;
+* restarts a worker that dies (its tabs lose their connection; viser's page reconnects by itself and
+  lands on a live worker, as a new tab);
+* on Ctrl-C, SIGTERM or SIGHUP asks every worker to stop (SIGTERM: each stops its tabs and its symbolic
+  worker), waits a few seconds, then kills what is left;
+* is watched by every worker: a worker whose parent is gone (``kill -9``) exits by itself.
+
+Classroom mode (a presenter token) needs every follower in the presenter's process today, so it runs
+one worker and says so.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import multiprocessing
+import os
+import socket
+import sys
+import threading
+import time
+from multiprocessing.connection import Connection
+from multiprocessing.connection import wait as wait_for_handles
+from typing import Any
+
+from app.services.lifecycle import check_listen_address, install_stop_signals, watch_parent
+
+__all__ = ["WORKER_CAP", "default_workers", "listening_socket", "serve_workers", "WorkerPool"]
+
+log = logging.getLogger(__name__)
+
+WORKER_CAP = 16
+"""Most worker processes ``--workers`` starts (each holds the app, viser and a symbolic worker)."""
+
+READY_TIMEOUT = 60.0
+"""Seconds a worker may take to import the app and start serving before the start is given up."""
+
+STOP_GRACE = 5.0
+"""Seconds the workers get to stop after SIGTERM before they are killed."""
+
+
+def default_workers() -> int:
+    """One worker per core this process may use, at most :data:`WORKER_CAP`."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # macOS, Windows
+        cores = os.cpu_count() or 1
+    return max(1, min(cores, WORKER_CAP))
+
+
+def listening_socket(host: str, port: int) -> socket.socket:
+    """A listening TCP socket on ``host``: ``port``, or the next free port after it (as viser does).
+
+    Raises:
+        ValueError: the address is not one of this machine's, or no port from ``port`` to ``port`` + 99
+            is free.
+    """
+    check_listen_address(host, port)
+    family, kind, proto, _, address = socket.getaddrinfo(
+        host or None, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE
+    )[0]
+    last: OSError | None = None
+    for attempt in range(port, port + 100) if port else [0]:
+        sock = socket.socket(family, kind, proto)
+        try:
+            if os.name != "nt":
+                sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            sock.bind((address[0], attempt, *address[2:]))
+            sock.listen(512)
+            sock.setblocking(False)
+            return sock
+        except OSError as exc:
+            sock.close()
+            last = exc
+    raise ValueError(f"cannot listen on {host!r}: ports {port} to {port + 99} are busy ({last})")
+
+
+@dataclasses.dataclass
+class _Worker:
+    index: int
+    process: Any  # multiprocessing.Process (spawn context)
+    ready: Connection
+    started: float
+    port: int = 0
+
+
+def _worker_main(
+    index: int, sock: socket.socket, lab_options: dict[str, Any], ready: Connection, parent_pid: int
+) -> None:
+    """One worker: a whole Lab accepting on the shared socket, until SIGTERM or its parent is gone."""
+    watch_parent(parent_pid)  # ends this worker if the parent is killed outright; ignores Ctrl-C
+    logging.basicConfig(level=logging.INFO, format=f"%(levelname)s worker {index} %(name)s: %(message)s")
+    logging.getLogger("websockets").setLevel(logging.WARNING)
+    sys.setswitchinterval(0.001)
+    from app.server import Lab  # the worker's own import: the parent never builds a Lab
+
+    lab = Lab(listen_socket=sock, **lab_options)
+    stop = threading.Event()
+    signals = install_stop_signals(stop.set)
+    ready.send(("ready", os.getpid(), lab.port))
+    ready.close()
+    try:
+        stop.wait()
+    finally:
+        signals.restore()
+        lab.stop()
+
+
+class WorkerPool:
+    """N worker processes serving one listening socket, restarted when they die.
+
+    Args:
+        sock: The listening socket (see :func:`listening_socket`).
+        workers: How many worker processes.
+        lab_options: Keyword arguments of :class:`app.server.Lab` (robot, urdf, host, chain …).
+    """
+
+    def __init__(self, sock: socket.socket, workers: int, lab_options: dict[str, Any]) -> None:
+        if not 1 <= workers <= WORKER_CAP:
+            raise ValueError(f"workers must be 1 to {WORKER_CAP}, got {workers}")
+        self.sock = sock
+        self.count = workers
+        self.lab_options = dict(lab_options)
+        self.context = multiprocessing.get_context("spawn")
+        self.workers: dict[int, _Worker] = {}
+        self.restarts = 0
+
+    @property
+    def port(self) -> int:
+        return int(self.sock.getsockname()[1])
+
+    def start(self) -> None:
+        """Start every worker and wait until each serves (or raise, stopping those started)."""
+        for index in range(1, self.count + 1):
+            self._spawn(index)
+        try:
+            for worker in list(self.workers.values()):
+                self._wait_ready(worker)
+        except BaseException:
+            self.stop()
+            raise
+
+    def _spawn(self, index: int) -> _Worker:
+        mine, theirs = self.context.Pipe(duplex=False)
+        process = self.context.Process(
+            target=_worker_main,
+            args=(index, self.sock, self.lab_options, theirs, os.getpid()),
+            name=f"jacobian-lab-worker-{index}",
+        )
+        process.start()
+        theirs.close()
+        worker = _Worker(index, process, mine, time.monotonic())
+        self.workers[index] = worker
+        return worker
+
+    def _wait_ready(self, worker: _Worker) -> None:
+        ready = wait_for_handles([worker.ready, worker.process.sentinel], timeout=READY_TIMEOUT)
+        if worker.ready in ready:
+            try:
+                _, pid, port = worker.ready.recv()
+                worker.port = int(port)
+                log.info("worker %d (pid %d) serving", worker.index, pid)
+                return
+            except EOFError:
+                pass
+        code = worker.process.exitcode
+        raise RuntimeError(
+            f"worker {worker.index} did not start (exit status {code}); its error is printed above"
+            if code is not None
+            else f"worker {worker.index} did not start within {READY_TIMEOUT:.0f} s"
+        )
+
+    def pids(self) -> list[int]:
+        return [w.process.pid for w in self.workers.values() if w.process.pid is not None]
+
+    def supervise(self, stop_requested: Any) -> None:
+        """Until ``stop_requested()``: restart every worker that dies (one restart a second at most)."""
+        while not stop_requested():
+            sentinels = [w.process.sentinel for w in self.workers.values()]
+            wait_for_handles(sentinels, timeout=0.25)
+            for index, worker in list(self.workers.items()):
+                if worker.process.is_alive() or stop_requested():
+                    continue
+                log.warning(
+                    "worker %d (pid %s) ended with status %s: starting it again; its tabs reconnect",
+                    index,
+                    worker.process.pid,
+                    worker.process.exitcode,
+                )
+                worker.process.join(0)
+                worker.ready.close()
+                # A worker that dies at once, again and again, must not spin the parent.
+                if time.monotonic() - worker.started < 1.0:
+                    time.sleep(1.0)
+                self.restarts += 1
+                try:
+                    self._wait_ready(self._spawn(index))
+                except RuntimeError as exc:
+                    log.error("%s", exc)
+
+    def stop(self) -> None:
+        """SIGTERM every worker, wait up to :data:`STOP_GRACE` s, kill the rest."""
+        workers = list(self.workers.values())
+        for worker in workers:
+            if worker.process.is_alive():
+                worker.process.terminate()
+        end = time.monotonic() + STOP_GRACE
+        for worker in workers:
+            worker.process.join(max(0.0, end - time.monotonic()))
+            if worker.process.is_alive():
+                log.warning("worker %d did not stop in %.0f s: killing it", worker.index, STOP_GRACE)
+                worker.process.kill()
+                worker.process.join(2.0)
+            worker.ready.close()
+        self.workers.clear()
+        self.sock.close()
+
+
+def serve_workers(workers: int, lab_options: dict[str, Any], host: str, port: int) -> int:
+    """Serve the app from ``workers`` processes on one address until a stop signal; returns 0.
+
+    Raises:
+        ValueError: the address cannot be listened on.
+        RuntimeError: a worker could not start (e.g. the robot cannot be loaded).
+    """
+    logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
+    sock = listening_socket(host, port)
+    pool = WorkerPool(sock, workers, dict(lab_options, host=host))
+    stopping: list[str] = []
+    signals = install_stop_signals(lambda: stopping.append("stop"))
+    try:
+        pool.start()
+        shown = host if host not in ("0.0.0.0", "::", "") else socket.gethostname()
+        shown = f"[{shown}]" if ":" in shown else shown
+        print(
+            f"Jacobian Lab: open http://{shown}:{pool.port} in a browser "
+            f"(robot: {lab_options.get('robot') or 'default'}; {workers} worker processes: "
+            f"{' '.join(str(p) for p in pool.pids())})",
+            flush=True,
+        )
+        pool.supervise(lambda: bool(stopping))
+    finally:
+        signals.restore()
+        pool.stop()
+    return 0
