@@ -4,12 +4,12 @@ paths, the listing name, and the serve entry point."""
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
+import locations
 import pytest
 from app_helpers import assert_all_finite, running_lab, scene_props
 
-DATA = Path(__file__).parent / "data" / "urdf"
+DATA = locations.DATA / "urdf"
 
 
 # ------------------------------------------------------------------ URDF robots

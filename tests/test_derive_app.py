@@ -6,12 +6,12 @@ from __future__ import annotations
 
 import math
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
 from app_helpers import assert_all_finite, running_lab, scene_node
 from fakes import poll
+from locations import DATA
 
 from app.core.actions import ChooseRobot, SetJoint, SetRate, SetWrench
 from app.core.snapshot.derive import METHODS
@@ -19,8 +19,6 @@ from app.views.fmt import fixed
 from app.views.palette import joint_color
 from app.views.scene.overlays import LINEAR_SECONDS
 from kinematics import fk, jacobian, link_frames
-
-DATA = Path(__file__).parent / "data"
 
 
 def choose(session, name: str) -> None:

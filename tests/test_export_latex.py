@@ -12,15 +12,15 @@ import os
 import re
 import shutil
 import subprocess
-from pathlib import Path
 
 import pytest
+from locations import DATA, KATEX
 
 import kinematics
 import robots
 from kinematics.symbolic.typeset import export as ex
 
-KATEX_DIR = Path(__file__).resolve().parent / "katex"
+KATEX_DIR = KATEX
 
 
 def _unavailable(reason: str):
@@ -113,7 +113,7 @@ def test_compact_notation_and_legend():
 @pytest.mark.parametrize("name", ["iiwa14_like", "xarm7_like"])
 def test_real_arm_urdf_latex_typesets(katex, name):
     """URDF arms with 1.5708-style angles: snapped, short, and the joint-name legend typesets."""
-    robot = kinematics.Robot.from_urdf(str(Path(__file__).resolve().parent / "data" / f"{name}.urdf"))
+    robot = kinematics.Robot.from_urdf(str(DATA / f"{name}.urdf"))
     text = ex.export(robot, "latex", timeout=120)
     formulas = display_formulas(text)
     assert [e for e in katex(formulas) if e is not None] == []

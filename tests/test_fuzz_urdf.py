@@ -11,8 +11,8 @@ import random
 import re
 import signal
 import time
-from pathlib import Path
 
+import locations
 import numpy as np
 import pytest
 
@@ -21,7 +21,7 @@ from kinematics import Robot, fk, jacobian
 from kinematics.errors import JacobianLabError
 from kinematics.urdf import chains, robot_from_urdf, robot_from_urdf_string
 
-DATA = Path(__file__).parent / "data" / "urdf"
+DATA = locations.DATA / "urdf"
 SEEDS_URDF = [
     (DATA / name).read_bytes()
     for name in (

@@ -23,6 +23,7 @@ import pytest
 import zstandard
 from browser_helpers import ARGS, CHROMIUM, close_notifications, image, new_page, require_browser
 from fakes import poll
+from locations import ROOT
 
 import robots
 from app.cli.main import main
@@ -33,8 +34,6 @@ from app.core.state import LabState
 from app.demo.record import CLIENT_PAGE, LEAD, RECORDING, plan, readout, record
 from app.views.fmt import number
 from kinematics.numeric import fk
-
-ROOT = Path(__file__).resolve().parent.parent
 
 
 # ------------------------------------------------------------------ reading a .viser file

@@ -20,7 +20,6 @@ from wsclient import ViserWsClient
 
 from app.services.lifecycle import check_listen_address
 
-ROOT = Path(__file__).resolve().parents[1]
 ROBOT = "planar2"  # its symbolic J takes a second
 
 

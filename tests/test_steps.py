@@ -11,11 +11,10 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import sympy as sp
+from locations import DATA
 
 import kinematics
 import robots
@@ -23,7 +22,7 @@ from kinematics.numeric import joint_frames, link_frames
 from kinematics.symbolic import det_rows, is_zero, jacobian
 from kinematics.symbolic.steps import METHODS, derivation_steps, dh_rows
 
-URDF = Path(__file__).resolve().parent / "data" / "iiwa14_like.urdf"
+URDF = DATA / "iiwa14_like.urdf"
 SMALL = ["planar2", "trr", "elbow3r", "wrist"]
 FAST = 0.3  # [s] simplification budget for the numeric checks: the steps are exact either way
 

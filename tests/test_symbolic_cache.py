@@ -7,19 +7,17 @@ import logging
 import os
 import pickle
 import stat
-from pathlib import Path
 
 import numpy as np
 import pytest
 import sympy as sp
+from locations import DATA
 
 import kinematics
 import robots
 from kinematics import symbolic
 from kinematics.symbolic import cache
 from kinematics.symbolic.cachecodec import CodecError, decode, encode
-
-DATA = Path(__file__).resolve().parent / "data"
 
 
 @pytest.fixture()

@@ -7,16 +7,14 @@ Chromium lays out MathML natively; each ``<math display="block">`` of
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
+from locations import DATA
 
 import kinematics
 import robots
 from kinematics.symbolic import jacobian_mathml
 
-DATA = Path(__file__).resolve().parent / "data"
 PANEL = 600
 
 pytestmark = pytest.mark.browser

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
+from locations import DATA
 
 import kinematics
 import robots
@@ -17,7 +18,6 @@ from kinematics.symbolic.simplify import drop_negligible
 from kinematics.symbolic.snap import SNAP_TOL, Snapper
 from kinematics.transforms import rot_x, rot_y, rot_z
 
-DATA = Path(__file__).resolve().parent / "data"
 ROUNDED = {"1.57079632679": math.pi / 2, "3.14159265359": math.pi, "3.14159": math.pi, "1.5708": math.pi / 2}
 
 

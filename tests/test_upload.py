@@ -6,12 +6,12 @@ from __future__ import annotations
 import math
 import time
 import uuid
-from pathlib import Path
 
 import numpy as np
 import pytest
 from app_helpers import assert_all_finite, gui_contents, scene_props
 from fakes import poll
+from locations import DATA
 from wsclient import ViserWsClient
 
 import kinematics.urdf.mesh
@@ -20,7 +20,6 @@ from app.viser_adapter import UPLOAD_PART_BYTES, handle_uuid, message_class
 from kinematics import Robot
 from kinematics.numeric import jacobian
 
-DATA = Path(__file__).parent / "data"
 ARM = """<?xml version="1.0"?>
 <robot name="NAME">
   <link name="base"/><link name="upper">MESH</link><link name="fore"/><link name="tool"/>

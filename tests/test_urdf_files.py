@@ -11,6 +11,7 @@ import logging
 import math
 from pathlib import Path
 
+import locations
 import numpy as np
 import pytest
 
@@ -19,7 +20,7 @@ from kinematics import Robot, fk, jacobian
 from kinematics.errors import UrdfError
 from kinematics.urdf import chains, robot_from_urdf, robot_from_urdf_string
 
-DATA = Path(__file__).parent / "data" / "urdf"
+DATA = locations.DATA / "urdf"
 logging.getLogger("yourdfpy").setLevel(logging.ERROR)
 
 

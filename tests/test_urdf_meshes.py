@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
+import locations
 import pytest
 
 from kinematics.urdf import mesh_filename_handler, mesh_report, resolve_mesh
 
-DATA = Path(__file__).parent / "data" / "urdf" / "mesh_arm"
+DATA = locations.DATA / "urdf" / "mesh_arm"
 ARM = DATA / "urdf" / "arm.urdf"
 HOSTILE = DATA / "urdf" / "hostile.urdf"
 

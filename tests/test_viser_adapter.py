@@ -12,7 +12,6 @@ import logging
 import re
 import threading
 import time
-from pathlib import Path
 
 import msgspec
 import numpy as np
@@ -20,6 +19,7 @@ import pytest
 import viser
 import websockets.sync.client
 from fakes import POLL_TIMEOUT, poll
+from locations import ROOT
 from packaging.specifiers import SpecifierSet
 from wsclient import ViserWsClient
 
@@ -29,8 +29,6 @@ try:
     import tomllib
 except ImportError:  # Python 3.10
     import tomli as tomllib
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.fixture
