@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+import time
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -23,6 +24,19 @@ settings.load_profile("ci" if os.environ.get("CI") else "default")
 # every run cold so that cached results never hide a fresh computation's failure.
 _CACHE_ROOT = tempfile.mkdtemp(prefix="jacobian-lab-test-cache-")
 os.environ["XDG_CACHE_HOME"] = _CACHE_ROOT
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _deadlines_on_cpu_time():
+    """Symbolic time limits count the work done (this process's CPU time), not the wall clock: another
+    job on the machine makes the suite slower, never cuts its symbolic work short. (Worker processes
+    the app spawns keep the wall clock; their tests poll for the result.)"""
+    from kinematics.symbolic import trig
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(trig, "clock", time.process_time)
+    yield
+    mp.undo()
 
 
 @pytest.fixture(autouse=True, scope="module")

@@ -10,6 +10,7 @@ import sys
 import threading
 from pathlib import Path
 
+from fakes import POLL_TIMEOUT
 from locations import ROOT
 
 
@@ -93,7 +94,7 @@ class Server:
     def cleanup(self) -> None:
         for pid in session_processes(self.pid):
             os.kill(pid, signal.SIGKILL)
-        self.proc.wait(10)
+        self.proc.wait(POLL_TIMEOUT)
 
 
 def rss_bytes(pid: int, field: str = "VmRSS") -> int:

@@ -32,6 +32,7 @@ def _modal_open(page) -> bool:
     return page.locator(".mantine-Modal-content .jl-big").count() > 0
 
 
+@pytest.mark.slow
 def test_app_in_chromium_at_1280x720(tmp_path):
     """Layout, keyboard sliders, the view changing, a singular configuration, and the enlarged J closing
     with Escape, its × and a click outside."""
@@ -101,6 +102,7 @@ def test_app_in_chromium_at_1280x720(tmp_path):
     assert session.errors == 0
 
 
+@pytest.mark.slow
 def test_explorer_in_chromium_play_a_preset_and_click_the_map(tmp_path):
     """The Motion tab: a preset and Play move the arm by itself (the 3-D view changes with no input)
     and the charts appear; the Maps tab: a click on the joint map moves the two joints there."""

@@ -22,6 +22,7 @@ from app.server import Lab
 pytestmark = pytest.mark.browser
 
 
+@pytest.mark.slow
 def test_trr_course_example_in_three_clicks(tmp_path):
     out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -21,6 +21,7 @@ from kinematics import link_frames
 pytestmark = pytest.mark.browser
 
 
+@pytest.mark.slow
 def test_derive_tab_in_chromium_walks_whitney_on_the_puma(tmp_path):
     out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -127,6 +127,7 @@ def test_wrong_tokens_change_nothing():
         assert presenter.role.presenting and not follower.role.presenting and follower.role.following
 
 
+@pytest.mark.slow
 def test_the_presenter_leaving_leaves_the_followers_where_they_were():
     with running_lab(presenter_token=TOKEN) as (lab, _, _ws):
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as presenter_ws:

@@ -90,6 +90,7 @@ def _click(buttons, label: str) -> None:
     buttons.value = label
 
 
+@pytest.mark.slow
 def test_the_nearest_singularity_is_found_off_the_drawing_thread_and_played_back(session):
     assert session.snapshot.report.status == "regular"  # the Puma at home
     session.dispatch(FindSingularity())

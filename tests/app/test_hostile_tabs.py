@@ -11,6 +11,7 @@ import time
 
 import msgspec
 import numpy as np
+import pytest
 import viser
 import websockets.sync.client
 from fakes import POLL_TIMEOUT
@@ -58,6 +59,7 @@ def _round_trip(ws: ViserWsClient, uuid: str, value: float) -> float:
     return (received - sent) * 1e3
 
 
+@pytest.mark.slow
 def test_a_49_mib_message_is_refused_without_memory_or_log_growth(tmp_path):
     server = Server(tmp_path, SERVE)
     try:
@@ -91,6 +93,7 @@ def test_a_49_mib_message_is_refused_without_memory_or_log_growth(tmp_path):
         server.cleanup()
 
 
+@pytest.mark.slow
 def test_5000_slider_messages_from_one_tab_do_not_stall_another(tmp_path):
     server = Server(tmp_path, SERVE)
     try:

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 import zstandard
 from browser_helpers import ARGS, CHROMIUM, close_notifications, image, new_page, require_browser
-from fakes import poll
+from fakes import POLL_TIMEOUT, poll
 from locations import ROOT
 
 import robots
@@ -249,6 +249,7 @@ def _answers(url: str) -> bool:
         return False
 
 
+@pytest.mark.slow
 @pytest.mark.browser
 def test_the_recorded_demo_plays_from_a_static_server_in_chromium(tmp_path):
     sync_playwright = require_browser()
@@ -302,5 +303,5 @@ def test_the_recorded_demo_plays_from_a_static_server_in_chromium(tmp_path):
                 browser.close()
     finally:
         server.terminate()
-        server.wait(10)
+        server.wait(POLL_TIMEOUT)
     assert not errors, errors

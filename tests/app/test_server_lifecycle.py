@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 import pytest
-from fakes import poll
+from fakes import POLL_TIMEOUT, poll
 from server_process import Server, alive, children, cmdline, session_processes
 from wsclient import ViserWsClient
 
@@ -47,35 +47,38 @@ SERVE_WIRED = (
 )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP], ids=["SIGTERM", "SIGHUP"])
 def test_a_stop_signal_leaves_no_process_behind(tmp_path, sig):
     server, kids = _start_with_tab(tmp_path, SERVE)
     try:
         os.kill(server.pid, sig)
-        server.proc.wait(30)
+        server.proc.wait(POLL_TIMEOUT)
         poll(lambda: not session_processes(server.pid), what="no process of the server's session left")
         assert not any(alive(p) for p in kids)
     finally:
         server.cleanup()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT], ids=["TERM", "HUP", "INT"])
 def test_wait_for_stop_stops_the_lab_cleanly(tmp_path, sig):
     server, kids = _start_with_tab(tmp_path, SERVE_WIRED)
     try:
         os.kill(server.pid, sig)
-        assert server.proc.wait(30) == 0, server.log.read_text()[-2000:]
+        assert server.proc.wait(POLL_TIMEOUT) == 0, server.log.read_text()[-2000:]
         poll(lambda: any(f"stopped by {sig.name}" in line for line in server.out), what="the reason printed")
         poll(lambda: not session_processes(server.pid), what="no process of the server's session left")
     finally:
         server.cleanup()
 
 
+@pytest.mark.slow
 def test_the_worker_exits_by_itself_when_the_server_is_killed(tmp_path):
     server, kids = _start_with_tab(tmp_path, SERVE)
     try:
         os.kill(server.pid, signal.SIGKILL)
-        server.proc.wait(10)
+        server.proc.wait(POLL_TIMEOUT)
         start = time.monotonic()
         poll(lambda: not session_processes(server.pid), what="the orphaned worker and tracker gone")
         assert time.monotonic() - start < 5.0
@@ -83,6 +86,7 @@ def test_the_worker_exits_by_itself_when_the_server_is_killed(tmp_path):
         server.cleanup()
 
 
+@pytest.mark.slow
 def test_a_killed_worker_is_replaced_for_the_next_request(tmp_path):
     server, _ = _start_with_tab(tmp_path, SERVE)
     try:

@@ -44,6 +44,7 @@ def service():
         svc.close()
 
 
+@pytest.mark.slow
 def test_a_killed_worker_is_restarted_and_the_next_request_succeeds(service):
     from kinematics.symbolic import jacobian_mathml
 
@@ -84,6 +85,7 @@ def test_a_worker_killed_mid_computation_runs_it_again_once(tmp_path):
         pool.close()
 
 
+@pytest.mark.slow
 def test_a_computation_that_kills_every_worker_fails_clearly_and_the_pool_recovers():
     pool = WorkerPool()
     try:

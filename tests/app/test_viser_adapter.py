@@ -305,6 +305,7 @@ def test_a_message_over_the_size_limit_closes_that_connection_only(limited):
         good.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=mark)
 
 
+@pytest.mark.slow
 def test_a_flood_is_dropped_beyond_the_rate_and_then_closed(limited):
     server, limits = limited
     slider = server.gui.add_slider("q", min=0.0, max=10000.0, step=1.0, initial_value=0.0)
@@ -364,6 +365,7 @@ def test_a_bad_message_is_logged_in_one_bounded_line(limited, caplog):
     assert "DecodeError" in lines[1]
 
 
+@pytest.mark.slow
 @pytest.mark.browser
 def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
     from browser_helpers import ARGS, CHROMIUM, new_page, require_browser

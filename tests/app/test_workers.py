@@ -18,7 +18,7 @@ import threading
 from pathlib import Path
 
 import pytest
-from fakes import poll
+from fakes import POLL_TIMEOUT, poll
 from server_process import ROOT, alive, session_processes
 from wsclient import ViserWsClient
 
@@ -75,7 +75,7 @@ class Pool:
                 os.kill(pid, signal.SIGKILL)
             except ProcessLookupError:
                 pass
-        self.proc.wait(10)
+        self.proc.wait(POLL_TIMEOUT)
         self._log.close()
 
 
@@ -92,6 +92,7 @@ def _tab_served(url: str) -> None:
         ws.wait_for(lambda m: m["type"] == "GuiSliderMessage")
 
 
+@pytest.mark.slow
 def test_every_tab_is_served_and_both_workers_serve(pool2):
     assert len(pool2.workers) == 2 and all(alive(p) for p in pool2.workers)
     clients = [ViserWsClient(pool2.url()).__enter__() for _ in range(8)]
@@ -117,6 +118,7 @@ def test_every_tab_is_served_and_both_workers_serve(pool2):
             ws.__exit__(None, None, None)
 
 
+@pytest.mark.slow
 def test_a_killed_worker_is_started_again_and_the_room_keeps_working(pool2):
     victim, other = pool2.workers
     os.kill(victim, signal.SIGKILL)
@@ -133,19 +135,21 @@ def test_a_killed_worker_is_started_again_and_the_room_keeps_working(pool2):
         _tab_served(pool2.url())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP, signal.SIGINT])
 def test_a_stop_signal_ends_every_process(pool2, sig):
     _tab_served(pool2.url())
     assert len(session_processes(pool2.proc.pid)) >= 3  # the parent, two workers (and their helpers)
     os.kill(pool2.proc.pid, sig)
-    assert pool2.proc.wait(30) == 0, pool2.log.read_text()[-3000:]
+    assert pool2.proc.wait(POLL_TIMEOUT) == 0, pool2.log.read_text()[-3000:]
     poll(lambda: not session_processes(pool2.proc.pid), what="no process of the pool's session left")
 
 
+@pytest.mark.slow
 def test_workers_exit_by_themselves_when_the_parent_is_killed(pool2):
     _tab_served(pool2.url())
     os.kill(pool2.proc.pid, signal.SIGKILL)
-    pool2.proc.wait(10)
+    pool2.proc.wait(POLL_TIMEOUT)
     poll(lambda: not session_processes(pool2.proc.pid), what="the orphaned workers (and their helpers) gone")
 
 

@@ -18,6 +18,7 @@ from kinematics.symbolic.typeset import export as ex
 MATHML = "{http://www.w3.org/1998/Math/MathML}"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "name, frame, params",
     [
@@ -78,6 +79,7 @@ def test_jacobian_mathml_for_the_app():
     assert 'class="jl-legend"' in text and "cos" in text
 
 
+@pytest.mark.slow
 def test_wide_jacobians_are_shown_column_by_column():
     """A 7-joint arm's J is too wide to read as one matrix: the app gets J1 … J7, one block each."""
     panda = robots.load("panda")

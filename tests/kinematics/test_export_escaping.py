@@ -76,6 +76,7 @@ def test_python_module_never_runs_injected_code(robot, tmp_path):
     assert len(notes) == 1 and "snapped" in notes[0] and "largest change 3.7e-06 rad" in notes[0]
 
 
+@pytest.mark.slow
 def test_latex_typesets_and_keeps_names_in_text(robot, katex):  # noqa: F811
     text = ex.export(robot, "latex")
     formulas = display_formulas(text)

@@ -69,6 +69,7 @@ def test_renderer_rejects_bad_latex(katex):
     assert good is None and "parse error" in bad
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "name, params",
     [
@@ -92,6 +93,7 @@ def test_exported_latex_typesets(katex, name, params):
     assert all(line.startswith("%") or re.fullmatch(r"[A-Za-z ,:]*", line) for line in outside.splitlines())
 
 
+@pytest.mark.slow
 def test_written_out_angles_typeset(katex):
     rows = [
         dict(joint="revolute", a=0.1 * (i + 1), alpha=0.3 * (i + 1), d=0.05 * i, theta=0.2 * i)
@@ -110,6 +112,7 @@ def test_compact_notation_and_legend():
     assert "\\det J = " in text and "wrist singularity" in text
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["iiwa14_like", "xarm7_like"])
 def test_real_arm_urdf_latex_typesets(katex, name):
     """URDF arms with 1.5708-style angles: snapped, short, and the joint-name legend typesets."""

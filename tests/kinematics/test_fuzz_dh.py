@@ -220,6 +220,7 @@ def traced():
     tracemalloc.stop()
 
 
+@pytest.mark.slow
 def test_generated_dh_tables_give_sound_robots_or_project_errors(traced):
     rng = random.Random(20261201)
     outcomes = {"ok": 0, "refused": 0}

@@ -124,6 +124,7 @@ def test_trr_worked_example_is_the_courses(tmp_path):
 
 
 # ----------------------------------------------------------------------------------- both formats
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "args",
     [
@@ -158,6 +159,7 @@ def test_html_is_self_contained_mathml(tmp_path):
         ET.fromstring(math)  # every formula is well-formed XML
 
 
+@pytest.mark.slow
 @pytest.mark.browser
 def test_html_fits_1280_px_in_chromium(tmp_path):
     sync_playwright = require_browser()
@@ -219,6 +221,7 @@ theta = 0.0
 """
 
 
+@pytest.mark.slow
 def test_hostile_names_are_escaped(katex, tmp_path):  # noqa: F811
     robot_file = tmp_path / "hostile.toml"
     robot_file.write_text(HOSTILE_TOML, encoding="utf-8")

@@ -57,6 +57,7 @@ def _skew(w: np.ndarray) -> np.ndarray:
 # ------------------------------------------------------------------------------ exact
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", SMALL)
 @pytest.mark.parametrize("method", METHODS)
 def test_steps_assemble_the_library_jacobian_exactly(name, method):
@@ -94,6 +95,7 @@ def robot_tool_rotation(robot: kinematics.Robot) -> sp.Matrix:
     return fk(robot, timeout=None)[:3, :3]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["planar2", "elbow3r"])
 def test_tool_frame_steps(name):
     robot = robots.load(name)
@@ -144,6 +146,7 @@ def test_bad_arguments_are_refused():
 ALL = [*robots.names(), "urdf"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_transforms_and_whitney_vectors_numerically(name):
     robot = _robot(name)
@@ -175,6 +178,7 @@ def test_transforms_and_whitney_vectors_numerically(name):
             assert S["detJ"].numeric(q)[0, 0] == pytest.approx(expected, abs=1e-6)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_differentiation_steps_numerically(name):
     robot = _robot(name)
@@ -188,6 +192,7 @@ def test_differentiation_steps_numerically(name):
         assert np.allclose(S["J"].numeric(q), J, atol=tol)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_propagated_velocities_are_the_links_velocities(name):
     """ⁱωᵢ, ⁱvᵢ against central differences of the link frames along q̇; ⁰vₙ, ⁰ωₙ against J q̇."""
@@ -213,6 +218,7 @@ def test_propagated_velocities_are_the_links_velocities(name):
         assert np.allclose(S["J"].numeric(q), J, atol=tol)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_propagated_wrench_is_the_tool_wrench_at_each_joint(name):
     """fᵢ, nᵢ rotated to the base equal the tool wrench carried to joint i's frame; τ = J_toolᵀ F."""
@@ -254,6 +260,7 @@ def test_modified_dh_link_transforms_are_craigs():
         assert np.allclose(S[f"A{i + 1}"].numeric(q), A, atol=1e-9)
 
 
+@pytest.mark.slow
 def test_steps_print_in_latex_and_mathml():
     robot = robots.load("puma560")
     S = _by_key(derivation_steps(robot, "whitney"))

@@ -101,6 +101,7 @@ def test_simplified_form_is_readable():
 
 
 # ----------------------------------------------------------- numeric agreement
+@pytest.mark.slow
 @pytest.mark.parametrize("name", LIBRARY)
 def test_symbolic_equals_numeric(name):
     robot = robots.load(name)
@@ -114,6 +115,7 @@ def test_symbolic_equals_numeric(name):
             np.testing.assert_allclose(T(q), kinematics.fk(robot, q), atol=1e-9, rtol=0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["puma560", "elbow3r", "stanford"])
 def test_symbolic_params_numeric(name):
     robot = robots.load(name)
@@ -124,6 +126,7 @@ def test_symbolic_params_numeric(name):
         np.testing.assert_allclose(f(q), kinematics.jacobian(robot, q), atol=1e-9, rtol=0)
 
 
+@pytest.mark.slow
 def test_urdf_chain(tmp_path):
     robot = robots.load("stanford")
     path = tmp_path / "stanford.urdf"
@@ -138,6 +141,7 @@ def test_urdf_chain(tmp_path):
 
 
 # ------------------------------------------------------------------ derivations
+@pytest.mark.slow
 @pytest.mark.parametrize("name", LIBRARY)
 def test_derivations_agree(name):
     robot = robots.load(name)
@@ -148,6 +152,7 @@ def test_derivations_agree(name):
         assert all(v is True for k, v in result.symbolic.items() if k != "whitney")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["trr", "elbow3r", "stanford"])
 def test_derivations_agree_in_tool_frame(name):
     result = symbolic.check_derivations(robots.load(name), "tool", symbolic=True, samples=3)
@@ -202,6 +207,7 @@ def odd_arm(n):
     return kinematics.Robot.from_dh(rows, name=f"odd{n}")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("params", [False, True])
 def test_odd_twists_and_offsets(params):
     robot = odd_arm(3)

@@ -124,6 +124,7 @@ def test_folder_of_another_user_is_refused(fresh_cache):
     assert list(fresh_cache.iterdir()) == [] and cache.stats["stored"] == 0
 
 
+@pytest.mark.slow
 def test_every_cached_kind_round_trips(fresh_cache):
     """Derivations (with snapped values), determinants (square and Gram, with singular sets)."""
     iiwa = kinematics.Robot.from_urdf(str(DATA / "iiwa14_like.urdf"))
@@ -147,6 +148,7 @@ def test_every_cached_kind_round_trips(fresh_cache):
     assert (0, sp.pi) in [s.solutions for s in second[2].singular_sets]  # sin q5 = 0: the wrist
 
 
+@pytest.mark.slow
 def test_second_request_is_a_cache_hit(fresh_cache):
     robot = robots.load("stanford")
     first = symbolic.derive(robot)
@@ -158,6 +160,7 @@ def test_second_request_is_a_cache_hit(fresh_cache):
     assert third.from_cache and cache.stats["disk_hits"] == 1 and third.J == first.J
 
 
+@pytest.mark.slow
 def test_partial_result_is_cached_and_resumed(fresh_cache):
     robot = robots.load("puma560")
     partial = symbolic.derive(robot, timeout=1e-9)

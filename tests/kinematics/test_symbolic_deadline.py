@@ -63,6 +63,7 @@ def timed_export(robot, fmt, timeout=TIMEOUT):
     return text, time.thread_time() - start
 
 
+@pytest.mark.slow
 def test_latex_export_of_a_hard_arm_keeps_to_the_timeout(cold):
     text, seconds = timed_export(twisted_arm(), "latex")
     assert seconds < TIMEOUT + MARGIN
@@ -72,6 +73,7 @@ def test_latex_export_of_a_hard_arm_keeps_to_the_timeout(cold):
     assert "\\begin{bmatrix}" in text
 
 
+@pytest.mark.slow
 def test_json_export_of_a_hard_arm_keeps_to_the_timeout(cold):
     text, seconds = timed_export(twisted_arm(), "json")
     assert seconds < TIMEOUT + MARGIN
@@ -80,6 +82,7 @@ def test_json_export_of_a_hard_arm_keeps_to_the_timeout(cold):
     assert any("unsimplified (exact, but long)" in n for n in doc["notes"])
 
 
+@pytest.mark.slow
 def test_python_export_of_a_hard_arm_is_late_but_exact(cold, tmp_path):
     robot = twisted_arm()
     text, seconds = timed_export(robot, "python")
@@ -94,6 +97,7 @@ def test_python_export_of_a_hard_arm_is_late_but_exact(cold, tmp_path):
         np.testing.assert_allclose(module.J(q), kinematics.jacobian(robot, q), atol=1e-9)
 
 
+@pytest.mark.slow
 def test_seven_twisted_joints_still_return(cold):
     """The one product of the chain being expanded when the deadline passes finishes first: with
     seven twisted joints that takes several seconds (measured: 13 s in all on a busy 2-core machine,
@@ -102,6 +106,7 @@ def test_seven_twisted_joints_still_return(cold):
     assert seconds < TIMEOUT + 2 * MARGIN and "time limit" in text
 
 
+@pytest.mark.slow
 def test_partial_work_is_cached(cold):
     robot = twisted_arm()
     first = symbolic.derive(robot, timeout=TIMEOUT)
@@ -111,6 +116,7 @@ def test_partial_work_is_cached(cold):
     assert second.from_cache and cache.stats["memory_hits"] == hits + 1 and second.J == first.J
 
 
+@pytest.mark.slow
 def test_generated_urdf_like_chain_exports_complete_and_readable(cold):
     """Complete within a minute's work: the limit given is generous (a loaded machine must not cut
     it short), the work done is bounded in CPU seconds."""

@@ -17,6 +17,7 @@ from kinematics.symbolic import SymbolicError
 from kinematics.symbolic.inverse import inverse, inverse_mathml
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["planar2", "trr", "elbow3r"])
 def test_adjugate_over_det_is_the_numeric_inverse(name):
     robot = robots.load(name)
@@ -49,6 +50,7 @@ def test_planar_rr_matches_the_course_print():
     assert sp.simplify(ours - course) == sp.zeros(2, 2)
 
 
+@pytest.mark.slow
 def test_trr_letters_and_where_it_does_not_exist():
     robot = robots.load("trr")
     inv = inverse(robot, symbolic_params=True)

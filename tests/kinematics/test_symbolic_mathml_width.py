@@ -43,6 +43,7 @@ def measure():
         browser.close()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["puma560", "panda", "stanford", "iiwa14_like.urdf", "xarm7_like.urdf"])
 def test_symbolic_j_fits_the_panel(measure, name):
     robot = kinematics.Robot.from_urdf(str(DATA / name)) if name.endswith(".urdf") else robots.load(name)

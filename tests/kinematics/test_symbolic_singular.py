@@ -58,6 +58,7 @@ def test_spherical_wrist():
     assert s.kind == "wrist" and s.factor == sp.sin(q_symbols(3)[1]) and s.solutions == (0, sp.pi)
 
 
+@pytest.mark.slow
 def test_puma_560_wrist_elbow_shoulder():
     q = q_symbols(6)
     a2, a3, d4 = sp.symbols("a2 a3 d4", real=True)
@@ -82,6 +83,7 @@ def test_stanford_singular_sets():
     assert k["wrist"].factor == sp.sin(q[4]) and k["shoulder"].factor == sp.sin(q[1])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["planar3", "trr", "elbow3r", "scara", "stanford", "puma560", "ur5"])
 def test_det_matches_numeric(name):
     robot = robots.load(name)
@@ -92,6 +94,7 @@ def test_det_matches_numeric(name):
         assert float(f(q)) == pytest.approx(np.linalg.det(J), abs=1e-9)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["panda", "iiwa14"])
 def test_redundant_arm_gram_determinant(name):
     robot = robots.load(name)
@@ -105,6 +108,7 @@ def test_redundant_arm_gram_determinant(name):
         assert [s.factor for s in d.singular_sets] == [sp.sin(q_symbols(7)[3])]
 
 
+@pytest.mark.slow
 def test_rows_argument_and_errors():
     robot = robots.load("puma560")
     d = symbolic.determinant(robot, "linear")  # 3×6: det(J_v J_vᵀ); every minor has the arm's factors
@@ -119,6 +123,7 @@ def test_rows_argument_and_errors():
 
 
 # ------------------------------------------------------------- analytic Jacobian
+@pytest.mark.slow
 @pytest.mark.parametrize("convention, singular", [("zyx", (-sp.pi / 2, sp.pi / 2)), ("zyz", (0, sp.pi))])
 def test_analytic_jacobian(convention, singular):
     robot = robots.load("puma560")
@@ -137,6 +142,7 @@ def test_analytic_jacobian_rejects_unknown_convention():
         symbolic.analytic_jacobian(robots.load("planar2"), "xyz")
 
 
+@pytest.mark.slow
 def test_large_determinant_is_declined_quickly():
     rows = [
         dict(joint="revolute", a=0.1 * (i + 1), alpha=0.3 * (i + 1), d=0.05 * i, theta=0.2 * i)

@@ -91,6 +91,7 @@ def test_rotations_snap_to_exact_orthogonal_matrices(R, exact):
     assert 0 < change < SNAP_TOL and len(S.snaps) == 1
 
 
+@pytest.mark.slow
 def test_rotation_that_does_not_snap_stays_exactly_orthogonal():
     S = Snapper()
     E, change = S.rotation((rot_x(0.3) @ rot_y(0.2))[:3, :3], "joint 'j'")
@@ -108,6 +109,7 @@ def test_negligible_terms_are_dropped():
 
 
 # ------------------------------------------------------------- whole robots
+@pytest.mark.slow
 def test_dh_arm_with_rounded_twists_gives_the_exact_formulas():
     """A Puma 560 whose twists are written 1.5708: the same symbolic J as the exact Puma, a note,
     and numbers that agree with its own numeric J to the size of the snap."""
@@ -126,6 +128,7 @@ def test_dh_arm_with_rounded_twists_gives_the_exact_formulas():
         assert np.linalg.norm(f(q) - J) <= 1e-3 * np.linalg.norm(J)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["iiwa14_like", "xarm7_like"])
 def test_real_arm_urdf_snaps_and_stays_readable(name, tmp_path):
     path = DATA / f"{name}.urdf"
@@ -148,6 +151,7 @@ def test_real_arm_urdf_snaps_and_stays_readable(name, tmp_path):
     assert len(latex) < 20_000
 
 
+@pytest.mark.slow
 def test_snapped_values_are_named_in_every_export():
     robot = kinematics.Robot.from_urdf(str(DATA / "xarm7_like.urdf"))
     from kinematics.symbolic.typeset import export as ex

@@ -200,6 +200,7 @@ def test_links_beyond_the_cap_are_refused_at_once():
         robot_from_urdf_string(f'<robot name="big">{links}</robot>')
 
 
+@pytest.mark.slow
 def test_a_chain_of_the_maximum_length_loads():
     n = MAX_LINKS - 1
     links = "".join(f'<link name="l{i}"/>' for i in range(n + 1))
