@@ -148,7 +148,7 @@ class Lab:
         if gone:  # the tab closed while its session was being built
             session.close()
         elif self.classroom is not None:
-            self.classroom.join(client.client_id, session)
+            self.classroom.join(client.client_id, session.following)
 
     def _disconnect(self, client: viser.ClientHandle) -> None:
         with self._lock:
@@ -165,7 +165,7 @@ class Lab:
         with self._lock:
             sessions = list(self.sessions.values())
         for session in sessions:
-            session.notify("Symbolic worker restarted", notice)
+            session.notices.notify("Symbolic worker restarted", notice)
 
     def session(self, timeout: float = 10.0) -> ClientSession:
         """The most recent client's session, waiting up to ``timeout`` seconds for one (for tests)."""

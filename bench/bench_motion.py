@@ -27,7 +27,8 @@ sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
 
 import robots  # noqa: E402
-from app.core.actions import ApplyPreset, ChooseRobot, Play, ResetMotion, SelfMove, Step  # noqa: E402
+from app.core.actions import ApplyPreset, Play, ResetMotion, SelfMove, Step  # noqa: E402
+from app.core.commands import ChooseRobot  # noqa: E402
 from app.core.motion_rules import FRAME_DT  # noqa: E402
 from app.core.reducer import reduce  # noqa: E402
 from app.server import Lab  # noqa: E402

@@ -1,8 +1,10 @@
-"""Named actions: everything a tab can ask for, as plain frozen values.
+"""Reducible actions: every change of a tab's state, as plain frozen values.
 
 Views, the ticker (:class:`~app.tab.ticker.Ticker`) and the classroom
-(:class:`~app.services.classroom.Classroom`) only ever *dispatch* one of these; the pure
-:func:`app.core.reducer.reduce` turns (state, action) into the next state.
+(:class:`~app.services.classroom.Classroom`) *dispatch* these, or one of the session's
+commands (:mod:`app.core.commands`: load a robot, prepare a file, join the classroom); the pure
+:func:`app.core.reducer.reduce` turns (state, action) into the next state. The two unions,
+:data:`Action` here and :data:`app.core.commands.Command`, are told apart by type.
 Values are in SI units with radians (the views convert from degrees).
 """
 
@@ -27,32 +29,19 @@ __all__ = [
     "SetWrench",
     "ClearWrench",
     "SetOption",
-    "ChooseRobot",
-    "ChooseChain",
     "SetRobot",
     "ReplaceState",
     "Play",
     "Step",
-    "RequestDownload",
     "StepOnce",
     "ResetMotion",
     "ApplyPreset",
     "DriveTool",
     "SelfMove",
     "FollowPath",
-    "FindSingularity",
+    "Wait",
     "GoToRepresentationSingularity",
-    "ClaimPresenter",
-    "StopPresenting",
-    "ExploreAlone",
-    "FollowPresenter",
-    "CLASSROOM",
-    "Mirror",
-    "Redraw",
-    "ToggleRecording",
     "EditRobot",
-    "UploadRobot",
-    "COMMANDS",
 ]
 
 
@@ -119,21 +108,6 @@ class SetOption:
 
     name: str
     value: object
-
-
-@dataclass(frozen=True)
-class ChooseRobot:
-    """The user picked robot ``name`` of the catalogue (the session loads it, then dispatches SetRobot)."""
-
-    name: str
-
-
-@dataclass(frozen=True)
-class ChooseChain:
-    """The user picked the chain of the current URDF that ends at ``tip_link`` (a command: the session
-    loads that chain, then dispatches SetRobot)."""
-
-    tip_link: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -222,9 +196,11 @@ class FollowPath:
 
 
 @dataclass(frozen=True)
-class FindSingularity:
-    """Find the nearest singularity from here (a command: the session computes the descent away from
-    the drawing thread, then dispatches :class:`FollowPath`)."""
+class Wait:
+    """Stop any motion and say ``note`` while the tab waits for a command's result (the nearest
+    singularity being looked for away from the drawing thread)."""
+
+    note: str
 
 
 @dataclass(frozen=True)
@@ -233,61 +209,6 @@ class GoToRepresentationSingularity:
     ``convention`` are singular: ZYX pitch = ±90°, ZYZ θ = 0 or 180°."""
 
     convention: str
-
-
-@dataclass(frozen=True)
-class ClaimPresenter:
-    """The tab typed ``token`` into "Presenter token" (a command: the classroom checks it once the
-    typing has paused, ``settled``; a browser sends every keystroke, and five half-typed tokens must
-    not use up the tab's tries)."""
-
-    token: str
-    settled: bool = False
-
-
-@dataclass(frozen=True)
-class StopPresenting:
-    """The presenter hands the room back (a command)."""
-
-
-@dataclass(frozen=True)
-class ExploreAlone:
-    """A follower leaves the presenter to explore on its own (a command)."""
-
-
-@dataclass(frozen=True)
-class FollowPresenter:
-    """A tab follows the presenter again (a command)."""
-
-
-@dataclass(frozen=True, eq=False)
-class Mirror:
-    """Draw the presenter's ``state`` with the ``snapshot`` already computed for it (a follower's
-    session takes it as it is: one computation per presenter change, not one per follower); ``scene``:
-    the scene messages of the presenter's redraw, replayed instead of drawing the scene again (empty:
-    the follower draws its own)."""
-
-    state: LabState
-    snapshot: object
-    scene: tuple = ()
-
-
-@dataclass(frozen=True)
-class Redraw:
-    """Draw the tab again as it is (its classroom role changed, or refused input must be undone)."""
-
-
-@dataclass(frozen=True)
-class ToggleRecording:
-    """Start recording what this tab shows, or stop and download it as a demo that needs no server
-    (a command)."""
-
-
-@dataclass(frozen=True)
-class RequestDownload:
-    """Send J(q) exported as ``label`` ("LaTeX", "Python" or "JSON") to this tab (a command)."""
-
-    label: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -301,31 +222,6 @@ class EditRobot:
     keep: tuple[int | None, ...] = ()
 
 
-@dataclass(frozen=True, eq=False)
-class UploadRobot:
-    """The tab uploaded the file ``filename`` with ``content`` (a command: the session reads it as a
-    URDF into the tab's own robot list, then switches to it). ``refused_size``: the size [bytes] of a
-    file refused as too large before it was sent (its content is then empty)."""
-
-    filename: str
-    content: bytes
-    refused_size: int = 0
-
-
-CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
-"""Classroom commands: a follower may always send these (its other inputs are read-only)."""
-
-COMMANDS = (
-    ChooseRobot,
-    ChooseChain,
-    RequestDownload,
-    FindSingularity,
-    UploadRobot,
-    ToggleRecording,
-    *CLASSROOM,
-)
-"""Actions the session carries out itself (loading a robot, preparing a file) instead of reducing."""
-
 Action = (
     SetJoint
     | SetConfiguration
@@ -336,28 +232,18 @@ Action = (
     | SetWrench
     | ClearWrench
     | SetOption
-    | ChooseRobot
-    | ChooseChain
     | SetRobot
     | ReplaceState
     | Play
     | Step
-    | RequestDownload
     | StepOnce
     | ResetMotion
     | ApplyPreset
     | DriveTool
     | SelfMove
     | FollowPath
-    | FindSingularity
+    | Wait
     | GoToRepresentationSingularity
-    | ClaimPresenter
-    | StopPresenting
-    | ExploreAlone
-    | FollowPresenter
-    | Mirror
-    | Redraw
     | EditRobot
-    | UploadRobot
-    | ToggleRecording
 )
+"""Everything :func:`app.core.reducer.reduce` takes (a union, told apart by type)."""

@@ -25,21 +25,14 @@ from . import motion_rules
 from .actions import (
     Action,
     ApplyPreset,
-    ChooseChain,
-    ChooseRobot,
-    ClaimPresenter,
     ClearWrench,
     DriveTool,
     EditRobot,
-    ExploreAlone,
-    FindSingularity,
     FollowPath,
-    FollowPresenter,
     GoTo,
     GoToRepresentationSingularity,
     Play,
     ReplaceState,
-    RequestDownload,
     ResetMotion,
     SelfMove,
     SetConfiguration,
@@ -51,10 +44,8 @@ from .actions import (
     SetWrench,
     Step,
     StepOnce,
-    StopPresenting,
     StopRates,
-    ToggleRecording,
-    UploadRobot,
+    Wait,
 )
 from .build_table import edited_state
 from .motion_rules import FRAME_DT, MotionRefused
@@ -210,15 +201,9 @@ def _reduce(state: LabState, action: Action) -> LabState:
             return motion_rules.self_move(state, _finite(s, "self-motion"))
         case FollowPath(path=path, found=found):
             return motion_rules.follow_path(state, path, found)
-        case ChooseRobot() | ChooseChain() | RequestDownload() | FindSingularity() | UploadRobot():
-            raise InvalidAction(
-                f"{type(action).__name__} is a command the session carries out, not a state change"
-            )
-        case ClaimPresenter() | StopPresenting() | ExploreAlone() | FollowPresenter() | ToggleRecording():
-            raise InvalidAction(
-                f"{type(action).__name__} is a command the session carries out, not a state change"
-            )
-    raise InvalidAction(f"unknown action {action!r}")
+        case Wait(note=note):
+            return state.replace(playing=False, stopped=str(note))
+    raise InvalidAction(f"{action!r} is not a state change (a command is carried out by the session)")
 
 
 def _representation_singularity(state: LabState, convention: object) -> LabState:

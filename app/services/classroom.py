@@ -18,13 +18,13 @@ import secrets
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Protocol
 
+from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
 
-__all__ = ["Classroom", "Member", "Role", "random_token", "TOKEN_TRIES", "TOKEN_WINDOW"]
+__all__ = ["Classroom", "Member", "random_token", "TOKEN_TRIES", "TOKEN_WINDOW"]
 
 TOKEN_TRIES = 5
 """Wrong tokens a tab may type per :data:`TOKEN_WINDOW` seconds; more are refused unread."""
@@ -36,25 +36,6 @@ PRESENTER_LEFT = "The presenter has left: you keep what was shown and can explor
 def random_token() -> str:
     """A fresh presenter token: four short words' worth of randomness, easy to read out in a room."""
     return secrets.token_urlsafe(9)
-
-
-@dataclass(frozen=True)
-class Role:
-    """What one tab is in the classroom.
-
-    Attributes:
-        presenting: This tab is the presenter.
-        following: This tab mirrors the presenter (its inputs are read-only).
-        presenter: Whether any tab presents.
-        followers: How many tabs follow (told to the presenter).
-        note: A sentence for this tab ("the presenter has left", ...), "" when none.
-    """
-
-    presenting: bool = False
-    following: bool = False
-    presenter: bool = False
-    followers: int = 0
-    note: str = ""
 
 
 class Member(Protocol):

@@ -29,6 +29,7 @@ from typing import Any
 
 from kinematics import Robot
 
+from ..core.downloads import EXPORT_FORMATS
 from .lifecycle import watch_parent
 
 __all__ = [
@@ -36,14 +37,10 @@ __all__ = [
     "SymbolicUnavailable",
     "SymbolicFuture",
     "WorkerPool",
-    "EXPORT_FORMATS",
     "WORKER_RESTARTED",
 ]
 
 log = logging.getLogger(__name__)
-
-EXPORT_FORMATS = {"LaTeX": ("latex", "tex"), "Python": ("python", "py"), "JSON": ("json", "json")}
-"""Download button label → (kinematics.symbolic.typeset.export format, file extension)."""
 
 
 class SymbolicUnavailable(RuntimeError):

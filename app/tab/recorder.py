@@ -58,6 +58,8 @@ class TabRecorder:
         self._unsubscribe = self._subscribe(self._take)
 
     def _take(self, state: LabState, snapshot: Snapshot) -> None:
+        if self.frames and self.frames[-1][1] is state:
+            return  # the same state drawn again (a redraw): nothing new to show
         t = self._clock() - self._t0
         if t <= MAX_SECONDS:
             self.frames.append((t, state, snapshot))

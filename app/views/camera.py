@@ -1,20 +1,15 @@
-"""Keeping what matters in view: a frustum test, a framing, and a smooth camera move.
+"""Keeping what matters in view: a frustum test, a framing and a viewing direction (pure geometry).
 
 The scene says which points must stay visible (arm, tool, ellipsoids,
 arrow tips). After a named configuration, a large move, a robot switch or a
-change of the canvas's shape (a panel collapsed), the session asks
-:func:`needs_framing`; if something left the view, :func:`framing` finds a
-camera that keeps the user's viewing direction and fits everything, and a
-:class:`CameraMove` glides there in a few frames (time lives in that object,
-not in the session).
+change of the canvas's shape (a panel collapsed), the tab's camera
+(:class:`app.tab.camera.TabCamera`) asks :func:`needs_framing`; if something left the view,
+:func:`framing` finds a camera that keeps the user's viewing direction and fits everything.
 """
 
 from __future__ import annotations
 
-import threading
-import time
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -24,8 +19,6 @@ __all__ = [
     "needs_framing",
     "framing",
     "facing",
-    "CameraMove",
-    "TabCamera",
     "THREE_QUARTER",
     "FROM_ABOVE",
 ]
@@ -133,114 +126,3 @@ def facing(points: np.ndarray) -> np.ndarray:
         h = d[:2] / horizontal if horizontal > 1e-6 else tq[:2] / np.linalg.norm(tq[:2])
         d = np.array([*(h * np.cos(np.radians(25))), np.sin(np.radians(25))])
     return d
-
-
-class CameraMove:
-    """Glide a client's camera to a new pose in a few frames (a new move replaces a running one).
-
-    Args:
-        apply: Sets the camera to (position, look_at).
-        duration: Length of the move [s].
-        frames: Number of intermediate poses.
-    """
-
-    def __init__(self, apply, duration: float = 0.35, frames: int = 10) -> None:
-        self.apply = apply
-        self.duration = duration
-        self.frames = frames
-        self._generation = 0
-        self._lock = threading.Lock()
-
-    def to(self, start: tuple[np.ndarray, np.ndarray], end: tuple[np.ndarray, np.ndarray]) -> None:
-        """Start gliding from ``start`` to ``end`` (each (position, look_at))."""
-        with self._lock:
-            self._generation += 1
-            generation = self._generation
-        threading.Thread(target=self._run, args=(generation, start, end), daemon=True).start()
-
-    def cancel(self) -> None:
-        """Stop a running move where it is."""
-        with self._lock:
-            self._generation += 1
-
-    def _run(self, generation: int, start, end) -> None:
-        (p0, t0), (p1, t1) = start, end
-        for k in range(1, self.frames + 1):
-            with self._lock:
-                if generation != self._generation:
-                    return
-            s = k / self.frames
-            s = s * s * (3 - 2 * s)  # ease in and out
-            self.apply(p0 + (p1 - p0) * s, t0 + (t1 - t0) * s)
-            if k < self.frames:
-                time.sleep(self.duration / self.frames)
-
-
-class TabCamera:
-    """One tab's camera: reads the browser's view, frames what is drawn, glides there.
-
-    Args:
-        client: The tab's viser client (its ``camera``).
-    """
-
-    def __init__(self, client: Any) -> None:
-        self.client = client
-        self.mover = CameraMove(self._set)
-        self._aspect = 0.0
-        self._closed = False
-
-    def view(self) -> View | None:
-        """The browser's current view, or None before its first camera message."""
-        cam = self.client.camera
-        try:
-            aspect, fov = float(cam.aspect), float(cam.fov)
-        except Exception:
-            return None
-        if not (np.isfinite(aspect) and aspect > 0.05 and np.isfinite(fov) and fov > 0.05):
-            return None
-        return View(
-            np.asarray(cam.position, float),
-            np.asarray(cam.look_at, float),
-            np.array([0.0, 0, 1]),
-            fov,
-            aspect,
-        )
-
-    def frame(
-        self, points: np.ndarray, pad: float, direction: np.ndarray | None = None, glide: bool = True
-    ) -> None:
-        """Point the camera at ``points`` (+ ``pad`` [m]) from ``direction`` (default: the current one)."""
-        view = self.view()
-        if view is None:  # no camera message yet: assume a 16:9 canvas and viser's default fov
-            view = View(np.array([1.3, -1.5, 0.9]), np.zeros(3), np.array([0.0, 0, 1]), 1.3, 1.4)
-        end = framing(view, points, direction, pad=pad)
-        if glide:
-            self.mover.to((view.position, view.look_at), end)
-        else:
-            self.mover.cancel()
-            self._set(*end)
-
-    def frame_if_needed(self, points: np.ndarray, pad: float) -> None:
-        """Glide to a framing only when something drawn left the view (or shrank to a speck)."""
-        view = self.view()
-        if view is not None and needs_framing(view, points):
-            self.frame(points, pad)
-
-    def canvas_changed(self, aspect: float) -> bool:
-        """Record the canvas's aspect; True the first time and when it changed by more than 5 %."""
-        changed = not self._aspect or abs(aspect - self._aspect) > 0.05 * self._aspect
-        self._aspect = aspect
-        return changed
-
-    def close(self) -> None:
-        """Stop any move (the tab has gone)."""
-        self._closed = True
-        self.mover.cancel()
-
-    def _set(self, position: np.ndarray, look_at: np.ndarray) -> None:
-        if self._closed:
-            return
-        cam = self.client.camera
-        cam.up_direction = (0.0, 0.0, 1.0)
-        cam.position = np.asarray(position, float)
-        cam.look_at = np.asarray(look_at, float)  # after position: setting position moves look_at

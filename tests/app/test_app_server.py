@@ -17,16 +17,8 @@ from app_helpers import assert_all_finite, scene_node
 from fakes import poll
 
 import robots
-from app.core.actions import (
-    ChooseRobot,
-    GoTo,
-    RequestDownload,
-    SetDesired,
-    SetJoint,
-    SetOption,
-    SetRate,
-    SetWrench,
-)
+from app.core.actions import GoTo, SetDesired, SetJoint, SetOption, SetRate, SetWrench
+from app.core.commands import ChooseRobot, RequestDownload
 from app.core.ranges import joint_ranges, to_display
 from app.views import fmt
 from app.views.palette import LOST_RGB, joint_color

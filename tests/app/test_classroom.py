@@ -12,7 +12,8 @@ from fakes import POLL_TIMEOUT, FakeClock, poll
 from wsclient import ViserWsClient
 
 import robots
-from app.core.actions import ApplyPreset, ExploreAlone, Play, SetJoint
+from app.core.actions import ApplyPreset, Play, SetJoint
+from app.core.commands import ExploreAlone
 from app.services.classroom import PRESENTER_LEFT, TOKEN_TRIES, TOKEN_WINDOW, Classroom
 
 TOKEN = "lecture-7"

@@ -18,7 +18,8 @@ from app_helpers import assert_all_finite, scene_node
 from fakes import poll
 
 import robots
-from app.core.actions import ChooseRobot, GoTo, GoToRepresentationSingularity, SetConfiguration, SetRate
+from app.core.actions import GoTo, GoToRepresentationSingularity, SetConfiguration, SetRate
+from app.core.commands import ChooseRobot
 from app.views.palette import ACCEL_RGB
 from app.viser_adapter import node_props
 from kinematics import fk, jacobian

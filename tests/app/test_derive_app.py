@@ -13,7 +13,8 @@ from app_helpers import assert_all_finite, running_lab, scene_node
 from fakes import poll
 from locations import DATA
 
-from app.core.actions import ChooseRobot, SetJoint, SetRate, SetWrench
+from app.core.actions import SetJoint, SetRate, SetWrench
+from app.core.commands import ChooseRobot
 from app.core.snapshot.derive import METHODS
 from app.views.fmt import fixed
 from app.views.palette import joint_color

@@ -231,7 +231,9 @@ def test_the_symbolic_j_buttons_use_the_existing_export(session, monkeypatch):
     editor.a.value = 0.5
     session.settle()
     asked = []
-    monkeypatch.setattr(session, "_download", lambda state, label: asked.append((state.robot, label)))
+    monkeypatch.setattr(
+        session.commands, "_download", lambda state, label: asked.append((state.robot, label))
+    )
     for button in DOWNLOADS:
         editor.download.value = button
     session.settle()

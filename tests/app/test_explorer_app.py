@@ -13,7 +13,8 @@ from app_helpers import assert_all_finite, scene_node
 from fakes import poll
 
 import robots
-from app.core.actions import ChooseRobot, FindSingularity, Play, SetOption, Step
+from app.core.actions import Play, SetOption, Step
+from app.core.commands import ChooseRobot, FindSingularity
 from app.core.motion_rules import FRAME_DT
 from app.tab.ticker import Ticker
 from app.views.panel.motion import OWN_TWIST

@@ -11,7 +11,8 @@ from fakes import FakeClock, poll
 from test_record import _last, read_viser
 
 import robots
-from app.core.actions import SetJoint, ToggleRecording
+from app.core.actions import SetJoint
+from app.core.commands import ToggleRecording
 from app.core.snapshot import compute
 from app.core.state import LabState
 from app.tab.recorder import FPS, TabRecorder

@@ -12,7 +12,8 @@ import collections
 import numpy as np
 from app_helpers import scene_node
 
-from app.core.actions import Redraw, SetJoint, SetOption
+from app.core.actions import SetJoint, SetOption
+from app.core.commands import Redraw
 from app.viser_adapter import handle_uuid
 
 

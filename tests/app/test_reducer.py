@@ -10,12 +10,10 @@ import pytest
 
 import robots
 from app.core.actions import (
-    ChooseRobot,
     ClearWrench,
     GoTo,
     Play,
     ReplaceState,
-    RequestDownload,
     SetConfiguration,
     SetDesired,
     SetJoint,
@@ -26,6 +24,7 @@ from app.core.actions import (
     Step,
     StopRates,
 )
+from app.core.commands import ChooseRobot, RequestDownload
 from app.core.ranges import SNAP_DEGREES, joint_ranges, rate_ranges, twist_ranges
 from app.core.reducer import InvalidAction, reduce
 from app.core.state import LabState

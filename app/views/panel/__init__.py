@@ -24,10 +24,11 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.actions import ChooseChain, ChooseRobot, SetOption, ToggleRecording
+from ...core.actions import SetOption
+from ...core.commands import ChooseChain, ChooseRobot, ToggleRecording
+from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
-from ...services.classroom import Role
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
 from .classroom import ClassroomPanel
 from .common import Dispatch, bind, sync_value

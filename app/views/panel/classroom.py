@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import viser
 
-from ...core.actions import Action, ClaimPresenter, ExploreAlone, FollowPresenter, StopPresenting
-from ...services.classroom import Role
+from ...core.commands import ClaimPresenter, Command, ExploreAlone, FollowPresenter, StopPresenting
+from ...core.role import Role
 from .common import Dispatch, bind, sync_value
 
 __all__ = ["ClassroomPanel"]
@@ -35,7 +35,7 @@ class ClassroomPanel:
             self.button = gui.add_button("Explore on my own", visible=False)
             self.button.on_click(lambda _: dispatch(self._next()))
 
-    def _next(self) -> Action:
+    def _next(self) -> Command:
         r = self.role
         if r.presenting:
             return StopPresenting()

@@ -8,15 +8,15 @@ from typing import Any
 
 import viser
 
-from ...core.actions import Action
+from ...core.commands import Message
 from ...viser_adapter import is_removed
 
 __all__ = ["sync_value", "bind", "bind_click", "Dispatch"]
 
-Dispatch = Callable[[Action], None]
+Dispatch = Callable[[Message], None]
 
 
-def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any], Action | None]) -> None:
+def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any], Message | None]) -> None:
     """When the user changes ``handle``, dispatch ``make(value)`` (nothing when it returns ``None``)."""
 
     def callback(event: viser.GuiEvent) -> None:
@@ -28,7 +28,7 @@ def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any],
     handle.on_update(callback)
 
 
-def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable[[], Action]) -> None:
+def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable[[], Message]) -> None:
     """When ``button`` is clicked, dispatch ``make()``."""
 
     def callback(event: viser.GuiEvent) -> None:

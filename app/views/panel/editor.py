@@ -28,8 +28,9 @@ from kinematics import Robot
 from kinematics.errors import JacobianLabError
 
 from ...core import build_table as dt
-from ...core.actions import EditRobot, RequestDownload, UploadRobot
-from ...services.symbolic_service import EXPORT_FORMATS
+from ...core.actions import EditRobot
+from ...core.commands import RequestDownload, UploadRobot
+from ...core.downloads import EXPORT_FORMATS
 from ...viser_adapter import MAX_UPLOAD_BYTES, is_removed, upload_too_large
 from .. import fmt
 from .common import Dispatch

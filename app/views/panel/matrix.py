@@ -17,11 +17,12 @@ import viser
 
 from kinematics import Robot
 
-from ...core.actions import GoToRepresentationSingularity, RequestDownload, SetOption
+from ...core.actions import GoToRepresentationSingularity, SetOption
+from ...core.commands import RequestDownload
+from ...core.downloads import EXPORT_FORMATS
 from ...core.snapshot import Snapshot
 from ...core.snapshot.course import REPRESENTATIONS
 from ...core.state import LabState
-from ...services.symbolic_service import EXPORT_FORMATS
 from .. import fmt
 from ..palette import joint_hex, joint_text_hex
 from .common import Dispatch, bind, bind_click, sync_value

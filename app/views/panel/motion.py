@@ -20,7 +20,8 @@ import viser.uplot as uplot
 import robots
 from kinematics import Robot
 
-from ...core.actions import ApplyPreset, FindSingularity, Play, ResetMotion, SelfMove, SetOption, StepOnce
+from ...core.actions import ApplyPreset, Play, ResetMotion, SelfMove, SetOption, StepOnce
+from ...core.commands import FindSingularity
 from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
 from ...core.ranges import joint_ranges

@@ -1,0 +1,148 @@
+"""Session commands: what a tab asks for that is not a change of its state.
+
+A command needs the world outside the pure core: the robot catalogue (:class:`ChooseRobot`,
+:class:`ChooseChain`, :class:`UploadRobot`), a worker (:class:`RequestDownload`,
+:class:`FindSingularity`, :class:`ToggleRecording`), the classroom (:data:`CLASSROOM`), or the
+session's own drawing (:class:`Mirror`, :class:`Redraw`). The session's command runner
+(:class:`app.tab.commands.CommandRunner`) carries them out; some end in a reducible action
+(:mod:`app.core.actions`), which the reducer then takes like any other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from .actions import Action
+
+if TYPE_CHECKING:
+    from .state import LabState
+
+__all__ = [
+    "Command",
+    "Message",
+    "CLASSROOM",
+    "ChooseRobot",
+    "ChooseChain",
+    "UploadRobot",
+    "RequestDownload",
+    "FindSingularity",
+    "ToggleRecording",
+    "ClaimPresenter",
+    "StopPresenting",
+    "ExploreAlone",
+    "FollowPresenter",
+    "Mirror",
+    "Redraw",
+]
+
+
+@dataclass(frozen=True)
+class ChooseRobot:
+    """The user picked robot ``name`` of the catalogue (the session loads it and reduces
+    :class:`~app.core.actions.SetRobot`)."""
+
+    name: str
+
+
+@dataclass(frozen=True)
+class ChooseChain:
+    """The user picked the chain of the current URDF that ends at ``tip_link`` (the session
+    loads that chain and reduces :class:`~app.core.actions.SetRobot`)."""
+
+    tip_link: str
+
+
+@dataclass(frozen=True)
+class FindSingularity:
+    """Find the nearest singularity from here (the session computes the descent away from the
+    drawing thread, then dispatches :class:`~app.core.actions.FollowPath`)."""
+
+
+@dataclass(frozen=True)
+class ClaimPresenter:
+    """The tab typed ``token`` into "Presenter token" (the classroom checks it once the
+    typing has paused, ``settled``; a browser sends every keystroke, and five half-typed tokens must
+    not use up the tab's tries)."""
+
+    token: str
+    settled: bool = False
+
+
+@dataclass(frozen=True)
+class StopPresenting:
+    """The presenter hands the room back."""
+
+
+@dataclass(frozen=True)
+class ExploreAlone:
+    """A follower leaves the presenter to explore on its own."""
+
+
+@dataclass(frozen=True)
+class FollowPresenter:
+    """A tab follows the presenter again."""
+
+
+@dataclass(frozen=True, eq=False)
+class Mirror:
+    """Draw the presenter's ``state`` with the ``snapshot`` already computed for it (a follower's
+    session takes it as it is: one computation per presenter change, not one per follower); ``scene``:
+    the scene messages of the presenter's redraw, replayed instead of drawing the scene again (empty:
+    the follower draws its own)."""
+
+    state: LabState
+    snapshot: object
+    scene: tuple = ()
+
+
+@dataclass(frozen=True)
+class Redraw:
+    """Draw the tab again as it is (its classroom role changed, or refused input must be undone)."""
+
+
+@dataclass(frozen=True)
+class ToggleRecording:
+    """Start recording what this tab shows, or stop and download it as a demo that needs no server
+    ."""
+
+
+@dataclass(frozen=True)
+class RequestDownload:
+    """Send J(q) exported as ``label`` ("LaTeX", "Python" or "JSON") to this tab."""
+
+    label: str
+
+
+@dataclass(frozen=True, eq=False)
+class UploadRobot:
+    """The tab uploaded the file ``filename`` with ``content`` (the session reads it as a
+    URDF into the tab's own robot list, then switches to it). ``refused_size``: the size [bytes] of a
+    file refused as too large before it was sent (its content is then empty)."""
+
+    filename: str
+    content: bytes
+    refused_size: int = 0
+
+
+CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
+"""Classroom commands: a follower may always send these (its other inputs are read-only)."""
+
+Command = (
+    ChooseRobot
+    | ChooseChain
+    | UploadRobot
+    | RequestDownload
+    | FindSingularity
+    | ToggleRecording
+    | ClaimPresenter
+    | StopPresenting
+    | ExploreAlone
+    | FollowPresenter
+    | Mirror
+    | Redraw
+)
+"""Everything the session carries out itself (a union, told apart by type)."""
+
+Message = Action | Command
+"""What a tab's ``dispatch`` takes: a reducible action or a session command."""

@@ -1,0 +1,27 @@
+"""A tab's place in the classroom, as a frozen value (told by :class:`app.services.classroom.Classroom`,
+shown by the views)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Role"]
+
+
+@dataclass(frozen=True)
+class Role:
+    """What one tab is in the classroom.
+
+    Attributes:
+        presenting: This tab is the presenter.
+        following: This tab mirrors the presenter (its inputs are read-only).
+        presenter: Whether any tab presents.
+        followers: How many tabs follow (told to the presenter).
+        note: A sentence for this tab ("the presenter has left", ...), "" when none.
+    """
+
+    presenting: bool = False
+    following: bool = False
+    presenter: bool = False
+    followers: int = 0
+    note: str = ""

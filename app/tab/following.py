@@ -1,0 +1,182 @@
+"""One tab in the classroom: its role, its classroom commands, and what a follower may not do.
+
+:class:`Following` is the tab's :class:`~app.services.classroom.Member`: the server's
+:class:`~app.services.classroom.Classroom` tells it the tab's :class:`~app.core.role.Role`
+(:meth:`Following.role_changed`), hands it the presenter's state to draw (:meth:`Following.mirror`,
+queued as a :class:`~app.core.commands.Mirror`) and the presenter's camera
+(:meth:`Following.mirror_camera`), and reads what the tab shows while it presents. A follower's own
+inputs are read-only (:meth:`Following.refuses`, with a reminder now and then) except the classroom
+commands, a download and a recording. A typed presenter token is tried once the typing pauses
+(:data:`TOKEN_PAUSE`), so a browser that sends every keystroke does not use up the tab's tries.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
+
+from ..core.actions import Step
+from ..core.commands import (
+    CLASSROOM,
+    ClaimPresenter,
+    ExploreAlone,
+    FollowPresenter,
+    Message,
+    Mirror,
+    Redraw,
+    RequestDownload,
+    StopPresenting,
+    ToggleRecording,
+)
+from ..core.role import Role
+from ..core.snapshot import Snapshot
+from ..core.state import LabState
+from ..services.classroom import Classroom
+from .camera import TabCamera
+from .notices import Notices
+
+__all__ = ["Following", "TOKEN_PAUSE", "READ_ONLY_EVERY"]
+
+TOKEN_PAUSE = 0.6
+"""A typed presenter token is tried once the typing has paused this long [s]."""
+READ_ONLY_EVERY = 5.0
+"""A follower that moves an input is reminded at most this often [s] that its inputs follow."""
+_ALWAYS = (*CLASSROOM, RequestDownload, ToggleRecording)
+"""What a follower may still send."""
+
+
+class Following:
+    """The classroom side of one tab.
+
+    Args:
+        key: The tab's client id (its key in the classroom).
+        classroom: The server's classroom (``None``: no presenter mode).
+        dispatch: The session's way in (a settled token, a redraw when the role changes).
+        notices: The tab's notices.
+        stop_ticker: Stops the tab's clock (a follower moves with the presenter's).
+        camera: The tab's camera (a follower looks where the presenter looks).
+        subscribe: The session's ``subscribe`` (the classroom relays the presenter's commits).
+        shown: The state and snapshot on screen.
+        scene_messages: The scene messages of the tab's last draw.
+    """
+
+    def __init__(
+        self,
+        key: int,
+        classroom: Classroom | None,
+        dispatch: Callable[[Message], None],
+        notices: Notices,
+        stop_ticker: Callable[[], None],
+        camera: TabCamera,
+        subscribe: Callable[[Callable[[LabState, Snapshot], None]], Callable[[], None]],
+        shown: Callable[[], tuple[LabState, Snapshot | None]],
+        scene_messages: Callable[[], tuple],
+    ) -> None:
+        self.key = key
+        self.classroom = classroom
+        self.role = Role()
+        self._dispatch = dispatch
+        self._notices = notices
+        self._stop_ticker = stop_ticker
+        self._camera = camera
+        self.subscribe = subscribe
+        self._shown, self._scene_messages = shown, scene_messages
+        self._closed = False
+        self._told_read_only = 0.0
+        self._typed_token = ""
+        self._token_timer: threading.Timer | None = None
+
+    @property
+    def following(self) -> bool:
+        return self.role.following
+
+    def refuses(self, message: Message) -> bool:
+        """Whether ``message`` is an input a follower may not make (it is told so, now and then)."""
+        if not self.role.following or isinstance(message, _ALWAYS):
+            return False
+        now = time.monotonic()
+        if not isinstance(message, Step) and now - self._told_read_only >= READ_ONLY_EVERY:
+            self._told_read_only = now
+            self._notices.notify(
+                "You follow the presenter",
+                "Your inputs follow the presenter: press “Explore on my own” first.",
+            )
+        return True
+
+    # ------------------------------------------------------------------ what the classroom asks
+    @property
+    def latest(self) -> tuple[LabState, Snapshot | None]:
+        """The state and snapshot on screen."""
+        return self._shown()
+
+    @property
+    def scene_messages(self) -> tuple:
+        """The scene messages of this tab's last redraw (collected only while it presents)."""
+        return self._scene_messages()
+
+    def mirror(self, state: LabState, snapshot: Snapshot, scene: tuple = ()) -> None:
+        """Draw the presenter's state (queued like any message; the latest of a burst wins; the scene
+        messages of every one are replayed, in order)."""
+        self._dispatch(Mirror(state, snapshot, scene))
+
+    def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None:
+        """Look where the presenter looks."""
+        if not self._closed and self.role.following:
+            self._camera.look(position, look_at, up)
+
+    def role_changed(self, role: Role) -> None:
+        """The classroom says what this tab now is (redrawn on the renderer's next visit)."""
+        following_before = self.role.following
+        self.role = role
+        if role.note and not role.presenting:
+            self._notices.notify("Classroom", role.note)
+        if role.following and not following_before:
+            self._stop_ticker()
+        self._dispatch(Redraw())
+
+    # ------------------------------------------------------------------ the tab's commands
+    def command(self, command: ClaimPresenter | StopPresenting | ExploreAlone | FollowPresenter) -> None:
+        """Carry out a classroom command."""
+        if self.classroom is None:
+            raise ValueError(
+                "this server has no presenter mode (start it with --presenter or --presenter-token)"
+            )
+        if isinstance(command, ClaimPresenter):
+            self._claim(command)
+        elif isinstance(command, StopPresenting):
+            self.classroom.resign(self.key)
+        elif isinstance(command, ExploreAlone):
+            self.classroom.explore_alone(self.key)
+        elif isinstance(command, FollowPresenter):
+            self.classroom.follow(self.key)
+
+    def _claim(self, command: ClaimPresenter) -> None:
+        assert self.classroom is not None
+        if not command.settled:  # wait until the typing pauses, then try the latest text once
+            self._typed_token = command.token
+            if self._token_timer is not None:
+                self._token_timer.cancel()
+            settled = ClaimPresenter(command.token, settled=True)
+            self._token_timer = threading.Timer(TOKEN_PAUSE, self._dispatch, (settled,))
+            self._token_timer.daemon = True
+            self._token_timer.start()
+            return
+        if command.token != self._typed_token:
+            return  # typing went on: a later try comes
+        why = self.classroom.claim(self.key, command.token)
+        if why:
+            self._notices.notify("Not the presenter", why, seconds=6.0)
+
+    def camera_moved(self, camera: Any) -> None:
+        """The presenter's camera moved: relay it to the followers."""
+        if self.classroom is not None and self.role.presenting:
+            pose = tuple(camera.position), tuple(camera.look_at), tuple(camera.up_direction)
+            self.classroom.camera(self.key, *pose)
+
+    def close(self) -> None:
+        """The tab has gone: no token is tried any more."""
+        self._closed = True
+        if self._token_timer is not None:
+            self._token_timer.cancel()

@@ -1,0 +1,90 @@
+"""What one tab's browser shows: its panel and its scene, drawn together in one atomic batch.
+
+:meth:`Screen.draw` puts a state and its snapshot on every view (the robot-dependent parts rebuilt
+when the robot changed), with what the tab itself knows beside the state: its robot list, its
+classroom role, whether it records. A follower replays the presenter's scene messages instead of
+drawing its own scene; a presenter's scene messages are collected for the room.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from typing import TYPE_CHECKING
+
+import viser
+
+from kinematics.analysis import task_rows
+
+from ..core.role import Role
+from ..core.snapshot import Snapshot
+from ..core.state import LabState
+from ..views.panel import PanelView
+from ..views.panel.common import Dispatch
+from ..views.scene import SceneView
+from ..viser_adapter import capture_scene, replay_scene
+
+if TYPE_CHECKING:
+    from .robots import TabCatalog
+
+__all__ = ["Screen"]
+
+
+class Screen:
+    """The views of one tab.
+
+    Args:
+        client: The tab's viser client.
+        dispatch: The session's way in (the views turn input into messages).
+        catalog: The tab's robots (names, chains, meshes, presets of the robot shown).
+        state: The first state (the panel's initial values).
+        classroom: Whether the server has a presenter mode (the classroom controls are shown).
+
+    Attributes:
+        panel: The GUI (:class:`~app.views.panel.PanelView`).
+        scene: The 3-D view (:class:`~app.views.scene.SceneView`), once drawn.
+        scene_messages: The scene messages of the last draw (collected only while presenting).
+    """
+
+    def __init__(
+        self,
+        client: viser.ClientHandle,
+        dispatch: Dispatch,
+        catalog: TabCatalog,
+        state: LabState,
+        classroom: bool,
+    ) -> None:
+        self.client, self.dispatch, self.catalog = client, dispatch, catalog
+        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom)
+        self.scene: SceneView | None = None
+        self.scene_messages: tuple = ()
+        self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
+
+    def draw(
+        self, state: LabState, snap: Snapshot, rebuild: bool, replay: list | None, role: Role, recording: bool
+    ) -> None:
+        """Draw ``state`` and ``snap`` (``replay``: the presenter's scene messages instead of our scene)."""
+        capturing: contextlib.AbstractContextManager[list] = (
+            capture_scene(self.client) if role.presenting else contextlib.nullcontext([])
+        )
+        with self.client.atomic(), capturing as captured:
+            if rebuild or self.scene is None:
+                name, robot, catalog = state.robot_name, state.robot, self.catalog
+                self.panel.build_robot(
+                    robot, task_rows(robot), catalog.chains(name), state.chain,
+                    catalog.meshes(name), catalog.presets(name),
+                )  # fmt: skip
+            if replay is not None and self.scene is not None:
+                replay_scene(self.client, replay)  # the presenter's scene, drawn once for the room
+                self._foreign = True  # our SceneView no longer knows what the browser shows
+            else:
+                if rebuild or self.scene is None or self._foreign:
+                    if self.scene is not None:
+                        self.scene.remove()
+                    self.scene = SceneView(self.client, state.robot, self.dispatch)
+                    self._foreign = False
+                self.scene.update(snap, state)
+            self.panel.set_robot_names(self.catalog.names())
+            self.panel.draw(state, snap)
+            self.panel.show_role(role)
+            self.panel.show_recording(recording)
+        self.scene_messages = tuple(captured)
