@@ -104,6 +104,8 @@ def test_5000_slider_messages_from_one_tab_do_not_stall_another(tmp_path):
             hostile.wait_for(_is_scene)
             for i in range(5):  # warm up
                 _round_trip(good, uuid, float(i))
+            # The reference: the same round trips with no flood, on the machine as loaded as it is now.
+            quiet = [_round_trip(good, uuid, float(-40 + i % 80)) for i in range(20)]
             done = threading.Event()
 
             def flood() -> None:
@@ -120,9 +122,14 @@ def test_5000_slider_messages_from_one_tab_do_not_stall_another(tmp_path):
             start = time.monotonic()
             while not done.is_set() or len(samples) < 20:
                 samples.append(_round_trip(good, uuid, float(-40 + len(samples) % 80)))
-                assert time.monotonic() - start < 120
+                assert time.monotonic() - start < POLL_TIMEOUT
             thread.join(30)
-        p95 = float(np.percentile(samples, 95))
-        assert p95 < 200.0, f"p95 {p95:.0f} ms over {len(samples)} round trips: {np.round(samples)}"
+        # Not stalled: within 200 ms of what the tab sees with no flood, however busy the machine
+        # (a quiet machine: about 10 ms with no flood; a stall behind 5000 messages: seconds).
+        p95, reference = float(np.percentile(samples, 95)), float(np.percentile(quiet, 95))
+        assert p95 < 200.0 + 4 * reference, (
+            f"p95 {p95:.0f} ms (with no flood {reference:.0f} ms) over {len(samples)} round trips: "
+            f"{np.round(samples)}"
+        )
     finally:
         server.cleanup()
