@@ -18,7 +18,7 @@ from fakes import poll
 
 import robots
 from app.core.actions import GoTo, SetDesired, SetJoint, SetOption, SetRate, SetWrench
-from app.core.commands import ChooseRobot, RequestDownload
+from app.core.commands import ChooseRobot
 from app.core.ranges import joint_ranges, to_display
 from app.views import fmt
 from app.views.palette import LOST_RGB, joint_color
@@ -382,30 +382,3 @@ def test_enlarged_matrix_follows_the_sliders_and_closes(session):
     assert fmt.fixed(session.snapshot.J_shown[0, 0]) in big.content
     session.panel.matrix.close_large()
     assert not session.panel.matrix.enlarged
-
-
-@pytest.mark.slow
-def test_symbolic_form_of_a_small_robot(symbolic_session):
-    session = symbolic_session
-    session.panel.robot.value = "planar2"  # small: a quick symbolic form
-    session.settle()
-    poll(lambda: "computing" not in session.panel.matrix.symbolic.content)
-    content = session.panel.matrix.symbolic.content
-    # J of the 2R arm in the shorthand s₁₂ = sin(θ₁ + θ₂): its first entry −s₁ − s₁₂
-    assert "<math" in content and "<msub><mi>s</mi><mn>12</mn></msub>" in content, content[:300]
-
-
-@pytest.mark.slow
-def test_download_sends_the_file(symbolic_lab_client, symbolic_session):
-    _, _, ws = symbolic_lab_client
-    session = symbolic_session
-    session.dispatch(ChooseRobot("planar2"))
-    session.settle()
-    mark = ws.mark()
-    errors = session.errors
-    session.dispatch(RequestDownload("JSON"))
-    _, msg = ws.wait_for(lambda m: m["type"] == "FileTransferStartDownload", after=mark)
-    assert msg["filename"] == "planar2_J_base.json"
-    _, part = ws.wait_for(lambda m: m["type"] == "FileTransferPart", after=mark)
-    assert bytes(part["content"]).lstrip().startswith(b"{")
-    assert session.errors == errors
