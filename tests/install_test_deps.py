@@ -2,7 +2,9 @@
 
 * Chromium (``/usr/bin/chromium``) for the browser tests;
 * Node.js and npm, which run KaTeX (pinned in ``tests/katex``) to check that
-  the exported LaTeX typesets.
+  the exported LaTeX typesets;
+* a C compiler and Octave, which compile and run the exported C and MATLAB/Octave
+  Jacobians (``tests/test_export_code.py``).
 
 Run by the README's test command before pytest. Idempotent and quick when
 everything is already there. Never downloads a browser build of its own
@@ -19,7 +21,7 @@ import sys
 CHROMIUM = "/usr/bin/chromium"
 
 
-def _apt_install(packages: list[str]) -> bool:
+def _apt_install(packages: list[str], recommends: bool = True) -> bool:
     if shutil.which("apt-get") is None:
         print(
             f"install_test_deps: apt-get is not available; install {' '.join(packages)} yourself",
@@ -31,7 +33,15 @@ def _apt_install(packages: list[str]) -> bool:
         print(f"install_test_deps: need root to apt-get install {' '.join(packages)}", file=sys.stderr)
         return False
     env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    for cmd in (sudo + ["apt-get", "update", "-qq"], sudo + ["apt-get", "install", "-y", "-qq", *packages]):
+    install = [
+        "apt-get",
+        "install",
+        "-y",
+        "-qq",
+        *([] if recommends else ["--no-install-recommends"]),
+        *packages,
+    ]
+    for cmd in (sudo + ["apt-get", "update", "-qq"], sudo + install):
         print("+", " ".join(cmd), flush=True)
         if subprocess.call(cmd, env=env, stdout=subprocess.DEVNULL) != 0:
             print(f"install_test_deps: '{' '.join(cmd)}' failed", file=sys.stderr)
@@ -40,7 +50,7 @@ def _apt_install(packages: list[str]) -> bool:
 
 
 def ensure_packages() -> bool:
-    """Chromium, node and npm, each installed only when missing."""
+    """Chromium, node, npm, a C compiler and Octave, each installed only when missing."""
     wanted = []
     if not os.path.exists(CHROMIUM):
         wanted.append("chromium")
@@ -48,9 +58,15 @@ def ensure_packages() -> bool:
         wanted.append("nodejs")
     if shutil.which("npm") is None:
         wanted.append("npm")
+    if shutil.which("cc") is None:
+        wanted += ["gcc", "libc6-dev"]
     if wanted and not _apt_install(wanted):
         return False
-    return os.path.exists(CHROMIUM) and shutil.which("node") is not None and shutil.which("npm") is not None
+    # Octave's recommended packages (documentation, a GUI) are large and not needed to run a function.
+    if shutil.which("octave-cli") is None and not _apt_install(["octave"], recommends=False):
+        return False
+    tools = ("node", "npm", "cc", "octave-cli")
+    return os.path.exists(CHROMIUM) and all(shutil.which(tool) is not None for tool in tools)
 
 
 def main() -> int:

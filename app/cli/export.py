@@ -1,6 +1,6 @@
 """``jacobian-lab export``: the symbolic Jacobian of a robot as LaTeX, MathML, Python or JSON.
 
-``jacobian-lab export ROBOT --format latex|mathml|python|json [--frame base|tool]
+``jacobian-lab export ROBOT --format latex|mathml|python|numpy|json|c|matlab [--frame base|tool]
 [--symbolic-params] [--base LINK] [--tip LINK] [-o FILE]``, with ROBOT a library name or a
 path to a robot file (.toml) or URDF. Output goes to stdout unless ``-o`` is given; progress is
 shown on stderr for any step that takes more than a second. The work is done by
@@ -18,7 +18,8 @@ from pathlib import Path
 import robots
 from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
-from kinematics.symbolic.typeset.export import FORMATS, export
+from kinematics.symbolic.typeset.ccode import c_identifier
+from kinematics.symbolic.typeset.export import FORMATS, ExportError, export, export_c, export_matlab
 
 __all__ = ["main", "add_chain_arguments", "StderrProgress", "write_output"]
 
@@ -86,7 +87,8 @@ _StderrProgress = StderrProgress  # the name the tests use
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="jacobian-lab export",
-        description="Export a robot's symbolic Jacobian J(q) as LaTeX, MathML, a Python module or JSON.",
+        description="Export a robot's symbolic Jacobian J(q) as LaTeX, MathML, a Python/NumPy module, JSON, "
+        "C (with -o FILE.c, also FILE.h) or a MATLAB/Octave function file.",
     )
     p.add_argument("robot", help="library robot name (e.g. puma560) or path to a robot .toml or .urdf file")
     p.add_argument("--format", "-f", choices=FORMATS, default="latex", help="output format (default: latex)")
@@ -120,16 +122,35 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # -h or a usage error (already printed by argparse)
         return int(exc.code or 0)
+    files: list[tuple[str, str | None]] = []
     try:
         robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        options = (args.frame, args.symbolic_params)
         with StderrProgress() as progress:
-            text = export(
-                robot, args.format, args.frame, args.symbolic_params, progress, timeout=args.timeout
-            )
+            if args.output and args.format == "c":  # FILE.c and its header FILE.h
+                out = Path(args.output)
+                header, source = export_c(robot, out.stem, *options, progress, timeout=args.timeout)
+                files = [(header, str(out.with_suffix(".h"))), (source, args.output)]
+            elif args.output and args.format == "matlab":  # MATLAB wants the function named as its file
+                stem = Path(args.output).stem
+                if c_identifier(stem) != stem:
+                    raise ExportError(
+                        f"a MATLAB function file is named after its function: {stem!r} is not a valid "
+                        "name (letters, digits and _, starting with a letter), e.g. -o puma_jacobian.m"
+                    )
+                _, text = export_matlab(robot, *options, progress, function=stem, timeout=args.timeout)
+                files = [(text, args.output)]
+            else:
+                text = export(robot, args.format, *options, progress, timeout=args.timeout)
+                files = [(text, args.output)]
     except JacobianLabError as exc:
         print(f"jacobian-lab export: error: {exc}", file=sys.stderr)
         return 1
-    return write_output(text, args.output, "export")
+    for text, output in files:
+        status = write_output(text, output, "export")
+        if status:
+            return status
+    return 0
 
 
 def write_output(text: str, output: str | None, command: str) -> int:

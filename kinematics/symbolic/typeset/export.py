@@ -5,14 +5,20 @@ The command line ``jacobian-lab export`` lives in :mod:`app.cli.export`.
 * ``latex``: a fragment for a report (needs ``amsmath``): J, its columns, det J
   (or det(J Jᵀ)), the singular sets and the legend of the compact notation;
 * ``mathml``: the same as a standalone HTML page with MathML (Chromium renders it);
-* ``python``: a module with a NumPy function ``J(q)`` (common subexpressions shared);
-* ``json``: the entries as strings (SymPy syntax), with the LaTeX and the singular sets.
+* ``python`` (or ``numpy``): a module with a NumPy function ``J(q)`` (common subexpressions shared)
+  that takes one configuration (n,) or a batch (..., n);
+* ``json``: the entries as strings (SymPy syntax), with the LaTeX and the singular sets;
+* ``c``: a C99 function ``void ROBOT_jacobian(const double q[n], double J[6n])`` (no allocation,
+  shared subexpressions): :func:`export_c` gives the header and the source, ``export(…, "c")`` both
+  in one compilable text;
+* ``matlab``: a MATLAB/Octave function file ``function J = ROBOT_jacobian(q)``.
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Callable
+from typing import Any
 
 import sympy as sp
 
@@ -20,15 +26,16 @@ from ...errors import JacobianLabError
 from ...model import Robot
 from .. import build_model, derive, determinant, latex_parts, mathml_parts, python_source
 from ..core import DEFAULT_TIMEOUT, check_timeout
-from ..model import check_frame
+from ..model import SymbolicModel, check_frame
 from ..trig import Deadline
+from .ccode import c_identifier, c_source, matlab_source
 from .escape import NOTE_CHARS, latex_text, plain, xml_text
 from .layout import latex_matrix, too_long
 from .render import MATH_STYLE, notation_for
 
-__all__ = ["FORMATS", "ExportError", "export"]
+__all__ = ["FORMATS", "ExportError", "export", "export_c", "export_matlab"]
 
-FORMATS = ("latex", "mathml", "python", "json")
+FORMATS = ("latex", "mathml", "python", "numpy", "json", "c", "matlab")
 _ROWS = ("vx", "vy", "vz", "wx", "wy", "wz")
 
 
@@ -156,7 +163,79 @@ def _json(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, p
     return json.dumps(doc, indent=2, ensure_ascii=True, allow_nan=False) + "\n"
 
 
-_WRITERS = {"latex": _latex, "mathml": _mathml, "python": _python, "json": _json}
+def _compiled_model(
+    robot: Robot,
+    frame: str,
+    symbolic_params: bool,
+    deadline: Deadline,
+    progress: Callable[[str], None] | None,
+) -> tuple[Any, SymbolicModel, tuple[str, ...]]:
+    d = derive(robot, frame, symbolic_params=symbolic_params, progress=progress, deadline=deadline)
+    return d.J, build_model(robot, symbolic_params), tuple(d.notes)
+
+
+def export_c(
+    robot: Robot,
+    stem: str,
+    frame: str = "base",
+    symbolic_params: bool = False,
+    progress: Callable[[str], None] | None = None,
+    *,
+    timeout: float | None = DEFAULT_TIMEOUT,
+) -> tuple[str, str]:
+    """The header ``STEM.h`` and the source ``STEM.c`` of a C99 function computing J(q).
+
+    Args:
+        stem: File name of the header without ``.h`` (the source includes it), reduced to an identifier.
+        The others as for :func:`export`.
+    """
+    deadline = Deadline(check_timeout(timeout))
+    J, model, notes = _compiled_model(robot, check_frame(frame), symbolic_params, deadline, progress)
+    return c_source(J, model, frame=frame, stem=stem, notes=notes)
+
+
+def export_matlab(
+    robot: Robot,
+    frame: str = "base",
+    symbolic_params: bool = False,
+    progress: Callable[[str], None] | None = None,
+    *,
+    function: str | None = None,
+    timeout: float | None = DEFAULT_TIMEOUT,
+) -> tuple[str, str]:
+    """(function name, text of its ``.m`` file): a MATLAB/Octave function computing J(q).
+
+    Args:
+        function: The function's name (MATLAB wants it to be the file's name); default
+            ``ROBOT_jacobian``. Reduced to an identifier.
+        The others as for :func:`export`.
+    """
+    deadline = Deadline(check_timeout(timeout))
+    J, model, notes = _compiled_model(robot, check_frame(frame), symbolic_params, deadline, progress)
+    return matlab_source(J, model, frame=frame, function=function, notes=notes)
+
+
+def _c(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress) -> str:
+    J, model, notes = _compiled_model(robot, frame, symbolic_params, deadline, progress)
+    stem = c_identifier(f"{robot.name}_jacobian")
+    header, source = c_source(J, model, frame=frame, stem=stem, notes=notes)
+    return header + "\n" + source.replace(f'#include "{stem}.h"\n', "")
+
+
+def _matlab(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress) -> str:
+    J, model, notes = _compiled_model(robot, frame, symbolic_params, deadline, progress)
+    return matlab_source(J, model, frame=frame, notes=notes)[1]
+
+
+_WRITERS = {
+    "latex": _latex,
+    "mathml": _mathml,
+    "python": _python,
+    "numpy": _python,
+    "json": _json,
+    "c": _c,
+    "matlab": _matlab,
+}
 
 
 def export(
