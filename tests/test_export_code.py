@@ -13,11 +13,11 @@ import os
 import re
 import shutil
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
 from kinematics_helpers import import_source
+from locations import DATA
 from test_export_escaping import INJECT, SCRIPT, hostile_robot
 
 import kinematics
@@ -27,7 +27,7 @@ from kinematics.symbolic.typeset import export as ex
 from kinematics.symbolic.typeset.ccode import c_identifier, parameter_order
 from kinematics.urdf import to_urdf
 
-URDF_ARM = str(Path(__file__).resolve().parent / "data" / "iiwa14_like.urdf")
+URDF_ARM = str(DATA / "iiwa14_like.urdf")
 ROBOTS = [*robots.names(), URDF_ARM]
 
 
@@ -146,6 +146,7 @@ def test_c_export_in_one_text_compiles(tmp_path):
     subprocess.run([cc, "-std=c99", "-Wall", "-Werror", "-c", "one.c"], cwd=tmp_path, check=True, timeout=60)
 
 
+@pytest.mark.slow
 def test_octave_function_matches_the_numeric_jacobian(tmp_path, urdf_from_puma):
     """Every library robot and the URDF arm, in one Octave run: J at random q to 1e-12."""
     octave = _needs("octave-cli")
