@@ -18,6 +18,7 @@ import socket
 import sys
 import threading
 import time
+from collections.abc import Mapping
 from pathlib import Path
 
 import viser
@@ -52,6 +53,7 @@ class Lab:
             closes it on :meth:`stop`. Tests pass an immediate in-process fake.
         listen_socket: A listening socket to accept on instead of binding ``host`` and ``port``
             (shared by the worker processes of ``jacobian-lab serve --workers N``).
+        xacro_args: ``NAME -> VALUE`` arguments of a ``.xacro`` file given as ``urdf`` or ``robot``.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -69,12 +71,13 @@ class Lab:
         presenter_token: str | None = None,
         symbolic: SymbolicService | None = None,
         listen_socket: socket.socket | None = None,
+        xacro_args: Mapping[str, str] | None = None,
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
             files.append(robot)
             robot = None
-        self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link)
+        self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link, xacro_args=xacro_args)
         self.default_robot = robot or self.catalog.default()
         self.catalog.load(self.default_robot)  # fail before starting the server
         if listen_socket is None:
@@ -190,7 +193,7 @@ class Lab:
 
 
 def _is_path(text: str) -> bool:
-    return Path(text).suffix.lower() in (".toml", ".urdf") or "/" in text or "\\" in text
+    return Path(text).suffix.lower() in (".toml", ".urdf", ".xacro") or "/" in text or "\\" in text
 
 
 def serve(
@@ -202,6 +205,7 @@ def serve(
     base_link: str | None = None,
     tip_link: str | None = None,
     presenter_token: str | None = None,
+    xacro_args: Mapping[str, str] | None = None,
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -236,6 +240,7 @@ def serve(
         base_link=base_link,
         tip_link=tip_link,
         presenter_token=presenter_token,
+        xacro_args=xacro_args,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:

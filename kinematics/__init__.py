@@ -11,8 +11,12 @@ Conventions, kept everywhere in this project:
 * **Frames in names.** ``T_a_b`` is the 4×4 homogeneous transform mapping
   coordinates in frame *b* to frame *a* (``T_base_tool``: the tool pose in the
   base frame); ``R_a_b`` its rotation, ``p_a_b`` its translation.
-* **Shapes.** One configuration ``q`` has shape (n,), a batch (N, n); results
-  follow: (4, 4) / (N, 4, 4) transforms, (6, n) / (N, 6, n) Jacobians.
+* **Shapes and types.** One configuration ``q`` has shape (n,), a batch (N, n); results
+  follow: (4, 4) / (N, 4, 4) transforms, (6, n) / (N, 6, n) Jacobians. Numeric functions take
+  any ``numpy.typing.ArrayLike`` and return ``NDArray[np.float64]``
+  (:data:`kinematics.conventions.FloatArray`); ``mypy --strict`` holds on the package.
+* **One place.** Frames, tasks and the names of J's rows (text, HTML, LaTeX, MathML) are data in
+  :mod:`kinematics.conventions`; everything that names them takes them from there.
 * **Limits** bound sliders and sampling, never the maths: :func:`fk` and
   :func:`jacobian` accept any finite ``q`` (up to 1e18 rad and 1e15 m; angles are reduced
   modulo 2π, so transforms stay rigid). A limit of magnitude ≥ 1e15 (a URDF's ±1e16, ±inf)
@@ -60,7 +64,7 @@ from .inverse import dls, nullspace_projector, pinv, solve_rates
 from .model import Axis, DHRow, Joint, NamedConfiguration, Robot
 from .numeric import as_configuration, chain_frames, fk, jacobian, jacobian_dot, joint_frames, link_frames
 from .singularity import SingularityReport, assess
-from .urdf import to_urdf
+from .urdf import robot_from_urdf, to_urdf
 
 __all__ = [
     "Robot",
@@ -95,6 +99,7 @@ __all__ = [
     "solve_rates",
     "SingularityReport",
     "assess",
+    "robot_from_urdf",
     "to_urdf",
     "cache_dir",
     "JacobianLabError",

@@ -19,12 +19,15 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import cast
 
 import numpy as np
+import numpy.typing as npt
 
+from .conventions import PART_ROWS, FloatArray, Part
 from .errors import ArrayError, OptionError
 from .model import Robot
+from .numeric import chain_frames
 from .validation import finite_matrix, is_number, show
 
 __all__ = [
@@ -48,20 +51,14 @@ __all__ = [
     "as_jacobian",
     "check_rtol",
     "part_rows",
+    "is_planar_chain",
 ]
 
-Part = Literal["full", "linear", "angular", "planar"]
-PART_ROWS: dict[str, tuple[int, ...]] = {
-    "full": (0, 1, 2, 3, 4, 5),
-    "linear": (0, 1, 2),
-    "angular": (3, 4, 5),
-    "planar": (0, 1, 5),
-}
 DEFAULT_RTOL = 1e-9
 """Relative tolerance: σ ≤ DEFAULT_RTOL · max(σmax, 1) counts as zero (rank, singularity)."""
 
 
-def as_jacobian(J: object, what: str = "J") -> np.ndarray:
+def as_jacobian(J: object, what: str = "J") -> FloatArray:
     """``J`` as a float array of shape (6, n) or (N, 6, n) with finite entries, or ArrayError."""
     return finite_matrix(J, what, rows=6)
 
@@ -98,7 +95,7 @@ def part_rows(part: Part | tuple[int, ...]) -> tuple[int, ...]:
     return _rows(part)
 
 
-def select_rows(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray:
+def select_rows(J: npt.ArrayLike, part: Part | tuple[int, ...] = "full") -> FloatArray:
     """Rows of ``J`` (…, 6, n) named by ``part`` (a :data:`PART_ROWS` key or explicit row indices).
 
     Raises:
@@ -130,16 +127,21 @@ def task_rows(robot: Robot) -> tuple[int, ...]:
     return PART_ROWS["full"]
 
 
-def singular_values(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray:
+def _sigma(A: FloatArray) -> FloatArray:
+    """Singular values of A (…, m, n), descending."""
+    return np.linalg.svd(A, compute_uv=False).astype(np.float64, copy=False)
+
+
+def singular_values(J: npt.ArrayLike, part: Part | tuple[int, ...] = "full") -> FloatArray:
     """Singular values σ1 ≥ σ2 ≥ … of the selected rows, shape (k,) or (N, k), k = min(rows, n)."""
-    return np.linalg.svd(select_rows(J, part), compute_uv=False)
+    return _sigma(select_rows(J, part))
 
 
-def _zero_tol(sigma: np.ndarray, rtol: float) -> np.ndarray:
+def _zero_tol(sigma: FloatArray, rtol: float) -> FloatArray:
     return check_rtol(rtol) * np.maximum(sigma[..., :1], 1.0)
 
 
-def manipulability(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray | float:
+def manipulability(J: npt.ArrayLike, part: Part | tuple[int, ...] = "full") -> FloatArray | float:
     """Yoshikawa's manipulability w = √det(J Jᵀ) = Π σᵢ of the selected rows.
 
     Zero when the selected rows outnumber the joints (det(J Jᵀ) = 0): use a
@@ -154,8 +156,8 @@ def manipulability(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.n
 
 
 def condition_number(
-    J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
-) -> np.ndarray | float:
+    J: npt.ArrayLike, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
+) -> FloatArray | float:
     """2-norm condition number σmax / σmin of the selected rows; ``inf`` at a singularity.
 
     σmin is the smallest of min(rows, n) singular values; when it is below
@@ -164,11 +166,11 @@ def condition_number(
     every direction): measure a part.
     """
     Js = select_rows(J, part)
-    s = np.linalg.svd(Js, compute_uv=False)
+    s = _sigma(Js)
     return condition_of(s, rtol, missing=Js.shape[-2] > Js.shape[-1])
 
 
-def condition_of(sigma: np.ndarray, rtol: float = DEFAULT_RTOL, missing: bool = False) -> np.ndarray | float:
+def condition_of(sigma: FloatArray, rtol: float = DEFAULT_RTOL, missing: bool = False) -> FloatArray | float:
     """σmax / σmin of singular values ``sigma`` (descending, (k,) or (N, k)); ``inf`` when σmin is below
     ``rtol · max(σmax, 1)`` or when ``missing`` (fewer joints than rows: a direction has no σ at all).
 
@@ -193,19 +195,19 @@ class Measures:
         condition: σmax / σmin (``inf`` when singular), as :func:`condition_number`.
     """
 
-    sigma: np.ndarray
+    sigma: FloatArray
     manipulability: float
     rank: int
     condition: float
 
 
-def measures(J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL) -> Measures:
+def measures(J: npt.ArrayLike, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL) -> Measures:
     """:func:`singular_values`, :func:`manipulability`, :func:`rank` and :func:`condition_number` of one
     Jacobian at the price of one SVD (what an app redrawing on every slider move needs)."""
     Js = select_rows(J, part)
     if Js.ndim != 2:
         raise ArrayError(f"measures takes one Jacobian (6, n), not a batch {Js.shape}")
-    s = np.linalg.svd(Js, compute_uv=False)
+    s = _sigma(Js)
     missing = Js.shape[0] > Js.shape[1]
     return Measures(
         sigma=s,
@@ -215,15 +217,15 @@ def measures(J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float =
     )
 
 
-def inverse_condition_number(J: np.ndarray, part: Part | tuple[int, ...] = "full") -> np.ndarray | float:
+def inverse_condition_number(J: npt.ArrayLike, part: Part | tuple[int, ...] = "full") -> FloatArray | float:
     """σmin / σmax in [0, 1]: 1 is isotropic, 0 singular (finite everywhere, good for colour maps)."""
     c = condition_number(J, part)
     return 1.0 / c if np.ndim(c) == 0 else 1.0 / np.asarray(c)
 
 
 def rank(
-    J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
-) -> int | np.ndarray:
+    J: npt.ArrayLike, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
+) -> int | FloatArray:
     """Numerical rank: the number of σᵢ above ``rtol · max(σmax, 1)``."""
     s = singular_values(J, part)
     r = np.sum(s > _zero_tol(s, rtol), axis=-1)
@@ -231,8 +233,8 @@ def rank(
 
 
 def null_space(
-    J: np.ndarray, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
-) -> np.ndarray:
+    J: npt.ArrayLike, part: Part | tuple[int, ...] = "full", rtol: float = DEFAULT_RTOL
+) -> FloatArray:
     """Orthonormal basis (n, k) of the joint rates that produce no motion of the selected rows.
 
     For one Jacobian only. Self-motions of a redundant arm, or the joint
@@ -243,7 +245,7 @@ def null_space(
         raise ArrayError(f"null_space takes one Jacobian (6, n), not a batch {Js.shape}")
     _, s, Vt = np.linalg.svd(Js)
     r = int(np.sum(s > _zero_tol(s, rtol)))
-    return Vt[r:].T.copy()
+    return cast(FloatArray, Vt[r:].T.copy())
 
 
 @dataclass(frozen=True)
@@ -258,19 +260,15 @@ class Ellipsoid:
             ellipsoid at a singularity) means unbounded.
     """
 
-    axes: np.ndarray
-    radii: np.ndarray
+    axes: FloatArray
+    radii: FloatArray
 
     def capped(self, cap: float) -> Ellipsoid:
         """The same ellipsoid with radii clipped to [0, cap] (for drawing)."""
         return Ellipsoid(self.axes, np.minimum(self.radii, cap))
 
-    def rotation(self) -> np.ndarray:
-        """The 3×3 rotation whose columns are the semi-axis directions (= ``axes``)."""
-        return self.axes
 
-
-def _three_row_svd(J: np.ndarray, part: Part | tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+def _three_row_svd(J: npt.ArrayLike, part: Part | tuple[int, ...]) -> tuple[FloatArray, FloatArray]:
     Js = select_rows(J, part)
     if Js.ndim != 2:
         raise ArrayError(f"an ellipsoid is drawn for one Jacobian (6, n), not a batch {Js.shape}")
@@ -285,7 +283,7 @@ def _three_row_svd(J: np.ndarray, part: Part | tuple[int, ...]) -> tuple[np.ndar
     return U, sigma
 
 
-def velocity_ellipsoid(J: np.ndarray, part: Part | tuple[int, ...] = "linear") -> Ellipsoid:
+def velocity_ellipsoid(J: npt.ArrayLike, part: Part | tuple[int, ...] = "linear") -> Ellipsoid:
     """Manipulability (velocity) ellipsoid: {J q̇ : ‖q̇‖ ≤ 1}.
 
     Semi-axes σᵢ along the *left* singular vectors uᵢ of the selected 3 rows
@@ -297,7 +295,7 @@ def velocity_ellipsoid(J: np.ndarray, part: Part | tuple[int, ...] = "linear") -
 
 
 def force_ellipsoid(
-    J: np.ndarray, part: Part | tuple[int, ...] = "linear", rtol: float = DEFAULT_RTOL
+    J: npt.ArrayLike, part: Part | tuple[int, ...] = "linear", rtol: float = DEFAULT_RTOL
 ) -> Ellipsoid:
     """Force ellipsoid: {F : ‖Jᵀ F‖ ≤ 1}, semi-axes 1/σᵢ along the same uᵢ.
 
@@ -309,3 +307,28 @@ def force_ellipsoid(
     with np.errstate(divide="ignore"):
         radii = np.where(sigma > tol, 1.0 / np.where(sigma > tol, sigma, 1.0), np.inf)
     return Ellipsoid(U, radii)
+
+
+_PLANAR_TOL = 1e-9
+
+
+def is_planar_chain(robot: Robot) -> bool:
+    """True when, at home and at a few other configurations (fixed seed, inside the limits), every
+    revolute axis is parallel to the base z axis and every prismatic axis perpendicular to it."""
+    n = robot.dof
+    if n == 0 or len(robot.axes) != n:
+        return False
+    lo, hi = robot.qlim
+    lo = np.where(np.isfinite(lo), lo, -np.pi)
+    hi = np.where(np.isfinite(hi), hi, np.pi)
+    rng = np.random.default_rng(5)
+    for q in [np.asarray(robot.home, float)] + [rng.uniform(lo, hi) for _ in range(3)]:
+        W, _ = chain_frames(robot, q)
+        for ax, frame in zip(robot.axes, W, strict=True):
+            z = frame[:3, 2]
+            along = abs(float(z[2]))
+            if ax.kind == "revolute" and abs(along - 1.0) > _PLANAR_TOL:
+                return False
+            if ax.kind != "revolute" and along > _PLANAR_TOL:
+                return False
+    return True

@@ -19,16 +19,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal, cast
 
 import numpy as np
+import numpy.typing as npt
 
-from .errors import ArrayError, ConfigurationError, OptionError, RepresentationSingularityError
+from .conventions import FloatArray
+from .errors import ConfigurationError, RepresentationSingularityError
 from .model import Robot
 from .motion.ik import solve
 from .numeric import as_configuration, fk, jacobian
-from .transforms import rot_x, rot_y, rot_z
-from .validation import show
+from .transforms import EulerConvention, check_euler_convention, euler_angles, euler_rotation
+from .validation import finite_array
 
 __all__ = [
     "EulerConvention",
@@ -42,76 +43,22 @@ __all__ = [
     "EULER_TOL",
 ]
 
-EulerConvention = Literal["zyx", "zyz"]
 EULER_TOL = 1e-6
 """|det B(φ)| below this is a representation singularity."""
 
 
-def _check(convention: object) -> EulerConvention:
-    if isinstance(convention, str) and convention in ("zyx", "zyz"):
-        return cast(EulerConvention, convention)
-    raise OptionError(f"Euler convention must be one of 'zyx', 'zyz', got {show(convention)}")
-
-
-def _finite_array(x: object, shapes: tuple[tuple[int, ...], ...], what: str) -> np.ndarray:
-    try:
-        a = np.asarray(x)
-    except (TypeError, ValueError, OverflowError):
-        raise ArrayError(f"{what} must be an array of numbers, got {show(x)}") from None
-    if a.dtype.kind not in "iuf" or a.shape not in shapes:
-        expected = " or ".join(str(s) for s in shapes)
-        raise ArrayError(f"{what} must be numbers of shape {expected}, got {show(x)}")
-    a = a.astype(float, copy=False)
-    if not np.isfinite(a).all():
-        raise ArrayError(f"{what} contains NaN or infinity")
-    return a
-
-
-def euler_angles(R: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
-    """Euler angles (3,) [rad] of the rotation matrix R (3×3) in ``convention``.
-
-    ZYX: pitch in [-π/2, π/2]; ZYZ: θ in [0, π]. At the representation
-    singularity the split between the first and last angle is arbitrary
-    (all of it is put in the first).
-    """
-    _check(convention)
-    R = _finite_array(R, ((3, 3), (4, 4)), "R")[:3, :3]
-    if convention == "zyx":
-        cb = math.hypot(R[0, 0], R[1, 0])
-        pitch = math.atan2(-R[2, 0], cb)
-        if cb < 1e-12:
-            return np.array([math.atan2(-R[0, 1], R[1, 1]), pitch, 0.0])
-        return np.array([math.atan2(R[1, 0], R[0, 0]), pitch, math.atan2(R[2, 1], R[2, 2])])
-    st = math.hypot(R[0, 2], R[1, 2])
-    theta = math.atan2(st, R[2, 2])
-    if st < 1e-12:
-        return np.array([math.atan2(R[1, 0], R[0, 0]), theta, 0.0])
-    return np.array([math.atan2(R[1, 2], R[0, 2]), theta, math.atan2(R[2, 1], -R[2, 0])])
-
-
-def euler_rate_matrix(angles: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
+def euler_rate_matrix(angles: npt.ArrayLike, convention: EulerConvention = "zyx") -> FloatArray:
     """B(φ) (3×3) with ω = B(φ) φ̇, ω in the base frame.
 
     Its columns are the axes of the three elementary rotations, each rotated
     by the ones before it: ZYX: z, Rz(α) y, Rz(α) Ry(β) x.
     """
-    _check(convention)
-    a, b, _ = (float(v) for v in _finite_array(angles, ((3,),), "angles"))
+    check_euler_convention(convention)
+    a, b, _ = (float(v) for v in finite_array(angles, ((3,),), "angles"))
     ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
     if convention == "zyx":
         return np.array([[0.0, -sa, ca * cb], [0.0, ca, sa * cb], [1.0, 0.0, -sb]])
     return np.array([[0.0, -sa, ca * sb], [0.0, ca, sa * sb], [1.0, 0.0, cb]])
-
-
-def euler_rotation(angles: np.ndarray, convention: EulerConvention = "zyx") -> np.ndarray:
-    """The rotation matrix (3, 3) of Euler angles (3,) [rad]: the inverse of :func:`euler_angles`.
-
-    ZYX: Rz(yaw) Ry(pitch) Rx(roll); ZYZ: Rz(φ) Ry(θ) Rz(ψ).
-    """
-    convention = _check(convention)
-    a, b, c = (float(v) for v in _finite_array(angles, ((3,),), "angles"))
-    last = rot_x(c) if convention == "zyx" else rot_z(c)
-    return (rot_z(a) @ rot_y(b) @ last)[:3, :3]
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,18 +72,18 @@ class AnalyticParts:
         J_A: blockdiag(I, B(φ)⁻¹) J (6, n), rows [v; φ̇]; ``None`` at the representation singularity.
     """
 
-    phi: np.ndarray
-    B: np.ndarray
+    phi: FloatArray
+    B: FloatArray
     det_B: float
-    J_A: np.ndarray | None
+    J_A: FloatArray | None
 
 
 def analytic_parts(
-    R_base_tool: np.ndarray, J: np.ndarray, convention: EulerConvention = "zyx", tol: float = EULER_TOL
+    R_base_tool: FloatArray, J: FloatArray, convention: EulerConvention = "zyx", tol: float = EULER_TOL
 ) -> AnalyticParts:
     """φ, B(φ), det B and J_A for a tool orientation and its base-frame Jacobian J (6, n) already at
     hand (an app redrawing on every move has both); ``J_A`` is ``None`` where |det B| < ``tol``."""
-    convention = _check(convention)
+    convention = check_euler_convention(convention)
     phi = euler_angles(R_base_tool, convention)
     B = euler_rate_matrix(phi, convention)
     det = float(np.linalg.det(B))
@@ -148,15 +95,15 @@ def analytic_parts(
 
 
 def analytic_jacobian(
-    robot: Robot, q: object, convention: EulerConvention = "zyx", tol: float = EULER_TOL
-) -> np.ndarray:
+    robot: Robot, q: npt.ArrayLike, convention: EulerConvention = "zyx", tol: float = EULER_TOL
+) -> FloatArray:
     """Analytic Jacobian J_A (6, n), rows [v; φ̇] with φ the tool's Euler angles in the base frame.
 
     Raises:
         RepresentationSingularityError: B(φ) is singular at the tool's orientation
             (|det B| < ``tol``): ZYX at pitch = ±90°, ZYZ at θ = 0 or π.
     """
-    convention = _check(convention)
+    convention = check_euler_convention(convention)
     q = as_configuration(robot, q)
     if q.ndim != 1:
         raise ConfigurationError(f"analytic_jacobian takes one configuration ({robot.dof},), got {q.shape}")
@@ -172,8 +119,8 @@ def analytic_jacobian(
 
 
 def representation_singularity(
-    robot: Robot, q: object, convention: EulerConvention, lo: np.ndarray, hi: np.ndarray
-) -> np.ndarray:
+    robot: Robot, q: npt.ArrayLike, convention: EulerConvention, lo: FloatArray, hi: FloatArray
+) -> FloatArray:
     """Joint values near ``q`` (within [lo, hi]) where the tool keeps its position and its Euler angles
     are singular: ZYX pitch = ±90° (the tool's x axis along ∓z of the base), ZYZ θ = 0 or 180°
     (the tool's z axis along ±z of the base). Newton's method from ``q``; the closer solution wins.
@@ -181,12 +128,12 @@ def representation_singularity(
     Raises:
         ConfigurationError: the arm reaches no such orientation from here within [lo, hi].
     """
-    convention = _check(convention)
+    convention = check_euler_convention(convention)
     q = as_configuration(robot, q)
     T_tool = fk(robot, q)
     a, _, c = euler_angles(T_tool[:3, :3], convention)
     middles = (math.pi / 2, -math.pi / 2) if convention == "zyx" else (0.0, math.pi)
-    best: np.ndarray | None = None
+    best: FloatArray | None = None
     for b in middles:
         T = np.array(T_tool, dtype=float)
         T[:3, :3] = euler_rotation(np.array([a, b, c]), convention)

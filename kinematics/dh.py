@@ -19,16 +19,30 @@ A row is a mapping with the keys ``joint`` (``"revolute"`` or ``"prismatic"``), 
 from __future__ import annotations
 
 import difflib
-from collections.abc import Mapping, Sequence
+import functools
+import operator
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, Generic, TypeVar
 
 import numpy as np
 
+from .conventions import FloatArray
 from .errors import RobotDefinitionError
 from .parts import JOINT_TYPES, Axis, Convention, DHRow, Joint, check_choice
 from .transforms import rot_x, rot_z, trans
 from .validation import MAX_ANGLE, MAX_LENGTH, bounded_number, joint_limits, show
 
-__all__ = ["DH_KEYS", "DH_OPTIONAL_KEYS", "parse_dh_table", "parse_dh_row", "dh_chain"]
+__all__ = [
+    "DH_KEYS",
+    "DH_OPTIONAL_KEYS",
+    "parse_dh_table",
+    "parse_dh_row",
+    "dh_chain",
+    "dh_factors",
+    "MatrixOps",
+    "NUMPY_OPS",
+]
 
 DH_KEYS = ("joint", "a", "alpha", "d", "theta")
 """Keys every DH row must have."""
@@ -100,6 +114,55 @@ def parse_dh_row(i: int, row: object) -> DHRow:
     )
 
 
+M = TypeVar("M")
+
+
+@dataclass(frozen=True)
+class MatrixOps(Generic[M]):
+    """The 4×4 factors a DH row is made of, in one math module (NumPy floats or SymPy expressions)."""
+
+    eye: Callable[[], M]
+    rot_x: Callable[[Any], M]
+    rot_z: Callable[[Any], M]
+    trans_x: Callable[[Any], M]
+    trans_z: Callable[[Any], M]
+    mul: Callable[[M, M], M]
+
+
+NUMPY_OPS: MatrixOps[FloatArray] = MatrixOps(
+    eye=lambda: np.eye(4),
+    rot_x=rot_x,
+    rot_z=rot_z,
+    trans_x=lambda a: trans(x=a),
+    trans_z=lambda d: trans(z=d),
+    mul=operator.matmul,
+)
+"""The DH factors as float arrays (the numeric model)."""
+
+
+def dh_factors(
+    ops: MatrixOps[M], revolute: bool, convention: Convention, a: Any, alpha: Any, d: Any, theta: Any
+) -> tuple[M, M]:
+    """(T_parent_joint, T_joint_child) of one DH row, the joint's own motion left out.
+
+    Standard: A = Rz(θ) Tz(d) Tx(a) Rx(α); modified (Craig): A = Rx(α) Tx(a) Rz(θ) Tz(d). The joint
+    moves about (revolute) or along (prismatic) z between the two factors, so the row's θ
+    (revolute) or d (prismatic) is the joint's offset and is not in either factor. Written once for
+    :data:`NUMPY_OPS` and for the SymPy factors of :mod:`kinematics.symbolic.exact`.
+    """
+
+    def prod(*factors: M) -> M:
+        return functools.reduce(ops.mul, factors)
+
+    if convention == "modified":
+        if revolute:
+            return prod(ops.rot_x(alpha), ops.trans_x(a)), ops.trans_z(d)
+        return prod(ops.rot_x(alpha), ops.trans_x(a), ops.rot_z(theta)), ops.eye()
+    if revolute:
+        return ops.eye(), prod(ops.trans_z(d), ops.trans_x(a), ops.rot_x(alpha))
+    return ops.rot_z(theta), prod(ops.trans_x(a), ops.rot_x(alpha))
+
+
 def dh_chain(dh: Sequence[DHRow], convention: Convention) -> tuple[tuple[Joint, ...], tuple[Axis, ...]]:
     """The joints and axes of a checked DH table in ``convention``.
 
@@ -112,24 +175,13 @@ def dh_chain(dh: Sequence[DHRow], convention: Convention) -> tuple[tuple[Joint, 
         name_i = r.name or f"q{i + 1}"
         joints.append(Joint(name_i, r.joint, r.qlim))
         revolute = r.joint == "revolute"
-        corners: tuple[tuple[float, float, float], ...]
-        if convention == "standard":
-            T_pj = np.eye(4) if revolute else rot_z(r.theta)
-            if revolute:
-                T_jc = trans(z=r.d) @ trans(x=r.a) @ rot_x(r.alpha)
-                corners = ((0.0, 0.0, r.d),) if r.d != 0 and r.a != 0 else ()
-            else:
-                T_jc = trans(x=r.a) @ rot_x(r.alpha)
-                # The slide ends at the moved joint origin; the link then runs along x by a.
-                corners = ((0.0, 0.0, 0.0),) if r.a != 0 else ()
-        else:
-            T_pj = rot_x(r.alpha) @ trans(x=r.a)
-            if revolute:
-                T_jc = trans(z=r.d)
-            else:
-                T_pj = T_pj @ rot_z(r.theta)
-                T_jc = np.eye(4)
-            corners = ()
+        T_pj, T_jc = dh_factors(NUMPY_OPS, revolute, convention, r.a, r.alpha, r.d, r.theta)
+        corners: tuple[tuple[float, float, float], ...] = ()
+        if convention == "standard" and revolute:
+            corners = ((0.0, 0.0, r.d),) if r.d != 0 and r.a != 0 else ()
+        elif convention == "standard":
+            # The slide ends at the moved joint origin; the link then runs along x by a.
+            corners = ((0.0, 0.0, 0.0),) if r.a != 0 else ()
         offset = r.theta if revolute else r.d
         axes.append(Axis(name_i, r.joint, i, 1.0, offset, T_pj, T_jc, corners))
     return tuple(joints), tuple(axes)

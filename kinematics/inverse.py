@@ -9,17 +9,20 @@ the null-space projector ``N = I − J⁺ J``.
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
+import numpy.typing as npt
 
 from .analysis import DEFAULT_RTOL, check_rtol
+from .conventions import FloatArray
 from .errors import ArrayError, OptionError
 from .validation import finite_matrix, is_number, show
 
 __all__ = ["pinv", "dls", "nullspace_projector", "solve_rates"]
 
 
-def pinv(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
+def pinv(J: npt.ArrayLike, rtol: float = DEFAULT_RTOL) -> FloatArray:
     """Moore–Penrose pseudo-inverse J⁺ (n, m), singular values below ``rtol · max(σmax, 1)`` dropped.
 
     Equals J⁻¹ for a square regular J; gives the minimum-norm least-squares
@@ -30,10 +33,10 @@ def pinv(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
     tol = check_rtol(rtol) * np.maximum(s[..., :1], 1.0)
     with np.errstate(divide="ignore"):
         s_inv = np.where(s > tol, 1.0 / np.where(s > tol, s, 1.0), 0.0)
-    return np.swapaxes(Vt, -1, -2) @ (s_inv[..., :, None] * np.swapaxes(U, -1, -2))
+    return cast(FloatArray, np.swapaxes(Vt, -1, -2) @ (s_inv[..., :, None] * np.swapaxes(U, -1, -2)))
 
 
-def dls(J: np.ndarray, damping: float = 0.05) -> np.ndarray:
+def dls(J: npt.ArrayLike, damping: float = 0.05) -> FloatArray:
     """Damped least-squares inverse Jᵀ (J Jᵀ + λ² I)⁻¹ (n, m), λ = ``damping``.
 
     Each singular value σ maps to σ / (σ² + λ²) ≤ 1 / (2λ): joint rates stay
@@ -45,10 +48,10 @@ def dls(J: np.ndarray, damping: float = 0.05) -> np.ndarray:
     U, s, Vt = np.linalg.svd(J, full_matrices=False)
     with np.errstate(divide="ignore", invalid="ignore"):
         f = np.where(s**2 + damping**2 > 0, s / (s**2 + damping**2), 0.0)
-    return np.swapaxes(Vt, -1, -2) @ (f[..., :, None] * np.swapaxes(U, -1, -2))
+    return cast(FloatArray, np.swapaxes(Vt, -1, -2) @ (f[..., :, None] * np.swapaxes(U, -1, -2)))
 
 
-def nullspace_projector(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray:
+def nullspace_projector(J: npt.ArrayLike, rtol: float = DEFAULT_RTOL) -> FloatArray:
     """N = I − J⁺ J (n, n): projects joint rates onto motions that leave the task still.
 
     ``q̇ = J⁺ v + N q̇₀`` reaches the task velocity v while following q̇₀ as
@@ -59,7 +62,7 @@ def nullspace_projector(J: np.ndarray, rtol: float = DEFAULT_RTOL) -> np.ndarray
     return np.eye(n) - pinv(J, rtol) @ J
 
 
-def solve_rates(J: np.ndarray, v: np.ndarray, damping: float = 0.0) -> np.ndarray:
+def solve_rates(J: npt.ArrayLike, v: npt.ArrayLike, damping: float = 0.0) -> FloatArray:
     """Joint rates for a desired task velocity: J⁺ v (``damping`` = 0) or the DLS solution."""
     J = finite_matrix(J)
     v = _vector(v, J)
@@ -67,7 +70,7 @@ def solve_rates(J: np.ndarray, v: np.ndarray, damping: float = 0.0) -> np.ndarra
     return inv @ v
 
 
-def _vector(v: object, J: np.ndarray) -> np.ndarray:
+def _vector(v: object, J: FloatArray) -> FloatArray:
     """``v`` as a finite float array with one component per row of ``J``, or ArrayError."""
     try:
         a = np.asarray(v)

@@ -15,7 +15,9 @@ import weakref
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
+from .conventions import FloatArray
 from .errors import RobotDefinitionError
 from .model import Robot
 from .validation import MAX_ANGLE, MAX_LENGTH, show
@@ -40,21 +42,21 @@ class Kernel:
     ``fixed`` is :meth:`Robot.fixed_transforms`: T_base_tool = fixed[0] · M_1 · fixed[1] ⋯ M_m · fixed[m].
     """
 
-    fixed: np.ndarray  # (m+1, 4, 4)
-    index: np.ndarray  # (m,) int
-    multiplier: np.ndarray  # (m,)
-    offset: np.ndarray  # (m,)
-    revolute: np.ndarray  # (m,) float 1.0/0.0
-    prismatic: np.ndarray  # (m,) float
+    fixed: FloatArray  # (m+1, 4, 4)
+    index: NDArray[np.intp]  # (m,) joint index of each axis
+    multiplier: FloatArray  # (m,)
+    offset: FloatArray  # (m,)
+    revolute: FloatArray  # (m,) float 1.0/0.0
+    prismatic: FloatArray  # (m,) float
     simple: bool  # one axis per joint, in order, multiplier 1
-    selection: np.ndarray  # (m, n): column k of J = Σ_axes selection[axis, k] · contribution
+    selection: FloatArray  # (m, n): column k of J = Σ_axes selection[axis, k] · contribution
     all_revolute: bool
-    prismatic_index: np.ndarray  # (p,) indices of prismatic axes
-    rz_cos: np.ndarray  # (m, 4, 4): Rz(θ) F_k = cos θ · rz_cos + sin θ · rz_sin + rz_const
-    rz_sin: np.ndarray
-    rz_const: np.ndarray
-    tz_lin: np.ndarray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
-    bound: np.ndarray  # (n,) largest accepted |q| per joint: MAX_ANGLE [rad] or MAX_LENGTH [m]
+    prismatic_index: NDArray[np.intp]  # (p,) indices of prismatic axes
+    rz_cos: FloatArray  # (m, 4, 4): Rz(θ) F_k = cos θ · rz_cos + sin θ · rz_sin + rz_const
+    rz_sin: FloatArray
+    rz_const: FloatArray
+    tz_lin: FloatArray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
+    bound: FloatArray  # (n,) largest accepted |q| per joint: MAX_ANGLE [rad] or MAX_LENGTH [m]
 
     def __post_init__(self) -> None:
         for value in vars(self).values():
@@ -128,7 +130,7 @@ def _forget(key: int, ref: weakref.ref[Robot]) -> None:
         del _KERNELS[key]
 
 
-def chain_single(c: Kernel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def chain_single(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Joint frames T_base_joint (m, 4, 4) (before each axis moves) and T_base_tool."""
     qa = q if c.simple else q[c.index] * c.multiplier
     qa = qa + c.offset
@@ -150,7 +152,7 @@ def chain_single(c: Kernel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return A[:-1], A[-1]
 
 
-def _levi_civita_map() -> np.ndarray:
+def _levi_civita_map() -> FloatArray:
     """The Levi-Civita tensor as a (3, 9) map: (z @ map).reshape(3, 3) is the cross-product matrix [z]×."""
     eps = np.zeros((3, 3, 3))
     for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
@@ -162,7 +164,7 @@ def _levi_civita_map() -> np.ndarray:
 _SKEW = _levi_civita_map()
 
 
-def axis_jacobian(c: Kernel, W: np.ndarray, T: np.ndarray) -> np.ndarray:
+def axis_jacobian(c: Kernel, W: FloatArray, T: FloatArray) -> FloatArray:
     """Per-axis Jacobian columns (6, m) from the joint frames W and the tool pose T."""
     m = len(W)
     z = W[:, :3, 2]
@@ -178,13 +180,13 @@ def axis_jacobian(c: Kernel, W: np.ndarray, T: np.ndarray) -> np.ndarray:
     return J
 
 
-def jacobian_from_frames(c: Kernel, W: np.ndarray, T: np.ndarray) -> np.ndarray:
+def jacobian_from_frames(c: Kernel, W: FloatArray, T: FloatArray) -> FloatArray:
     """The geometric Jacobian (6, n) from the joint frames W and the tool pose T (mimic axes summed)."""
     J = axis_jacobian(c, W, T)
     return J if c.simple else J @ c.selection
 
 
-def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray:
+def _lin(terms: list[tuple[float, FloatArray]]) -> FloatArray:
     """Σ coefficient · array, skipping zero coefficients and multiplications by ±1.
 
     Returns the input array itself (no copy) for a single unit term: arrays
@@ -205,14 +207,14 @@ def _lin(terms: list[tuple[float, np.ndarray]]) -> np.ndarray:
     return np.zeros_like(terms[0][1]) if out is None else out
 
 
-def _apply_fixed(cols: list[np.ndarray], p: np.ndarray, F: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
+def _apply_fixed(cols: list[FloatArray], p: FloatArray, F: FloatArray) -> tuple[list[FloatArray], FloatArray]:
     """(R, p) · F for a constant 4×4 F, with R given as its three columns (3, N) and p (3, N)."""
     new_cols = [_lin([(F[k, j], cols[k]) for k in range(3)]) for j in range(3)]
     new_p = _lin([(1.0, p)] + [(F[k, 3], cols[k]) for k in range(3)])
     return new_cols, new_p
 
 
-def _chain_batch(c: Kernel, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
+def _chain_batch(c: Kernel, q: FloatArray, want_jacobian: bool) -> tuple[FloatArray, FloatArray | None]:
     """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
     N = q.shape[0]
     m = len(c.offset)
@@ -222,8 +224,8 @@ def _chain_batch(c: Kernel, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndar
     # Rotation columns (3, N) and position (3, N) of the running frame.
     cols = [F0[:3, j, None] * ones for j in range(3)]
     p = F0[:3, 3, None] * ones
-    zs: list[np.ndarray] = []
-    ps: list[np.ndarray] = []
+    zs: list[FloatArray] = []
+    ps: list[FloatArray] = []
     qa_t = qa.T  # (m, N)
     cosv = np.cos(qa_t)
     sinv = np.sin(qa_t)
@@ -261,7 +263,7 @@ def _chain_batch(c: Kernel, q: np.ndarray, want_jacobian: bool) -> tuple[np.ndar
     return T, J
 
 
-def batched_fk(c: Kernel, q: np.ndarray) -> np.ndarray:
+def batched_fk(c: Kernel, q: FloatArray) -> FloatArray:
     """T_base_tool (N, 4, 4) for a batch q (N, n), chunk by chunk."""
     T = np.empty((q.shape[0], 4, 4))
     for s in range(0, q.shape[0], _CHUNK):
@@ -269,7 +271,7 @@ def batched_fk(c: Kernel, q: np.ndarray) -> np.ndarray:
     return T
 
 
-def batched_jacobian(c: Kernel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def batched_jacobian(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray]:
     """T_base_tool (N, 4, 4) and the base-frame J (N, 6, n) for a batch q (N, n), chunk by chunk."""
     N = q.shape[0]
     T = np.empty((N, 4, 4))

@@ -16,8 +16,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from .analysis import Part, part_rows, task_rows
+from .conventions import FloatArray
 from .errors import ConfigurationError, OptionError
 from .kernel import batched_jacobian, kernel
 from .model import Robot
@@ -43,10 +45,10 @@ class Workspace:
         inverse_kappa: (N,) σmin/σmax of the task rows, in [0, 1].
     """
 
-    q: np.ndarray
-    points: np.ndarray
-    w: np.ndarray
-    inverse_kappa: np.ndarray
+    q: FloatArray
+    points: FloatArray
+    w: FloatArray
+    inverse_kappa: FloatArray
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,15 +64,15 @@ class JointMap:
 
     i: int
     j: int
-    values_i: np.ndarray
-    values_j: np.ndarray
-    w: np.ndarray
-    inverse_kappa: np.ndarray
+    values_i: FloatArray
+    values_j: FloatArray
+    w: FloatArray
+    inverse_kappa: FloatArray
 
 
-def sampling_range(robot: Robot) -> np.ndarray:
+def sampling_range(robot: Robot) -> FloatArray:
     """(2, n) lower and upper values sampled per joint: its limits, or ±π / ±1 m without."""
-    lim = robot.qlim.copy()
+    lim: FloatArray = robot.qlim.copy()
     for k, joint in enumerate(robot.joints):
         if joint.qlim is None:
             span = np.pi if joint.kind == "revolute" else UNLIMITED_PRISMATIC
@@ -78,7 +80,7 @@ def sampling_range(robot: Robot) -> np.ndarray:
     return lim
 
 
-def gram_measures(J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def gram_measures(J: FloatArray) -> tuple[FloatArray, FloatArray]:
     """w and σmin/σmax of a batch of task Jacobians (N, k, n) through eigvalsh of J Jᵀ."""
     N, k, n = J.shape
     if k > n:  # more rows than joints: always rank-deficient
@@ -91,7 +93,7 @@ def gram_measures(J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return w, inverse
 
 
-def _evaluate(robot: Robot, Q: np.ndarray, rows: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _evaluate(robot: Robot, Q: FloatArray, rows: list[int]) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Tool points, w and σmin/σmax for Q (N, n), chunk by chunk."""
     c = kernel(robot)
     N = len(Q)
@@ -140,7 +142,7 @@ def workspace(
 
 def joint_map(
     robot: Robot,
-    q: object,
+    q: npt.ArrayLike,
     i: int,
     j: int,
     *,

@@ -25,9 +25,11 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 import numpy as np
 
+from .conventions import FloatArray
 from .errors import RobotDefinitionError
 from .parts import (
     CONVENTIONS,
@@ -51,7 +53,8 @@ __all__ = ["Robot", "Joint", "Axis", "DHRow", "NamedConfiguration", "JointType",
 
 @dataclass(frozen=True, eq=False)
 class Robot:
-    """An immutable serial manipulator. Build it with :meth:`from_dh` or :meth:`from_urdf`.
+    """An immutable serial manipulator. Build it with :meth:`from_dh`, or from a URDF file
+    with :func:`kinematics.robot_from_urdf` (:mod:`kinematics.urdf`).
 
     Attributes:
         name: Identifier (library name or file stem).
@@ -85,8 +88,8 @@ class Robot:
     name: str
     joints: tuple[Joint, ...]
     axes: tuple[Axis, ...]
-    base: np.ndarray = field(default_factory=lambda: np.eye(4))
-    tool: np.ndarray = field(default_factory=lambda: np.eye(4))
+    base: FloatArray = field(default_factory=lambda: np.eye(4))
+    tool: FloatArray = field(default_factory=lambda: np.eye(4))
     dh: tuple[DHRow, ...] | None = None
     convention: Convention | None = None
     planar: bool = False
@@ -179,14 +182,14 @@ class Robot:
         return tuple(j.kind for j in self.joints)
 
     @property
-    def qlim(self) -> np.ndarray:
+    def qlim(self) -> FloatArray:
         """(2, n) array of lower and upper limits; ±∞ where a joint has none."""
         lim = np.empty((2, self.dof))
         for i, j in enumerate(self.joints):
             lim[:, i] = j.qlim if j.qlim is not None else (-np.inf, np.inf)
         return lim
 
-    def configuration(self, name: str) -> np.ndarray:
+    def configuration(self, name: str) -> FloatArray:
         """The named configuration ``name``; raises listing the available names."""
         for c in self.configurations:
             if c.name == name:
@@ -197,7 +200,7 @@ class Robot:
         )
 
     @property
-    def home(self) -> np.ndarray:
+    def home(self) -> FloatArray:
         """The ``home`` configuration if named, else the middle of the limits (0 if unlimited)."""
         for c in self.configurations:
             if c.name == "home":
@@ -208,7 +211,7 @@ class Robot:
         mid[limited] = lim[:, limited].mean(axis=0)
         return frozen_array(mid)
 
-    def fixed_transforms(self) -> np.ndarray:
+    def fixed_transforms(self) -> FloatArray:
         """The constant transforms between the moving axes, shape (m + 1, 4, 4), m = ``len(axes)``.
 
         ``F[0] = base · T_parent_joint[0]``, ``F[k] = T_joint_child[k-1] · T_parent_joint[k]``
@@ -251,8 +254,8 @@ class Robot:
         cls,
         rows: Sequence[Mapping[str, object]],
         convention: str = "standard",
-        base: np.ndarray | None = None,
-        tool: np.ndarray | None = None,
+        base: FloatArray | None = None,
+        tool: FloatArray | None = None,
         name: str = "",
         *,
         title: str = "",
@@ -310,15 +313,11 @@ class Robot:
             param_names={} if param_names is None else param_names,
         )
 
-    @classmethod
-    def from_urdf(cls, path: str, base_link: str | None = None, tip_link: str | None = None) -> Robot:
-        """Build the chain from ``base_link`` to ``tip_link`` of a URDF file (see :mod:`kinematics.urdf`)."""
-        from .urdf import robot_from_urdf
 
-        return robot_from_urdf(path, base_link=base_link, tip_link=tip_link)
+_P = TypeVar("_P")
 
 
-def _parts(items: object, kind: type, where: str) -> tuple:
+def _parts(items: object, kind: type[_P], where: str) -> tuple[_P, ...]:
     """``items`` as a tuple whose elements are all ``kind`` instances."""
     if isinstance(items, (str, bytes, Mapping)) or not isinstance(items, (Sequence, np.ndarray)):
         raise RobotDefinitionError(f"{where}: expected a sequence of {kind.__name__}, got {show(items)}")

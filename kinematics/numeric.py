@@ -9,10 +9,11 @@ processed in cache-sized chunks (the kernels are in :mod:`kinematics.kernel`).
 from __future__ import annotations
 
 import math
-from typing import Literal
 
 import numpy as np
+import numpy.typing as npt
 
+from .conventions import FRAMES, FloatArray, Frame
 from .errors import ConfigurationError, OptionError
 from .kernel import (
     Kernel,
@@ -40,8 +41,6 @@ __all__ = [
     "FRAMES",
 ]
 
-Frame = Literal["base", "tool"]
-FRAMES: tuple[Frame, ...] = ("base", "tool")
 _FAST_BOUND = min(MAX_ANGLE, MAX_LENGTH)
 _MAX_ABS = np.maximum.reduce
 
@@ -63,7 +62,7 @@ _KINDS = {
 }
 
 
-def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
+def as_configuration(robot: Robot, q: object, what: str = "q") -> FloatArray:
     """Return ``q`` as a float array of shape (n,) or (N, n), or raise ConfigurationError.
 
     Accepted: ints and floats (lists, tuples, NumPy arrays of any int or float type). Refused,
@@ -80,7 +79,7 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> np.ndarray:
     return _configuration(robot, kernel(robot), q, what)
 
 
-def _configuration(robot: Robot, c: Kernel, q: object, what: str = "q") -> np.ndarray:
+def _configuration(robot: Robot, c: Kernel, q: object, what: str = "q") -> FloatArray:
     """:func:`as_configuration` with the robot's kernel already at hand."""
     bound = c.bound
     try:
@@ -104,7 +103,7 @@ def _configuration(robot: Robot, c: Kernel, q: object, what: str = "q") -> np.nd
     return a
 
 
-def _bad_value(robot: Robot, a: np.ndarray, bound: np.ndarray, what: str) -> str:
+def _bad_value(robot: Robot, a: FloatArray, bound: FloatArray, what: str) -> str:
     """The message for the first value of ``a`` that is not finite or is out of range."""
     bad = ~(np.abs(a) <= bound)
     i = int(np.argwhere(bad)[0][-1])
@@ -120,7 +119,7 @@ def _bad_value(robot: Robot, a: np.ndarray, bound: np.ndarray, what: str) -> str
 
 
 # --------------------------------------------------------------------- public
-def fk(robot: Robot, q: object) -> np.ndarray:
+def fk(robot: Robot, q: npt.ArrayLike) -> FloatArray:
     """Forward kinematics: the tool pose in the base frame.
 
     Args:
@@ -144,7 +143,7 @@ def fk(robot: Robot, q: object) -> np.ndarray:
     return batched_fk(c, q)
 
 
-def joint_frames(robot: Robot, q: object) -> np.ndarray:
+def joint_frames(robot: Robot, q: npt.ArrayLike) -> FloatArray:
     """Frames of every moving axis, ``T_base_joint`` (m, 4, 4), for one configuration.
 
     Axis k moves about (revolute) or along (prismatic) the z axis of frame k;
@@ -154,7 +153,7 @@ def joint_frames(robot: Robot, q: object) -> np.ndarray:
     return chain_frames(robot, q)[0]
 
 
-def chain_frames(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray]:
+def chain_frames(robot: Robot, q: npt.ArrayLike) -> tuple[FloatArray, FloatArray]:
     """The joint frames ``T_base_joint`` (m, 4, 4) and the tool pose ``T_base_tool`` (4, 4) at once.
 
     One evaluation of the chain for one configuration (n,): what :func:`joint_frames` and
@@ -169,7 +168,7 @@ def chain_frames(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray]:
     return chain_single(c, qc)
 
 
-def link_frames(robot: Robot, q: object) -> np.ndarray:
+def link_frames(robot: Robot, q: npt.ArrayLike) -> FloatArray:
     """Link frames ``T_base_link`` (m + 2, 4, 4): frame 0, the link frame of every axis, the tool.
 
     For a DH robot these are the DH frames 0 … n of its convention, then the tool frame.
@@ -178,7 +177,7 @@ def link_frames(robot: Robot, q: object) -> np.ndarray:
     return _link_frames(robot, q, W, T)
 
 
-def frames_and_jacobian(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def frames_and_jacobian(robot: Robot, q: npt.ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
     """:func:`link_frames`, :func:`joint_frames` and the base-frame :func:`jacobian` of one
     configuration (n,) from one evaluation of the chain (an app redrawing on every move needs all three).
     """
@@ -186,7 +185,7 @@ def frames_and_jacobian(robot: Robot, q: object) -> tuple[np.ndarray, np.ndarray
     return _link_frames(robot, q, W, T), W, jacobian_from_frames(c, W, T)
 
 
-def _one_chain(robot: Robot, q: object, who: str) -> tuple[Kernel, np.ndarray, np.ndarray, np.ndarray]:
+def _one_chain(robot: Robot, q: object, who: str) -> tuple[Kernel, FloatArray, FloatArray, FloatArray]:
     """The kernel, the checked configuration (n,) and its joint frames and tool pose; ``who`` names
     the caller when ``q`` is a batch."""
     c = kernel(robot)
@@ -197,7 +196,7 @@ def _one_chain(robot: Robot, q: object, who: str) -> tuple[Kernel, np.ndarray, n
     return c, qc, W, T
 
 
-def _link_frames(robot: Robot, q: np.ndarray, W: np.ndarray, T: np.ndarray) -> np.ndarray:
+def _link_frames(robot: Robot, q: FloatArray, W: FloatArray, T: FloatArray) -> FloatArray:
     out = np.empty((len(robot.axes) + 2, 4, 4))
     out[0] = robot.base
     for k, ax in enumerate(robot.axes):
@@ -213,7 +212,7 @@ def _link_frames(robot: Robot, q: np.ndarray, W: np.ndarray, T: np.ndarray) -> n
     return out
 
 
-def jacobian(robot: Robot, q: object, frame: Frame = "base") -> np.ndarray:
+def jacobian(robot: Robot, q: npt.ArrayLike, frame: Frame = "base") -> FloatArray:
     """Geometric Jacobian J(q), shape (6, n) or (N, 6, n).
 
     Rows are [v; ω]: v [m/s] is the velocity of the tool-frame origin and ω
@@ -251,7 +250,7 @@ def jacobian(robot: Robot, q: object, frame: Frame = "base") -> np.ndarray:
     return J
 
 
-def jacobian_dot(robot: Robot, q: object, qd: object, frame: Frame = "base") -> np.ndarray:
+def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame = "base") -> FloatArray:
     """Time derivative J̇(q, q̇) of the base-frame geometric Jacobian, shape (6, n).
 
     Used in the acceleration mapping  [a; α] = J q̈ + J̇ q̇  (a = acceleration of

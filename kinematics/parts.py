@@ -16,6 +16,7 @@ from typing import Literal, TypeVar
 
 import numpy as np
 
+from .conventions import TASKS, FloatArray, Task
 from .errors import RobotDefinitionError
 from .transforms import check_rigid_transform
 from .validation import (
@@ -49,10 +50,8 @@ __all__ = [
 _S = TypeVar("_S", bound=str)
 JointType = Literal["revolute", "prismatic"]
 Convention = Literal["standard", "modified"]
-Task = Literal["auto", "full", "linear", "angular", "planar"]
 JOINT_TYPES: tuple[JointType, ...] = ("revolute", "prismatic")
 CONVENTIONS: tuple[Convention, ...] = ("standard", "modified")
-TASKS: tuple[Task, ...] = ("auto", "full", "linear", "angular", "planar")
 
 
 def check_choice(value: object, allowed: Sequence[_S], where: str) -> _S:
@@ -130,8 +129,8 @@ class Axis:
     joint_index: int
     multiplier: float
     offset: float
-    T_parent_joint: np.ndarray
-    T_joint_child: np.ndarray
+    T_parent_joint: FloatArray
+    T_joint_child: FloatArray
     corners: tuple[tuple[float, float, float], ...] = ()
 
     def __post_init__(self) -> None:
@@ -184,7 +183,7 @@ class NamedConfiguration:
     """
 
     name: str
-    q: np.ndarray
+    q: FloatArray
     description: str = ""
     singular: str = ""
 

@@ -23,9 +23,12 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
+import numpy.typing as npt
 
+from .conventions import FloatArray
 from .errors import ArrayError
 from .model import Robot
 from .numeric import as_configuration, chain_frames, fk, link_frames
@@ -68,19 +71,19 @@ class WhitneyColumn:
     joint: int
     multiplier: float
     kind: JointType
-    z: np.ndarray
-    p: np.ndarray
-    r: np.ndarray
-    linear: np.ndarray
-    angular: np.ndarray
+    z: FloatArray
+    p: FloatArray
+    r: FloatArray
+    linear: FloatArray
+    angular: FloatArray
 
     @property
-    def column(self) -> np.ndarray:
+    def column(self) -> FloatArray:
         """The column (6,) [linear; angular] this axis adds to J (times ``multiplier``)."""
         return self.multiplier * np.concatenate([self.linear, self.angular])
 
 
-def whitney(robot: Robot, q: object) -> tuple[WhitneyColumn, ...]:
+def whitney(robot: Robot, q: npt.ArrayLike) -> tuple[WhitneyColumn, ...]:
     """Whitney's construction of every column of J at ``q``: one :class:`WhitneyColumn` per axis.
 
     Summing ``column`` over the axes of joint j gives column j of :func:`kinematics.jacobian`.
@@ -120,17 +123,17 @@ class DerivativeColumn:
     """
 
     joint: int
-    dp: np.ndarray
-    S: np.ndarray
-    omega: np.ndarray
+    dp: FloatArray
+    S: FloatArray
+    omega: FloatArray
 
     @property
-    def column(self) -> np.ndarray:
+    def column(self) -> FloatArray:
         return np.concatenate([self.dp, self.omega])
 
 
 def differentiation(
-    robot: Robot, q: object, h: float = DIFF_STEP, joints: Sequence[int] | None = None
+    robot: Robot, q: npt.ArrayLike, h: float = DIFF_STEP, joints: Sequence[int] | None = None
 ) -> tuple[DerivativeColumn, ...]:
     """Columns of J as the derivative of the forward kinematics (central differences, step ``h``):
     every joint's, or those of ``joints``, in that order."""
@@ -161,27 +164,22 @@ class LinkVelocity:
     """
 
     frame: int
-    origin: np.ndarray
-    R: np.ndarray
-    omega: np.ndarray
-    v: np.ndarray
+    origin: FloatArray
+    R: FloatArray
+    omega: FloatArray
+    v: FloatArray
 
     @property
-    def omega_own(self) -> np.ndarray:
+    def omega_own(self) -> FloatArray:
         """ω in the frame's own axes (Craig's ⁱωᵢ)."""
-        return self.R.T @ self.omega
-
-    @property
-    def v_own(self) -> np.ndarray:
-        """v in the frame's own axes (Craig's ⁱvᵢ)."""
-        return self.R.T @ self.v
+        return cast(FloatArray, self.R.T @ self.omega)
 
 
-def _axis_rates(robot: Robot, qd: np.ndarray) -> np.ndarray:
+def _axis_rates(robot: Robot, qd: FloatArray) -> FloatArray:
     return np.array([ax.multiplier * qd[ax.joint_index] for ax in robot.axes])
 
 
-def propagation(robot: Robot, q: object, qd: object) -> tuple[LinkVelocity, ...]:
+def propagation(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike) -> tuple[LinkVelocity, ...]:
     """ωₖ and vₖ of every link frame and of the tool, outward from frame 0 (at rest).
 
     Link by link: ωₖ = ωₖ₋₁ + q̇ₖ zₖ (revolute), vₖ = vₖ₋₁ + ωₖ₋₁ × (oₖ − oₖ₋₁) + (rotation about
@@ -230,14 +228,14 @@ class JointLoad:
     joint: int
     multiplier: float
     kind: JointType
-    p: np.ndarray
-    z: np.ndarray
-    force: np.ndarray
-    moment: np.ndarray
+    p: FloatArray
+    z: FloatArray
+    force: FloatArray
+    moment: FloatArray
     load: float
 
 
-def force_propagation(robot: Robot, q: object, wrench: object) -> tuple[JointLoad, ...]:
+def force_propagation(robot: Robot, q: npt.ArrayLike, wrench: npt.ArrayLike) -> tuple[JointLoad, ...]:
     """The wrench ``[f; n]`` at the tool point (base axes) carried inward, last axis first.
 
     τⱼ = Σ over the axes of joint j of ``multiplier · load``: equal to (Jᵀ F)ⱼ.

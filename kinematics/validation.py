@@ -21,6 +21,7 @@ from typing import TypeGuard
 
 import numpy as np
 
+from .conventions import FloatArray
 from .errors import ArrayError, RobotDefinitionError
 
 __all__ = [
@@ -36,6 +37,7 @@ __all__ = [
     "joint_limits",
     "frozen_array",
     "finite_matrix",
+    "finite_array",
 ]
 
 MAX_LENGTH = 1e15
@@ -157,14 +159,14 @@ def joint_limits(qlim: object, where: str) -> tuple[float, float] | None:
     return (lo, hi)
 
 
-def frozen_array(a: object, dtype: type = float) -> np.ndarray:
+def frozen_array(a: object, dtype: type = float) -> FloatArray:
     """A read-only copy of ``a`` as an array of ``dtype``."""
-    out: np.ndarray = np.array(a, dtype=dtype)
+    out: FloatArray = np.array(a, dtype=dtype)
     out.flags.writeable = False
     return out
 
 
-def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> np.ndarray:
+def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> FloatArray:
     """``J`` as a finite float array of shape (m, n) or a batch (N, m, n), or ArrayError.
 
     Args:
@@ -186,3 +188,18 @@ def finite_matrix(J: object, what: str = "J", rows: int | None = None) -> np.nda
     if not np.isfinite(A).all():
         raise ArrayError(f"{what} contains NaN or infinity")
     return A
+
+
+def finite_array(x: object, shapes: tuple[tuple[int, ...], ...], what: str) -> FloatArray:
+    """``x`` as a float array of one of ``shapes`` with finite entries, or ArrayError naming ``what``."""
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError, OverflowError):
+        raise ArrayError(f"{what} must be an array of numbers, got {show(x)}") from None
+    if a.dtype.kind not in "iuf" or a.shape not in shapes:
+        expected = " or ".join(str(s) for s in shapes)
+        raise ArrayError(f"{what} must be numbers of shape {expected}, got {show(x)}")
+    a = a.astype(float, copy=False)
+    if not np.isfinite(a).all():
+        raise ArrayError(f"{what} contains NaN or infinity")
+    return a

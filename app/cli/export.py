@@ -16,12 +16,14 @@ import time
 from pathlib import Path
 
 import robots
+from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.typeset.ccode import c_identifier
 from kinematics.symbolic.typeset.export import FORMATS, ExportError, export, export_c, export_matlab
+from kinematics.urdf import parse_xacro_args
 
-__all__ = ["main", "add_chain_arguments", "StderrProgress", "write_output"]
+__all__ = ["main", "add_chain_arguments", "xacro_arguments", "StderrProgress", "write_output"]
 
 
 def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
@@ -35,6 +37,22 @@ def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
         help="URDF only: link the chain ends at (default: tool0, *_tcp, flange, ee_link, *hand*, "
         "else the leaf with the most moving joints)",
     )
+    parser.add_argument(
+        "--xacro-arg",
+        metavar="NAME:=VALUE",
+        action="append",
+        default=[],
+        help="xacro only: an argument of the .xacro file (repeat for several)",
+    )
+
+
+def xacro_arguments(args: argparse.Namespace) -> dict[str, str] | None:
+    """The ``--xacro-arg`` values as a mapping (``None`` when none were given).
+
+    Raises:
+        UrdfError: a value without ``:=``.
+    """
+    return parse_xacro_args(args.xacro_arg) if args.xacro_arg else None
 
 
 class StderrProgress:
@@ -92,9 +110,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("robot", help="library robot name (e.g. puma560) or path to a robot .toml or .urdf file")
     p.add_argument("--format", "-f", choices=FORMATS, default="latex", help="output format (default: latex)")
-    p.add_argument(
-        "--frame", choices=("base", "tool"), default="base", help="axes of J's rows (default: base)"
-    )
+    p.add_argument("--frame", choices=FRAMES, default="base", help="axes of J's rows (default: base)")
     p.add_argument(
         "--symbolic-params",
         action="store_true",
@@ -124,7 +140,9 @@ def main(argv: list[str] | None = None) -> int:
         return int(exc.code or 0)
     files: list[tuple[str, str | None]] = []
     try:
-        robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        robot = robots.load(
+            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
+        )
         options = (args.frame, args.symbolic_params)
         with StderrProgress() as progress:
             if args.output and args.format == "c":  # FILE.c and its header FILE.h

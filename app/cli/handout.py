@@ -20,11 +20,12 @@ from pathlib import Path
 import numpy as np
 
 import robots
+from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.handout import HANDOUT_METHODS, handout
 
-from .export import StderrProgress, add_chain_arguments, write_output
+from .export import StderrProgress, add_chain_arguments, write_output, xacro_arguments
 
 __all__ = ["main"]
 
@@ -41,9 +42,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--method", "-m", choices=HANDOUT_METHODS, default="all", help="derivation(s) to show (default: all)"
     )
-    p.add_argument(
-        "--frame", choices=("base", "tool"), default="base", help="axes of J's rows (default: base)"
-    )
+    p.add_argument("--frame", choices=FRAMES, default="base", help="axes of J's rows (default: base)")
     p.add_argument(
         "--symbolic-params",
         action="store_true",
@@ -117,7 +116,9 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 2
     try:
-        robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        robot = robots.load(
+            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
+        )
         rates = None
         if args.rates is not None:
             if len(args.rates) != robot.dof:

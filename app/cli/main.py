@@ -19,7 +19,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .export import add_chain_arguments
+from .export import add_chain_arguments, xacro_arguments
 
 __all__ = ["main"]
 
@@ -123,10 +123,12 @@ def _serve(args: argparse.Namespace) -> int:
             )
         workers = 1
     try:  # fail before the server starts (and before viser is imported)
+        xacro = xacro_arguments(args)
         if args.urdf or args.robot:
-            robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip)
+            robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro)
         if workers > 1:
             options = {"robot": args.robot, "urdf": args.urdf, "base_link": args.base, "tip_link": args.tip}
+            options["xacro_args"] = xacro
             return serve_workers(workers, options, host=args.host, port=args.port)
         from app.server import serve
 
@@ -139,6 +141,7 @@ def _serve(args: argparse.Namespace) -> int:
             port=args.port,
             block=True,
             presenter_token=token,
+            xacro_args=xacro,
         )
     except (JacobianLabError, ValueError, RuntimeError) as exc:
         return _fail(str(exc))

@@ -19,7 +19,7 @@ import robots
 from kinematics.errors import JacobianLabError
 
 from ..demo.record import DEFAULT_FPS, DEFAULT_SECONDS, UnknownPreset, check_preset, record, write_demo
-from .export import add_chain_arguments
+from .export import add_chain_arguments, xacro_arguments
 
 __all__ = ["main"]
 
@@ -98,7 +98,9 @@ def main(argv: list[str] | None = None) -> int:
     if round(args.seconds * args.fps) < 1:
         return _fail(f"{args.seconds:g} s at {args.fps:g} frames per second is not one frame")
     try:
-        robot = robots.load(args.robot, base_link=args.base, tip_link=args.tip)
+        robot = robots.load(
+            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
+        )
     except JacobianLabError as exc:
         return _fail(str(exc))
     name = robot.name if robot.urdf_path else args.robot

@@ -7,8 +7,8 @@ pure data with pure functions, so the editor view only keeps one and the tests n
 * :func:`build` checks every field and builds the robot with :meth:`kinematics.Robot.from_dh`;
   a bad value raises :class:`TableError` naming the row and the field ("row 2, α [°]");
 * :func:`from_robot` opens a library robot's DH table (its base and tool transforms kept);
-* :func:`robot_toml` writes a robot file in the library's format (``robots/data/puma560.toml``),
-  loadable by :func:`robots.load`; :func:`robot_file` gives the downloads (TOML, URDF);
+* :func:`robot_toml` writes a robot file with :func:`robots.dumps` (the one writer of the format,
+  lossless), loadable by :func:`robots.load`; :func:`robot_file` gives the downloads (TOML, URDF);
 * :func:`edited_state` is the reducer's rule for :class:`~app.core.actions.EditRobot`: the display
   choices and the values of the joints that were kept stay as they were.
 """
@@ -16,16 +16,16 @@ pure data with pure functions, so the editor view only keeps one and the tests n
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
+import robots
 from kinematics import NamedConfiguration, Robot
-from kinematics.analysis import task_rows
+from kinematics.analysis import is_planar_chain, task_rows
 from kinematics.errors import RobotDefinitionError
-from kinematics.transforms import matrix_to_rpy
+from kinematics.parts import CONVENTIONS, JOINT_TYPES
 from kinematics.urdf import to_urdf
 
 from .ranges import joint_ranges
@@ -158,7 +158,7 @@ def rows_si(table: Table) -> list[dict[str, object]]:
     """
     out: list[dict[str, object]] = []
     for i, r in enumerate(table.rows, start=1):
-        if r.joint not in ("revolute", "prismatic"):
+        if r.joint not in JOINT_TYPES:
             raise TableError(i, "joint", f"expected revolute or prismatic, got {str(r.joint)[:30]!r}")
         v = {k: _number(getattr(r, k), i, k) for k in ("a", "alpha", "d", "theta", "lo", "hi")}
         if v["lo"] > v["hi"]:
@@ -185,12 +185,12 @@ def build(table: Table) -> Robot:
     Raises:
         TableError: a bad field, or a table :meth:`Robot.from_dh` rejects (its message kept).
     """
-    if table.convention not in ("standard", "modified"):
+    if table.convention not in CONVENTIONS:
         raise TableError(0, "convention", f"expected standard or modified, got {table.convention!r}")
     rows = rows_si(table)
     same_joints = tuple(r.joint for r in table.rows) == table.kinds
     try:
-        return Robot.from_dh(
+        robot = Robot.from_dh(
             rows,
             table.convention,
             table.base,
@@ -202,6 +202,9 @@ def build(table: Table) -> Robot:
             source="Jacobian Lab, Build tab",
             configurations=table.configurations if same_joints else (),
         )
+        if is_planar_chain(robot):  # all axes along base z: its task is the planar rows, as the library's
+            robot = dataclasses.replace(robot, planar=True)
+        return robot
     except RobotDefinitionError as exc:
         text = str(exc)
         row = next((i + 1 for i in range(len(rows)) if f"DH row {i + 1}," in text), 0)
@@ -210,57 +213,19 @@ def build(table: Table) -> Robot:
 
 
 # ---------------------------------------------------------------------- robot files
-def _toml_str(text: str) -> str:
-    return json.dumps(text, ensure_ascii=False)  # a JSON string is a TOML basic string
-
-
-def _num(x: float) -> str:
-    x = float(x)
-    return "0.0" if x == 0 else repr(x)
-
-
-def _frame_toml(T: np.ndarray, side: str) -> list[str]:
-    if np.allclose(T, np.eye(4), atol=0.0):
-        return []
-    xyz = ", ".join(_num(v) for v in T[:3, 3])
-    rpy = ", ".join(_num(math.degrees(v)) for v in matrix_to_rpy(T[:3, :3]))
-    return [f"[{side}]", f"xyz = [{xyz}]", f"rpy = [{rpy}]", ""]
+FILE_HEADER = (
+    "A robot built in the Jacobian Lab (Build tab). Lengths in metres; alpha, theta,",
+    "revolute limits and base/tool rpy in DEGREES (the format of robots/data/puma560.toml).",
+)
 
 
 def robot_toml(robot: Robot, name: str = FILE_STEM) -> str:
-    """``robot``'s DH table as a robot file of the library (degrees), to be saved as ``{name}.toml``.
+    """``robot`` as a robot file of the library (:func:`robots.dumps`), saved as ``{name}.toml``.
 
     Raises:
         RobotDefinitionError: the robot has no DH table.
     """
-    if robot.dh is None or robot.convention is None:
-        raise RobotDefinitionError(f"{robot.name!r} has no DH table: download it as a URDF")
-    out = [
-        "# A robot built in the Jacobian Lab (Build tab). Lengths in metres; alpha, theta,",
-        "# revolute limits and base/tool rpy in DEGREES (the format of robots/data/puma560.toml).",
-        f"name = {_toml_str(name)}",
-        f"title = {_toml_str(robot.title or name)}",
-        f"description = {_toml_str(robot.description)}",
-        f"source = {_toml_str(robot.source)}",
-        f"convention = {_toml_str(robot.convention)}",
-        "",
-    ]
-    out += _frame_toml(robot.base, "base") + _frame_toml(robot.tool, "tool")
-    for r, joint in zip(robot.dh, robot.joints, strict=True):
-        rev = r.joint == "revolute"
-        out += ["[[joints]]", f"name = {_toml_str(joint.name)}", f"joint = {_toml_str(r.joint)}"]
-        out += [f"a = {_num(r.a)}", f"alpha = {_num(math.degrees(r.alpha))}", f"d = {_num(r.d)}"]
-        out.append(f"theta = {_num(math.degrees(r.theta))}")
-        if r.qlim is not None:
-            lo, hi = (math.degrees(v) if rev else v for v in r.qlim)
-            out.append(f"qlim = [{_num(lo)}, {_num(hi)}]")
-        out.append("")
-    for c in robot.configurations:
-        values = zip(c.q, robot.joints, strict=True)
-        q = ", ".join(_num(math.degrees(v) if j.kind == "revolute" else v) for v, j in values)
-        out += ["[[configurations]]", f"name = {_toml_str(c.name)}", f"q = [{q}]"]
-        out += [f"description = {_toml_str(c.description)}", f"singular = {_toml_str(c.singular)}", ""]
-    return "\n".join(out)
+    return robots.dumps(robot, name=name, header=FILE_HEADER)
 
 
 def robot_file(robot: Robot, label: str) -> tuple[str, bytes] | None:

@@ -3,9 +3,9 @@
 A command needs the world outside the pure core: the robot catalogue (:class:`ChooseRobot`,
 :class:`ChooseChain`, :class:`UploadRobot`), a worker (:class:`RequestDownload`,
 :class:`FindSingularity`, :class:`ToggleRecording`), the classroom (:data:`CLASSROOM`), or the
-session's own drawing (:class:`Mirror`, :class:`Redraw`). The session's command runner
-(:class:`app.tab.commands.CommandRunner`) carries them out; some end in a reducible action
-(:mod:`app.core.actions`), which the reducer then takes like any other.
+session's own drawing (:class:`Mirror`, :class:`Redraw`, :class:`SymbolicResult`). The session's
+command runner (:class:`app.tab.commands.CommandRunner`) carries out the others; some end in a
+reducible action (:mod:`app.core.actions`), which the reducer then takes like any other.
 """
 
 from __future__ import annotations
@@ -34,6 +34,7 @@ __all__ = [
     "FollowPresenter",
     "Mirror",
     "Redraw",
+    "SymbolicResult",
 ]
 
 
@@ -125,6 +126,19 @@ class UploadRobot:
     refused_size: int = 0
 
 
+@dataclass(frozen=True, eq=False)
+class SymbolicResult:
+    """A symbolic result for this tab arrived from the worker: ``content`` (MathML, steps; ``None``
+    when only the ``note`` is shown) for the panel ``part`` ("matrix", "inverse" or "derive"),
+    computed for ``key``. The session keeps it only if ``key`` is still the one wanted
+    (:class:`app.tab.symbols.TabSymbols`) and draws it; it is not part of the state."""
+
+    part: str
+    key: tuple
+    content: object
+    note: str
+
+
 CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
 """Classroom commands: a follower may always send these (its other inputs are read-only)."""
 
@@ -141,6 +155,7 @@ Command = (
     | FollowPresenter
     | Mirror
     | Redraw
+    | SymbolicResult
 )
 """Everything the session carries out itself (a union, told apart by type)."""
 

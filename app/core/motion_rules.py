@@ -15,12 +15,14 @@ import numpy as np
 
 from kinematics import Robot, jacobian
 from kinematics.analysis import condition_number, manipulability, singular_values, task_rows
+from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.motion import ik, redundancy, resolved_rate
 from kinematics.numeric import fk
 
 from .motion_state import MOTIONS, IkInfo, MotionState, Trace, readonly
 from .ranges import joint_ranges, twist_ranges
+from .self_motion import ROW_WORDS, climbed_along
 from .state import LabState, frozen
 
 __all__ = [
@@ -229,8 +231,14 @@ def _climb(state: LabState) -> LabState:
     moved, stopped = _moved(
         state, q_next, t, lambda q: sample(state, q, (q - q0) / FRAME_DT, m.trace, t, rows)
     )
+    w_start = float(manipulability(jacobian(state.robot, q0), rows))
+    moved = moved.replace(motion=climbed_along(moved.motion, q0, np.array(moved.q), w_start, w1))
     if not stopped and w1 - w0 <= 1e-6 * max(w0, 1e-12):
-        return moved.replace(playing=False, stopped=f"w reached a maximum with the tool held: w = {w1:.4g}")
+        held = ", ".join(ROW_WORDS[r] for r in rows)
+        return moved.replace(
+            playing=False,
+            stopped=f"w of the held rows ({held}) reached a maximum with the tool held: w = {w1:.4g}",
+        )
     return moved
 
 
@@ -265,7 +273,7 @@ def apply_preset(
 ) -> LabState:
     """The arm at the preset's start, its twist desired, ready to Play (resolved rate)."""
     robot = state.robot
-    if len(q) != robot.dof or len(twist) != 6 or frame not in ("base", "tool"):
+    if len(q) != robot.dof or len(twist) != 6 or frame not in FRAMES:
         raise MotionRefused(f"preset {name!r} does not fit {robot.name}")
     lo, hi = _bounds(state)
     qa = np.clip(np.array(q, dtype=float), lo, hi)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinematics import Robot
-from kinematics.lost import characteristic_length
+from kinematics.singularity.lost import characteristic_length
 
 __all__ = [
     "Range",
@@ -80,7 +80,8 @@ def from_display(r: Range, value: float) -> float:
 
 @functools.lru_cache(maxsize=64)  # bounded: every edit of a DH table makes a new robot
 def reach(robot: Robot) -> float:
-    """The robot's characteristic length [m] (:func:`~kinematics.lost.characteristic_length`), cached."""
+    """The robot's characteristic length [m], cached
+    (:func:`~kinematics.singularity.lost.characteristic_length`)."""
     return characteristic_length(robot)
 
 

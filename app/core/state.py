@@ -99,10 +99,6 @@ class Options:
     symbolic_inverse: bool = False
 
 
-GLYPHS = ("columns", "angular_columns", "velocity_ellipsoid", "rotational_ellipsoid", "force_ellipsoid")
-"""Options that say which Jacobian glyphs are drawn: their defaults depend on the robot's task."""
-
-
 def default_options(robot: Robot, keep: Options | None = None) -> Options:
     """Options for ``robot``: glyphs that fit its task (rotational ones for an orientation task).
 

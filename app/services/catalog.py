@@ -6,7 +6,7 @@ Robots are immutable, so one loaded robot is shared by every client.
 from __future__ import annotations
 
 import threading
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import robots
@@ -33,8 +33,13 @@ class RobotCatalog:
     """
 
     def __init__(
-        self, files: Sequence[str | Path] = (), base_link: str | None = None, tip_link: str | None = None
+        self,
+        files: Sequence[str | Path] = (),
+        base_link: str | None = None,
+        tip_link: str | None = None,
+        xacro_args: Mapping[str, str] | None = None,
     ) -> None:
+        self._xacro_args = dict(xacro_args) if xacro_args else None
         self._files: dict[str, Path] = {}
         self._chains: dict[str, tuple[str | None, str | None]] = {}
         self._cache: dict[str, Robot] = {}
@@ -49,9 +54,13 @@ class RobotCatalog:
         ``base_link``/``tip_link`` choose the chain of a URDF (ignored for a ``.toml`` robot file).
         """
         path = Path(path)
-        urdf = path.suffix.lower() == ".urdf"
+        urdf = _is_urdf(path)
         # A URDF is listed under its <robot name> (read now, so a broken file fails at once).
-        stem = robots.load_file(path, base_link, tip_link).name if urdf else path.stem
+        stem = (
+            robots.load_file(path, base_link, tip_link, xacro_args=self._xacro(path)).name
+            if urdf
+            else path.stem
+        )
         with self._lock:
             name = stem or path.stem
             while name in robots.names() or name in self._files:
@@ -59,6 +68,9 @@ class RobotCatalog:
             self._files[name] = path
             self._chains[name] = (base_link, tip_link) if urdf else (None, None)
         return name
+
+    def _xacro(self, path: Path) -> Mapping[str, str] | None:
+        return self._xacro_args if path.suffix.lower() == ".xacro" else None
 
     def names(self) -> list[str]:
         """Dropdown entries: the files given first, then the library robots."""
@@ -74,12 +86,12 @@ class RobotCatalog:
     def chains(self, name: str) -> list[ChainInfo]:
         """The serial chains of the URDF listed as ``name`` (default first); ``[]`` for other robots."""
         path = self._files.get(name)
-        if path is None or path.suffix.lower() != ".urdf":
+        if path is None or not _is_urdf(path):
             return []
         with self._lock:
             if name in self._chain_lists:
                 return self._chain_lists[name]
-        found = urdf_chains(path, self._chains[name][0])
+        found = urdf_chains(path, self._chains[name][0], xacro_args=self._xacro(path))
         with self._lock:
             self._chain_lists[name] = found
         return found
@@ -91,13 +103,14 @@ class RobotCatalog:
             UnknownRobotError: ``name`` is not a listed URDF file.
             UrdfError: ``tip_link`` does not end a chain of it.
         """
-        if name not in self._files or self._files[name].suffix.lower() != ".urdf":
+        if name not in self._files or not _is_urdf(self._files[name]):
             raise UnknownRobotError(f"{name!r} is not a URDF file of this lab: it has no chains to choose")
         key = f"{name}\x00{tip_link}"
         with self._lock:
             if key in self._cache:
                 return self._cache[key]
-        robot = robots.load_file(self._files[name], self._chains[name][0], tip_link)
+        path = self._files[name]
+        robot = robots.load_file(path, self._chains[name][0], tip_link, xacro_args=self._xacro(path))
         with self._lock:
             self._cache[key] = robot
         return robot
@@ -105,7 +118,7 @@ class RobotCatalog:
     def meshes(self, name: str) -> tuple[int, list[str]]:
         """(found, not found) mesh files of the URDF listed as ``name``; (0, []) for other robots."""
         path = self._files.get(name)
-        if path is None or path.suffix.lower() != ".urdf":
+        if path is None or not _is_urdf(path):
             return 0, []
         resolved, unresolved = mesh_report(path)
         return len(resolved), unresolved
@@ -128,7 +141,8 @@ class RobotCatalog:
                 return self._cache[name]
         if name in self._files:
             base_link, tip_link = self._chains[name]
-            robot = robots.load_file(self._files[name], base_link, tip_link)
+            path = self._files[name]
+            robot = robots.load_file(path, base_link, tip_link, xacro_args=self._xacro(path))
         elif name in robots.names():
             robot = robots.load(name)
         else:
@@ -136,3 +150,8 @@ class RobotCatalog:
         with self._lock:
             self._cache[name] = robot
         return robot
+
+
+def _is_urdf(path: Path) -> bool:
+    """A URDF, or a xacro file that expands to one."""
+    return path.suffix.lower() in (".urdf", ".xacro")

@@ -25,10 +25,11 @@ class Batch:
         state: The state after the messages taken so far.
         jump: Whether an action moved the arm far at once.
         force: Draw even if the state did not change.
+        symbolic: A symbolic result still wanted arrived (drawn even without a commit).
     """
 
     def __init__(self, state: LabState) -> None:
-        self.state, self.jump, self.force = state, False, False
+        self.state, self.jump, self.force, self.symbolic = state, False, False, False
         self._mirror: Mirror | None = None  # the presenter's last state, drawn as it is
         self._replay: list | None = []  # the presenter's scene messages, in order (None: draw our own)
 

@@ -20,7 +20,7 @@ import numpy as np
 from ..core.actions import Action, GoTo, ReplaceState, SetConfiguration, SetJoint
 from ..core.build_table import BUILT_NAME
 from ..core.state import LabState
-from ..views.camera import FROM_ABOVE, View, facing, framing, needs_framing
+from ..views.camera import FROM_ABOVE, View, across, facing, framing, lost_axes, needs_framing, step_axes
 
 __all__ = ["CameraMove", "TabCamera", "is_jump", "JUMP"]
 
@@ -37,6 +37,12 @@ def is_jump(before: LabState, after: LabState, action: Action) -> bool:
     if isinstance(action, SetJoint) and before.robot is after.robot:
         return bool(np.max(np.abs(np.asarray(after.q) - np.asarray(before.q))) > JUMP)
     return False
+
+
+def _new_step(state: LabState, old: LabState) -> bool:
+    """The Derive tab moved to another method or step."""
+    o, p = state.options, old.options
+    return bool(o.derive) and (o.derive, o.derive_step) != (p.derive, p.derive_step)
 
 
 class CameraMove:
@@ -136,16 +142,41 @@ class TabCamera:
         self._aspect = aspect
         return changed
 
-    def after_commit(self, scene: Any, state: LabState, old: LabState, rebuild: bool, jump: bool) -> None:
+    def after_commit(
+        self, scene: Any, state: LabState, old: LabState, rebuild: bool, jump: bool, snap: Any = None
+    ) -> None:
         """Re-frame ``scene`` (its ``extent`` and ``size``) after ``old`` became ``state`` if the policy
-        says so: a new robot at once, a jump or a Build-tab edit only when something left the view."""
+        says so: a new robot at once, a jump or a Build-tab edit only when something left the view, a
+        jump to a singular configuration (``snap``: its losses) so the lost directions lie across the
+        view, a new Derive step so its vectors do."""
         pad = PAD * scene.size
         edited = state.robot_name == old.robot_name == BUILT_NAME  # the Build tab: keep the user's view
+        steps = step_axes(snap.derive) if snap is not None else np.zeros((0, 3))
+        lost = lost_axes(snap.losses) if snap is not None else np.zeros((0, 3))
         if rebuild and not edited:
             direction = FROM_ABOVE if state.robot.planar else facing(scene.extent)
+            across_of = steps if len(steps) else lost
+            if len(across_of):
+                direction = across(direction, across_of)
             self.frame(scene.extent, pad, direction, glide=False)
+        elif jump and len(lost):
+            self.frame_across(scene.extent, pad, lost)
+        elif len(steps) and _new_step(state, old):
+            self.frame_across(scene.extent, pad, steps)
         elif jump or edited:
             self.frame_if_needed(scene.extent, pad)
+
+    def frame_across(self, points: np.ndarray, pad: float, axes: np.ndarray) -> None:
+        """At a singular configuration: glide so that ``axes`` (k, 3), the lost directions, lie across
+        the view (:func:`~app.views.camera.across`), or only re-frame if they already do."""
+        view = self.view()
+        current = view.position - view.look_at if view is not None else facing(points)
+        current = current / max(float(np.linalg.norm(current)), 1e-12)
+        direction = across(current, axes)
+        if view is None or not np.allclose(direction, current):
+            self.frame(points, pad, direction)
+        else:
+            self.frame_if_needed(points, pad)
 
     def canvas_moved(self, aspect: float, scene: Any) -> None:
         """The canvas may have changed shape: keep everything in view."""

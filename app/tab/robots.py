@@ -114,6 +114,12 @@ class TabCatalog:
                 f"upload {shown!r} is {size / 1e6:.1f} MB; a URDF upload may be at most "
                 f"{MAX_UPLOAD_BYTES // (1024 * 1024)} MB"
             )
+        if shown.lower().endswith(".xacro") or b"<xacro:" in bytes(content):
+            raise UrdfError(
+                f"upload {shown!r} is a xacro file: the server never expands an uploaded xacro (it is a "
+                "program that may read files); expand it on your machine (xacro arm.urdf.xacro > arm.urdf) "
+                "and upload the .urdf, or start the lab with --urdf arm.urdf.xacro"
+            )
         stem = Path(shown).stem or "upload"
         try:
             robot = robot_from_urdf_string(bytes(content), name=stem)

@@ -2,8 +2,9 @@
 
 :meth:`Screen.draw` puts a state and its snapshot on every view (the robot-dependent parts rebuilt
 when the robot changed), with what the tab itself knows beside the state: its robot list, its
-classroom role, whether it records. A follower replays the presenter's scene messages instead of
-drawing its own scene; a presenter's scene messages are collected for the room.
+classroom role, whether it records, the symbolic results that arrived. A follower replays the
+presenter's scene messages instead of drawing its own scene; a presenter's scene messages are
+collected for the room.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from ..viser_adapter import capture_scene, replay_scene
 
 if TYPE_CHECKING:
     from .robots import TabCatalog
+    from .symbols import TabSymbols
 
 __all__ = ["Screen"]
 
@@ -60,7 +62,14 @@ class Screen:
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
 
     def draw(
-        self, state: LabState, snap: Snapshot, rebuild: bool, replay: list | None, role: Role, recording: bool
+        self,
+        state: LabState,
+        snap: Snapshot,
+        rebuild: bool,
+        replay: list | None,
+        role: Role,
+        recording: bool,
+        symbols: TabSymbols,
     ) -> None:
         """Draw ``state`` and ``snap`` (``replay``: the presenter's scene messages instead of our scene)."""
         capturing: contextlib.AbstractContextManager[list] = (
@@ -87,4 +96,10 @@ class Screen:
             self.panel.draw(state, snap)
             self.panel.show_role(role)
             self.panel.show_recording(recording)
+            symbols.draw(self.panel, everything=rebuild)
         self.scene_messages = tuple(captured)
+
+    def draw_symbols(self, symbols: TabSymbols) -> None:
+        """Put the symbolic results that arrived on the panel (nothing else changed)."""
+        with self.client.atomic():
+            symbols.draw(self.panel, everything=False)

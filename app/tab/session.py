@@ -27,7 +27,7 @@ import viser
 
 from ..core.actions import Action, Step
 from ..core.build_table import BUILT_NAME
-from ..core.commands import Message, Mirror, Redraw
+from ..core.commands import Message, Mirror, Redraw, SymbolicResult
 from ..core.role import Role
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
@@ -89,9 +89,7 @@ class ClientSession:
             self.key, classroom, self.dispatch, self.notices, self.ticker.stop, self.camera,
             self.subscribe, lambda: self.latest, lambda: self.screen.scene_messages,
         )  # fmt: skip
-        self.symbols = TabSymbols(
-            symbolic, lambda: self.panel, self.lock, lambda: self._closed, self.notices.error
-        )
+        self.symbols = TabSymbols(symbolic, self.dispatch)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
             client, self.catalog, symbolic, self.recorder, self.following, self.notices,
@@ -167,14 +165,15 @@ class ClientSession:
                         self._take(batch, message)
                     except Exception as exc:  # one tab's bad input never reaches the server or other tabs
                         self.notices.error(exc)
-                if batch.state is not self.state or batch.force:
-                    snap, scene = batch.mirrored()
-                    try:
-                        self._commit(
-                            batch.state, batch.state.robot is not self.state.robot, batch.jump, snap, scene
-                        )
-                    except Exception as exc:  # the tab keeps its last good state on screen
-                        self.notices.error(exc)
+                try:
+                    if batch.state is not self.state or batch.force:
+                        snap, scene = batch.mirrored()
+                        rebuild = batch.state.robot is not self.state.robot
+                        self._commit(batch.state, rebuild, batch.jump, snap, scene)
+                    elif batch.symbolic:
+                        self.screen.draw_symbols(self.symbols)
+                except Exception as exc:  # the tab keeps its last good state on screen
+                    self.notices.error(exc)
         with self._queue_lock:
             if self._queue and not self._closed:
                 return True
@@ -189,6 +188,8 @@ class ClientSession:
             batch.take_mirror(message, self.screen.scene is not None)
         elif isinstance(message, Redraw):
             batch.force = True
+        elif isinstance(message, SymbolicResult):
+            batch.symbolic = self.symbols.take(message) or batch.symbolic
         elif self.following.refuses(message):
             batch.force = batch.force or not isinstance(message, Step)  # undo what the input shows
         elif isinstance(message, Action):
@@ -211,9 +212,10 @@ class ClientSession:
         snap = snap if isinstance(snap, Snapshot) else compute(state)
         if state.robot_name == BUILT_NAME and not following:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
+        self.symbols.update(state, None if rebuild else old)  # what it shows is drawn below
         self._drawing.active = True
         try:
-            self.screen.draw(state, snap, rebuild, scene, self.role, self.recorder.recording)
+            self.screen.draw(state, snap, rebuild, scene, self.role, self.recorder.recording, self.symbols)
         finally:
             self._drawing.active = False
         self.state, self.snapshot = state, snap
@@ -223,9 +225,8 @@ class ClientSession:
             self.ticker.start()
         else:
             self.ticker.stop()
-        self.symbols.update(state, None if rebuild else old)
         if not following:  # a follower's camera is the presenter's
-            self.camera.after_commit(self.screen.scene, state, old, rebuild, jump)
+            self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap)
         for fn in list(self._subscribers):
             try:
                 fn(state, snap)

@@ -3,62 +3,84 @@
 Each is a :class:`Wanted` slot: it asks the shared
 :class:`~app.services.symbolic_service.SymbolicService` once per
 key (robot, frame, notation …), releases the request it replaces (so work no tab waits for any more
-is dropped), shows a note while the worker computes, and puts the result on the panel only if it is
-still the one wanted when it arrives. :class:`TabSymbols` derives the three keys from the tab's state
-(:meth:`TabSymbols.update`, after every commit) and releases everything when the tab closes.
+is dropped), and shows a note while the worker computes. A result comes back as an explicit message,
+:class:`~app.core.commands.SymbolicResult`, dispatched into the tab's queue like any input: the
+session's loop hands it to :meth:`TabSymbols.take`, which keeps it only if it is still the one
+wanted, and the draw puts what is kept on the panel (:meth:`TabSymbols.draw`). No worker thread
+touches a view. :class:`TabSymbols` derives the three keys from the tab's state
+(:meth:`TabSymbols.update`, at every commit) and releases everything when the tab closes.
 """
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Callable
 from concurrent.futures import Future
 from typing import Any
 
+from ..core.commands import Message, SymbolicResult
 from ..core.state import LabState
 from ..services.symbolic_service import WORKER_RESTARTED, SymbolicFuture, SymbolicService, SymbolicUnavailable
 from ..views.panel import PanelView
 
 __all__ = ["Wanted", "TabSymbols"]
 
+Shown = tuple[Any, str]
+"""What a part of the panel shows: the content (None: only the note) and a note."""
+
 
 class Wanted:
-    """One kind of symbolic result a tab waits for (at most one key at a time)."""
+    """One kind of symbolic result a tab waits for (at most one key at a time).
+
+    Args:
+        part: The panel part that shows it ("matrix", "inverse" or "derive").
+        ask: Asks the service for a key (returns a future).
+        release: Tells the service the key is no longer wanted.
+        dispatch: The session's way in (the result comes back as a message).
+
+    Attributes:
+        shown: What the part shows now (None: nothing asked yet).
+    """
 
     def __init__(
         self,
-        lock: threading.RLock,
-        closed: Callable[[], bool],
+        part: str,
         ask: Callable[..., SymbolicFuture],
         release: Callable[..., None],
-        report_error: Callable[[BaseException], None],
+        dispatch: Callable[[Message], None],
     ) -> None:
-        self._lock, self._closed, self._ask, self._release = lock, closed, ask, release
-        self._report_error = report_error
+        self.part, self._ask, self._release, self._dispatch = part, ask, release, dispatch
         self.key: tuple | None = None
+        self.shown: Shown | None = None
 
-    def want(self, key: tuple | None, waiting: Callable[[], None], show: Callable[[Future], None]) -> None:
-        """Wait for ``ask(*key)`` (nothing for ``None``): ``waiting()`` now unless it is ready,
-        ``show(future)`` under the tab's lock when it is done and still wanted."""
+    def want(self, key: tuple | None, waiting: str, result: Callable[[Future], Shown]) -> bool:
+        """Wait for ``ask(*key)`` (nothing for ``None``): the note ``waiting`` until it is ready, then
+        ``result(future)``. Returns whether what the part shows changed."""
         if key == self.key:
-            return
+            return False
         self.drop()
         self.key = key
         if key is None:
-            return
+            self.shown = None  # nothing wanted: the part keeps what its own draw shows
+            return False
         future = self._ask(*key)
-        if not future.done():
-            waiting()
+        if future.done():
+            self.shown = result(future)
+            return True
+        self.shown = (None, waiting)
 
-        def ready(f: Future) -> None:
-            try:
-                with self._lock:
-                    if not self._closed() and self.key == key:
-                        show(f)
-            except Exception as exc:
-                self._report_error(exc)
+        def ready(f: Future) -> None:  # in the worker's callback thread: only a message
+            content, note = result(f)
+            self._dispatch(SymbolicResult(self.part, key, content, note))
 
         future.add_done_callback(ready)
+        return True
+
+    def take(self, message: SymbolicResult) -> bool:
+        """Keep ``message`` if it is the result still wanted; returns whether it was."""
+        if message.key != self.key:
+            return False
+        self.shown = (message.content, message.note)
+        return True
 
     def drop(self) -> None:
         """No longer wait (the service drops work that nobody waits for)."""
@@ -68,24 +90,43 @@ class Wanted:
 
 
 class TabSymbols:
-    """The symbolic results one tab shows, kept in step with its state."""
+    """The symbolic results one tab shows, kept in step with its state.
 
-    def __init__(
-        self,
-        service: SymbolicService,
-        panel: Callable[[], PanelView],
-        lock: threading.RLock,
-        closed: Callable[[], bool],
-        report_error: Callable[[BaseException], None],
-    ) -> None:
-        self._panel = panel
+    Args:
+        service: The shared symbolic service.
+        dispatch: The session's way in.
+    """
 
-        def slot(ask: Callable[..., SymbolicFuture], release: Callable[..., None]) -> Wanted:
-            return Wanted(lock, closed, ask, release, report_error)
+    def __init__(self, service: SymbolicService, dispatch: Callable[[Message], None]) -> None:
+        self.jacobian = Wanted("matrix", service.mathml, service.release, dispatch)
+        self.inverse = Wanted("inverse", service.inverse, service.release_inverse, dispatch)
+        self.steps = Wanted("derive", service.steps, service.release_steps, dispatch)
+        self._changed: set[str] = set()
 
-        self.jacobian = slot(service.mathml, service.release)
-        self.inverse = slot(service.inverse, service.release_inverse)
-        self.steps = slot(service.steps, service.release_steps)
+    def take(self, message: SymbolicResult) -> bool:
+        """A result arrived (in the session's loop): keep it if still wanted; returns whether it was."""
+        slot = next((w for w in self._slots() if w.part == message.part), None)
+        if slot is None or not slot.take(message):
+            return False
+        self._changed.add(slot.part)
+        return True
+
+    def draw(self, panel: PanelView, everything: bool) -> None:
+        """Put what changed since the last draw on ``panel`` (``everything``: a rebuilt panel)."""
+        for slot in self._slots():
+            if slot.shown is None or not (everything or slot.part in self._changed):
+                continue
+            view = getattr(panel, slot.part)
+            if view is None:
+                continue
+            if slot.part == "derive":
+                view.show_formulas(*slot.shown)
+            else:
+                view.show_symbolic(*slot.shown)
+        self._changed.clear()
+
+    def _slots(self) -> tuple[Wanted, Wanted, Wanted]:
+        return self.jacobian, self.inverse, self.steps
 
     def update(self, state: LabState, before: LabState | None) -> None:
         """Ask for what ``state`` shows that ``before`` (``None``: a rebuilt tab) did not."""
@@ -104,62 +145,57 @@ class TabSymbols:
         letters = state.options.course_letters and robot.dh is not None
         # J⁻¹ in the course's letters whenever the robot file names them ([symbols]: the TRR's l1, l2, l3).
         inverse_letters = letters or bool(robot.param_names and robot.dh is not None)
-        self.inverse.want(
+        if self.inverse.want(
             (robot, inverse_letters) if state.options.symbolic_inverse else None,
-            lambda: self._show("inverse", None, "computing J⁻¹ = adj J / det J …"),
-            self._inverse_ready,
-        )
-        self.jacobian.want(
+            "computing J⁻¹ = adj J / det J …",
+            _inverse_ready,
+        ):
+            self._changed.add("inverse")
+        if self.jacobian.want(
             (robot, frame, letters),
-            lambda: self._show("matrix", None, "computing the symbolic form… (the numeric J above is live)"),
-            lambda f: self._jacobian_ready(f, frame, letters),
-        )
+            "computing the symbolic form… (the numeric J above is live)",
+            lambda f: _jacobian_ready(f, frame, letters),
+        ):
+            self._changed.add("matrix")
 
     def _steps(self, state: LabState) -> None:
         derive = state.options.derive
-        self.steps.want(
+        if self.steps.want(
             (state.robot, "whitney" if derive == "dh" else derive) if derive else None,
-            lambda: self._show(
-                "derive", None, "working out the step in symbols… (the numbers above are live)"
-            ),
-            self._steps_ready,
-        )
-
-    def _show(self, part: str, content: Any, note: str) -> None:
-        view = getattr(self._panel(), part)
-        if view is None:
-            return
-        if part == "derive":
-            view.show_formulas(content, note)
-        else:
-            view.show_symbolic(content, note)
-
-    def _jacobian_ready(self, future: Future, frame: str, letters: bool) -> None:
-        try:
-            notation = " with the DH parameters as letters" if letters else ""
-            mathml = future.result()
-            note = f"J(q) in {frame} axes{notation}, from kinematics.symbolic."
-            if getattr(future, "restarted", False):
-                note += f" ({WORKER_RESTARTED}: this result was computed again.)"
-        except SymbolicUnavailable as exc:
-            mathml, note = None, str(exc)
-        except Exception as exc:
-            mathml, note = None, f"symbolic form not available: {type(exc).__name__}: {exc}"
-        self._show("matrix", mathml, note)
-
-    def _inverse_ready(self, future: Future) -> None:
-        try:
-            self._show("inverse", future.result(), "J⁻¹ = adj J / det J, base axes, task rows.")
-        except Exception as exc:
-            self._show("inverse", None, f"symbolic J⁻¹ not available: {exc}")
-
-    def _steps_ready(self, future: Future) -> None:
-        try:
-            self._show("derive", future.result(), "")
-        except Exception as exc:
-            self._show("derive", None, f"the step in symbols is not available: {exc}")
+            "working out the step in symbols… (the numbers above are live)",
+            _steps_ready,
+        ):
+            self._changed.add("derive")
 
     def release(self) -> None:
         """The tab has gone: wait for nothing."""
-        for slot in (self.jacobian, self.inverse, self.steps):
+        for slot in self._slots():
             slot.drop()
+
+
+def _jacobian_ready(future: Future, frame: str, letters: bool) -> Shown:
+    try:
+        notation = " with the DH parameters as letters" if letters else ""
+        mathml = future.result()
+        note = f"J(q) in {frame} axes{notation}, from kinematics.symbolic."
+        if getattr(future, "restarted", False):
+            note += f" ({WORKER_RESTARTED}: this result was computed again.)"
+    except SymbolicUnavailable as exc:
+        mathml, note = None, str(exc)
+    except Exception as exc:
+        mathml, note = None, f"symbolic form not available: {type(exc).__name__}: {exc}"
+    return mathml, note
+
+
+def _inverse_ready(future: Future) -> Shown:
+    try:
+        return future.result(), "J⁻¹ = adj J / det J, base axes, task rows."
+    except Exception as exc:
+        return None, f"symbolic J⁻¹ not available: {exc}"
+
+
+def _steps_ready(future: Future) -> Shown:
+    try:
+        return future.result(), ""
+    except Exception as exc:
+        return None, f"the step in symbols is not available: {exc}"

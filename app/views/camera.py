@@ -19,6 +19,10 @@ __all__ = [
     "needs_framing",
     "framing",
     "facing",
+    "across",
+    "lost_axes",
+    "step_axes",
+    "ACROSS_DEGREES",
     "THREE_QUARTER",
     "FROM_ABOVE",
 ]
@@ -126,3 +130,59 @@ def facing(points: np.ndarray) -> np.ndarray:
         h = d[:2] / horizontal if horizontal > 1e-6 else tq[:2] / np.linalg.norm(tq[:2])
         d = np.array([*(h * np.cos(np.radians(25))), np.sin(np.radians(25))])
     return d
+
+
+ACROSS_DEGREES = 60.0
+"""At a singularity the view makes at least this angle with every lost direction (when it can)."""
+
+
+def lost_axes(losses) -> np.ndarray:
+    """The directions (k, 3) a singular configuration's picture is about: every lost translation and
+    lost rotation axis (the flattened axes of the ellipsoids that flatten lie along them)."""
+    axes = [x.translation for x in losses if np.linalg.norm(x.translation) > 0.5]
+    axes += [x.rotation for x in losses if np.linalg.norm(x.rotation) > 0.5]
+    return np.array(axes).reshape(-1, 3)
+
+
+def step_axes(derivation) -> np.ndarray:
+    """The directions (k, 3) a Derive step draws and must not be seen end-on: for Whitney's method the
+    step's axis zᵢ₋₁, its lever pₙ − pᵢ₋₁ and its column Jᵢ (none for the other methods)."""
+    if derivation is None or derivation.method != "whitney" or not derivation.whitney:
+        return np.zeros((0, 3))
+    vectors = [v for c in derivation.whitney if c.joint == derivation.joint for v in (c.z, c.r, c.linear)]
+    out = [v / np.linalg.norm(v) for v in vectors if np.linalg.norm(v) > 1e-9]
+    return np.array(out).reshape(-1, 3)
+
+
+def _sphere(count: int = 600) -> np.ndarray:
+    """Nearly even directions over the upper half sphere (Fibonacci lattice), 10° above the horizon."""
+    k = np.arange(count) + 0.5
+    z = np.sin(np.radians(10)) + (1 - np.sin(np.radians(10))) * k / count
+    phi = k * np.pi * (3 - np.sqrt(5))
+    r = np.sqrt(1 - z * z)
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+
+
+_CANDIDATES = _sphere()
+
+
+def across(direction: np.ndarray, axes: np.ndarray, degrees: float = ACROSS_DEGREES) -> np.ndarray:
+    """A viewing direction (from the target to the camera) close to ``direction`` that sees every one of
+    ``axes`` (k, 3) across the view: at least ``degrees`` from each (or as far as it can when no view
+    does, e.g. three orthogonal axes allow 54.7° at most). ``direction`` itself when it already does."""
+    d = np.asarray(direction, float)
+    d = d / max(float(np.linalg.norm(d)), 1e-12)
+    A = np.asarray(axes, float).reshape(-1, 3)
+    if not len(A):
+        return d
+    limit = np.cos(np.radians(degrees))
+
+    def worst(v: np.ndarray) -> np.ndarray:
+        return np.abs(v @ A.T).max(axis=-1)  # cos of the smallest angle to an axis
+
+    if worst(d) <= limit:
+        return d
+    w = worst(_CANDIDATES)
+    ok = w <= max(limit, float(w.min()) + 1e-9)
+    candidates = _CANDIDATES[ok]
+    return candidates[int(np.argmax(candidates @ d))]

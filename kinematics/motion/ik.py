@@ -15,11 +15,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal
+from typing import Literal, cast
 
 import numpy as np
+import numpy.typing as npt
 
 from ..analysis import DEFAULT_RTOL, PART_ROWS, Part, part_rows, task_rows
+from ..conventions import FloatArray
 from ..errors import ArrayError, ConfigurationError, OptionError
 from ..kernel import Kernel, chain_single, jacobian_from_frames, kernel
 from ..model import Robot
@@ -49,11 +51,11 @@ class IkResult:
             changes q: a singular or unreachable target).
     """
 
-    q: np.ndarray
+    q: FloatArray
     converged: bool
     iterations: int
-    errors: np.ndarray
-    residual: np.ndarray
+    errors: FloatArray
+    residual: FloatArray
     reason: str
 
 
@@ -70,7 +72,7 @@ def target_rows(robot: Robot, target_is_point: bool, rows: Part | tuple[int, ...
     return list(chosen)
 
 
-def pose_error(T_base_tool: np.ndarray, target: np.ndarray) -> np.ndarray:
+def pose_error(T_base_tool: FloatArray, target: FloatArray) -> FloatArray:
     """Error (6,) [m, rad] from the tool pose to ``target`` (a 4×4 pose or a (3,) point).
 
     ``[p_target − p_tool; log(R_target R_toolᵀ)]`` in base axes; the rotation part is zero for a
@@ -102,7 +104,7 @@ def pose_error(T_base_tool: np.ndarray, target: np.ndarray) -> np.ndarray:
     return e
 
 
-def pinv_solve(J: np.ndarray, e: np.ndarray, damping: float = 0.0, rtol: float = DEFAULT_RTOL) -> np.ndarray:
+def pinv_solve(J: FloatArray, e: FloatArray, damping: float = 0.0, rtol: float = DEFAULT_RTOL) -> FloatArray:
     """J⁺ e (σ below ``rtol · max(σmax, 1)`` dropped, as :func:`kinematics.inverse.pinv`), or the
     damped least-squares Jᵀ(JJᵀ + λ²I)⁻¹ e for ``damping`` λ > 0. Inputs are not checked.
 
@@ -120,7 +122,7 @@ def pinv_solve(J: np.ndarray, e: np.ndarray, damping: float = 0.0, rtol: float =
         except np.linalg.LinAlgError:
             x = None
         if x is not None:
-            dq = J.T @ x
+            dq: FloatArray = J.T @ x
             ee = float(e @ e)
             if damping > 0.0:
                 if np.isfinite(dq).all():
@@ -137,13 +139,13 @@ def pinv_solve(J: np.ndarray, e: np.ndarray, damping: float = 0.0, rtol: float =
     else:
         keep = s > rtol * max(float(s[0]) if s.size else 0.0, 1.0)
         f = np.where(keep, 1.0 / np.where(keep, s, 1.0), 0.0)
-    return Vt.T @ (f * (U.T @ e))
+    return cast(FloatArray, Vt.T @ (f * (U.T @ e)))
 
 
 _FAST_GAIN = 1e-12  # (1e-6)²: the JJᵀ path is used only while ‖dq‖ ≤ 1e6 ‖e‖ / σ_rms
 
 
-def _check_target(target: object) -> np.ndarray:
+def _check_target(target: object) -> FloatArray:
     try:
         a = np.asarray(target)
     except (TypeError, ValueError, OverflowError):
@@ -185,8 +187,8 @@ def _check_options(
 
 def solve(
     robot: Robot,
-    target: object,
-    q0: object,
+    target: npt.ArrayLike,
+    q0: npt.ArrayLike,
     *,
     method: Method = "newton",
     damping: float = 0.05,
@@ -232,8 +234,8 @@ def solve(
 
 def _iterate(
     c: Kernel,
-    q: np.ndarray,
-    goal: np.ndarray,
+    q: FloatArray,
+    goal: FloatArray,
     rows: list[int],
     lam: float,
     tol: float,

@@ -17,10 +17,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
+import numpy.typing as npt
 
 from ..analysis import Part, null_space, part_rows, task_rows
+from ..conventions import FloatArray
 from ..errors import ConfigurationError, OptionError
 from ..kernel import batched_jacobian, kernel
 from ..model import Robot
@@ -50,20 +53,20 @@ class SelfMotion:
     """A self-motion: ``q`` (steps+1, n) [rad | m]; ``w`` (steps+1,) task manipulability;
     ``s`` (steps+1,) the parameter k · step (joint-space distance along the null direction)."""
 
-    q: np.ndarray
-    w: np.ndarray
-    s: np.ndarray
+    q: FloatArray
+    w: FloatArray
+    s: FloatArray
 
 
 @dataclass(frozen=True, eq=False)
 class Climb:
     """A manipulability climb: ``q`` (steps+1, n) [rad | m]; ``w`` (steps+1,), non-decreasing."""
 
-    q: np.ndarray
-    w: np.ndarray
+    q: FloatArray
+    w: FloatArray
 
 
-def _setup(robot: Robot, q: object, rows: Part | tuple[int, ...] | None) -> tuple[np.ndarray, list[int]]:
+def _setup(robot: Robot, q: object, rows: Part | tuple[int, ...] | None) -> tuple[FloatArray, list[int]]:
     qa = as_configuration(robot, q)
     if qa.ndim != 1:
         raise ConfigurationError(f"q must be one configuration ({robot.dof},), got shape {qa.shape}")
@@ -76,7 +79,7 @@ def _setup(robot: Robot, q: object, rows: Part | tuple[int, ...] | None) -> tupl
     return qa, chosen
 
 
-def _hold(robot: Robot, q: np.ndarray, hold: object) -> np.ndarray:
+def _hold(robot: Robot, q: FloatArray, hold: object) -> FloatArray:
     return fk(robot, q) if hold is None else np.asarray(hold, dtype=float)
 
 
@@ -86,20 +89,20 @@ def _count(x: object, what: str) -> int:
     return int(x)
 
 
-def _project(robot: Robot, q: np.ndarray, T_hold: np.ndarray, rows: list[int]) -> np.ndarray:
+def _project(robot: Robot, q: FloatArray, T_hold: FloatArray, rows: list[int]) -> FloatArray:
     """Newton steps (minimum-norm, so they add no self-motion) back onto the held pose."""
     return solve(robot, T_hold, q, rows=tuple(rows), tol=HOLD_TOL, max_iterations=8).q
 
 
-def task_manipulability(robot: Robot, Q: np.ndarray, rows: list[int]) -> np.ndarray:
+def task_manipulability(robot: Robot, Q: FloatArray, rows: list[int]) -> FloatArray:
     """w = √det(J Jᵀ) of the task rows for a batch Q (N, n) (rows ≤ n)."""
     _, J = batched_jacobian(kernel(robot), Q)
     Js = J[:, rows]
     det = np.linalg.det(Js @ Js.transpose(0, 2, 1))
-    return np.sqrt(np.maximum(det, 0.0))
+    return cast(FloatArray, np.sqrt(np.maximum(det, 0.0)))
 
 
-def manipulability_gradient(robot: Robot, q: np.ndarray, rows: list[int]) -> np.ndarray:
+def manipulability_gradient(robot: Robot, q: FloatArray, rows: list[int]) -> FloatArray:
     """∇w (n,) at q by central differences (step :data:`FD_STEP`), one batch of 2n Jacobians."""
     n = len(q)
     H = FD_STEP * np.eye(n)
@@ -109,13 +112,13 @@ def manipulability_gradient(robot: Robot, q: np.ndarray, rows: list[int]) -> np.
 
 def self_motion_step(
     robot: Robot,
-    q: object,
+    q: npt.ArrayLike,
     *,
     step: float,
     rows: Part | tuple[int, ...] | None = None,
     direction: object = None,
     hold: object = None,
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[FloatArray, FloatArray]:
     """One self-motion step of length ``step`` [rad | m in joint space].
 
     Args:
@@ -153,7 +156,7 @@ def self_motion_step(
 
 
 def self_motion(
-    robot: Robot, q0: object, *, step: float, steps: int, rows: Part | tuple[int, ...] | None = None
+    robot: Robot, q0: npt.ArrayLike, *, step: float, steps: int, rows: Part | tuple[int, ...] | None = None
 ) -> SelfMotion:
     """``steps`` steps of :func:`self_motion_step` from ``q0``, holding the tool pose at ``q0``.
 
@@ -168,18 +171,20 @@ def self_motion(
         q, d = self_motion_step(robot, q, step=step, rows=tuple(chosen), direction=d, hold=T_hold)
         qs.append(q)
     Q = np.array(qs)
-    return SelfMotion(q=Q, w=task_manipulability(robot, Q, chosen), s=float(step) * np.arange(len(Q)))
+    return SelfMotion(
+        q=Q, w=task_manipulability(robot, Q, chosen), s=float(step) * np.arange(len(Q), dtype=np.float64)
+    )
 
 
 def climb_step(
     robot: Robot,
-    q: object,
+    q: npt.ArrayLike,
     *,
     gain: float = 1.0,
     max_step: float = 0.1,
     rows: Part | tuple[int, ...] | None = None,
     hold: object = None,
-) -> tuple[np.ndarray, float]:
+) -> tuple[FloatArray, float]:
     """One step of q̇ = (I − J⁺J) ∇w with the tool held; w never decreases.
 
     The step is Δq = gain · (I − J⁺J) ∇w, scaled down to a norm of at most ``max_step``
@@ -213,7 +218,7 @@ def climb_step(
 
 def climb(
     robot: Robot,
-    q0: object,
+    q0: npt.ArrayLike,
     *,
     steps: int,
     gain: float = 1.0,

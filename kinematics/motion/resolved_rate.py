@@ -22,8 +22,10 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
+import numpy.typing as npt
 
 from ..analysis import DEFAULT_RTOL, Part, part_rows, task_rows
+from ..conventions import FloatArray
 from ..errors import ArrayError, ConfigurationError, OptionError
 from ..kernel import batched_jacobian, kernel
 from ..model import Robot
@@ -73,13 +75,13 @@ class Trajectory:
         stopped: None if every step was taken, else the :class:`Stop` of the refused step.
     """
 
-    q: np.ndarray
-    qd: np.ndarray
-    time: np.ndarray
-    sigma_min: np.ndarray
-    kappa: np.ndarray
-    inverse_kappa: np.ndarray
-    w: np.ndarray
+    q: FloatArray
+    qd: FloatArray
+    time: FloatArray
+    sigma_min: FloatArray
+    kappa: FloatArray
+    inverse_kappa: FloatArray
+    w: FloatArray
     stopped: Stop | None
 
 
@@ -89,7 +91,7 @@ def _positive(x: object, what: str, unit: str) -> float:
     return float(x)
 
 
-def _twist(twist: object, rows: list[int]) -> np.ndarray:
+def _twist(twist: object, rows: list[int]) -> FloatArray:
     try:
         a = np.asarray(twist)
     except (TypeError, ValueError, OverflowError):
@@ -120,7 +122,7 @@ def _check(
     damping: object,
     rate_limit: object,
     rows: Part | tuple[int, ...] | None,
-) -> tuple[np.ndarray, np.ndarray, float, Frame, float, float, list[int]]:
+) -> tuple[FloatArray, FloatArray, float, Frame, float, float, list[int]]:
     qa = as_configuration(robot, q)
     if qa.ndim != 1:
         raise ConfigurationError(f"q must be one configuration ({robot.dof},), got shape {qa.shape}")
@@ -141,14 +143,14 @@ def _check(
 
 def _step(
     robot: Robot,
-    q: np.ndarray,
-    v: np.ndarray,
+    q: FloatArray,
+    v: FloatArray,
     dt: float,
     frame: Frame,
     lam: float,
     limit: float,
     rows: list[int],
-) -> tuple[np.ndarray, np.ndarray, Stop | None]:
+) -> tuple[FloatArray, FloatArray, Stop | None]:
     """One step on checked input."""
     J = jacobian(robot, q, frame)[rows]
     if lam == 0.0:
@@ -179,15 +181,15 @@ def _step(
 
 def resolved_rate_step(
     robot: Robot,
-    q: object,
-    twist: object,
+    q: npt.ArrayLike,
+    twist: npt.ArrayLike,
     *,
     dt: float,
     frame: Frame = "base",
     damping: float = 0.0,
     rate_limit: float = RATE_LIMIT,
     rows: Part | tuple[int, ...] | None = None,
-) -> tuple[np.ndarray, np.ndarray, Stop | None]:
+) -> tuple[FloatArray, FloatArray, Stop | None]:
     """One resolved-rate step: q̇ = J⁻¹ v (J⁺ v if J is not square; DLS if ``damping`` > 0).
 
     Args:
@@ -214,8 +216,8 @@ def resolved_rate_step(
 
 def resolved_rate(
     robot: Robot,
-    q0: object,
-    twist: object,
+    q0: npt.ArrayLike,
+    twist: npt.ArrayLike,
     *,
     dt: float,
     steps: int,
@@ -247,7 +249,7 @@ def resolved_rate(
     return Trajectory(
         q=Q,
         qd=np.array(qds).reshape(len(qds), robot.dof),
-        time=dt_ * np.arange(len(Q)),
+        time=dt_ * np.arange(len(Q), dtype=np.float64),
         sigma_min=sigma_min,
         kappa=kappa,
         inverse_kappa=inverse_kappa,
@@ -257,12 +259,12 @@ def resolved_rate(
 
 
 def measures(
-    robot: Robot, Q: np.ndarray, rows: list[int]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    robot: Robot, Q: FloatArray, rows: list[int]
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """σmin, κ (``inf`` where singular), σmin/σmax and w of the task rows, for a batch Q (N, n)."""
     _, J = batched_jacobian(kernel(robot), Q)
     Js = J[:, rows]
-    s = np.linalg.svd(Js, compute_uv=False)
+    s = np.linalg.svd(Js, compute_uv=False).astype(np.float64, copy=False)
     missing = Js.shape[1] > Js.shape[2]
     smin = np.zeros(len(Q)) if missing else s[:, -1]
     smax = s[:, 0]

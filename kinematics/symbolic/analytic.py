@@ -83,7 +83,7 @@ class AnalyticJacobian:
 
     convention: str
     angles: tuple[sp.Symbol, ...]
-    display: dict
+    display: dict[sp.Symbol, str]
     B: sp.Matrix
     B_inv: sp.Matrix
     JA: sp.Matrix

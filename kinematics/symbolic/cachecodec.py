@@ -56,7 +56,7 @@ def register_dataclass(cls: type) -> type:
 
 
 # ------------------------------------------------------------------ encoding
-def _node(e: sp.Basic) -> list:
+def _node(e: sp.Basic) -> list[Any]:
     if isinstance(e, sp.Symbol) and type(e) is sp.Symbol:
         if e == sp.Symbol(e.name, real=True):
             return ["Symbol", e.name, True]

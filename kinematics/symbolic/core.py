@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import sympy as sp
 
@@ -124,7 +125,7 @@ def derive(
     model = build_model(robot, symbolic_params)
     key = f"derive|{model.cache_key()}|{frame}"
     loaded = cache.load(key) if use_cache else None
-    hit: dict | None = loaded if isinstance(loaded, dict) else None
+    hit: dict[str, Any] | None = loaded if isinstance(loaded, dict) else None
     if hit is not None and (
         hit["complete"] or (budget is not None and hit["timeout"] is not None and budget <= hit["timeout"])
     ):

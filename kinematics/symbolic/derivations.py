@@ -115,7 +115,7 @@ def jacobian_differentiation(robot: Robot, frame: str = "base", symbolic_params:
 def chain_elements(model: SymbolicModel) -> list[tuple[str, sp.Matrix | sp.Expr, int]]:
     """The chain as ("fixed", T, axis) and ("revolute"/"prismatic", axis value, axis) elements, base to
     tool; ``axis`` is the index of the axis the element belongs to (−1: the base, m: the tool)."""
-    steps: list = [("fixed", model.base, -1)]
+    steps: list[tuple[str, sp.Matrix, int]] = [("fixed", model.base, -1)]
     for k, (kind, value, pj, jc) in enumerate(
         zip(model.kinds, model.axis_value, model.parent_joint, model.joint_child, strict=True)
     ):

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Sequence
+from typing import Any, cast
 
 import sympy as sp
 from sympy.core import random as _srandom
@@ -162,6 +163,6 @@ def _factor_list(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
     state = _srandom.rng.getstate()
     _srandom.seed(20240601)
     try:
-        return sp.factor_list(expr)
+        return cast(tuple[Any, list[tuple[Any, int]]], sp.factor_list(expr))
     finally:
         _srandom.rng.setstate(state)

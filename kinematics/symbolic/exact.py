@@ -9,10 +9,13 @@ Only floats are converted: no text is ever parsed into SymPy.
 from __future__ import annotations
 
 import math
+import operator
 from fractions import Fraction
 
 import numpy as np
 import sympy as sp
+
+from ..dh import MatrixOps
 
 __all__ = [
     "exact_number",
@@ -23,6 +26,7 @@ __all__ = [
     "rot_x",
     "rot_z",
     "trans",
+    "SYMPY_OPS",
 ]
 
 SPECIAL_VALUES = (
@@ -81,6 +85,17 @@ def trans(x: sp.Expr = 0, y: sp.Expr = 0, z: sp.Expr = 0) -> sp.Matrix:
     T = sp.eye(4)
     T[0, 3], T[1, 3], T[2, 3] = x, y, z
     return T
+
+
+SYMPY_OPS: MatrixOps[sp.Matrix] = MatrixOps(
+    eye=lambda: sp.eye(4),
+    rot_x=rot_x,
+    rot_z=rot_z,
+    trans_x=lambda a: trans(x=a),
+    trans_z=lambda d: trans(z=d),
+    mul=operator.mul,
+)
+"""The DH factors as SymPy matrices, for :func:`kinematics.dh.dh_factors`."""
 
 
 def exact_transform(T: np.ndarray) -> sp.Matrix:

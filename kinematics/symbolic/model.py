@@ -17,14 +17,16 @@ from __future__ import annotations
 import functools
 import re
 from dataclasses import dataclass, field
-from typing import Literal
 
 import numpy as np
 import sympy as sp
 
+from ..conventions import FRAMES, Frame
+from ..dh import dh_factors
 from ..errors import JacobianLabError
 from ..model import Robot
-from .exact import exact_number, rot_x, rot_z, trans
+from ..parts import Convention
+from .exact import SYMPY_OPS, exact_number
 from .snap import LENGTH_NOISE, SNAP_TOL, Snap, Snapper, snap_summary
 from .typeset.escape import plain
 
@@ -36,19 +38,16 @@ __all__ = [
     "FRAMES",
 ]
 
-FRAMES = ("base", "tool")
-
 
 class SymbolicError(JacobianLabError):
     """A symbolic request is invalid: unknown frame or option, or a robot it cannot handle."""
 
 
-def check_frame(frame: object) -> Literal["base", "tool"]:
-    """Return ``frame`` if it is ``"base"`` or ``"tool"``, else raise :class:`SymbolicError`."""
-    if frame == "base":
-        return "base"
-    if frame == "tool":
-        return "tool"
+def check_frame(frame: object) -> Frame:
+    """Return ``frame`` if it is one of :data:`FRAMES` (``"base"``, ``"tool"``), else a SymbolicError."""
+    for f in FRAMES:
+        if isinstance(frame, str) and frame == f:
+            return f
     raise SymbolicError(f"frame must be 'base' or 'tool', got {frame!r}")
 
 
@@ -181,12 +180,18 @@ def _generic_latex(name: str) -> str:
     return f"{head}_{{{digits}}}" if digits else head
 
 
-def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list, list] | None:
+DHValues = tuple[sp.Expr, sp.Expr, sp.Expr, sp.Expr]
+"""(θ, d, a, α) of one DH row, the joint symbol in θ or d."""
+_DHAxes = tuple[list[sp.Matrix], list[sp.Matrix], list[sp.Expr], list[DHValues]]
+
+
+def _dh_axes(robot: Robot, P: _Params) -> _DHAxes | None:
     """(parent_joint, joint_child, offsets, (theta, d, a, alpha) per row) rebuilt from the DH table;
     None if it does not match the axes."""
     if robot.dh is None or len(robot.axes) != len(robot.dh):
         return None
-    modified = robot.convention == "modified"
+    convention: Convention = "modified" if robot.convention == "modified" else "standard"
+    modified = convention == "modified"
     pj, jc, offsets, table = [], [], [], []
     for i, (row, ax) in enumerate(zip(robot.dh, robot.axes, strict=True), start=1):
         k = i - 1 if modified else i  # Craig's a_{i-1}, alpha_{i-1}
@@ -200,12 +205,9 @@ def _dh_axes(robot: Robot, P: _Params) -> tuple[list, list, list, list] | None:
         else:
             d = P.length(f"d{i}0", row.d, f"d_{{{i}}}^{{0}}", f"{at} d")
             theta = P.angle(f"theta{i}", row.theta, f"\\theta_{{{i}}}", f"{at} theta")
-        if modified:
-            T_pj = rot_x(alpha) * trans(x=a) * (sp.eye(4) if revolute else rot_z(theta))
-            T_jc = trans(z=d) if revolute else sp.eye(4)
-        else:
-            T_pj = sp.eye(4) if revolute else rot_z(theta)
-            T_jc = trans(z=d) * trans(x=a) * rot_x(alpha) if revolute else trans(x=a) * rot_x(alpha)
+        T_pj, T_jc = dh_factors(
+            SYMPY_OPS, revolute, "modified" if modified else "standard", a, alpha, d, theta
+        )
         pj.append(T_pj)
         jc.append(T_jc)
         offsets.append(theta if revolute else d)
@@ -263,7 +265,7 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
             f"robot {robot.name!r}: symbolic parameters need a robot built from a DH table "
             "(this one is a URDF or hand-built chain); use symbolic_params=False"
         )
-    table: tuple = ()
+    table: tuple[DHValues, ...] = ()
     if dh is not None:
         pj, jc, offsets, rows = dh
         values = [q[ax.joint_index] + off for ax, off in zip(robot.axes, offsets, strict=True)]

@@ -14,7 +14,7 @@ stopped.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 
 import sympy as sp
 
@@ -41,7 +41,7 @@ COLLAPSE_COST = 1.5e-3
 """Expected seconds of collapsing per squared term (measured: 60 terms, 4.7 s)."""
 
 
-def _magnitude(term: sp.Expr, q: Sequence[sp.Symbol], values: dict) -> float:
+def _magnitude(term: sp.Expr, q: Sequence[sp.Symbol], values: dict[sp.Symbol, float]) -> float:
     """Size of one term: |coefficient| with every sin/cos of a joint, every joint value and every
     symbol without a value taken as 1, and parameters at their values."""
     ones = {f: sp.Integer(1) for f in term.atoms(sp.sin, sp.cos) if f.has(*q)}
@@ -54,7 +54,10 @@ def _magnitude(term: sp.Expr, q: Sequence[sp.Symbol], values: dict) -> float:
 
 
 def drop_negligible(
-    expr: sp.Expr, q: Sequence[sp.Symbol], values: dict | None = None, rel: float = NEGLIGIBLE
+    expr: sp.Expr,
+    q: Sequence[sp.Symbol],
+    values: dict[sp.Symbol, float] | None = None,
+    rel: float = NEGLIGIBLE,
 ) -> tuple[sp.Expr, int]:
     """Drop the terms of an expanded sum smaller than ``rel`` times its largest term.
 
@@ -86,7 +89,7 @@ def simplify_entry(
     q: Sequence[sp.Symbol],
     shift: AngleShift | None = None,
     deadline: Deadline | None = None,
-    values: dict | None = None,
+    values: dict[sp.Symbol, float] | None = None,
 ) -> tuple[sp.Expr, int, bool]:
     """Normal form, negligible terms dropped, collapsed and nested: what a person would write.
 
@@ -124,7 +127,14 @@ class Simplified:
         notes: Human-readable notes on the above.
     """
 
-    def __init__(self, matrix: sp.Matrix, pending, expanded, dropped: int, notes: list[str]) -> None:
+    def __init__(
+        self,
+        matrix: sp.Matrix,
+        pending: Iterable[tuple[int, int]],
+        expanded: Iterable[tuple[int, int]],
+        dropped: int,
+        notes: list[str],
+    ) -> None:
         self.matrix = matrix
         self.pending: tuple[tuple[int, int], ...] = tuple(pending)
         self.expanded: tuple[tuple[int, int], ...] = tuple(expanded)
@@ -141,7 +151,7 @@ def simplify_matrix(
     shift: AngleShift | None = None,
     *,
     only: Sequence[tuple[int, int]] | None = None,
-    values: dict | None = None,
+    values: dict[sp.Symbol, float] | None = None,
 ) -> Simplified:
     """Simplify the entries of ``M`` with :func:`simplify_entry`, within ``deadline``.
 

@@ -86,9 +86,9 @@ class Determinant:
     minors: tuple[Factored | None, ...]
     singular_sets: tuple[SingularSet, ...]
     q: tuple[sp.Symbol, ...]
-    display: dict
+    display: dict[sp.Symbol, str]
     joint_kinds: tuple[str, ...]
-    params: dict
+    params: dict[sp.Symbol, float]
     notes: tuple[str, ...] = ()
 
     @staticmethod
@@ -159,7 +159,7 @@ def det_rows(robot: Robot, deadline: Deadline | None = None) -> tuple[int, ...]:
     return rows
 
 
-def _tidy(f: Factored, values: dict, q: tuple) -> Factored:
+def _tidy(f: Factored, values: dict[sp.Symbol, float], q: tuple[sp.Symbol, ...]) -> Factored:
     """Substitute parameter values, merge equal factors, simplify each factor for display."""
     const, facs = f
     const = const.xreplace(values)
@@ -177,7 +177,7 @@ def _tidy(f: Factored, values: dict, q: tuple) -> Factored:
 
 def _compute(
     robot: Robot, rows: tuple[int, ...], symbolic_params: bool, deadline: Deadline, progress: Progress | None
-) -> tuple[bool, Factored | None, tuple, list[str]]:
+) -> tuple[bool, Factored | None, tuple[Factored | None, ...], list[str]]:
     try:
         model = build_model(robot, True)  # factor with the DH parameters as symbols
     except SymbolicError:

@@ -20,6 +20,7 @@ from __future__ import annotations
 import time
 from collections import Counter
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import sympy as sp
 from sympy.simplify.fu import TR10i
@@ -120,7 +121,7 @@ def normal_form(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
 
 def is_zero(expr: sp.Expr, q: Sequence[sp.Symbol]) -> bool:
     """True if ``expr`` vanishes for every q (exact test via :func:`normal_form`)."""
-    return normal_form(expr, q) == 0
+    return bool(normal_form(expr, q) == 0)
 
 
 def _is_joint_sum(arg: sp.Expr, q: Sequence[sp.Symbol]) -> bool:
@@ -152,7 +153,7 @@ def collapse(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
     return out
 
 
-def _factor_key(f: sp.Expr, order: dict[sp.Symbol, int]) -> tuple:
+def _factor_key(f: sp.Expr, order: dict[sp.Symbol, int]) -> tuple[Any, ...]:
     syms = [order.get(s, len(order)) for s in f.free_symbols]
     trig = isinstance(f, (sp.sin, sp.cos))
     return (trig, -min(syms, default=len(order)), isinstance(f, sp.cos))
@@ -177,7 +178,7 @@ def nest(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
     terms = sp.Add.make_args(expr)
     if len(terms) < 2:
         return expr
-    counts: Counter = Counter()
+    counts: Counter[Any] = Counter()
     for t in terms:
         counts.update(_factors(t))
     if not counts:

@@ -19,16 +19,17 @@ folder tree and its packages.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from pathlib import Path
 from xml.sax.saxutils import escape
 
-import numpy as np
-
+from ..conventions import FloatArray
 from ..errors import UrdfError
-from ..files import MAX_FILE_BYTES, decode_utf8, read_user_file
+from ..files import decode_utf8
 from ..model import Robot
 from ..transforms import matrix_to_rpy, rot_z, trans
 from .build import build_robot, with_home
+from .expand import expand_xacro, is_xacro, parse_xacro_args, read_description
 from .mesh import mesh_filename_handler, mesh_report, resolve_mesh
 from .tree import ChainInfo, Tree
 from .xml import MAX_LINKS, parse_urdf
@@ -37,6 +38,10 @@ __all__ = [
     "ChainInfo",
     "MAX_LINKS",
     "chains",
+    "expand_xacro",
+    "is_xacro",
+    "parse_xacro_args",
+    "read_description",
     "mesh_filename_handler",
     "mesh_report",
     "resolve_mesh",
@@ -46,9 +51,8 @@ __all__ = [
 ]
 
 
-def _read(path: str | Path) -> bytes:
-    data = read_user_file(path, "URDF", UrdfError, MAX_FILE_BYTES)
-    return decode_utf8(data, f"URDF {Path(path).name!r}", UrdfError).encode("utf-8")
+def _read(path: str | Path, xacro_args: Mapping[str, str] | None = None) -> bytes:
+    return read_description(path, xacro_args)
 
 
 def _as_bytes(text: str | bytes) -> bytes:
@@ -59,11 +63,18 @@ def _as_bytes(text: str | bytes) -> bytes:
     raise UrdfError(f"URDF text: expected str or bytes, got {type(text).__name__}")
 
 
-def robot_from_urdf(path: str | Path, base_link: str | None = None, tip_link: str | None = None) -> Robot:
+def robot_from_urdf(
+    path: str | Path,
+    base_link: str | None = None,
+    tip_link: str | None = None,
+    *,
+    xacro_args: Mapping[str, str] | None = None,
+) -> Robot:
     """Build a :class:`Robot` from the URDF file at ``path``.
 
     Args:
-        path: A URDF file (UTF-8, at most 20 MB). Mesh files it references need not exist.
+        path: A URDF file (UTF-8, at most 20 MB), or a ``.xacro`` file expanded with ``xacro_args``
+            (:mod:`kinematics.urdf.expand`). Mesh files it references need not exist.
         base_link: Link whose frame is the robot's base frame (default: the root, or the link
             below the last floating/planar joint above the tip).
         tip_link: Link whose frame is the tool frame (default: see :mod:`kinematics.urdf.tree`).
@@ -75,7 +86,8 @@ def robot_from_urdf(path: str | Path, base_link: str | None = None, tip_link: st
             on the chain, or has no serial chain with a moving joint.
     """
     p = Path(path)
-    return _robot(_read(p), base_link, tip_link, p.stem, str(p.resolve()), p.name)
+    stem = p.name.split(".")[0] or p.stem
+    return _robot(_read(p, xacro_args), base_link, tip_link, stem, str(p.resolve()), p.name)
 
 
 def robot_from_urdf_string(
@@ -85,14 +97,16 @@ def robot_from_urdf_string(
     return _robot(_as_bytes(text), base_link, tip_link, name, None, "")
 
 
-def chains(path: str | Path, base_link: str | None = None) -> list[ChainInfo]:
+def chains(
+    path: str | Path, base_link: str | None = None, *, xacro_args: Mapping[str, str] | None = None
+) -> list[ChainInfo]:
     """The serial chains of the URDF at ``path``, for a chain picker.
 
     The default chain (the one :func:`robot_from_urdf` opens without a tip) comes
     first with ``is_default=True``, then one chain per leaf link (and, for a leaf
     below a gripper jaw, the chain cut above the jaw), each with a moving joint.
     """
-    return Tree(parse_urdf(_read(path))).chains(base_link)
+    return Tree(parse_urdf(_read(path, xacro_args))).chains(base_link)
 
 
 def _robot(
@@ -122,7 +136,7 @@ def _attr(text: str) -> str:
     return escape(text, {'"': "&quot;"})
 
 
-def _origin_xml(T: np.ndarray) -> str:
+def _origin_xml(T: FloatArray) -> str:
     xyz = " ".join(repr(float(v)) for v in T[:3, 3])
     rpy = " ".join(repr(float(v)) for v in matrix_to_rpy(T[:3, :3]))
     return f'<origin xyz="{xyz}" rpy="{rpy}"/>'

@@ -9,7 +9,7 @@ drives only its followers.
 
 A URDF names no configuration, so the robot gets a ``home``: zeros (clipped
 into the limits), nudged by small deterministic offsets until the task rows
-of J are well away from singular (σmin/σmax > :data:`HOME_MIN_RATIO`).
+of J are well away from singular (κ ≤ 50, σmin/σmax ≥ :data:`HOME_GOOD_RATIO`).
 """
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from ..analysis import singular_values, task_rows
+from ..conventions import FloatArray
 from ..errors import UrdfError
 from ..model import Axis, Joint, NamedConfiguration, Robot
 from ..numeric import jacobian
@@ -27,10 +28,13 @@ from ..transforms import rotation_z_to
 from .tree import ChainChoice, Tree
 from .xml import UrdfJoint
 
-__all__ = ["build_robot", "regular_home", "HOME_MIN_RATIO", "UNLIMITED"]
+__all__ = ["build_robot", "regular_home", "HOME_GOOD_RATIO", "HOME_MIN_RATIO", "UNLIMITED"]
 
 _KIND = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic"}
 HOME_MIN_RATIO = 1e-3
+HOME_GOOD_RATIO = 0.02
+"""σmin/σmax a start pose aims for (κ ≤ 50: the app's banner calls it regular); ``HOME_MIN_RATIO`` is
+the least accepted when no such pose is near the file's zero."""
 """A start configuration is accepted when σmin/σmax of the task rows exceeds this."""
 UNLIMITED = 1e15
 """A URDF limit of this magnitude or more (±1e16 is a common sentinel) means "unlimited"."""
@@ -89,52 +93,63 @@ def build_robot(tree: Tree, choice: ChainChoice, name: str, **meta: object) -> R
     return Robot(name=name, joints=joints, axes=tuple(axes), tool=pending, **meta)  # type: ignore[arg-type]
 
 
-def _ratio(robot: Robot, Q: np.ndarray) -> np.ndarray:
+def _ratio(robot: Robot, Q: FloatArray) -> FloatArray:
     """σmin/σmax of the task rows of J at each row of ``Q`` (0 where J vanishes)."""
     s = singular_values(jacobian(robot, Q), task_rows(robot))
     top = s[..., 0]
     return np.divide(s[..., -1], top, out=np.zeros_like(top), where=top > 0)
 
 
-def regular_home(robot: Robot) -> tuple[np.ndarray, float]:
-    """A start configuration off the singular set, and its σmin/σmax.
+def regular_home(robot: Robot) -> tuple[FloatArray, float]:
+    """A start configuration well off the singular set, and its σmin/σmax.
 
-    Zeros clipped into the limits when that is regular; else the first of a fixed
-    sequence of nudges (growing sizes along fixed pseudo-random directions, clipped
-    into the limits) that is; else the first regular one of fixed pseudo-random
-    configurations spread over the limits; else the best of all these.
+    Zeros clipped into the limits when σmin/σmax ≥ :data:`HOME_GOOD_RATIO` (κ ≤ 50); else the first
+    of a fixed sequence of nudges (growing sizes along fixed pseudo-random directions, clipped into the
+    limits) that reaches it; else the first of fixed pseudo-random configurations spread over the
+    limits that does; failing that, the first of all these above :data:`HOME_MIN_RATIO`, else the best.
     """
     lim = robot.qlim
     lo, hi = lim
     q0 = np.clip(np.zeros(robot.dof), lo, hi)
     r0 = float(_ratio(robot, q0[None])[0])
-    if r0 > HOME_MIN_RATIO:
+    if r0 >= HOME_GOOD_RATIO:
         return q0, r0
     rng = np.random.default_rng(20261201)
     directions = rng.normal(size=(_DIRECTIONS, robot.dof))
     directions /= np.linalg.norm(directions, axis=1, keepdims=True)
-    Q = np.concatenate([q0 + s * directions for s in _NUDGES])
-    Q = np.clip(Q, lo, hi)
+    Q = np.clip(np.concatenate([q0 + s * directions for s in _NUDGES]), lo, hi)
     r = _ratio(robot, Q)
-    good = np.flatnonzero(r > HOME_MIN_RATIO)
-    if not good.size:  # last resort: spread over the limits (±π or ±0.5 m where unlimited)
+    if not np.any(r >= HOME_GOOD_RATIO):  # spread over the limits (±π or ±0.5 m where unlimited)
         wide = np.where(np.array(robot.joint_types) == "revolute", np.pi, 0.5)
         spread = rng.uniform(np.maximum(lo, -wide), np.minimum(hi, wide), size=(_SPREAD, robot.dof))
         Q, r = np.concatenate([Q, spread]), np.concatenate([r, _ratio(robot, spread)])
-        good = np.flatnonzero(r > HOME_MIN_RATIO)
-    k = int(good[0]) if good.size else int(np.argmax(r))
-    if r[k] <= r0:
+    for target in (HOME_GOOD_RATIO, HOME_MIN_RATIO):
+        good = np.flatnonzero(r >= target)
+        if good.size and r0 < target:
+            k = int(good[0])
+            return Q[k], float(r[k])
+    if r0 >= HOME_MIN_RATIO or float(r.max()) <= r0:
         return q0, r0
+    k = int(np.argmax(r))
     return Q[k], float(r[k])
 
 
 def with_home(robot: Robot) -> Robot:
-    """``robot`` with a ``home`` configuration chosen by :func:`regular_home`."""
+    """``robot`` with a ``home`` configuration chosen by :func:`regular_home`, its description saying
+    what it is (κ of the task rows, and how far it is from the file's zero pose)."""
     q, ratio = regular_home(robot)
-    text = (
-        f"Start pose: zero joint values nudged off the singular set (sigma_min/sigma_max = {ratio:.3g})"
-        if np.any(q != np.clip(np.zeros(robot.dof), *robot.qlim))
-        else f"Start pose: zero joint values (sigma_min/sigma_max = {ratio:.3g})"
-    )
+    zero = np.clip(np.zeros(robot.dof), *robot.qlim)
+    kappa = f"κ = {1 / ratio:.3g}" if ratio > 0 else "κ = ∞"
+    if np.any(q != zero):
+        r_zero = float(_ratio(robot, zero[None])[0])
+        moved = ", ".join(
+            f"{name} {math.degrees(v) if kind == 'revolute' else v:+.3g}{'°' if kind == 'revolute' else ' m'}"
+            for name, v, kind, v0 in zip(robot.joint_names, q, robot.joint_types, zero, strict=True)
+            if v != v0
+        )
+        zero_kappa = f"κ = {1 / r_zero:.3g}" if r_zero > 1e-10 else "singular"
+        text = f"Start pose: the file's zero pose ({zero_kappa}) moved to {kappa}: {moved}"
+    else:
+        text = f"Start pose: the file's zero joint values ({kappa})"
     home = NamedConfiguration("home", q, text)
     return dataclasses.replace(robot, configurations=(home, *robot.configurations))

@@ -18,23 +18,26 @@ that point outside resolve to ``None``.
 
 from __future__ import annotations
 
-import os
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
-from ..files import MAX_FILE_BYTES, decode_utf8, read_user_file
+from .expand import read_description
+from .packages import package_name, package_roots
 from .xml import parse_urdf
 
-__all__ = ["resolve_mesh", "mesh_report", "mesh_filename_handler", "package_roots", "MESH_SUFFIXES"]
+__all__ = [
+    "resolve_mesh",
+    "mesh_report",
+    "mesh_filename_handler",
+    "package_name",
+    "package_roots",
+    "MESH_SUFFIXES",
+]
 
 _PACKAGE = "package://"
 MESH_SUFFIXES = frozenset({".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off", ".3mf"})
 """File types a mesh may have (case-insensitive): nothing else is ever returned."""
-ANCESTOR_LEVELS = 6
-"""How far above the URDF's folder an enclosing folder named like the package is looked for."""
-SIBLING_LEVELS = 3
-"""How far above the URDF's folder a package folder is looked for beside it."""
 
 
 def _inside(path: Path, folder: Path) -> bool:
@@ -56,41 +59,6 @@ def _contained_file(folder: Path, relative: str) -> Path | None:
         return candidate if candidate.is_file() else None
     except OSError:
         return None
-
-
-def _env_dirs(name: str) -> list[Path]:
-    return [Path(p) for p in os.environ.get(name, "").split(os.pathsep) if p.strip()]
-
-
-def package_roots(
-    urdf_path: str | Path, package: str, package_dirs: Sequence[str | Path] = ()
-) -> Iterator[Path]:
-    """Folders named ``package`` where ``package://package/...`` may live, in search order.
-
-    The URDF's folder and its ancestors up to :data:`ANCESTOR_LEVELS` above it when named
-    ``package``; a ``package`` folder inside the URDF's folder or inside one of the
-    :data:`SIBLING_LEVELS` folders above it (never inside the filesystem root or the home
-    folder); then ``package_dirs``, ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH``.
-    """
-    if not package or package in (".", "..") or any(c in package for c in "/\\\x00"):
-        return
-    here = Path(urdf_path).resolve().parent
-    ancestors = [here, *here.parents][: ANCESTOR_LEVELS + 1]
-    stop = {Path(here.anchor), Path.home().resolve()}
-    for level, folder in enumerate(ancestors):
-        if folder.name == package and folder not in stop:
-            yield folder
-        if level <= SIBLING_LEVELS and folder not in stop and (folder / package).is_dir():
-            yield folder / package
-    spots: Iterable[Path] = [*map(Path, package_dirs), *_env_dirs("ROS_PACKAGE_PATH")]
-    for spot in spots:
-        if spot.name == package and spot.is_dir():
-            yield spot
-        elif (spot / package).is_dir():
-            yield spot / package
-    for prefix in _env_dirs("AMENT_PREFIX_PATH"):
-        if (prefix / "share" / package).is_dir():
-            yield prefix / "share" / package
 
 
 def resolve_mesh(
@@ -131,15 +99,13 @@ def resolve_mesh(
 def mesh_report(
     path: str | Path, package_dirs: Sequence[str | Path] | None = None
 ) -> tuple[dict[str, Path], list[str]]:
-    """The visual meshes of the URDF at ``path``: ``({uri: file}, [unresolved uris])``, in file order.
+    """The visual meshes of the URDF (or xacro file, as last expanded) at ``path``:
+    ``({uri: file}, [unresolved uris])``, in file order.
 
     Raises:
         UrdfError: the URDF cannot be read or parsed.
     """
-    from ..errors import UrdfError
-
-    data = read_user_file(path, "URDF", UrdfError, MAX_FILE_BYTES)
-    doc = parse_urdf(decode_utf8(data, "URDF", UrdfError).encode("utf-8"))
+    doc = parse_urdf(read_description(path))
     resolved: dict[str, Path] = {}
     unresolved: list[str] = []
     for _, uri in doc.meshes:

@@ -272,7 +272,9 @@ class Tree:
                     out.append(self._info(b, t, tuple(p), False))
         return out
 
-    def _info(self, base: str, tip: str, path: tuple[UrdfJoint, ...] | list[UrdfJoint], default: bool):
+    def _info(
+        self, base: str, tip: str, path: tuple[UrdfJoint, ...] | list[UrdfJoint], default: bool
+    ) -> ChainInfo:
         names = tuple(j.name for j in self.actuated(path))
         return ChainInfo(base, tip, names, len(names), default)
 

@@ -16,13 +16,18 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
+from ..conventions import FloatArray
 from ..errors import UrdfError
 from ..transforms import rpy_to_matrix
 
 __all__ = ["UrdfDoc", "UrdfJoint", "parse_urdf", "MAX_LINKS", "JOINT_TYPES"]
+
+Element = Any
+"""An lxml element (lxml is installed without type information)."""
 
 MAX_LINKS = 1000
 """Most links (and joints) a URDF may have: real robots have at most a few hundred."""
@@ -52,8 +57,8 @@ class UrdfJoint:
     type: str
     parent: str
     child: str
-    origin: np.ndarray
-    axis: np.ndarray
+    origin: FloatArray
+    axis: FloatArray
     lower: float | None = None
     upper: float | None = None
     mimic: tuple[str, float, float] | None = None
@@ -87,7 +92,7 @@ def _prepare(data: bytes) -> bytes:
     return b"\n" * head.count(b"\n") + data[len(head) :].rstrip(b"\x00 \t\r\n")
 
 
-def _element_tree(data: bytes):
+def _element_tree(data: bytes) -> Element:
     from lxml import etree
 
     if b"<!DOCTYPE" in data or b"<!ENTITY" in data:
@@ -112,7 +117,7 @@ def _local(tag: object) -> str:
     return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
 
 
-def _numbers(el, attr: str, count: int, where: str, default: tuple[float, ...]) -> np.ndarray:
+def _numbers(el: Element, attr: str, count: int, where: str, default: tuple[float, ...]) -> FloatArray:
     text = el.get(attr) if el is not None else None
     if text is None:
         return np.array(default, dtype=float)
@@ -136,7 +141,7 @@ def _numbers(el, attr: str, count: int, where: str, default: tuple[float, ...]) 
     return np.array(values)
 
 
-def _number(el, attr: str, where: str, default: float | None, limit: bool = False) -> float | None:
+def _number(el: Element, attr: str, where: str, default: float | None, limit: bool = False) -> float | None:
     """A single number; ``limit``: a joint limit, where any magnitude (even ±inf) means what it says."""
     text = el.get(attr)
     if text is None:
@@ -153,31 +158,31 @@ def _number(el, attr: str, where: str, default: float | None, limit: bool = Fals
     return v
 
 
-def _name(el, where: str) -> str:
-    name = el.get("name")
+def _name(el: Element, where: str) -> str:
+    name: str | None = el.get("name")
     if name is None or not name.strip():
         raise UrdfError(f"{where}: missing or empty name attribute")
     return name
 
 
-def _link_ref(el, tag: str, where: str) -> str:
+def _link_ref(el: Element, tag: str, where: str) -> str:
     ref = [c for c in el if _local(c.tag) == tag]
     if len(ref) != 1:
         raise UrdfError(f"{where}: expected one <{tag} link=...>, found {len(ref)}")
-    link = ref[0].get("link")
+    link: str | None = ref[0].get("link")
     if link is None or not link.strip():
         raise UrdfError(f"{where}: <{tag}> has no link attribute")
     return link
 
 
-def _child(el, tag: str):
+def _child(el: Element, tag: str) -> Element | None:
     for c in el:
         if _local(c.tag) == tag:
             return c
     return None
 
 
-def _joint(el) -> UrdfJoint:
+def _joint(el: Element) -> UrdfJoint:
     line = el.sourceline or 0
     name = _name(el, f"<joint> at line {line}")
     where = f"joint {name!r} (line {line})"

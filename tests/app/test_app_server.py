@@ -213,24 +213,26 @@ def test_singular_configurations_are_drawn_and_read_out(session, robot_name, con
     assert "∞" in session.panel.matrix.measures.content
     if snap.det is not None:
         assert abs(snap.det) < 1e-9
-    # The lost direction is drawn as what it is: an arrow for its translation, an axis for its rotation.
-    lost = snap.lost
+    # Every lost direction is drawn as what it is (tests/test_singularity_picture.py checks where).
+    planar = session.state.robot.planar
     arrow = scene_node(session, "/lab/jacobian/lost_translation")
     axis = scene_node(session, "/lab/jacobian/lost_rotation")
-    assert arrow.visible == (lost.translation_share >= 0.1)
-    assert axis.visible == (lost.rotation_share >= 0.1 and not session.state.robot.planar)
-    assert arrow.visible or axis.visible
+    moved = [x for x in snap.losses if x.translation_share >= 0.1 or (planar and x.translation_share > 0)]
+    turned = [x for x in snap.losses if x.rotation_share >= 0.1 and not planar]
+    assert snap.losses and arrow.visible == bool(moved) and axis.visible == bool(turned)
     if arrow.visible:
-        tip = np.array(arrow.points)[0]
-        direction = tip[1] - tip[0]
-        assert abs(direction @ lost.translation) == pytest.approx(np.linalg.norm(direction), rel=1e-4)
+        points = np.array(arrow.points)
+        assert len(points) == len(moved)
+        for (start, end), loss in zip(points, moved, strict=True):
+            assert (end - start) @ loss.translation == pytest.approx(np.linalg.norm(end - start), rel=1e-4)
         assert tuple(arrow.colors[0]) == LOST_RGB
-    assert "Lost direction" in status
+    assert "Measured at the tool point" in status or "Decoupled at the wrist centre" in status
     # The ellipsoid flattens but never disappears, and nothing non-finite reaches the scene.
     rows = task_rows(session.state.robot)
     ellipsoid = scene_node(session, "/lab/jacobian/velocity_ellipsoid")
     rotational = scene_node(session, "/lab/jacobian/rotational_ellipsoid")
-    shown = ellipsoid if ellipsoid.visible else rotational
+    blocks = [scene_node(session, f"/lab/jacobian/{part}_ellipsoid") for part in ("arm", "wrist")]
+    shown = next((e for e in (ellipsoid, rotational, *blocks) if e.visible), ellipsoid)
     assert shown.visible, rows
     scale = np.asarray(shown.scale)
     assert np.isfinite(scale).all() and scale.min() >= TINY * 0.999
@@ -241,18 +243,19 @@ def test_singular_configurations_are_drawn_and_read_out(session, robot_name, con
     assert_all_finite(session)
 
 
-def test_wrist_singularity_of_the_puma_is_mostly_a_lost_rotation_axis(session):
-    """Weighing rad/s by the reach: at q5 = 0 a good part of the lost twist is a rotation, drawn as an axis."""
+def test_wrist_singularity_of_the_puma_is_a_lost_rotation_axis_at_the_wrist_centre(session):
+    """Decoupled at the wrist centre, the Puma's q5 = 0 loses one rotation and nothing else."""
     session.dispatch(GoTo("wrist_singular"))
     session.settle()
-    lost = session.snapshot.lost
-    assert lost.rotation_share > 0.3
+    (loss,) = session.snapshot.losses
+    assert loss.part == "wrist" and loss.translation_share == 0.0
     z4 = session.snapshot.joint_frames[3, :3, 2]
     z5 = session.snapshot.joint_frames[4, :3, 2]
     # The wrist cannot turn about the axis normal to the aligned z4 = z6 and z5: the lost rotation is along it.
     normal = np.cross(z4, z5) / np.linalg.norm(np.cross(z4, z5))
-    assert abs(lost.rotation @ normal) > 0.99
+    assert abs(loss.rotation @ normal) > 1 - 1e-9
     assert scene_node(session, "/lab/jacobian/lost_rotation").visible
+    assert not scene_node(session, "/lab/jacobian/lost_translation").visible
 
 
 def test_robot_switch_rebuilds_scene_and_panel(session):

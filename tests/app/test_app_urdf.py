@@ -29,16 +29,21 @@ URDF = """<?xml version="1.0"?>
 
 
 @pytest.mark.parametrize(
-    ("fore", "meshes"),
-    [('<box size="0.2 0.03 0.03"/>', True), ('<mesh filename="meshes/missing.stl"/>', False)],
+    ("fore", "meshes", "links"),
+    [('<box size="0.2 0.03 0.03"/>', True, False), ('<mesh filename="meshes/missing.stl"/>', True, True)],
     ids=["meshes-present", "mesh-missing"],
 )
-def test_urdf_robot_drawn_with_its_meshes_or_generated_geometry(tmp_path, fore, meshes):
+def test_urdf_robot_drawn_with_its_meshes_or_generated_geometry(tmp_path, fore, meshes, links):
+    """Every visual found: the URDF's geometry alone. One missing: the ones found are drawn, and the
+    generated links too, so the arm never has a hole."""
     path = tmp_path / "arm_file.urdf"  # listed under its <robot name>, not the file stem
     path.write_text(URDF.replace("FORE", fore))
     with running_lab(urdf=str(path)) as (lab, session, _):
         assert session.state.robot_name == "two_link"
-        assert any(name.startswith("/lab/arm/urdf") for name in scene_props(session)) == meshes
+        props = scene_props(session)
+        assert any(name.startswith("/lab/arm/urdf") for name in props) == meshes
+        cylinders = props["/lab/arm/cylinders"]  # the generated links and the two revolute axes
+        assert (len(cylinders["batched_positions"]) > 2) == links
         assert session.panel.robot.options[0] == "two_link" and "puma560" in session.panel.robot.options
         session.panel.joints.sliders[1].value = -30.0
         session.settle()

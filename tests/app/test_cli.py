@@ -145,6 +145,7 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "port": 8123,
             "block": True,
             "presenter_token": None,
+            "xacro_args": None,
         }
     ]
 

@@ -12,7 +12,7 @@ from app_helpers import assert_all_finite, scene_node
 import robots
 from app.core.build_table import BUILT_NAME
 from app.views.panel.editor import DOWNLOADS, EMPTY, ROW_BUTTONS
-from kinematics import Robot
+from kinematics import Robot, robot_from_urdf
 from kinematics.numeric import jacobian
 
 ADD, REMOVE, UP, DOWN = ROW_BUTTONS
@@ -207,7 +207,7 @@ def test_the_robot_file_download_loads_back_with_the_same_jacobian(session, monk
     np.testing.assert_allclose(loaded.qlim, built.qlim, atol=1e-12)
     _same_jacobian(loaded, built, samples=10)
     (tmp_path / "built.urdf").write_bytes(urdf)
-    _same_jacobian(Robot.from_urdf(str(tmp_path / "built.urdf")), built, samples=10)
+    _same_jacobian(robot_from_urdf(str(tmp_path / "built.urdf")), built, samples=10)
     assert "alpha = 90.0" in toml.decode() or "alpha = -90.0" in toml.decode()  # degrees in the file
     assert loaded.configurations == ()  # a row was added: the original's home no longer fits
 
@@ -280,3 +280,24 @@ def test_an_edit_keeps_the_users_view_a_new_robot_is_framed(session, monkeypatch
     session.panel.robot.value = "planar2"  # another robot: framed at once
     session.settle()
     assert [k for k in framed if k.get("glide") is False]
+
+
+def test_a_planar_arm_built_in_the_browser_is_planar_not_singular_everywhere(session):
+    """All axes along base z: the built robot takes the planar rows (vx, vy) as its task, as planar2 does,
+    so a bent pose is regular (det J = a₁ a₂ sin q₂) instead of singular through an always-zero vz row."""
+    editor = _editor(session)
+    editor.a.value = 1.0
+    editor.rows.value = ADD
+    editor.a.value = 0.5
+    session.settle()
+    robot = session.state.robot
+    assert robot.planar and session.snapshot.rows == (0, 1)
+    session.panel.joints.sliders[1].value = 60.0
+    session.settle()
+    snap = session.snapshot
+    assert snap.report.status == "regular"
+    assert snap.det == pytest.approx(1.0 * 0.5 * math.sin(math.radians(60.0)), rel=1e-9)
+    editor.row.value = "1"
+    editor.alpha.value = 90.0  # standard DH: α₁ tilts axis 2 out of line with axis 1, no longer planar
+    session.settle()
+    assert not session.state.robot.planar

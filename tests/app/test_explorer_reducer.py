@@ -201,3 +201,22 @@ def test_the_climb_raises_w_with_the_tool_held(name):
     assert end[:3, 3][[r for r in rows if r < 3]] == pytest.approx(
         T0[:3, 3][[r for r in rows if r < 3]], abs=1e-5
     )
+
+
+def test_after_a_climb_the_self_motion_reads_where_the_climb_went():
+    """The climb moves along the self-motion curve: s grows by the joint-space length climbed, the (s, w)
+    chart holds the climb's points (not the old ones), and sliding s back to 0 returns to the start."""
+    start = reduce(fresh("planar3"), SelfMove(0.8))
+    rows = tuple(redundancy_rows(start.robot))
+    climbing = reduce(start, Play(True, "climb"))
+    states = run(climbing, 3000)
+    end = states[-1]
+    qs = np.array([start.q] + [s.q for s in states])
+    climbed = float(np.linalg.norm(np.diff(qs, axis=0), axis=1).sum())
+    assert end.motion.s == pytest.approx(climbed, rel=1e-9) and end.motion.s > 0.05
+    s, w = end.motion.self_trace[-1]
+    assert s == end.motion.s and w == pytest.approx(float(manipulability(jacobian(end.robot, end.q), rows)))
+    assert end.motion.self_trace[0][0] == 0.0 and len(end.motion.self_trace) == len(states)  # start + steps
+    back = reduce(end, SelfMove(0.0))
+    np.testing.assert_allclose(back.q, start.q, atol=2e-3)
+    assert "w of the held rows (vx, vy)" in end.stopped

@@ -17,7 +17,7 @@ from wsclient import ViserWsClient
 import kinematics.urdf.mesh
 from app.tab.robots import MAX_UPLOAD_BYTES, TabCatalog
 from app.viser_adapter import UPLOAD_PART_BYTES, handle_uuid, message_class
-from kinematics import Robot
+from kinematics import robot_from_urdf
 from kinematics.numeric import jacobian
 
 ARM = """<?xml version="1.0"?>
@@ -92,7 +92,7 @@ def test_a_small_urdf_loads_draws_and_stays_with_its_tab(session, other_tab, mon
     content = (DATA / "urdf" / "gripper_arm.urdf").read_bytes()
     _upload(session, "gripper_arm.urdf", content)
     state = session.state
-    expected = Robot.from_urdf(str(DATA / "urdf" / "gripper_arm.urdf"))
+    expected = robot_from_urdf(str(DATA / "urdf" / "gripper_arm.urdf"))
     assert state.robot_name.startswith(expected.name) and state.robot_name.endswith(" (uploaded)")
     assert state.robot.urdf_path is None
     for q in np.random.default_rng(3).uniform(-1, 1, size=(5, expected.dof)):

@@ -116,3 +116,12 @@ def test_export_rejects_bad_input():
 
 
 # ------------------------------------------------------------------------- CLI
+
+
+def test_the_apps_download_buttons_name_formats_the_export_writes():
+    """app.core.downloads keeps the button label → format table out of kinematics.symbolic (SymPy
+    stays out of the server process); every format it names is one the export writes."""
+    from app.core.downloads import EXPORT_FORMATS
+
+    assert EXPORT_FORMATS and {fmt for fmt, _ in EXPORT_FORMATS.values()} <= set(ex.FORMATS)
+    assert len({ext for _, ext in EXPORT_FORMATS.values()}) == len(EXPORT_FORMATS)

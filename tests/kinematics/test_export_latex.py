@@ -116,7 +116,7 @@ def test_compact_notation_and_legend():
 @pytest.mark.parametrize("name", ["iiwa14_like", "xarm7_like"])
 def test_real_arm_urdf_latex_typesets(katex, name):
     """URDF arms with 1.5708-style angles: snapped, short, and the joint-name legend typesets."""
-    robot = kinematics.Robot.from_urdf(str(DATA / f"{name}.urdf"))
+    robot = kinematics.robot_from_urdf(str(DATA / f"{name}.urdf"))
     text = ex.export(robot, "latex", timeout=120)
     formulas = display_formulas(text)
     assert [e for e in katex(formulas) if e is not None] == []

@@ -315,7 +315,7 @@ def test_urdf_chain_without_meshes(tmp_path):
     )
     path = tmp_path / "arm.urdf"
     path.write_text(text)
-    robot = Robot.from_urdf(str(path))
+    robot = robot_from_urdf(str(path))
     assert robot.joint_names == ("shoulder", "slide") and robot.joint_types == ("revolute", "prismatic")
     assert robot.joints[1].qlim == (0.0, 0.3)
     # Tool: after the slide (along the l1 x axis rotated by pitch 90° → along -z of l1), then 0.1 along l2 z.

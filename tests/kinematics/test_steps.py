@@ -28,7 +28,7 @@ FAST = 0.3  # [s] simplification budget for the numeric checks: the steps are ex
 
 
 def _robot(name: str) -> kinematics.Robot:
-    return kinematics.Robot.from_urdf(str(URDF)) if name == "urdf" else robots.load(name)
+    return kinematics.robot_from_urdf(str(URDF)) if name == "urdf" else robots.load(name)
 
 
 def _by_key(steps) -> dict:

@@ -127,7 +127,7 @@ def test_folder_of_another_user_is_refused(fresh_cache):
 @pytest.mark.slow
 def test_every_cached_kind_round_trips(fresh_cache):
     """Derivations (with snapped values), determinants (square and Gram, with singular sets)."""
-    iiwa = kinematics.Robot.from_urdf(str(DATA / "iiwa14_like.urdf"))
+    iiwa = kinematics.robot_from_urdf(str(DATA / "iiwa14_like.urdf"))
     requests = [
         lambda: symbolic.derive(iiwa),
         lambda: symbolic.derive(robots.load("elbow3r"), "tool", symbolic_params=True),

@@ -46,7 +46,7 @@ def measure():
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["puma560", "panda", "stanford", "iiwa14_like.urdf", "xarm7_like.urdf"])
 def test_symbolic_j_fits_the_panel(measure, name):
-    robot = kinematics.Robot.from_urdf(str(DATA / name)) if name.endswith(".urdf") else robots.load(name)
+    robot = kinematics.robot_from_urdf(str(DATA / name)) if name.endswith(".urdf") else robots.load(name)
     text = jacobian_mathml(robot, "base", timeout=120)
     widest, scroll = measure(text)
     assert 0 < widest <= PANEL and scroll <= PANEL

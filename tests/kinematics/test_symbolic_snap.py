@@ -132,8 +132,8 @@ def test_dh_arm_with_rounded_twists_gives_the_exact_formulas():
 @pytest.mark.parametrize("name", ["iiwa14_like", "xarm7_like"])
 def test_real_arm_urdf_snaps_and_stays_readable(name, tmp_path):
     path = DATA / f"{name}.urdf"
-    rounded = kinematics.Robot.from_urdf(str(path))
-    exact = kinematics.Robot.from_urdf(str(exact_copy(path, tmp_path)))
+    rounded = kinematics.robot_from_urdf(str(path))
+    exact = kinematics.robot_from_urdf(str(exact_copy(path, tmp_path)))
     d, d_exact = symbolic.derive(rounded, timeout=120), symbolic.derive(exact, timeout=120)
     assert d.complete and d_exact.complete
     assert d_exact.snaps == () and d.snaps and d.largest_snap < 4e-6
@@ -153,7 +153,7 @@ def test_real_arm_urdf_snaps_and_stays_readable(name, tmp_path):
 
 @pytest.mark.slow
 def test_snapped_values_are_named_in_every_export():
-    robot = kinematics.Robot.from_urdf(str(DATA / "xarm7_like.urdf"))
+    robot = kinematics.robot_from_urdf(str(DATA / "xarm7_like.urdf"))
     from kinematics.symbolic.typeset import export as ex
 
     for fmt in ("latex", "mathml", "python", "json"):

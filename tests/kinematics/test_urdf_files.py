@@ -183,7 +183,7 @@ def test_a_regular_zero_pose_is_kept_as_home():
     s = np.linalg.svd(jacobian(robot, np.zeros(2))[:2], compute_uv=False)  # det = sin(0.5): regular
     assert s[-1] / s[0] > 1e-3
     np.testing.assert_array_equal(robot.home, np.zeros(2))
-    assert robot.configurations[0].description.startswith("Start pose: zero joint values")
+    assert robot.configurations[0].description.startswith("Start pose: the file's zero joint values (κ = ")
 
 
 def test_a_home_clipped_into_limits_that_exclude_zero():

@@ -25,17 +25,19 @@ from kinematics.analysis import (
     velocity_ellipsoid,
 )
 from kinematics.inverse import solve_rates
-from kinematics.lost import LostDirection, lost_direction
 from kinematics.numeric import frames_and_jacobian
 from kinematics.singularity import SingularityReport, assess
+from kinematics.singularity.decoupling import Decoupling, decouple
+from kinematics.singularity.lost import LostDirection, lost_direction
 
 from ..ranges import reach
 from ..state import LabState
 from .course import AnalyticView, InverseView, analytic_view, inverse_view
 from .derive import Derivation, derivation
+from .losses import Loss, block_ellipsoids, losses
 from .maps import Cloud, JointMap, joint_map, workspace_cloud
 
-__all__ = ["Snapshot", "compute", "translational_rows"]
+__all__ = ["Snapshot", "compute", "translational_rows", "Loss"]
 
 
 def translational_rows(planar: bool) -> tuple[int, ...]:
@@ -77,6 +79,10 @@ class Snapshot:
         analytic: φ, M(φ) and J_A when the J(q) tab shows an analytic Jacobian, else ``None``.
         jdot_qd: J̇ q̇ (6,) [m/s²; rad/s²], base axes: the tool's acceleration at constant joint rates
             (zero when q̇ = 0).
+        decoupling: J at the wrist centre in arm and wrist blocks (a spherical wrist), else ``None``.
+        losses: Every lost direction, each at its own point (none when regular).
+        arm_ellipsoid, wrist_ellipsoid: The decoupled blocks' ellipsoids at the wrist centre (the
+            wrist centre's velocity by the arm joints, the angular velocity by the wrist joints).
         T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
     """
 
@@ -109,6 +115,10 @@ class Snapshot:
     inverse: InverseView | None = None
     analytic: AnalyticView | None = None
     jdot_qd: np.ndarray | None = None
+    decoupling: Decoupling | None = None
+    losses: tuple[Loss, ...] = ()
+    arm_ellipsoid: Ellipsoid | None = None
+    wrist_ellipsoid: Ellipsoid | None = None
 
     @property
     def T_tool(self) -> np.ndarray:
@@ -147,6 +157,8 @@ def compute(state: LabState) -> Snapshot:
     representation = state.options.representation
     shortfall = np.zeros(6)
     shortfall[list(rows)] = state.v_desired[list(rows)] - produced[list(rows)]
+    decoupled = decouple(robot, q, J)
+    arm_e, wrist_e = block_ellipsoids(decoupled)
     return Snapshot(
         q=np.array(q),
         link_frames=L,
@@ -179,6 +191,10 @@ def compute(state: LabState) -> Snapshot:
         inverse=inverse_view(J_twist, rank_task),
         analytic=analytic_view(L[-1], J, representation) if representation != "geometric" else None,
         jdot_qd=jacobian_dot(robot, q, state.qd) @ state.qd if moving else np.zeros(6),
+        decoupling=decoupled,
+        losses=losses(report, J, rows, length, L[-1, :3, 3], W, decoupled),
+        arm_ellipsoid=arm_e,
+        wrist_ellipsoid=wrist_e,
     )
 
 

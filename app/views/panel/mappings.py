@@ -21,6 +21,7 @@ import numpy as np
 import viser
 
 from kinematics import Robot
+from kinematics.conventions import ROW_TEXT, WRENCH_TEXT
 
 from ...core.actions import (
     ApplyPreset,
@@ -44,9 +45,6 @@ from .readouts import ROW_NAMES
 from .style import slider_css
 
 __all__ = ["ForwardPanel", "InversePanel", "ForcePanel", "bars_html", "vector_table_html"]
-
-_TWIST_ROWS = ("vx", "vy", "vz", "ωx", "ωy", "ωz")
-_WRENCH_ROWS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
 
 
 def _display(kind: str, value: float) -> tuple[float, str]:
@@ -208,7 +206,7 @@ class InversePanel:
             self.course = gui.add_html("")
             self.sliders = {}
             for r in rows:
-                slider = _slider(gui, _TWIST_ROWS[r], self.ranges[r], "desired tool velocity, base axes")
+                slider = _slider(gui, ROW_TEXT[r], self.ranges[r], "desired tool velocity, base axes")
                 bind(slider, dispatch, functools.partial(_set_desired, r, self.ranges[r]))
                 self.sliders[r] = slider
             self.damping = gui.add_slider(
@@ -309,7 +307,7 @@ class ForcePanel:
             self.sliders = {}
             self._bounds: dict[int, tuple[float, float]] = {}
             for r in rows:
-                slider = _slider(gui, _WRENCH_ROWS[r], self.ranges[r], "applied at the tool point, base axes")
+                slider = _slider(gui, WRENCH_TEXT[r], self.ranges[r], "applied at the tool point, base axes")
                 bind(slider, dispatch, functools.partial(_set_wrench, r))
                 self.sliders[r] = slider
                 self._bounds[r] = (float(slider.min), float(slider.max))

@@ -19,6 +19,8 @@ import viser.uplot as uplot
 
 import robots
 from kinematics import Robot
+from kinematics.analysis import task_rows
+from kinematics.conventions import ROW_TEXT
 
 from ...core.actions import ApplyPreset, Play, ResetMotion, SelfMove, SetOption, StepOnce
 from ...core.commands import FindSingularity
@@ -38,7 +40,6 @@ OWN_TWIST = "your own v (set in q̇ = J⁺v)"
 PLAY_BUTTONS = ("Play", "Pause", "Step", "Reset")
 _METHODS = {"DLS (damped)": "dls", "Newton (J⁻¹, J⁺)": "newton"}
 _MODES = {"tool position": "position", "tool pose": "pose"}
-_ROW_NAMES = ("vx", "vy", "vz", "ωx", "ωy", "ωz")
 _CHART_HEIGHT = 150
 
 
@@ -126,10 +127,14 @@ class MotionPanel:
             self.self_chart = None
             if rows is not None:
                 with gui.add_folder("Redundancy: move with the tool held", expand_by_default=False):
-                    held = ", ".join(_ROW_NAMES[r] for r in rows)
+                    held = ", ".join(ROW_TEXT[r] for r in rows)
+                    task = ", ".join(ROW_TEXT[r] for r in task_rows(robot))
                     gui.add_html(
                         f'<div class="jl-note">{robot.dof} joints, {len(rows)} task rows held ({held}): '
-                        f"the arm can move in the null space of J without moving the tool.</div>"
+                        f"the arm can move in the null space of J without moving the tool. "
+                        f"<b>Climb</b> raises w = √det(J Jᵀ) of these rows ({held})"
+                        + (f", not the banner's κ of all task rows ({task})." if task != held else ".")
+                        + "</div>"
                     )
                     self.self_slider = gui.add_slider(
                         "Self-motion s",
@@ -229,11 +234,11 @@ def _button(label: str) -> Play | StepOnce | ResetMotion:
 def _readout(state: LabState, snap: Snapshot) -> str:
     rows = snap.rows
     v = [state.v_desired[r] if r < 3 else math.degrees(state.v_desired[r]) for r in rows]
-    parts = ", ".join(f"{_ROW_NAMES[r]} {fmt.number(x)}" for r, x in zip(rows, v, strict=True))
+    parts = ", ".join(f"{ROW_TEXT[r]} {fmt.number(x)}" for r, x in zip(rows, v, strict=True))
     axes = "tool" if state.options.twist_frame == "tool" else "base"
     doing = {
         "resolved_rate": "holding v",
-        "climb": "climbing w",
+        "climb": "climbing w of the held rows",
         "path": "descending to the nearest singularity",
         "joints": "moving at q̇",
     }.get(state.motion.kind, "")

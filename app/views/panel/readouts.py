@@ -8,22 +8,25 @@ unchanged ones).
 from __future__ import annotations
 
 from kinematics import Robot
+from kinematics.conventions import ROW_HTML
 
-from ...core.snapshot import Snapshot
+from ...core.snapshot import Loss, Snapshot
 from ...core.state import LabState
 from .. import fmt
 from ..palette import status_hex
 
-__all__ = ["status_html", "measures_html", "source_html", "ROW_NAMES", "row_label", "task_name", "lost_text"]
+__all__ = [
+    "status_html",
+    "measures_html",
+    "source_html",
+    "ROW_NAMES",
+    "row_label",
+    "task_name",
+    "lost_text",
+    "direction",
+]
 
-ROW_NAMES = (
-    "v<sub>x</sub>",
-    "v<sub>y</sub>",
-    "v<sub>z</sub>",
-    "ω<sub>x</sub>",
-    "ω<sub>y</sub>",
-    "ω<sub>z</sub>",
-)
+ROW_NAMES = ROW_HTML
 
 
 def row_label(rows: tuple[int, ...]) -> str:
@@ -44,22 +47,65 @@ def task_name(rows: tuple[int, ...]) -> str:
     return "rows " + row_label(rows)
 
 
-def lost_text(snap: Snapshot, planar: bool) -> str:
-    """What the lost direction is, in words (empty when regular)."""
-    lost = snap.lost
-    if lost is None:
-        return ""
+def direction(u: object) -> str:
+    """A unit direction in words: "+z" when it is a base axis, else "(0.71, 0, 0.71)"."""
+    import numpy as np
+
+    v = np.asarray(u, float)
+    k = int(np.argmax(np.abs(v)))
+    if abs(abs(v[k]) - 1.0) < 1e-3:
+        return f"{'+' if v[k] > 0 else '−'}{'xyz'[k]} (base)"
+    return "(" + ", ".join(fmt.number(0.0 if abs(x) < 5e-3 else x, 2) for x in v) + ")"
+
+
+def _tool_line(loss: Loss, planar: bool) -> str:
     parts = []
-    if lost.translation_share >= 0.1:
-        parts.append(f"translation {fmt.number(100 * lost.translation_share, 2)} %")
-    if lost.rotation_share >= 0.1 and not planar:
-        parts.append(f"rotation {fmt.number(100 * lost.rotation_share, 2)} %")
+    if loss.translation_share >= 0.1 or planar:
+        share = "" if loss.translation_share > 0.999 else f" {fmt.number(100 * loss.translation_share, 2)} %"
+        parts.append(f"translation{share} along {direction(loss.translation)}")
+    if loss.rotation_share >= 0.1 and not planar:
+        share = "" if loss.rotation_share > 0.999 else f" {fmt.number(100 * loss.rotation_share, 2)} %"
+        parts.append(f"rotation{share} about {direction(loss.rotation)}")
+    return f"<b>Lost</b>: {' + '.join(parts) or 'a mixed direction'}."
+
+
+def lost_text(snap: Snapshot, planar: bool) -> str:
+    """What is lost, in words, one sentence per part (empty when regular): the wrist's rotation and the
+    arm's translation of the wrist centre for a spherical wrist, else every direction lost at the tool
+    point, with the point and the weighing it refers to."""
+    if not snap.losses:
+        return ""
+    exact = snap.report.status == "singular"
+    arm = [direction(x.translation) for x in snap.losses if x.part == "arm"]
+    wrist = [direction(x.rotation) for x in snap.losses if x.part == "wrist"]
+    lines = []
+    if wrist:
+        head, verb = ("Wrist singular", "loses") if exact else ("Near a wrist singularity", "can hardly give")
+        lines.append(f"<b>{head}</b>: the wrist {verb} a rotation about {' and '.join(wrist)}.")
+    if arm:
+        head, verb = ("Arm singular", "cannot") if exact else ("Near an arm singularity", "can hardly")
+        lines.append(f"<b>{head}</b>: the wrist centre {verb} move along {' nor '.join(arm)}.")
+    if arm or wrist:
+        zero = " and ".join(
+            f"det J<sub>{k}</sub> = 0" for k, part in (("11", arm), ("22", wrist)) if part and exact
+        )
+        lines.append(
+            "Decoupled at the wrist centre: det J = det J<sub>11</sub> (arm) · det J<sub>22</sub> (wrist)"
+            + (f"; {zero}." if zero else ".")
+        )
+        return "<br>".join(lines)
+    lines = [_tool_line(loss, planar) for loss in snap.losses]
+    mixed = any(r < 3 for r in snap.rows) and any(r >= 3 for r in snap.rows)
     weigh = (
-        f" (rad/s weighed as the tool moving L = {fmt.quantity(lost.length, 'm')}, the arm's reach)"
-        if any(r < 3 for r in snap.rows) and any(r >= 3 for r in snap.rows)
+        f", rad/s weighed as the tool moving L = {fmt.quantity(snap.length, 'm')} (the reach)"
+        if mixed
         else ""
     )
-    return f"Lost direction: {' + '.join(parts) or 'mixed'}{weigh}."
+    rows = "" if len(snap.rows) == 6 else f" (rows {row_label(snap.rows)})"
+    lines.append(f"Measured at the tool point{rows}{weigh}.")
+    if "wrist" in snap.report.kinds:
+        lines.append("The wrist axes lie in one plane (not decoupled: no spherical wrist on an arm).")
+    return "<br>".join(lines)
 
 
 def status_html(snap: Snapshot, state: LabState) -> str:
@@ -119,6 +165,15 @@ def measures_html(snap: Snapshot, robot: Robot) -> str:
         ("det J", fmt.number(snap.det) if snap.det is not None else f"— ({n_rows}×{n}, not square)"),
         ("rank", f"{snap.rank} of {min(n_rows, n)}"),
     ]
+    d = snap.decoupling
+    if d is not None:
+        arm = (
+            fmt.number(d.det_arm)
+            if d.det_arm is not None
+            else f"σ<sub>min</sub> {fmt.number(d.sigma_arm[-1])}"
+        )
+        rows.append(("arm J<sub>11</sub> (wrist centre), det", arm))
+        rows.append(("wrist J<sub>22</sub>, det", fmt.number(d.det_wrist)))
     body = "".join(
         f'<tr><th>{label}</th><td class="{"v wrap" if ", " in value else "v"}">{value}</td></tr>'
         for label, value in rows

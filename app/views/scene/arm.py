@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import io
 import logging
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,7 +21,7 @@ import numpy as np
 import viser
 
 from kinematics import Robot, joint_frames, link_frames
-from kinematics.urdf import mesh_filename_handler
+from kinematics.urdf import is_xacro, mesh_filename_handler, read_description
 
 from ...core.snapshot import Snapshot
 from ...core.state import Options
@@ -141,7 +142,8 @@ class ArmView:
         m = len(robot.axes)
         self._rev = np.flatnonzero(g.revolute)
         self._pri = np.flatnonzero(~g.revolute)
-        self._draw_links = self._meshes is None
+        # Links are drawn as generated geometry unless every visual of the URDF was found.
+        self._draw_links = self._meshes is None or not self._meshes.complete
         self._n_links = len(g.polyline(L0, joint_frames(robot, robot.home))) - 1 if self._draw_links else 0
         n_cyl = self._n_links + len(self._rev)
         self._axis_radius = 0.04 * s * (1.0 - 0.07 * np.arange(m))  # nested when axes line up
@@ -277,7 +279,8 @@ def _tint(rgb: tuple[int, int, int], status: str) -> np.ndarray:
 class _UrdfMeshes:
     """A URDF's visual meshes (viser's ViserUrdf), driven by the robot's joint values."""
 
-    def __init__(self, urdf_view, names: tuple[str, ...], robot: Robot) -> None:
+    def __init__(self, urdf_view, names: tuple[str, ...], robot: Robot, complete: bool = True) -> None:
+        self.complete = complete
         self._view = urdf_view
         index = {name: i for i, name in enumerate(robot.joint_names)}
         self._map = [index.get(name) for name in names]
@@ -293,7 +296,8 @@ class _UrdfMeshes:
 def _load_urdf_meshes(
     target: viser.ClientHandle | viser.ViserServer, robot: Robot, root: str
 ) -> _UrdfMeshes | None:
-    """ViserUrdf for a URDF robot whose every visual geometry loads, else ``None`` (generated geometry)."""
+    """ViserUrdf of the visual geometry of a URDF robot that loads (all of it, or some: then
+    ``complete`` is False and the links are drawn as generated geometry too); ``None`` when none does."""
     if not robot.urdf_path:
         return None
     try:
@@ -301,23 +305,29 @@ def _load_urdf_meshes(
         from viser.extras import ViserUrdf
 
         path = Path(robot.urdf_path)
+        source: str | io.BytesIO = str(path)
+        if is_xacro(path):  # the URDF the xacro file expanded to (its last expansion, with its arguments)
+            source = io.BytesIO(read_description(path))
         urdf = yourdfpy.URDF.load(
-            str(path),
+            source,
             build_scene_graph=True,
             load_meshes=True,
             filename_handler=mesh_filename_handler(path),
         )
         wanted = sum(1 for link in urdf.robot.links for v in link.visuals if v.geometry is not None)
-        if wanted == 0 or urdf.scene is None or len(urdf.scene.geometry) < wanted:
+        found = 0 if urdf.scene is None else len(urdf.scene.geometry)
+        if wanted == 0 or found == 0:
+            log.info("%s: none of its %d visual meshes found; drawing generated geometry", path.name, wanted)
+            return None
+        if found < wanted:  # draw the ones found, and the arm's generated links so nothing is missing
             log.info(
-                "%s: %d of %d visual meshes found; drawing generated geometry",
+                "%s: %d of %d visual meshes found; drawing them and the generated links",
                 path.name,
-                0 if urdf.scene is None else len(urdf.scene.geometry),
+                found,
                 wanted,
             )
-            return None
         view = ViserUrdf(target, urdf, root_node_name=root)
-        return _UrdfMeshes(view, view.get_actuated_joint_names(), robot)
+        return _UrdfMeshes(view, view.get_actuated_joint_names(), robot, complete=found >= wanted)
     except Exception:  # a broken mesh must not stop the app: fall back to generated geometry
         log.warning(
             "cannot load the meshes of %s; drawing generated geometry", robot.urdf_path, exc_info=True

@@ -39,7 +39,7 @@ from ..palette import (
 from .arm import ArmGeometry
 from .geometry import TINY, finite, finite_tuple, set_if_changed, wxyz_one
 
-__all__ = ["Overlays", "Arrows", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE"]
+__all__ = ["Overlays", "Arrows", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE", "MAX_LOSSES", "GAP"]
 
 LINEAR_SECONDS = 0.5
 """Drawn length [m] per [m/s] of tool-point velocity (and per [m/rad] of a column)."""
@@ -49,6 +49,20 @@ FORCE_SIGMA_REF = 0.4
 SHOWN_SHARE = 0.1
 """A lost translation (rotation) is drawn when it carries at least this share of the lost direction."""
 _MIN_LENGTH = 1e-3
+MAX_LOSSES = 3
+"""Lost directions drawn at most (a rank-3 loss: the iiwa's candle)."""
+GAP = 0.3
+"""A lost translation's arrow starts this many unit lengths beyond its point: clear of the links."""
+FLAT_FLOOR = 0.03
+"""At a singularity a flat ellipsoid axis is drawn this many robot sizes thick, so it can be seen."""
+_LABELS = {
+    ("arm", "v"): "arm: lost translation of the wrist centre",
+    ("wrist", "w"): "wrist: lost rotation axis",
+    ("tool", "v"): "lost translation",
+    ("tool", "w"): "lost rotation axis",
+    ("arm", "w"): "lost rotation axis",
+    ("wrist", "v"): "lost translation",
+}
 
 
 _NO_POINTS = np.zeros((0, 3))
@@ -130,13 +144,23 @@ class _Ellipsoid:
         center, axes, r = self._drawn
         return center + np.concatenate([axes * r, -(axes * r)], axis=1).T
 
-    def set(self, center: np.ndarray, axes: np.ndarray, radii: np.ndarray, show: bool, cap: float) -> None:
+    def set(
+        self,
+        center: np.ndarray,
+        axes: np.ndarray,
+        radii: np.ndarray,
+        show: bool,
+        cap: float,
+        floor: float = TINY,
+    ) -> None:
+        """Draw (or hide) the ellipsoid; a flat axis is drawn ``floor`` thick so a collapsed
+        ellipsoid stays visible as a thin disc or needle around what lies inside it."""
         set_if_changed(self.node, "visible", bool(show))
         if not show:
             self._drawn = None
             return
-        # NaN → TINY, +inf → cap, in plain Python (three numbers: cheaper than NumPy's nan_to_num and clip)
-        r = tuple(min(max(x, TINY), cap) if x == x else TINY for x in np.asarray(radii, float).tolist())
+        # NaN → floor, +inf → cap, in plain Python (three numbers: cheaper than NumPy's nan_to_num and clip)
+        r = tuple(min(max(x, floor), cap) if x == x else floor for x in np.asarray(radii, float).tolist())
         update_props(self.node, scale=r)
         set_pose(self.node, finite_tuple(center), wxyz_one(axes))
         self._drawn = (np.asarray(center, float), np.asarray(axes, float), np.array(r))
@@ -151,6 +175,20 @@ def _ring(center: np.ndarray, axis: np.ndarray, radius: float, segments: int = 2
     t = np.linspace(0.0, 2 * np.pi * 0.85, segments + 1)  # an open ring: it reads as a turn
     pts = center + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
     return np.stack([pts[:-1], pts[1:]], axis=1)
+
+
+def _clear_start(point: np.ndarray, u: np.ndarray, links: np.ndarray, gap: float, width: float) -> np.ndarray:
+    """Where an arrow from ``point`` along ``u`` starts so that it is outside the arm: ``gap`` beyond
+    ``point``, or beyond the last piece of the links (polyline ``links``) within ``width`` of its line."""
+    t = np.linspace(0.0, 1.0, 9)
+    samples = (links[:-1, None, :] * (1 - t)[None, :, None] + links[1:, None, :] * t[None, :, None]).reshape(
+        -1, 3
+    )
+    d = samples - point
+    along = d @ u
+    lateral = np.linalg.norm(d - along[:, None] * u, axis=1)
+    near = along[(lateral < width) & (along > 0)]
+    return point + u * ((float(near.max()) if near.size else 0.0) + gap)
 
 
 class Overlays:
@@ -172,6 +210,8 @@ class Overlays:
         self.angular = Arrows(scene, f"{root}/angular_columns", 0.75 * r)
         self.motion = Arrows(scene, f"{root}/twist_and_force", 1.2 * r)
         self.lost_v = Arrows(scene, f"{root}/lost_translation", 1.6 * r)
+        self.arm_ellipsoid = _Ellipsoid(scene, f"{root}/arm_ellipsoid", STATUS_RGB["singular"], 0.3)
+        self.wrist_ellipsoid = _Ellipsoid(scene, f"{root}/wrist_ellipsoid", ROTATION_ELLIPSOID_RGB, 0.3)
         self.lost_w = scene.add_line_segments(
             f"{root}/lost_rotation",
             points=np.zeros((1, 2, 3), np.float32),
@@ -180,14 +220,18 @@ class Overlays:
             thickness_units="screen",
             visible=False,
         )
-        self.lost_labels = {
-            part: scene.add_label(f"{root}/lost_{part}_label", text, visible=False, anchor="bottom-left")
-            for part, text in (("v", "lost translation"), ("w", "lost rotation axis"))
-        }
-        self._nodes: list = [e.node for e in (self.velocity, self.rotational, self.force)]
+        self.lost_labels = [
+            scene.add_label(f"{root}/lost_label_{i}", "lost", visible=False, anchor="bottom-left")
+            for i in range(MAX_LOSSES)
+        ]
+        self._label_texts = [""] * MAX_LOSSES
+        self.lost_tips: np.ndarray = _NO_POINTS
+        ellipsoids = (self.velocity, self.rotational, self.force, self.arm_ellipsoid, self.wrist_ellipsoid)
+        self._nodes: list = [e.node for e in ellipsoids]
         self._nodes += [a.node for a in (self.columns, self.angular, self.motion, self.lost_v)]
-        self._nodes += [self.lost_w, *self.lost_labels.values()]
+        self._nodes += [self.lost_w, *self.lost_labels]
         self._links: np.ndarray = _NO_POINTS
+        self._show_velocity = True
         self._motion_colors = np.array(
             [TWIST_RGB, TWIST_ANGULAR_RGB, DESIRED_RGB, FORCE_RGB, FORCE_RGB], np.uint8
         )
@@ -201,6 +245,9 @@ class Overlays:
             self.velocity.extent,
             self.rotational.extent,
             self.force.extent,
+            self.arm_ellipsoid.extent,
+            self.wrist_ellipsoid.extent,
+            self.lost_tips,
             self.columns.tips,
             self.angular.tips,
             self.motion.tips,
@@ -220,13 +267,16 @@ class Overlays:
         cap = ELLIPSOID_CAP * s * k
 
         e = snap.velocity
-        self.velocity.set(p, e.axes, e.radii * lin, options.velocity_ellipsoid, cap)
+        # Decoupled at the wrist centre, the ellipsoids that flatten are the blocks' (drawn there instead).
+        decoupled = any(loss.part != "tool" for loss in snap.losses)
+        floor = FLAT_FLOOR * s * k if status != "regular" else TINY  # a collapsed ellipsoid stays visible
+        self.velocity.set(p, e.axes, e.radii * lin, options.velocity_ellipsoid and not decoupled, cap, floor)
         if status != self._status:
             self.velocity.node.color = STATUS_RGB[status]
             self._status = status
         rot = snap.rotational
-        if rot is not None and options.rotational_ellipsoid:
-            self.rotational.set(p, rot.axes, rot.radii * 0.6 * unit, True, cap)
+        if rot is not None and options.rotational_ellipsoid and not decoupled:
+            self.rotational.set(p, rot.axes, rot.radii * 0.6 * unit, True, cap, floor)
         else:
             self.rotational.set(p, _EYE, _ZERO3, False, 1.0)
         force = snap.force
@@ -266,37 +316,66 @@ class Overlays:
         else:
             self.motion.hide()
 
-        self._lost(snap, p, unit)
+        self._show_velocity = options.velocity_ellipsoid
+        self._blocks(snap, lin, unit, cap, FLAT_FLOOR * s * k)
+        self._lost(snap, unit)
         self._links = snap.link_frames[:, :3, 3]
 
-    def _lost(self, snap: Snapshot, p: np.ndarray, unit: float) -> None:
-        """The lost direction: an arrow for its translation, an axis with a ring for its rotation."""
-        lost = snap.lost
-        if lost is None:  # regular: nothing is lost
-            self.lost_v.hide()
-            for node in (self.lost_w, *self.lost_labels.values()):
-                set_if_changed(node, "visible", False)
-            return
-        show_v = lost.translation_share >= SHOWN_SHARE
-        show_w = lost.rotation_share >= SHOWN_SHARE and not self.planar
+    def _blocks(self, snap: Snapshot, lin: float, unit: float, cap: float, floor: float) -> None:
+        """The decoupled block that flattens, drawn at the wrist centre: the wrist centre's velocity
+        ellipsoid by the arm joints (arm loss), the wrist joints' angular one (wrist loss)."""
+        parts = {loss.part for loss in snap.losses}
+        d = snap.decoupling
+        for part, node, e, scale in (
+            ("arm", self.arm_ellipsoid, snap.arm_ellipsoid, lin),
+            ("wrist", self.wrist_ellipsoid, snap.wrist_ellipsoid, 0.6 * unit),
+        ):
+            if d is None or e is None or part not in parts or not self._show_velocity:
+                node.set(_ZERO3, _EYE, _ZERO3, False, cap)
+            else:
+                node.set(d.centre, e.axes, e.radii * scale, True, cap, floor)
+
+    def _lost(self, snap: Snapshot, unit: float) -> None:
+        """Every lost direction at its own point: an arrow for a translation (starting a little beyond
+        the point, away from the arm), an axis with a ring for a rotation, each with its label."""
+        starts, vectors, segments, tips, texts = [], [], [], [], []
         length = 2.0 * unit
-        vector = lost.translation * length * np.sqrt(lost.translation_share)
-        self.lost_v.set(p, vector[None], _LOST_COLORS, show=show_v)
-        label_v = self.lost_labels["v"]
-        set_if_changed(label_v, "visible", bool(show_v))
-        if show_v:
-            set_pose(label_v, finite_tuple(self.lost_v.tips[0]))
-        label_w = self.lost_labels["w"]
-        set_if_changed(self.lost_w, "visible", bool(show_w))
-        set_if_changed(label_w, "visible", bool(show_w))
-        if show_w:
-            a = lost.rotation
-            half = length * np.sqrt(lost.rotation_share)
-            axis = np.array([[p - a * half, p + a * half]])
-            update_props(
-                self.lost_w, points=finite(np.concatenate([axis, _ring(p + a * 0.6 * half, a, 0.25 * half)]))
-            )
-            set_pose(label_w, finite_tuple(p + a * half))
+        for loss in snap.losses[:MAX_LOSSES]:
+            a, point = loss.rotation, loss.point
+            show_v = loss.translation_share >= SHOWN_SHARE or (self.planar and loss.translation_share > 0)
+            show_w = loss.rotation_share >= SHOWN_SHARE and not self.planar
+            if show_v:
+                u = loss.translation
+                size = length * (np.sqrt(loss.translation_share) if loss.part == "tool" else 1.0)
+                start = _clear_start(
+                    point, u, snap.link_frames[:, :3, 3], GAP * unit, 0.06 * self.geometry.size
+                )
+                starts.append(start)
+                vectors.append(u * size)
+                tips.append(start + u * (size + 0.1 * unit))
+                texts.append(_LABELS[loss.part, "v"])
+            if show_w:
+                half = length * (np.sqrt(loss.rotation_share) if loss.part == "tool" else 0.75)
+                segments.append(np.array([[point - a * half, point + a * half]]))
+                segments.append(_ring(point + a * 0.6 * half, a, 0.25 * half))
+                tips.append(point + a * (half + 0.1 * unit))
+                texts.append(_LABELS[loss.part, "w"])
+        if starts:
+            self.lost_v.set(np.array(starts), np.array(vectors), np.repeat(_LOST_COLORS, len(starts), axis=0))
+        else:
+            self.lost_v.hide()
+        set_if_changed(self.lost_w, "visible", bool(segments))
+        if segments:
+            update_props(self.lost_w, points=finite(np.concatenate(segments)))
+        for i, label in enumerate(self.lost_labels):
+            shown = i < len(texts)
+            set_if_changed(label, "visible", shown)
+            if shown:
+                if texts[i] != self._label_texts[i]:
+                    label.text = texts[i]
+                    self._label_texts[i] = texts[i]
+                set_pose(label, finite_tuple(tips[i]))
+        self.lost_tips = np.array(tips) if tips else _NO_POINTS
 
     def remove(self) -> None:
         for node in self._nodes:

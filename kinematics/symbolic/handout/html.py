@@ -9,7 +9,7 @@ from ..steps.step import DH_COLUMNS, Step, lhs_mathml
 from ..typeset.escape import NOTE_CHARS, xml_text
 from ..typeset.printing import Notation
 from ..typeset.render import MATH_STYLE
-from . import INTRO, TITLES, Handout
+from .content import INTRO, TITLES, Handout
 from .parts import (
     dh_cell,
     example_lines,

@@ -4,12 +4,13 @@ numbers and the singular sets, in LaTeX or MathML (see :mod:`.handout_render`, :
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 import sympy as sp
 
 from ..steps.step import Step, lhs_mathml, step_notation
 from ..typeset.printing import Notation
 from ..typeset.render import KIND_TEXT
-from . import ROW_NAMES, Example, Handout, angle_parts, degrees_text
+from .content import ROW_NAMES, Example, Handout, angle_parts, degrees_text
 
 __all__ = [
     "handout_title",
@@ -112,8 +113,11 @@ def _rates(v: np.ndarray, kinds: tuple[str, ...]) -> str:
 
 def example_math(ex: Example, kinds: tuple[str, ...], latex: bool) -> list[tuple[str, str]]:
     """(caption, formula) pairs of the worked example."""
-    num = (lambda M, d: _num_latex(M, d)) if latex else (lambda M, d: _num_mathml(M, d))
-    col = lambda v: np.asarray(v).reshape(-1, 1)  # noqa: E731
+    num = _num_latex if latex else _num_mathml
+
+    def col(v: npt.ArrayLike) -> np.ndarray:
+        return np.asarray(v).reshape(-1, 1)
+
     lhs = (lambda t: t) if latex else lhs_mathml
     eq = " = " if latex else "<mo>=</mo>"
     J_q, det_q, w_q, qd, Jqd, J_inv, v, solved = (

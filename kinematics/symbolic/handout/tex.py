@@ -10,7 +10,7 @@ from ..steps.layout import OMITTED
 from ..steps.step import DH_COLUMNS, Step
 from ..typeset.escape import NOTE_CHARS, latex_text
 from ..typeset.printing import Notation
-from . import INTRO, TITLES, Handout
+from .content import INTRO, TITLES, Handout
 from .parts import (
     dh_cell,
     example_lines,

@@ -44,8 +44,9 @@ from ...model import Robot
 from ..chain import frames_within, multiply
 from ..core import DEFAULT_TIMEOUT, check_timeout
 from ..model import SymbolicError, build_model, check_frame
-from ..singular import determinant
+from ..singular import SingularSet, determinant
 from ..trig import Deadline
+from ..typeset.render import det_label
 from .methods import METHOD_STEPS, Context, rotate_rows
 from .step import DHRow, Step
 
@@ -77,7 +78,7 @@ def dh_rows(robot: Robot, symbolic_params: bool = False) -> tuple[DHRow, ...]:
 
 
 def _is_identity(T: sp.Matrix) -> bool:
-    return T == sp.eye(4)
+    return bool(T == sp.eye(4))
 
 
 def _transform_steps(ctx: Context) -> list[Step]:
@@ -182,7 +183,7 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
     return Step(
         "detJ",
         title,
-        det_latex_label(det.rows, det.gram, robot.dof),
+        det_label(det.rows, det.gram, robot.dof, latex=True),
         sp.Matrix([[det.expr]]),
         None,
         ctx.model,
@@ -192,22 +193,7 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
     )
 
 
-_ROW_LATEX = ("v_{x}", "v_{y}", "v_{z}", "\\omega_{x}", "\\omega_{y}", "\\omega_{z}")
-
-
-def det_latex_label(rows: tuple[int, ...], gram: bool, dof: int) -> str:
-    """The LaTeX label of a determinant: ``\\det J``, ``\\det J_{v}``, ``\\det(J J^{T})`` …"""
-    blocks: dict[tuple[int, ...], str] = {(0, 1, 2): "v", (3, 4, 5): "\\omega"}
-    if len(rows) == 6:
-        J = "J"
-    else:
-        J = "J_{" + blocks.get(tuple(rows), "(" + ", ".join(_ROW_LATEX[r] for r in rows) + ")") + "}"
-    if not gram:
-        return f"\\det {J}"
-    return f"\\det({J} {J}^{{T}})" if len(rows) < dof else f"\\det({J}^{{T}} {J})"
-
-
-def _set_words(s) -> str:
+def _set_words(s: SingularSet) -> str:
     name = {"wrist": "wrist singularity", "elbow": "elbow singularity", "shoulder": "shoulder singularity"}
     text = f"{sp.sstr(s.factor)} = 0"
     if s.solutions is not None and len(s.joints) == 1:

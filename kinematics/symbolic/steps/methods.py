@@ -33,16 +33,16 @@ def rotate_rows(J: sp.Matrix, R: sp.Matrix) -> sp.Matrix:
     return sp.Matrix.vstack(R * J[:3, :], R * J[3:, :])
 
 
-def rate_symbols(model: SymbolicModel) -> tuple[tuple[sp.Symbol, ...], dict]:
+def rate_symbols(model: SymbolicModel) -> tuple[tuple[sp.Symbol, ...], dict[sp.Symbol, str]]:
     """The joint-rate symbols q̇₁ … q̇ₙ and their LaTeX names (θ̇ᵢ or ḋᵢ)."""
     qd = tuple(sp.Symbol(f"qd_{i + 1}", real=True) for i in range(model.dof))
-    names = {}
+    names: dict[sp.Symbol, str] = {}
     for i, (s, kind) in enumerate(zip(qd, model.robot.joint_types, strict=True)):
         names[s] = f"\\dot{{\\theta}}_{{{i + 1}}}" if kind == "revolute" else f"\\dot{{d}}_{{{i + 1}}}"
     return qd, names
 
 
-def wrench_symbols() -> tuple[tuple[sp.Symbol, ...], dict]:
+def wrench_symbols() -> tuple[tuple[sp.Symbol, ...], dict[sp.Symbol, str]]:
     """The tool wrench [f; n] symbols and their LaTeX names."""
     w = tuple(sp.Symbol(f"{a}_{b}", real=True) for a in "fn" for b in "xyz")
     return w, {s: f"{str(s)[0]}_{{{str(s)[2]}}}" for s in w}
@@ -72,7 +72,7 @@ class Context:
         section: str = "transforms",
         *,
         inputs: tuple[sp.Symbol, ...] = (),
-        names: dict | None = None,
+        names: dict[sp.Symbol, str] | None = None,
     ) -> Step:
         """A :class:`Step` with ``expr`` simplified within the deadline."""
         S = simplify_matrix(
@@ -196,7 +196,10 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     rate = lambda value: sum(sp.diff(value, qj) * d for qj, d in zip(m.q, qd, strict=True))  # noqa: E731
     w, v = sp.zeros(3, 1), sp.zeros(3, 1)
     out: list[Step] = []
-    mk = lambda key, title, lhs, e, j: ctx.step(key, title, lhs, e, j, "propagation", inputs=qd, names=names)  # noqa: E731
+
+    def mk(key: str, title: str, lhs: str, e: sp.Matrix, j: int | None) -> Step:
+        return ctx.step(key, title, lhs, e, j, "propagation", inputs=qd, names=names)
+
     chain = chain_elements(m)
     for idx, (kind, X, k) in enumerate(chain):
         w, v = carry_outward(kind, X, w, v, rate)
@@ -266,7 +269,10 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     m = ctx.model
     W, names = wrench_symbols()
     f, n = sp.Matrix(W[:3]), sp.Matrix(W[3:])  # the wrench at the tool origin, in the tool axes
-    mk = lambda key, title, lhs, e, j: ctx.step(key, title, lhs, e, j, "force", inputs=W, names=names)  # noqa: E731
+
+    def mk(key: str, title: str, lhs: str, e: sp.Matrix, j: int | None) -> Step:
+        return ctx.step(key, title, lhs, e, j, "force", inputs=W, names=names)
+
     out: list[Step] = []
     tau: dict[int, sp.Expr] = {}
     taus: dict[int, Step] = {}

@@ -12,13 +12,14 @@ from __future__ import annotations
 import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import sympy as sp
 
 from ..model import SymbolicModel
 from ..singular import SingularSet
-from ..typeset.escape import latex_text, xml_text
+from ..typeset.escape import xml_text
 from ..typeset.layout import MATHML_WIDTH, mathml_lines, text_width, too_long
 from ..typeset.printing import Notation
 from ..typeset.render import MATH_STYLE
@@ -37,7 +38,7 @@ DH_COLUMNS = {
 
 
 def step_notation(
-    model: SymbolicModel, inputs: Sequence[sp.Symbol] = (), names: dict | None = None
+    model: SymbolicModel, inputs: Sequence[sp.Symbol] = (), names: dict[sp.Symbol, str] | None = None
 ) -> Notation:
     """A :class:`Notation` for the symbols of ``model`` and the display ``names`` of step inputs."""
     display = {**model.display, **(names or {})}
@@ -76,7 +77,7 @@ class Step:
     model: SymbolicModel = field(repr=False)
     section: str = ""
     inputs: tuple[sp.Symbol, ...] = ()
-    names: dict = field(default_factory=dict, repr=False)
+    names: dict[sp.Symbol, str] = field(default_factory=dict, repr=False)
     notes: tuple[str, ...] = ()
     singular: tuple[SingularSet, ...] = ()
 
@@ -86,7 +87,7 @@ class Step:
         return step_notation(self.model, self.inputs, self.names)
 
     def _scalar(self) -> bool:
-        return self.expr.shape == (1, 1)
+        return bool(self.expr.shape == (1, 1))
 
     def column_groups(self, width_chars: float) -> list[tuple[int, int]]:
         """[start, stop) column ranges whose wrapped entries fit ``width_chars`` characters together."""
@@ -169,15 +170,14 @@ class Step:
         """The caption escaped for HTML."""
         return xml_text(self.title, 2000)
 
-    def title_latex(self) -> str:
-        """The caption escaped for LaTeX text."""
-        return latex_text(self.title, 2000)
-
     # ------------------------------------------------------------------ numbers
     @functools.cached_property
-    def _function(self) -> Callable:
+    def _function(self) -> Callable[..., Any]:
         expr = self.expr.xreplace(self.model.numeric_values())
-        return sp.lambdify([list(self.model.q), list(self.inputs)], expr, modules="numpy", cse=True)
+        f: Callable[..., Any] = sp.lambdify(
+            [list(self.model.q), list(self.inputs)], expr, modules="numpy", cse=True
+        )
+        return f
 
     def numeric(self, q: object, inputs: object = None) -> np.ndarray:
         """The step's value at ``q`` (n,) [rad | m], shape of :attr:`expr`.
@@ -199,14 +199,6 @@ class Step:
 
 def _block(inner: str) -> str:
     return f'<math display="block" style="{MATH_STYLE}"><mrow>{inner}</mrow></math>'
-
-
-def _stack(lines: list[str]) -> str:
-    indent = '<mspace width="1em"/>'
-    rows = "".join(
-        f"<mtr><mtd>{line if k == 0 else indent + line}</mtd></mtr>" for k, line in enumerate(lines)
-    )
-    return f'<mtable columnalign="left" rowspacing="0.1em">{rows}</mtable>'
 
 
 _LHS_MML = {

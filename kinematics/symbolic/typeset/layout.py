@@ -15,6 +15,7 @@ makes a matrix wider than any screen. Here every entry is printed on its own, so
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
 import sympy as sp
 
@@ -56,12 +57,6 @@ def text_width(mathml: str) -> float:
 
 def _terms(N: Notation, expr: sp.Expr) -> list[sp.Expr]:
     return N.ordered_terms(expr) if expr.is_Add else [expr]
-
-
-def _signed(N: Notation, term: sp.Expr, first: bool) -> str:
-    if term.could_extract_minus_sign():
-        return f"<mo>\u2212</mo>{N.mathml(-term)}"
-    return N.mathml(term) if first else f"<mo>+</mo>{N.mathml(term)}"
 
 
 def _pack(pieces: list[str], width: float) -> list[str]:
@@ -131,7 +126,7 @@ def too_long(expr: sp.Expr) -> bool:
 
 
 def _entries(
-    M: sp.Matrix, deadline: Deadline | None, show
+    M: sp.Matrix, deadline: Deadline | None, show: Callable[[sp.Expr], str]
 ) -> tuple[list[list[str | None]], list[tuple[int, int]]]:
     rows, skipped = [], []
     for i in range(M.rows):
@@ -148,7 +143,9 @@ def _entries(
     return rows, skipped
 
 
-def latex_matrix(N: Notation, M: sp.Matrix, deadline: Deadline | None = None) -> tuple[str, list]:
+def latex_matrix(
+    N: Notation, M: sp.Matrix, deadline: Deadline | None = None
+) -> tuple[str, list[tuple[int, int]]]:
     """``\\begin{bmatrix}…\\end{bmatrix}`` of ``M`` and the (i, j) shown as ∗ (not typeset)."""
     rows, skipped = _entries(M, deadline, N.latex)
     body = "\\\\".join(" & ".join("\\ast" if e is None else e for e in row) for row in rows)
@@ -157,7 +154,7 @@ def latex_matrix(N: Notation, M: sp.Matrix, deadline: Deadline | None = None) ->
 
 def mathml_matrix(
     N: Notation, M: sp.Matrix, deadline: Deadline | None = None, width: float | None = MATHML_WIDTH
-) -> tuple[str, list]:
+) -> tuple[str, list[tuple[int, int]]]:
     """``[ mtable ]`` of ``M`` (long entries wrapped when ``width`` is set) and the (i, j) shown as ∗."""
     show = N.mathml if width is None else (lambda e: _entry_mathml(N, e, width))
     rows, skipped = _entries(M, deadline, show)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping, Sequence
 from decimal import Decimal, localcontext
-from typing import Literal
+from typing import Any, Literal, cast
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
@@ -82,7 +82,7 @@ class Notation:
         sep = "," if len(self.q) > 9 else ""
         return letter, sep.join(str(i) for i in idx)
 
-    def factor_key(self, f: sp.Expr) -> tuple:
+    def factor_key(self, f: sp.Expr) -> tuple[Any, ...]:
         """Order of factors in a product: constants, parameters, joint values, trig by joint, sums."""
         base = f.as_base_exp()[0]
         if base.is_Add:
@@ -99,7 +99,7 @@ class Notation:
     # ------------------------------------------------------------------ LaTeX
     def latex(self, expr: sp.Basic) -> str:
         """LaTeX of an expression or matrix (matrices as ``bmatrix``)."""
-        return _Latex(self).doprint(expr)
+        return cast(str, _Latex(self).doprint(expr))
 
     def _legend(self) -> tuple[list[str], list[Literal["revolute", "prismatic"]], list[sp.Symbol]]:
         """What the legend lists: index patterns of the abbreviations used ("i", "ij", …),
@@ -141,7 +141,7 @@ class Notation:
     # ----------------------------------------------------------------- MathML
     def mathml(self, expr: sp.Basic) -> str:
         """Presentation MathML (the inner element, without ``<math>``) of an expression or matrix."""
-        return _MathML(self).doprint(expr).replace("<mo>-</mo>", "<mo>\u2212</mo>")
+        return cast(str, _MathML(self).doprint(expr)).replace("<mo>-</mo>", "<mo>\u2212</mo>")
 
     def ordered_terms(self, expr: sp.Expr) -> list[sp.Expr]:
         """The terms of a sum in the order the printers show them."""
@@ -158,7 +158,10 @@ class Notation:
     def mathml_legend_items(self) -> list[str]:
         """The legend's items, each a MathML fragment (the joint names escaped), for wrapping text."""
         patterns, kinds, params = self._legend()
-        theta = lambda i: f"<msub><mi>θ</mi><mi>{i}</mi></msub>"  # noqa: E731
+
+        def theta(i: str) -> str:
+            return f"<msub><mi>θ</mi><mi>{i}</mi></msub>"
+
         out = []
         for sub in patterns:
             arg = (
@@ -189,7 +192,7 @@ class Notation:
         return out
 
 
-def _natural(name: str) -> tuple:
+def _natural(name: str) -> tuple[Any, ...]:
     m = re.match(r"([^\d]*)(\d*)(.*)", name)
     return (m.group(1), int(m.group(2) or 0), m.group(3))  # type: ignore[union-attr]
 
@@ -221,7 +224,7 @@ def _mathml_name(latex: str) -> str:
     return f"<msup>{head}<mn>{sup}</mn></msup>" if sup else head
 
 
-class _Latex(LatexPrinter):
+class _Latex(LatexPrinter):  # type: ignore[misc]  # sympy has no type information
     def __init__(self, notation: Notation) -> None:
         super().__init__({"mat_str": "bmatrix", "mat_delim": "", "symbol_names": notation.display})
         self.notation = notation
@@ -244,7 +247,7 @@ class _Latex(LatexPrinter):
     def _print_Mul(self, expr: sp.Mul) -> str:
         coeff, factors = expr.as_coeff_mul()
         if any(f.as_base_exp()[1].could_extract_minus_sign() for f in factors) or not factors:
-            return super()._print_Mul(expr)
+            return cast(str, super()._print_Mul(expr))
         ordered = sorted(factors, key=self.notation.factor_key)
         body = " ".join(
             f"\\left({self._print(f)}\\right)" if precedence(f) < PRECEDENCE["Mul"] else self._print(f)
@@ -257,17 +260,17 @@ class _Latex(LatexPrinter):
         return f"{self._print(coeff)} {body}"
 
 
-class _MathML(MathMLPresentationPrinter):
+class _MathML(MathMLPresentationPrinter):  # type: ignore[misc]  # sympy has no type information
     def __init__(self, notation: Notation) -> None:
         super().__init__({"mat_delim": "["})
         self.notation = notation
 
-    def _element(self, xml: str):  # parse one of our own small, well-formed snippets
+    def _element(self, xml: str) -> Any:  # parse one of our own small, well-formed snippets
         from xml.dom.minidom import parseString
 
         return parseString(f"<mrow>{xml}</mrow>").documentElement
 
-    def _print_trig(self, expr: sp.Expr):
+    def _print_trig(self, expr: sp.Expr) -> Any:
         c = self.notation.compact(expr)
         if c is None:
             return super()._print_Function(expr)
@@ -277,22 +280,22 @@ class _MathML(MathMLPresentationPrinter):
     _print_sin = _print_trig
     _print_cos = _print_trig
 
-    def _print_Pi(self, expr: sp.Expr):  # the character, not the HTML-only entity &pi;
+    def _print_Pi(self, expr: sp.Expr) -> Any:  # the character, not the HTML-only entity &pi;
         return self._element("<mi>π</mi>")
 
-    def _print_Symbol(self, sym: sp.Symbol, style: str = "plain"):
+    def _print_Symbol(self, sym: sp.Symbol, style: str = "plain") -> Any:
         if sym in self.notation.display:
             return self._element(_mathml_name(self.notation.display[sym]))
         return super()._print_Symbol(sym, style)
 
-    def _print_Rational(self, expr: sp.Rational):
+    def _print_Rational(self, expr: sp.Rational) -> Any:
         text = decimal_text(expr)
         if text is None:
             return super()._print_Rational(expr)
         sign = "<mo>-</mo>" if text.startswith("-") else ""
         return self._element(f"{sign}<mn>{text.lstrip('-')}</mn>")
 
-    def _print_Mul(self, expr: sp.Mul):
+    def _print_Mul(self, expr: sp.Mul) -> Any:
         coeff, factors = expr.as_coeff_mul()
         if any(f.as_base_exp()[1].could_extract_minus_sign() for f in factors) or not factors:
             return super()._print_Mul(expr)

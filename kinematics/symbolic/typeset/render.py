@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from ...conventions import ROW_LATEX, ROW_MATHML
 from ...model import Robot
 from ..core import DEFAULT_TIMEOUT, Derivation, derive
 from ..singular import Determinant, determinant
@@ -27,6 +28,7 @@ __all__ = [
     "jacobian_mathml",
     "jacobian_latex",
     "notation_for",
+    "det_label",
 ]
 
 MATH_STYLE = (
@@ -73,14 +75,10 @@ def _lhs(frame: str, latex: bool) -> str:
     return "<mi>J</mi>" if frame == "base" else "<msub><mi>J</mi><mtext>tool</mtext></msub>"
 
 
-_ROWS_LATEX = ("v_{x}", "v_{y}", "v_{z}", "\\omega_{x}", "\\omega_{y}", "\\omega_{z}")
-_ROWS_MATHML = tuple(f"<msub><mi>{a}</mi><mi>{b}</mi></msub>" for a in ("v", "ω") for b in "xyz")
-
-
-def _det_label(det: Determinant, latex: bool) -> str:
-    """``det J``, ``det J_v``, ``det J_ω``, ``det J_(vx, vy, ωz)``, ``det(J Jᵀ)`` or ``det(Jᵀ J)``."""
-    rows = det.rows
-    names = _ROWS_LATEX if latex else _ROWS_MATHML
+def det_label(rows: tuple[int, ...], gram: bool, dof: int, latex: bool) -> str:
+    """``det J``, ``det J_v``, ``det J_ω``, ``det J_(vx, vy, ωz)``, ``det(J Jᵀ)`` or ``det(Jᵀ J)``
+    in LaTeX or MathML, for the determinant of the rows ``rows`` of a J with ``dof`` columns."""
+    names = ROW_LATEX if latex else ROW_MATHML
     blocks: dict[tuple[int, ...], str] = {
         (0, 1, 2): "v" if latex else "<mi>v</mi>",
         (3, 4, 5): "\\omega" if latex else "<mi>ω</mi>",
@@ -94,10 +92,10 @@ def _det_label(det: Determinant, latex: bool) -> str:
             else "<mrow><mo>(</mo>" + "<mo>,</mo>".join(names[r] for r in rows) + "<mo>)</mo></mrow>"
         )
         J = f"J_{{{sub}}}" if latex else f"<msub><mi>J</mi>{sub}</msub>"
-    if not det.gram:
+    if not gram:
         return f"\\det {J}" if latex else f"<mi>det</mi><mo>&#x2061;</mo>{J}"
     JT = f"{J}^{{T}}" if latex else f"<msup>{J}<mi>T</mi></msup>"
-    pair = (J, JT) if len(rows) < len(det.q) else (JT, J)
+    pair = (J, JT) if len(rows) < dof else (JT, J)
     if latex:
         return f"\\det({pair[0]} {pair[1]})"
     return f"<mi>det</mi><mo>&#x2061;</mo><mo>(</mo>{pair[0]}<mo>&#x2062;</mo>{pair[1]}<mo>)</mo>"
@@ -105,7 +103,7 @@ def _det_label(det: Determinant, latex: bool) -> str:
 
 def _matrix(
     N: Notation, M: sp.Matrix, latex: bool, deadline: Deadline | None, wrap: bool
-) -> tuple[str, list]:
+) -> tuple[str, list[tuple[int, int]]]:
     if latex:
         return latex_matrix(N, M, deadline)
     return mathml_matrix(N, M, deadline, MATHML_WIDTH if wrap else None)
@@ -138,7 +136,7 @@ def _parts(
         if expr is not None and deadline is not None and deadline.expired():
             notes.append("det J is not typeset: time limit reached")
         elif expr is not None:
-            det_text = f"{_det_label(det, latex)}{eq}{show(expr)}"
+            det_text = f"{det_label(det.rows, det.gram, len(det.q), latex)}{eq}{show(expr)}"
         for s in det.singular_sets:
             text = f"{show(s.factor)}{eq}{'0' if latex else '<mn>0</mn>'}"
             if s.solutions is not None and len(s.joints) == 1 and s.factor != s.joints[0]:

@@ -26,10 +26,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .model import Robot
-from .numeric import link_frames
+from ..model import Robot
+from ..numeric import link_frames
 
-__all__ = ["LostDirection", "lost_direction", "characteristic_length"]
+__all__ = ["LostDirection", "lost_direction", "lost_directions", "characteristic_length"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,3 +99,49 @@ def lost_direction(J: np.ndarray, rows: tuple[int, ...], length: float) -> LostD
     translation = uv / norm_v if norm_v > 1e-12 else np.zeros(3)
     rotation = uw / norm_w if norm_w > 1e-12 else np.zeros(3)
     return LostDirection(sigma, translation, rotation, share_v, share_w, float(length))
+
+
+def lost_directions(
+    J: np.ndarray, rows: tuple[int, ...], length: float, rtol: float = 1e-7
+) -> tuple[LostDirection, ...]:
+    """Every lost direction of a multi-rank loss: one :class:`LostDirection` per σ ≤ ``rtol``·σmax of the
+    weighted task rows (at least the smallest one, so a near-singular configuration still gets one).
+
+    The lost directions span a subspace; they are returned in the basis of that subspace that
+    separates translation from rotation as far as it can (pure translations first, then mixed
+    ones, then pure rotations), so that, e.g., a stretched arm that also loses a rotation gets one
+    arrow and one axis instead of two mixtures.
+    """
+    if not (np.isfinite(length) and length > 0):
+        raise ValueError(f"length must be a positive number of metres, got {length!r}")
+    rows = tuple(rows)
+    weights = np.array([1.0 if r < 3 else length for r in rows])
+    Jw = J[list(rows)] * weights[:, None]
+    U, s, _ = np.linalg.svd(Jw)
+    m, n = Jw.shape
+    full = np.concatenate([s, np.zeros(max(0, m - len(s)))])
+    small = [i for i in range(m) if full[i] <= rtol * max(full[0], 1e-300)] or [m - 1]
+    N = np.zeros((6, len(small)))
+    N[list(rows)] = U[:, small]
+    sigmas = full[small]
+    if len(small) > 1:  # rotate the basis so its vectors are as purely translation or rotation as can be
+        _, _, Vt = np.linalg.svd(N[:3])
+        N = N @ Vt.T
+        sigmas = np.zeros(len(small)) if np.all(sigmas <= rtol * max(full[0], 1e-300)) else sigmas
+    out = []
+    for k in range(N.shape[1]):
+        uv, uw = N[:3, k], N[3:, k]
+        share_v = float(uv @ uv)
+        share_w = max(0.0, 1.0 - share_v)
+        nv, nw = np.sqrt(share_v), np.sqrt(share_w)
+        out.append(
+            LostDirection(
+                float(sigmas[k]),
+                uv / nv if nv > 1e-6 else np.zeros(3),
+                uw / nw if nw > 1e-6 else np.zeros(3),
+                share_v if nv > 1e-6 else 0.0,
+                share_w if nw > 1e-6 else 0.0,
+                float(length),
+            )
+        )
+    return tuple(out)

@@ -24,12 +24,12 @@ from typing import Literal
 
 import numpy as np
 
-from .analysis import DEFAULT_RTOL, PART_ROWS, as_jacobian, check_rtol, task_rows
+from ..analysis import DEFAULT_RTOL, PART_ROWS, as_jacobian, check_rtol, task_rows
+from ..errors import ArrayError, ConfigurationError, OptionError
+from ..model import Robot
+from ..numeric import as_configuration, chain_frames, jacobian
+from ..validation import is_number, show
 from .descent import descend_to_singularity
-from .errors import ArrayError, ConfigurationError, OptionError
-from .model import Robot
-from .numeric import as_configuration, chain_frames, jacobian
-from .validation import is_number, show
 
 __all__ = ["SingularityReport", "assess", "NEAR_CONDITION", "NearestSingularity", "nearest"]
 
@@ -67,13 +67,6 @@ class SingularityReport:
         if self.status == "regular" or not self.kinds:
             return self.status
         return f"{self.status}: {' + '.join(self.kinds)}"
-
-
-def _smallest(A: np.ndarray) -> float:
-    """Smallest singular value of A, or 0 when A has more rows than columns."""
-    if A.shape[0] > A.shape[1] or A.size == 0:
-        return 0.0
-    return float(np.linalg.svd(A, compute_uv=False)[-1])
 
 
 def assess(
@@ -223,7 +216,7 @@ class NearestSingularity:
 def nearest(robot: Robot, q0: object, *, max_iterations: int = 100, tol: float = 1e-6) -> NearestSingularity:
     """A singular configuration near ``q0``: descend σmin of the task rows of J from ``q0``.
 
-    Minimum-norm Newton steps on w = Π σᵢ = 0 (see :mod:`kinematics.descent`), so the path
+    Minimum-norm Newton steps on w = Π σᵢ = 0 (see :mod:`kinematics.singularity.descent`), so the path
     heads for a nearby piece of the singular set (e.g. q2 → 0 for a planar 2R arm from
     q2 = 20°), until σmin/σmax < ``tol`` (then a few more steps, so that :func:`assess` calls
     the end singular). Joint limits are not enforced (they bound sliders, not maths). For a

@@ -19,10 +19,13 @@ above the tolerance (``converged=False``).
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
-from .kernel import batched_jacobian, chain_single, jacobian_from_frames, kernel
-from .model import Robot
+from ..conventions import FloatArray
+from ..kernel import batched_jacobian, chain_single, jacobian_from_frames, kernel
+from ..model import Robot
 
 __all__ = ["descend_to_singularity", "sigma_ratio", "FD_STEP", "MAX_STEP", "POLISH_RATIO", "POLISH_STEPS"]
 
@@ -36,13 +39,13 @@ POLISH_STEPS = 40
 POLISH_RATIO) make the end singular at the 1e-9 tolerance of :func:`kinematics.singularity.assess`."""
 
 
-def _svd(robot: Robot, q: np.ndarray, rows: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _svd(robot: Robot, q: FloatArray, rows: list[int]) -> tuple[FloatArray, FloatArray, FloatArray]:
     c = kernel(robot)
     J = jacobian_from_frames(c, *chain_single(c, q))[rows]
     return np.linalg.svd(J)
 
 
-def sigma_ratio(robot: Robot, q: np.ndarray, rows: list[int]) -> float:
+def sigma_ratio(robot: Robot, q: FloatArray, rows: list[int]) -> float:
     """σmin/σmax of the task rows at q (0 when the rows outnumber the joints)."""
     if len(rows) > len(q):
         return 0.0
@@ -51,24 +54,24 @@ def sigma_ratio(robot: Robot, q: np.ndarray, rows: list[int]) -> float:
 
 
 def _gradient(
-    robot: Robot, q: np.ndarray, rows: list[int], U: np.ndarray, s: np.ndarray, Vt: np.ndarray
-) -> np.ndarray:
+    robot: Robot, q: FloatArray, rows: list[int], U: FloatArray, s: FloatArray, Vt: FloatArray
+) -> FloatArray:
     """∇ log w (n,) = Σⱼ uⱼᵀ (∂J/∂qᵢ) vⱼ / σⱼ over the k singular triplets of the task rows."""
     n = len(q)
     k = len(s)
     H = FD_STEP * np.eye(n)
     _, J = batched_jacobian(kernel(robot), np.concatenate([q + H, q - H]))
     dJ = (J[:n, rows] - J[n:, rows]) / (2.0 * FD_STEP)  # (n, m, n): ∂J/∂qᵢ
-    return np.einsum("mk,imj,kj->i", U[:, :k] / s, dJ, Vt[:k])
+    return cast(FloatArray, np.einsum("mk,imj,kj->i", U[:, :k] / s, dJ, Vt[:k]))
 
 
-def _log_w(s: np.ndarray) -> float:
+def _log_w(s: FloatArray) -> float:
     return float(np.sum(np.log(s))) if s[-1] > 0 else -np.inf
 
 
 def descend_to_singularity(
-    robot: Robot, q0: np.ndarray, rows: list[int], max_iterations: int, tol: float
-) -> tuple[np.ndarray, float]:
+    robot: Robot, q0: FloatArray, rows: list[int], max_iterations: int, tol: float
+) -> tuple[FloatArray, float]:
     """Path (k+1, n) from q0 down w until σmin/σmax < tol (then polished, see
     :data:`POLISH_STEPS`; or until no further progress), and the final ratio. Checked input only."""
     q = q0.copy()
