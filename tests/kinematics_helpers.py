@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import importlib.util
 
+from fakes import random_q  # its home is tests/fakes.py; here for tests written before
+
+__all__ = ["import_source", "random_q"]
+
 
 def import_source(path, text, name):
     """Write ``text`` (an exported Python module) to ``path`` and import it as ``name``."""

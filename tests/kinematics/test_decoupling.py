@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from kinematics_helpers import random_q
+from fakes import random_q
 
 from kinematics import chain_frames, jacobian
 from kinematics.analysis import task_rows
