@@ -135,3 +135,7 @@ def app_page(lab) -> Iterator[tuple[Any, Any, list[str]]]:
                 browser.close()
     finally:
         lab.stop()
+
+
+wait = poll
+"""The name of :func:`fakes.poll` here before tests/fakes.py (for tests written before it)."""
