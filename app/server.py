@@ -60,6 +60,9 @@ class Lab:
             other tab follows (see :mod:`app.services.classroom`).
         allow_origin: Origins (``https://host[:port]``) of pages that may embed the lab and connect
             to it; by default only the lab's own page may (:mod:`app.viser_adapter.handshake`).
+        symbolic: The service that computes the symbolic J, J⁻¹, steps and exports (default: a new
+            :class:`~app.services.symbolic_service.SymbolicService` with worker processes). The lab
+            closes it on :meth:`stop`. Tests pass an immediate in-process fake.
         listen_socket: A listening socket to accept on instead of binding ``host`` and ``port``
             (shared by the worker processes of ``jacobian-lab serve --workers N``).
         xacro_args: ``NAME -> VALUE`` arguments of a ``.xacro`` file given as ``urdf`` or ``robot``.
@@ -79,6 +82,7 @@ class Lab:
         tip_link: str | None = None,
         presenter_token: str | None = None,
         allow_origin: Sequence[str] = (),
+        symbolic: SymbolicService | None = None,
         listen_socket: socket.socket | None = None,
         xacro_args: Mapping[str, str] | None = None,
     ) -> None:
@@ -96,7 +100,7 @@ class Lab:
         self.room = install_input_checks(RoomLimits())  # every value a tab sends, checked as it enters
         install_fast_prop_casts()
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
-        self.symbolic = SymbolicService()
+        self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
         if listen_socket is not None:  # one of several worker processes accepting on one socket

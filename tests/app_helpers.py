@@ -5,11 +5,11 @@ from __future__ import annotations
 import contextlib
 import math
 import re
-import time
 from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
+from fakes import FakeSymbolicService, poll
 from wsclient import ViserWsClient
 
 from app.server import Lab
@@ -21,7 +21,12 @@ _BAD_TEXT = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)
 
 @contextlib.contextmanager
 def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClient]]:
-    """A Lab on a free port with one connected websocket client; always stopped."""
+    """A Lab on a free port with one connected websocket client; always stopped.
+
+    Its symbolic service is :class:`fakes.FakeSymbolicService` (immediate placeholders, no worker
+    process) unless ``symbolic=`` is given: pass ``SymbolicService()`` to test the symbolic J itself.
+    """
+    kwargs.setdefault("symbolic", FakeSymbolicService())
     lab = Lab(port=0, **kwargs)
     try:
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws:
@@ -29,16 +34,6 @@ def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClie
             yield lab, session, ws
     finally:
         lab.stop()
-
-
-def wait_until(predicate, timeout: float = 10.0, interval: float = 0.02) -> None:
-    """Poll ``predicate`` until it is true or fail (never a fixed sleep)."""
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        if predicate():
-            return
-        time.sleep(interval)
-    raise AssertionError("condition not reached in time")
 
 
 def nonfinite_paths(obj: Any, path: str = "") -> list[str]:
@@ -113,3 +108,7 @@ def assert_all_finite(session: ClientSession) -> None:
     bad = nonfinite_paths(scene_props(session)) + nonfinite_paths(gui_contents(session))
     bad += nonfinite_paths(chart_data(session))
     assert not bad, bad
+
+
+wait_until = poll
+"""The name of :func:`fakes.poll` before tests/fakes.py (for tests written before it)."""

@@ -1,25 +1,27 @@
 """Shared pieces of the headless-Chromium tests: the browser (skipped locally, a failure in CI when
-missing), polling waits and canvas captures."""
+missing), pages whose every wait polls with a generous safety net, and canvas captures."""
 
 from __future__ import annotations
 
 import contextlib
 import io
 import os
-import time
 from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
 import pytest
+from fakes import POLL_TIMEOUT, poll
 
 __all__ = [
     "CHROMIUM",
     "ARGS",
     "VIEWPORT",
     "require_browser",
+    "new_page",
+    "canvas_box",
     "image",
-    "wait",
+    "poll",
     "canvas",
     "steady_canvas",
     "close_notifications",
@@ -63,30 +65,45 @@ def image(png: bytes) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
 
 
-def wait(predicate, timeout: float = 30.0) -> None:
-    """Poll ``predicate`` every 50 ms until it holds, or fail after ``timeout`` seconds."""
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        if predicate():
-            return
-        time.sleep(0.05)
-    raise AssertionError("condition not reached in time")
+def new_page(browser, viewport: dict[str, int] | None = None, scale: float = 1.0):
+    """A page of ``browser`` (default 1280×720, ``scale``: the device scale factor, 1.5 for a 150 %
+    zoom) whose Playwright waits (clicks, locators, screenshots, navigation) poll up to
+    :data:`fakes.POLL_TIMEOUT` instead of Playwright's 30 s: a loaded machine makes a browser test
+    slower, never red."""
+    page = browser.new_page(viewport=viewport or VIEWPORT, device_scale_factor=scale)
+    page.set_default_timeout(POLL_TIMEOUT * 1000)
+    page.set_default_navigation_timeout(POLL_TIMEOUT * 1000)
+    return page
+
+
+def canvas_box(page) -> dict[str, float]:
+    """The 3-D view's bounding box, once it has one with a size (the canvas is laid out after the
+    first frames: read before, its box is missing or empty)."""
+
+    def sized() -> dict[str, float] | None:
+        box = page.locator("canvas").first.bounding_box()
+        return box if box and box["width"] > 0 and box["height"] > 0 else None
+
+    return poll(sized, what="the 3-D view laid out with a size")
 
 
 def canvas(page) -> np.ndarray:
+    """A capture of the 3-D view (once it has a size)."""
+    canvas_box(page)
     return image(page.locator("canvas").first.screenshot())
 
 
-def steady_canvas(page, timeout: float = 30.0) -> np.ndarray:
+def steady_canvas(page, timeout: float = POLL_TIMEOUT) -> np.ndarray:
     """The 3-D view once two consecutive frames agree (rendering has caught up)."""
-    end = time.monotonic() + timeout
-    last = canvas(page)
-    while time.monotonic() < end:
-        now = canvas(page)
-        if (np.abs(now - last).max(axis=-1) > 30).mean() < 0.0005:
-            return now
-        last = now
-    raise AssertionError("the 3-D view never settled")
+    frames = [canvas(page)]
+
+    def settled() -> np.ndarray | None:
+        frames.append(canvas(page))
+        last, now = frames[-2:]
+        del frames[:-1]
+        return now if (np.abs(now - last).max(axis=-1) > 30).mean() < 0.0005 else None
+
+    return poll(settled, timeout, "the 3-D view settled (two frames alike)", interval=0.0)
 
 
 def close_notifications(page) -> None:
@@ -110,15 +127,19 @@ def app_page(
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
             try:
-                page = browser.new_page(viewport=viewport or VIEWPORT, device_scale_factor=scale)
+                page = new_page(browser, viewport, scale)
                 page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
                 page.goto(lab.url)
-                page.wait_for_selector("[role=slider]", timeout=120_000)
+                page.wait_for_selector("[role=slider]")
                 session = lab.session()
-                wait(lambda: session.snapshot is not None)
+                poll(lambda: session.snapshot is not None)
                 close_notifications(page)
                 yield page, session, errors
             finally:
                 browser.close()
     finally:
         lab.stop()
+
+
+wait = poll
+"""The name of :func:`fakes.poll` here before tests/fakes.py (for tests written before it)."""

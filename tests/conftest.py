@@ -1,9 +1,11 @@
-"""Shared test settings: hypothesis profiles."""
+"""Shared test settings and fixtures: hypothesis profiles, a private cache, and a running lab per module
+(with the immediate fake symbolic service, or the real one for the tests of the symbolic J)."""
 
 from __future__ import annotations
 
 import os
 import tempfile
+import time
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -24,6 +26,19 @@ _CACHE_ROOT = tempfile.mkdtemp(prefix="jacobian-lab-test-cache-")
 os.environ["XDG_CACHE_HOME"] = _CACHE_ROOT
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _deadlines_on_cpu_time():
+    """Symbolic time limits count the work done (this process's CPU time), not the wall clock: another
+    job on the machine makes the suite slower, never cuts its symbolic work short. (Worker processes
+    the app spawns keep the wall clock; their tests poll for the result.)"""
+    from kinematics.symbolic import trig
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(trig, "clock", time.process_time)
+    yield
+    mp.undo()
+
+
 @pytest.fixture(autouse=True, scope="module")
 def _private_cache(tmp_path_factory):
     """A cold, private cache folder for every test module."""
@@ -35,16 +50,27 @@ def _private_cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def lab_client():
-    """One running lab (a free port) and one websocket client per test module; always stopped."""
+    """One running lab (a free port) and one websocket client per test module; always stopped. Its
+    symbolic service is :class:`fakes.FakeSymbolicService` (immediate placeholders, no worker)."""
     from app_helpers import running_lab
 
     with running_lab() as (lab, session, ws):
         yield lab, session, ws
 
 
-@pytest.fixture
-def session(lab_client):
-    """The module's session, reset to a fresh state of the default robot, so each test stands alone."""
+@pytest.fixture(scope="module")
+def symbolic_lab_client():
+    """:func:`lab_client` with the real symbolic service (worker processes): for the tests of the
+    symbolic J, J⁻¹, steps and exports in the app (mark them ``slow``)."""
+    from app_helpers import running_lab
+
+    from app.services.symbolic_service import SymbolicService
+
+    with running_lab(symbolic=SymbolicService()) as (lab, session, ws):
+        yield lab, session, ws
+
+
+def _fresh(lab_client):
     from app.core.actions import ReplaceState
     from app.core.state import LabState
 
@@ -53,3 +79,15 @@ def session(lab_client):
     session.settle()
     assert session.state.configuration == "home"
     return session
+
+
+@pytest.fixture
+def session(lab_client):
+    """The module's session, reset to a fresh state of the default robot, so each test stands alone."""
+    return _fresh(lab_client)
+
+
+@pytest.fixture
+def symbolic_session(symbolic_lab_client):
+    """:func:`session` of the lab with the real symbolic service."""
+    return _fresh(symbolic_lab_client)

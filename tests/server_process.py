@@ -8,10 +8,10 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from fakes import POLL_TIMEOUT
+from locations import ROOT
 
 
 def proc_stat(pid: int) -> list[str] | None:
@@ -45,17 +45,6 @@ def children(pid: int) -> list[int]:
         for p in session_processes(os.getsid(pid))
         if p != pid and (proc_stat(p) or ["", "0"])[1] == str(pid)
     ]
-
-
-def poll(predicate, timeout: float = 30.0, what: str = "condition"):
-    end = time.monotonic() + timeout
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.monotonic() > end:
-            raise AssertionError(f"{what} not reached within {timeout} s")
-        time.sleep(0.02)
 
 
 def cmdline(pid: int) -> str:
@@ -105,7 +94,7 @@ class Server:
     def cleanup(self) -> None:
         for pid in session_processes(self.pid):
             os.kill(pid, signal.SIGKILL)
-        self.proc.wait(10)
+        self.proc.wait(POLL_TIMEOUT)
 
 
 def rss_bytes(pid: int, field: str = "VmRSS") -> int:

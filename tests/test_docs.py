@@ -6,11 +6,10 @@ from __future__ import annotations
 
 import importlib
 import re
-from pathlib import Path
 
 import pytest
+from locations import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 PACKAGES = ("app", "kinematics", "robots")
 TOP = ("app", "kinematics", "robots", "tests", "bench", "docs", "examples", ".ci")

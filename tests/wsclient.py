@@ -26,6 +26,7 @@ import numpy as np
 import viser
 import websockets
 import zstandard
+from fakes import POLL_TIMEOUT
 
 from app.viser_adapter import message_class
 
@@ -81,7 +82,7 @@ class ViserWsClient:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def start(self, timeout: float = 10.0) -> None:
+    def start(self, timeout: float = POLL_TIMEOUT) -> None:
         """Connect and announce a camera (the server then builds this client's session)."""
         self._thread.start()
         asyncio.run_coroutine_threadsafe(self._connect(), self._loop).result(timeout)
@@ -148,7 +149,7 @@ class ViserWsClient:
             return len(self.messages)
 
     def wait_for(
-        self, predicate: Callable[[dict[str, Any]], bool], after: int = 0, timeout: float = 10.0
+        self, predicate: Callable[[dict[str, Any]], bool], after: int = 0, timeout: float = POLL_TIMEOUT
     ) -> tuple[float, dict[str, Any]]:
         """The first message from index ``after`` on that satisfies ``predicate``."""
         end = time.monotonic() + timeout

@@ -3,7 +3,7 @@
 Each function here wraps one private detail of viser (tested with the versions in
 :data:`TESTED_VISER`). When an upgrade moves that detail, the function raises
 :class:`ViserApiChanged` naming itself and the installed viser version, and
-``tests/test_viser_adapter.py`` (which runs each function against a real
+``tests/app/test_viser_adapter.py`` (which runs each function against a real
 ``viser.ViserServer``) fails with the same message.
 
 Wrapped:

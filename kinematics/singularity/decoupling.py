@@ -19,7 +19,7 @@ split in two:
   e.g. θ5 = 0 on a Puma 560), and the wrist cannot turn the tool about their
   common normal a (a left null vector of J₂₂) while the wrist centre stays put.
 
-Tested against the full J (det J = det J₁₁ · det J₂₂ at random q) in tests/test_decoupling.py.
+Tested against the full J (det J = det J₁₁ · det J₂₂ at random q) in tests/kinematics/test_decoupling.py.
 """
 
 from __future__ import annotations

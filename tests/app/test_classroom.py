@@ -1,0 +1,320 @@
+"""Classroom mode at server level: a presenter (by token), tabs that follow it, leaving and coming
+back, wrong tokens, and the presenter leaving. Three tabs of one running lab (websocket clients)."""
+
+from __future__ import annotations
+
+import contextlib
+
+import numpy as np
+import pytest
+from app_helpers import assert_all_finite, running_lab
+from fakes import POLL_TIMEOUT, FakeClock, poll
+from wsclient import ViserWsClient
+
+import robots
+from app.core.actions import ApplyPreset, Play, SetJoint
+from app.core.commands import ExploreAlone
+from app.services.classroom import PRESENTER_AWAY, TOKEN_TRIES, TOKEN_WINDOW, Classroom
+
+TOKEN = "lecture-7"
+
+
+@contextlib.contextmanager
+def room(n_followers: int = 2):
+    """A lab in classroom mode with 1 + n tabs: (lab, presenter, followers) — the presenter claimed."""
+    with running_lab(presenter_token=TOKEN) as (lab, first, _):
+        clients = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(n_followers)]
+        try:
+            for c in clients:
+                c.start()
+            poll(lambda: len(lab.sessions) == 1 + n_followers)
+            others = [s for s in lab.sessions.values() if s is not first]
+            first.panel.classroom.token.value = TOKEN  # as typed: no other click
+            first.settle()
+            poll(lambda: first.role.presenting)
+            yield lab, first, others
+        finally:
+            for c in clients:
+                c.close()
+
+
+def settle(*sessions) -> None:
+    for s in sessions:
+        s.settle()
+
+
+def test_a_presenter_moves_and_every_follower_draws_the_same_snapshot():
+    with room() as (lab, presenter, followers):
+        poll(lambda: all(f.role.following for f in followers))
+        settle(presenter)
+        assert presenter.role.followers == 2
+        assert "2 tabs follow" in presenter.panel.classroom.status.content
+        computed = presenter.redraws
+        presenter.dispatch(SetJoint(2, -0.7))
+        settle(presenter)
+        poll(lambda: all(f.state.q[2] == pytest.approx(-0.7) for f in followers))
+        settle(*followers)
+        for f in followers:
+            # One computation per presenter change: the followers draw the presenter's own snapshot.
+            assert f.snapshot is presenter.snapshot
+            assert "read-only" in f.panel.classroom.status.content
+            assert_all_finite(f)
+        assert presenter.redraws == computed + 1
+
+
+def test_a_followers_own_input_is_read_only_and_undone():
+    with room(1) as (lab, presenter, (follower,)):
+        poll(lambda: follower.role.following)
+        q_before = np.array(follower.state.q)
+        slider = follower.panel.joints.sliders[1]
+        slider.value = float(slider.value) + 20.0  # the student drags a slider
+        settle(follower)
+        assert np.array(follower.state.q) == pytest.approx(q_before)
+        poll(lambda: float(slider.value) == pytest.approx(np.degrees(q_before[1]), abs=1e-6))
+
+
+def test_leave_explore_and_come_back():
+    with room(1) as (lab, presenter, (follower,)):
+        poll(lambda: follower.role.following)
+        settle(follower)  # what the tab shows (the button says what a click will do)
+        button = follower.panel.classroom.button
+        assert button.label == "Explore on my own"
+        button.value = True  # a click
+        poll(lambda: not follower.role.following)
+        settle(follower)
+        assert button.label == "Follow the presenter"
+        follower.dispatch(SetJoint(0, 0.4))  # its own inputs work again
+        presenter.dispatch(SetJoint(0, -0.3))
+        settle(presenter, follower)
+        assert follower.state.q[0] == pytest.approx(0.4)
+        button.value = True  # follow again: it jumps to what the presenter shows
+        poll(lambda: follower.role.following)
+        poll(lambda: follower.state.q[0] == pytest.approx(-0.3))
+
+
+def test_a_presenters_motion_plays_on_the_followers_without_their_clocks():
+    with room(1) as (lab, presenter, (follower,)):
+        poll(lambda: follower.role.following)
+        p = robots.motions("puma560")[0]
+        presenter.dispatch(ApplyPreset(p.name, tuple(p.q), tuple(p.twist), p.frame, 0.3))
+        presenter.dispatch(Play(True, "resolved_rate"))
+        settle(presenter)
+        poll(lambda: follower.state.playing and len(follower.state.motion.trace) > 5)
+        assert not follower.ticker.running  # moved by the presenter's clock only
+        assert (
+            follower.state.motion.trace is presenter.state.motion.trace
+            or len(follower.state.motion.trace) > 5
+        )
+        presenter.dispatch(Play(False))
+        settle(presenter)
+        poll(lambda: not follower.state.playing)
+
+
+def test_the_camera_follows_the_presenter():
+    with room(1) as (lab, presenter, (follower,)):
+        poll(lambda: follower.role.following)
+        lab.classroom.camera(presenter.key, (2.0, -1.0, 1.5), (0.1, 0.0, 0.3), (0.0, 0.0, 1.0))
+        assert np.asarray(follower.client.camera.position) == pytest.approx([2.0, -1.0, 1.5])
+        assert np.asarray(follower.client.camera.look_at) == pytest.approx([0.1, 0.0, 0.3])
+        lab.classroom.camera(follower.key, (9.0, 9.0, 9.0), (0, 0, 0), (0, 0, 1))  # not the presenter
+        assert np.asarray(presenter.client.camera.position) != pytest.approx([9.0, 9.0, 9.0])
+
+
+def test_wrong_tokens_change_nothing():
+    with room(1) as (lab, presenter, (follower,)):
+        poll(lambda: follower.role.following)
+        follower.panel.classroom.token.value = "lecture-8"
+        poll(lambda: lab.classroom.wrong_tries(follower.key) == 1)
+        assert presenter.role.presenting and not follower.role.presenting and follower.role.following
+
+
+@pytest.mark.slow
+def test_the_presenter_leaving_leaves_the_followers_where_they_were():
+    with running_lab(presenter_token=TOKEN) as (lab, _, _ws):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as presenter_ws:
+            poll(lambda: len(lab.sessions) == 2)
+            presenter = lab.session()
+            follower = next(s for s in lab.sessions.values() if s is not presenter)
+            presenter.panel.classroom.token.value = TOKEN
+            poll(lambda: follower.role.following)
+            presenter.dispatch(SetJoint(1, 0.9))
+            poll(lambda: follower.state.q[1] == pytest.approx(0.9))
+        presenter_ws.close()
+        poll(lambda: not follower.role.presenter)
+        settle(follower)
+        assert not follower.role.following and follower.state.q[1] == pytest.approx(0.9)
+        follower.dispatch(SetJoint(1, 0.2))  # explores on its own now
+        settle(follower)
+        assert follower.state.q[1] == pytest.approx(0.2)
+
+
+def test_tokens_are_rate_limited_per_tab():
+    clock = FakeClock(1000.0)
+    room_ = Classroom("right", clock=clock)
+
+    class Tab:
+        latest = (None, None)
+
+        def subscribe(self, fn):
+            return lambda: None
+
+        def mirror(self, state, snapshot):
+            pass
+
+        def mirror_camera(self, *pose):
+            pass
+
+        def role_changed(self, role):
+            self.role = role
+
+    a, b = Tab(), Tab()
+    room_.join(1, a)
+    room_.join(2, b)
+    for _ in range(TOKEN_TRIES):
+        assert room_.claim(1, "wrong") == "that is not the presenter token"
+    assert room_.claim(1, "right").startswith("too many wrong tokens")  # even the right one, for now
+    assert not room_.role(1).presenting
+    assert room_.claim(2, "right") == ""  # another tab is not held back
+    assert room_.role(2).presenting and room_.role(1).following
+    clock.now += TOKEN_WINDOW + 1
+    assert room_.claim(1, "right") == ""  # after the window: it takes over
+    assert room_.role(1).presenting and not room_.role(2).presenting
+    room_.closed(1)
+    assert b.role.note == PRESENTER_AWAY and not b.role.following
+    with pytest.raises(ValueError):
+        Classroom("")
+
+
+def test_followers_draw_a_robot_only_the_presenter_has():
+    """A robot built in the presenter's Build tab (not in the followers' lists) still reaches them."""
+    from app.core.actions import EditRobot
+    from kinematics import Robot, jacobian
+
+    with room(1) as (lab, presenter, (follower,)):
+        poll(lambda: follower.role.following)
+        rows = [
+            {"joint": "revolute", "a": 0.4, "alpha": 0.0, "d": 0.0, "theta": 0.0},
+            {"joint": "revolute", "a": 0.3, "alpha": 0.0, "d": 0.0, "theta": 0.0},
+        ]
+        built = Robot.from_dh(rows, "standard", name="built")
+        presenter.dispatch(EditRobot("(built in the browser)", built, ()))
+        settle(presenter)
+        poll(lambda: follower.state.robot is built)
+        settle(follower)
+        assert follower.errors == 0
+        assert follower.snapshot.J_base == pytest.approx(jacobian(built, follower.state.q))
+        assert_all_finite(follower)
+        # It is listed in the follower's own robots: after exploring, the student can go back to it.
+        assert "(built in the browser)" in follower.panel.robot.options
+        assert follower.catalog.load("(built in the browser)") is built
+
+
+def test_a_followers_browser_gets_the_presenters_scene():
+    """The scene messages of the presenter's redraw are replayed to the followers' browsers: what a
+    follower's websocket receives for the arm is what the presenter's scene holds."""
+    from app_helpers import scene_node
+
+    with running_lab(presenter_token=TOKEN) as (lab, presenter, _ws):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as student:
+            poll(lambda: len(lab.sessions) == 2)
+            follower = next(s for s in lab.sessions.values() if s is not presenter)
+            presenter.panel.classroom.token.value = TOKEN
+            poll(lambda: follower.role.following)
+            settle(presenter, follower)
+            for value in (-0.4, 0.3, 0.8):
+                mark = student.mark()
+                presenter.dispatch(SetJoint(1, value))
+                settle(presenter)
+                poll(lambda value=value: follower.state.q[1] == pytest.approx(value))
+                settle(follower)
+                arm = scene_node(presenter, "/lab/arm/cylinders")
+                want = np.asarray(arm.batched_positions, dtype=np.float32).ravel()
+
+                def got_it(m, want=want):
+                    positions = m.get("updates", {}).get("batched_positions")
+                    return (
+                        m["type"] == "SceneNodeUpdateMessage"
+                        and m["name"] == "/lab/arm/cylinders"
+                        and positions is not None
+                        and np.allclose(np.asarray(positions, dtype=np.float32).ravel(), want, atol=1e-6)
+                    )
+
+                student.wait_for(got_it, after=mark)
+            # Exploring alone again: the follower's own scene is rebuilt and drawn from its state.
+            follower.dispatch(ExploreAlone())
+            settle(follower)
+            poll(lambda: not follower.role.following)
+            follower.dispatch(SetJoint(0, 0.5))
+            settle(follower)
+            own = np.asarray(scene_node(follower, "/lab/arm/cylinders").batched_positions).reshape(-1, 3)
+            theirs = np.asarray(scene_node(presenter, "/lab/arm/cylinders").batched_positions).reshape(-1, 3)
+            assert not np.allclose(own, theirs)
+            assert_all_finite(follower)
+
+
+def test_typing_the_token_key_by_key_tries_it_once():
+    """A browser sends every keystroke: the half-typed token must not use up the tab's tries."""
+    with room(1) as (lab, presenter, (follower,)):
+        token = follower.panel.classroom.token
+        for k in range(1, len(TOKEN) + 1):
+            token.value = TOKEN[:k]  # as typed, key by key
+        poll(lambda: follower.role.presenting)
+        assert not presenter.role.presenting and presenter.role.following
+        assert lab.classroom.wrong_tries(follower.key) == 0
+
+
+def test_the_presenter_closing_while_it_redraws_does_not_deadlock():
+    """A presenter's redraw holds its session's lock and asks the classroom to relay; its tab closing
+    at that moment makes the classroom unsubscribe, which needs the session's lock. The classroom never
+    holds its own lock while it calls into a session, so both finish."""
+    import threading
+
+    room_ = Classroom("t")
+    relays = []
+    session_lock = threading.RLock()
+    unsubscribing = threading.Event()
+
+    class Tab:
+        latest = (None, None)
+        scene_messages = ()
+
+        def subscribe(self, fn):
+            relays.append(fn)
+
+            def unsubscribe():
+                unsubscribing.set()
+                with session_lock:  # as ClientSession.subscribe's unsubscribe does
+                    pass
+
+            return unsubscribe
+
+        def mirror(self, *args):
+            pass
+
+        def mirror_camera(self, *pose):
+            pass
+
+        def role_changed(self, role):
+            pass
+
+    room_.join(1, Tab())
+    room_.join(2, Tab())
+    assert room_.claim(1, "t") == ""
+    done = []
+
+    def redraw():  # the presenter's commit: its session lock held, then the relay
+        with session_lock:
+            started.set()
+            unsubscribing.wait(POLL_TIMEOUT)
+            relays[-1](None, None)  # the subscriber the classroom gave the presenter's session
+        done.append("redraw")
+
+    started = threading.Event()
+    a = threading.Thread(target=redraw, daemon=True)
+    a.start()
+    started.wait(POLL_TIMEOUT)
+    b = threading.Thread(target=lambda: (room_.closed(1), done.append("closed")), daemon=True)
+    b.start()
+    a.join(10)
+    b.join(10)
+    assert sorted(done) == ["closed", "redraw"]

@@ -1,0 +1,197 @@
+"""Server-level tests of the singularity explorer: the Motion and Maps tabs' handles dispatch actions,
+the snapshot and scene follow, charts get finite data, and long work (the nearest singularity) runs off
+the drawing thread. Each test starts from a fresh state of the default robot (the ``session`` fixture).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from app_helpers import assert_all_finite, scene_node
+from fakes import poll
+
+import robots
+from app.core.actions import Play, SetOption, Step
+from app.core.commands import ChooseRobot, FindSingularity
+from app.core.motion_rules import FRAME_DT
+from app.tab.ticker import Ticker
+from app.views.panel.motion import OWN_TWIST
+from kinematics import fk, jacobian
+from kinematics.analysis import manipulability, singular_values, task_rows
+
+
+def choose(session, name: str) -> None:
+    session.dispatch(ChooseRobot(name))
+    session.settle()
+    assert session.state.robot_name == name
+
+
+def test_a_preset_from_the_dropdown_then_play_moves_the_arm_and_feeds_the_charts(session, monkeypatch):
+    motion = session.panel.motion
+    name = robots.motions("puma560")[0].name
+    assert motion.preset.value == name  # shown first; picked again after "your own v", as a user would
+    motion.preset.value = OWN_TWIST
+    motion.preset.value = name
+    session.settle()
+    state = session.state
+    assert state.motion.preset == name and state.motion.kind == "resolved_rate"
+    assert np.array(state.q) == pytest.approx(robots.motions("puma560")[0].q)
+    # The test is the clock: the tab's ticker goes nowhere, steps are dispatched by hand.
+    monkeypatch.setattr(session, "ticker", Ticker(lambda action: None))
+    session.dispatch(Play(True, "resolved_rate"))
+    for _ in range(40):
+        session.dispatch(Step(FRAME_DT))
+    session.settle()
+    state = session.state
+    assert state.time == pytest.approx(40 * FRAME_DT)
+    # The tool moved along v for 40 frames; the chart holds the trace, all finite.
+    p0 = fk(state.robot, robots.motions("puma560")[0].q)[:3, 3]
+    assert fk(state.robot, state.q)[:3, 3] == pytest.approx(
+        p0 + np.array(state.v_desired[:3]) * state.time,
+        abs=2e-3,  # Euler steps' first-order error
+    )
+    # Paused, the charts hold the whole trace (while playing they follow every third frame).
+    session.dispatch(Play(False))
+    session.settle()
+    assert not session.ticker.running
+    t, sigma, w = motion.measures.data
+    assert len(t) == 41 and np.isfinite(sigma).all() and np.isfinite(w).all()
+    J = jacobian(state.robot, state.q)
+    assert sigma[-1] == pytest.approx(singular_values(J, task_rows(state.robot))[-1])
+    assert len(motion.rates.data) == 1 + state.robot.dof
+    assert_all_finite(session)
+
+
+def test_the_play_buttons_drive_the_ticker(session):
+    motion = session.panel.motion
+    # A fresh tab: the dropdown shows the first preset, not yet applied; Play applies it and runs it.
+    first = robots.motions("puma560")[0]
+    assert motion.preset.value == first.name and session.state.motion.preset == ""
+    start = np.array(first.q)
+    q_seen = []
+    _click(motion.buttons, "Play")
+    session.settle()
+    assert session.state.playing and session.ticker.running
+    poll(lambda: len(session.state.motion.trace) > 5)  # moving by itself on the tab's ticker
+    q_seen.append(np.array(session.state.q))
+    _click(motion.buttons, "Pause")
+    session.settle()
+    assert not session.state.playing and not session.ticker.running
+    n = len(session.state.motion.trace)
+    _click(motion.buttons, "Step")
+    session.settle()
+    assert len(session.state.motion.trace) == n + 1 and not session.state.playing
+    _click(motion.buttons, "Reset")
+    session.settle()
+    assert np.array(session.state.q) == pytest.approx(start)
+    assert motion.preset.value != OWN_TWIST
+
+
+def _click(buttons, label: str) -> None:
+    """A click on ``label``: viser sets the group's value and always runs its callbacks (a button)."""
+    buttons.value = label
+
+
+@pytest.mark.slow
+def test_the_nearest_singularity_is_found_off_the_drawing_thread_and_played_back(session):
+    assert session.snapshot.report.status == "regular"  # the Puma at home
+    session.dispatch(FindSingularity())
+    poll(lambda: session.state.motion.kind == "path")
+    poll(lambda: not session.state.playing)
+    state = session.state
+    assert state.stopped.startswith("found:") and "singularity" in state.stopped
+    J = jacobian(state.robot, state.q)
+    sigma = singular_values(J, task_rows(state.robot))
+    assert sigma[-1] / sigma[0] < 1e-6
+    assert_all_finite(session)
+
+
+def test_dragging_the_handle_moves_the_arm(session):
+    session.panel.motion.gizmo.value = True
+    session.settle()
+    gizmo = scene_node(session, "/lab/drive/handle")
+    assert gizmo.visible
+    T0 = fk(session.state.robot, session.state.q)
+    assert np.asarray(gizmo.position) == pytest.approx(T0[:3, 3], abs=1e-6)
+    from app.core.actions import DriveTool
+
+    T = T0.copy()
+    T[:3, 3] += [0.05, -0.03, 0.02]
+    session.dispatch(DriveTool(tuple(T.ravel())))
+    session.settle()
+    assert fk(session.state.robot, session.state.q)[:3, 3] == pytest.approx(T[:3, 3], abs=1e-6)
+    assert "iterations" in session.panel.motion.ik.content
+
+
+def test_self_motion_slider_and_ghost_on_the_panda(session):
+    choose(session, "panda")
+    motion = session.panel.motion
+    assert motion.self_slider is not None
+    T0 = fk(session.state.robot, session.state.q)
+    motion.self_slider.value = 0.5
+    session.settle()
+    state = session.state
+    assert fk(state.robot, state.q)[:3, 3] == pytest.approx(T0[:3, 3], abs=1e-5)
+    ghost = scene_node(session, "/lab/drive/ghost")
+    assert ghost.visible and np.asarray(ghost.position) == pytest.approx(T0[:3, 3], abs=1e-6)
+    s, w = motion.self_chart.data
+    assert s[-1] == pytest.approx(0.5) and w[-1] == pytest.approx(
+        float(manipulability(jacobian(state.robot, state.q), task_rows(state.robot)))
+    )
+
+
+def test_the_puma_has_no_redundancy_controls(session):
+    assert session.panel.motion.self_slider is None
+
+
+def test_joint_map_values_and_click_target(session):
+    maps = session.panel.maps
+    maps.show_map.value = True
+    session.settle()
+    snap = session.snapshot
+    jm = snap.joint_map
+    assert jm is not None and jm.w.shape == (48, 48)
+    # A cell of the map is w of J with joints i, j set to that cell's values, the others held.
+    k, m = 10, 37
+    qi = np.radians(np.linspace(jm.lo[0], jm.hi[0], 48))[m]
+    qj = np.radians(np.linspace(jm.lo[1], jm.hi[1], 48))[k]
+    q = np.array(session.state.q)
+    q[[jm.i, jm.j]] = qi, qj
+    w = float(manipulability(jacobian(session.state.robot, q), task_rows(session.state.robot)))
+    assert jm.w[k, m] == pytest.approx(w, rel=1e-9, abs=1e-12)
+    html = maps.map.content
+    assert 'class="jl-map"' in html and "data:image/png;base64," in html
+    assert_all_finite(session)
+    session.dispatch(SetOption("map_j", 4))
+    session.settle()
+    assert session.snapshot.joint_map.j == 4
+
+
+def test_workspace_cloud_is_drawn_from_tool_points(session):
+    session.panel.maps.cloud.value = True
+    session.settle()
+    cloud = scene_node(session, "/lab/drive/cloud")
+    points = np.asarray(cloud.points)
+    assert points.shape == (20_000, 3) and np.isfinite(points).all()
+    reach = np.linalg.norm(points - fk(session.state.robot, np.zeros(6))[:3, 3] * 0, axis=1).max()
+    assert reach < 1.5  # the Puma reaches under a metre from its base
+    session.panel.maps.cloud.value = False
+    session.settle()
+    assert not cloud.visible
+
+
+def test_robot_switch_keeps_the_explorer_working(session):
+    for name in ("trr", "planar3", "panda"):
+        choose(session, name)
+        assert session.panel.motion is not None and session.panel.maps is not None
+        assert [p.name for p in robots.motions(name)] == list(session.panel.motion.presets)
+    assert_all_finite(session)
+
+
+def test_speed_is_clamped(session):
+    session.dispatch(SetOption("speed", 50.0))
+    session.settle()
+    assert session.state.options.speed == 2.0
+    assert math.isclose(session.panel.motion.speed.value, 2.0)

@@ -1,0 +1,268 @@
+"""Every function of app.viser_adapter against a real viser server and a websocket client.
+
+A viser upgrade that moves one of the private details the adapter wraps makes the
+matching test fail with ViserApiChanged, whose message names the adapter function and
+the installed viser version.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import threading
+
+import numpy as np
+import pytest
+import viser
+from fakes import POLL_TIMEOUT, poll
+from locations import ROOT
+from packaging.specifiers import SpecifierSet
+from wsclient import ViserWsClient
+
+from app import viser_adapter as va
+
+try:
+    import tomllib
+except ImportError:  # Python 3.10
+    import tomli as tomllib
+
+
+@pytest.fixture
+def server():
+    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    try:
+        yield srv
+    finally:
+        srv.stop()
+
+
+@pytest.fixture
+def connected(server):
+    """(server, client handle, websocket client) with one connected tab."""
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as ws:
+        poll(lambda: len(server.get_clients()) == 1)
+        (client,) = server.get_clients().values()
+        yield server, client, ws
+
+
+def test_the_tested_range_is_the_pin_and_includes_the_installed_viser():
+    deps = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]
+    (pin,) = [d for d in deps if d.startswith("viser")]
+    assert pin == f"viser{va.TESTED_VISER}"
+    assert viser.__version__ in SpecifierSet(va.TESTED_VISER), (
+        f"viser {viser.__version__} is outside the range app/viser_adapter.py was tested with"
+    )
+
+
+def test_message_class_returns_protocol_messages_and_names_itself_when_missing():
+    cls = va.message_class("GuiUpdateMessage")
+    message = cls("abc", {"value": 1.5})
+    assert message.as_serializable_dict()["type"] == "GuiUpdateMessage"
+    with pytest.raises(va.ViserApiChanged) as info:
+        va.message_class("NoSuchMessage")
+    assert "app.viser_adapter.message_class" in str(info.value)
+    assert f"viser {viser.__version__}" in str(info.value)
+
+
+def test_errors_name_the_function_and_the_viser_version():
+    for fn in (va.handle_uuid, va.is_removed, va.node_props, va.scene_handles):
+        with pytest.raises(va.ViserApiChanged) as info:
+            fn(object())
+        assert f"app.viser_adapter.{fn.__name__}:" in str(info.value)
+        assert f"viser {viser.__version__} is installed" in str(info.value)
+
+
+def test_run_javascript_reaches_only_that_client(connected):
+    server, client, ws = connected
+    with ViserWsClient(f"ws://127.0.0.1:{server.get_port()}") as other:
+        poll(lambda: len(server.get_clients()) == 2)
+        mark, other_mark = ws.mark(), other.mark()
+        va.run_javascript(client, "window.__probe = 41 + 1;")
+        _, msg = ws.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=mark)
+        assert msg["source"] == "window.__probe = 41 + 1;"
+        # The other tab gets nothing: the first script it receives is one sent to it afterwards.
+        (other_client,) = [c for c in server.get_clients().values() if c is not client]
+        va.run_javascript(other_client, "/* marker */")
+        _, got = other.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=other_mark)
+        assert got["source"] == "/* marker */"
+
+
+def test_set_page_title_passes_the_title_as_a_string_literal(connected):
+    _, client, ws = connected
+    title = 'Jacobian Lab"; alert(1); // </title>\u2028'
+    mark = ws.mark()
+    va.set_page_title(client, title)
+    _, msg = ws.wait_for(lambda m: m["type"] == "RunJavascriptMessage", after=mark)
+    literal = re.search(r"window\.__jacobianLabTitle = (.*);\n", msg["source"]).group(1)
+    assert json.loads(literal) == title
+    assert "alert(1); //" not in msg["source"].replace(literal, "")
+
+
+def test_handle_uuid_is_the_id_the_page_sends_updates_for(connected):
+    _, client, ws = connected
+    mark = ws.mark()
+    slider = client.gui.add_slider("q1", min=-1.0, max=1.0, step=0.01, initial_value=0.0)
+    uuid = va.handle_uuid(slider)
+    _, msg = ws.wait_for(lambda m: m["type"] == "GuiSliderMessage", after=mark)
+    assert msg["uuid"] == uuid
+    seen = threading.Event()
+    slider.on_update(lambda _: seen.set())
+    ws.set_value(uuid, 0.25)
+    assert seen.wait(POLL_TIMEOUT)
+    assert slider.value == 0.25
+
+
+def test_is_removed_follows_remove_for_gui_and_scene_handles(connected):
+    _, client, _ = connected
+    button = client.gui.add_button("go")
+    box = client.scene.add_box("/probe/box", dimensions=(1.0, 1.0, 1.0))
+    assert (va.is_removed(button), va.is_removed(box)) == (False, False)
+    button.remove()
+    box.remove()
+    assert (va.is_removed(button), va.is_removed(box)) == (True, True)
+
+
+def test_scene_handles_and_node_props_read_what_is_sent(connected):
+    _, client, ws = connected
+    sphere = client.scene.add_icosphere("/probe/ellipsoid", radius=1.0, scale=(0.3, 0.2, 0.1))
+    sphere.position = (0.5, -0.25, 1.0)
+    handles = va.scene_handles(client.scene)
+    assert handles["/probe/ellipsoid"] is sphere
+    props = va.node_props(sphere)
+    np.testing.assert_allclose(props["scale"], (0.3, 0.2, 0.1))
+    np.testing.assert_allclose(props["position"], (0.5, -0.25, 1.0))
+    assert props["radius"] == 1.0 and props["visible"] is True
+    mark = ws.mark()
+    sphere.visible = False
+    assert va.node_props(sphere)["visible"] is False
+    ws.wait_for(
+        lambda m: m["type"] == "SetSceneNodeVisibilityMessage" and m["name"] == "/probe/ellipsoid", after=mark
+    )
+    sphere.remove()
+    assert "/probe/ellipsoid" not in va.scene_handles(client.scene)
+
+
+def test_update_props_sends_the_changed_props_in_one_message(connected):
+    _, client, ws = connected
+    v, f = np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], np.uint32)
+    node = client.scene.add_batched_meshes_simple(
+        "/probe/batch",
+        v,
+        f,
+        batched_wxyzs=np.tile([1.0, 0, 0, 0], (2, 1)),
+        batched_positions=np.zeros((2, 3)),
+        batched_scales=np.ones((2, 3)),
+    )
+    positions = np.array([[0.5, -1.0, 2.0], [0.25, 0.0, -0.5]])
+    wxyzs = np.array([[0.0, 1.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]])
+    ws.wait_for(lambda m: m["type"] == "BatchedMeshesMessage" and m["name"] == "/probe/batch")
+    mark = ws.mark()
+    assert va.update_props(
+        node, batched_positions=positions, batched_wxyzs=wxyzs, batched_scales=np.ones((2, 3))
+    )
+    _, message = ws.wait_for(lambda m: m.get("name") == "/probe/batch", after=mark)  # the next one
+    assert message["type"] == "SceneNodeUpdateMessage"
+    assert sorted(message["updates"]) == ["batched_positions", "batched_wxyzs"]  # scales did not change
+    np.testing.assert_allclose(message["updates"]["batched_positions"].reshape(2, 3), positions)
+    np.testing.assert_allclose(message["updates"]["batched_wxyzs"].reshape(2, 4), wxyzs)
+    np.testing.assert_allclose(node.batched_positions, positions)  # the handle holds what was sent
+    assert node.batched_positions.dtype == np.float32
+    positions[0, 0] = 9.0  # the caller's array is not shared with the handle
+    assert node.batched_positions[0, 0] == pytest.approx(0.5)
+    assert not va.update_props(
+        node, batched_positions=node.batched_positions.copy()
+    )  # unchanged: nothing sent
+    three = np.arange(9.0).reshape(3, 3)
+    assert va.update_props(node, batched_positions=three, batched_wxyzs=np.tile([1.0, 0, 0, 0], (3, 1)))
+    np.testing.assert_allclose(node.batched_positions, three)  # a new instance count is stored whole
+    node.remove()
+    with pytest.raises(RuntimeError, match="removed"):
+        va.update_props(node, batched_positions=three)
+
+
+def test_set_pose_sends_only_a_changed_position_or_orientation(connected):
+    _, client, ws = connected
+    node = client.scene.add_icosphere("/probe/pose", radius=1.0)
+    label = client.scene.add_label("/probe/pose_label", "q1")
+    ws.wait_for(lambda m: m.get("name") == "/probe/pose_label")
+    mark = ws.mark()
+    va.set_pose(node, (0.5, -1.0, 2.0), (0.0, 1.0, 0.0, 0.0))
+    va.set_pose(label, (1.0, 2.0, 3.0))
+    va.set_pose(label, (1.0, 2.0, 3.0 + 1e-9))  # within viser's own tolerance: nothing sent
+    va.update_props(node, scale=(0.3, 0.2, 0.1))
+    va.update_props(node, scale=(0.3, 0.2, 0.1))  # unchanged: nothing sent
+    ws.wait_for(lambda m: m.get("name") == "/probe/pose" and "scale" in m.get("updates", {}), after=mark)
+    sent = [m for _, m in ws.messages[mark:] if str(m.get("name", "")).startswith("/probe/pose")]
+    assert [(m["type"], m["name"]) for m in sent] == [
+        ("SetPositionMessage", "/probe/pose"),
+        ("SetOrientationMessage", "/probe/pose"),
+        ("SetPositionMessage", "/probe/pose_label"),
+        ("SceneNodeUpdateMessage", "/probe/pose"),
+    ]
+    np.testing.assert_allclose(sent[0]["position"], (0.5, -1.0, 2.0))
+    np.testing.assert_allclose(sent[1]["wxyz"], (0.0, 1.0, 0.0, 0.0))
+    np.testing.assert_allclose(sent[3]["updates"]["scale"], (0.3, 0.2, 0.1))
+    np.testing.assert_allclose(node.position, (0.5, -1.0, 2.0))  # the handle holds what was sent
+    np.testing.assert_allclose(node.wxyz, (0.0, 1.0, 0.0, 0.0))
+    np.testing.assert_allclose(label.position, (1.0, 2.0, 3.0))
+    assert va.node_props(node)["scale"] == (0.3, 0.2, 0.1)
+    with pytest.raises(ValueError, match="3 numbers"):
+        va.set_pose(label, (1.0, 2.0))
+    label.remove()
+    with pytest.raises(RuntimeError, match="removed"):
+        va.set_pose(label, (0.0, 0.0, 0.0))
+
+
+def test_install_icon_cache_reads_each_icon_once_and_gives_viser_the_same_svg(connected, monkeypatch):
+    import zipfile
+
+    from viser import _gui_api, _gui_handles, _icons
+
+    expected = _icons.svg_from_icon(viser.Icon.MATH)  # viser's own reading (the cache may be installed)
+    with zipfile.ZipFile(_icons.ICONS_DIR / "tabler-icons.zip") as archive:
+        assert archive.read("math.svg").decode("utf-8") == expected
+    va.install_icon_cache()
+    va.install_icon_cache()  # idempotent
+    assert _gui_api.svg_from_icon is _gui_handles.svg_from_icon is _icons.svg_from_icon
+    opened = []
+    real = zipfile.ZipFile
+    monkeypatch.setattr(zipfile, "ZipFile", lambda *a, **k: opened.append(a) or real(*a, **k))
+    icons = ("arrow-left", "arrow-right", "arrow-left")
+    results: list[str] = []
+    threads = [
+        threading.Thread(target=lambda i=i: results.append(_icons.svg_from_icon(i))) for i in icons * 4
+    ]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 12 and all(r.startswith("<svg") for r in results)
+    assert len(opened) <= 1  # opened once per process: here, or before by the first icon read
+    before = len(opened)
+    assert _icons.svg_from_icon("arrow-up").startswith("<svg") and _icons.svg_from_icon("arrow-down")
+    assert len(opened) == before  # new icons come from the archive already open
+    assert _icons.svg_from_icon(viser.Icon.MATH) == expected
+    _, client, ws = connected
+    mark = ws.mark()
+    client.gui.add_button("probe", icon=viser.Icon.MATH)  # viser's own path uses it
+    _, message = ws.wait_for(lambda m: m["type"] == "GuiButtonMessage", after=mark)
+    assert message["props"]["_icon_html"] == expected
+
+
+@pytest.mark.slow
+@pytest.mark.browser
+def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
+    from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
+
+    sync_playwright = require_browser()
+    server.on_client_connect(lambda client: va.set_page_title(client, "Jacobian Lab"))
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+        try:
+            page = new_page(browser, {"width": 800, "height": 600})
+            page.goto(f"http://127.0.0.1:{server.get_port()}")
+            page.wait_for_function("document.title === 'Jacobian Lab'")
+            page.evaluate("document.title = 'Viser'")  # as a page reset would
+            page.wait_for_function("document.title === 'Jacobian Lab'")
+        finally:
+            browser.close()
