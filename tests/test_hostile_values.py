@@ -6,17 +6,17 @@ from __future__ import annotations
 import logging
 import math
 import time
-from pathlib import Path
 
 import pytest
 from app_helpers import running_lab, wait_until
 from hostile_helpers import RoundTrips, all_widgets, slider, widget
+from locations import ROOT
 from wsclient import ViserWsClient
 
 from app.services.ratelimit import RoomLimits
 from app.viser_adapter import check_gui_value, check_message, message_class
 
-ROBOT_FILE = str(Path(__file__).parents[1] / "robots" / "data" / "puma560.toml")
+ROBOT_FILE = str(ROOT / "robots" / "data" / "puma560.toml")
 UPDATE = message_class("GuiUpdateMessage")
 
 

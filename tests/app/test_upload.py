@@ -65,7 +65,7 @@ def _upload(session, name: str, content: bytes) -> None:
         ws.send(message_class("FileTransferPart")(button, transfer, i, part))
     poll(lambda: session.errors > errors or session.state is not before or session.pending)
     session.settle()
-    wait_until(lambda: not session.commands.building, timeout=30)  # built away from the drawing thread
+    poll(lambda: not session.commands.building)  # built away from the drawing thread
     session.settle()
 
 
