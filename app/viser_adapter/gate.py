@@ -133,6 +133,8 @@ def check_gui_value(handle: Any, updates: object) -> str:
         return _check_vector(value, current, props)
     if _real(current):
         if not _real(value):
+            if isinstance(value, float):  # NaN or ±∞: named in words, never echoed as "nan" on the page
+                return "not a finite number (not a number, or unbounded)"
             return f"{clip(repr(value), 60)} is not a finite number"
         lo, hi = getattr(props, "min", None), getattr(props, "max", None)
         if (lo is not None and value < lo) or (hi is not None and value > hi):
