@@ -9,12 +9,14 @@ import signal
 import time
 import uuid
 
+import pytest
 from app_helpers import running_lab, wait_until
 from hostile_helpers import RoundTrips, slider, widget
 from server_process import Server
 from wsclient import ViserWsClient
 
 from app.core.build_table import MAX_ROWS
+from app.services.symbolic_service import SymbolicService
 from app.tab.robots import MAX_UPLOAD_JOINTS
 from app.viser_adapter import UPLOAD_PART_BYTES, message_class
 
@@ -87,7 +89,7 @@ def test_a_50_joint_chain_is_refused_and_a_20_joint_one_draws(tmp_path):
                 mark = bad.mark()
                 _upload(bad, "twenty.urdf", chain_urdf(20))
                 bad.wait_for(
-                    lambda m: m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith("j19"),
+                    lambda m: m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith("q20 "),
                     after=mark,
                     timeout=60,
                 )
@@ -135,8 +137,10 @@ def test_a_busy_server_stops_within_5_s_of_sigterm(tmp_path):
         server.cleanup()
 
 
+@pytest.mark.slow
 def test_one_tab_s_downloads_queue_behind_each_other_not_in_front_of_another_s():
-    with running_lab(robot="trr") as (lab, hog, ws_hog):
+    # The real symbolic worker: the order in which it takes the work is what is tested.
+    with running_lab(robot="trr", symbolic=SymbolicService()) as (lab, hog, ws_hog):
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws_other:
             wait_until(lambda: len(lab.sessions) == 2)
             other = next(s for s in lab.sessions.values() if s is not hog)
