@@ -10,6 +10,7 @@ import re
 import numpy as np
 import pytest
 from app_helpers import assert_all_finite, scene_node, wait_until
+from fakes import poll
 
 from app.core.actions import GoTo, SetRate, SetWrench
 from app.core.commands import ChooseRobot, UploadRobot
@@ -204,6 +205,8 @@ def test_every_joint_has_one_name_on_screen(session, name):
     if name == "uploaded":
         session.dispatch(UploadRobot("mixed.urdf", _mixed_urdf()))
         session.settle()
+        poll(lambda: not session.commands.building)  # built away from the drawing thread
+        session.settle()
         assert session.state.robot.dof == 4 and session.errors == 0
     else:
         choose(session, name)
@@ -287,9 +290,11 @@ def test_a_new_robot_starts_its_walk_at_joint_1(session):
     assert "Step 1 of 3" in _text(session.panel.derive.body.content)
 
 
-def test_course_letters_reach_the_derive_tabs_steps(session):
+@pytest.mark.slow
+def test_course_letters_reach_the_derive_tabs_steps(symbolic_session):
     """With "Course letters", the Derive tab's ⁰Tᵢ and every step use the file's letters (the TRR's
-    l₁, l₂, l₃), not its numbers; without, the numbers."""
+    l₁, l₂, l₃), not its numbers; without, the numbers (typeset by the real symbolic worker)."""
+    session = symbolic_session
     choose(session, "trr")
     _walk(session, "dh", 1)
     formula = session.panel.derive.formula
