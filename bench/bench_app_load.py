@@ -1,35 +1,25 @@
 """A classroom of tabs: slider change → redrawn scene latency with N tabs exploring at once.
 
-Starts the app (``app.server.serve``, the Panda) in a process of its own for every
-run, then connects N tabs from this process over viser's websocket protocol (no
-rendering), each as a browser does: a camera message first, then it waits for its
-joint sliders and its first drawing. After all tabs are drawn and ``--warmup`` seconds
-of unmeasured exploring, every tab moves its ``q2`` slider every ~200 ms (uniform
-jitter ±50 ms) for ``--seconds``. A sample is
-the time from sending a change to receiving the first frame after it that carries
-scene-node messages for that tab (its redrawn scene; a redraw answers every change
-sent before it). Also printed: changes left unanswered at the end, and the server
-process's CPU use over the window (from /proc/PID/stat; the symbolic worker is not
-counted) and this client's, with the load average: on a shared machine, a server
-that gets less than the CPU it asks for is slow for reasons of its own.
-
-With ``--hostile`` one more tab sends slider changes as fast as it can for the whole
-window; ``--limits`` installs :func:`app.viser_adapter.install_message_limits` in the
-server first (a no-op once the app installs it itself).
+Starts the app (the Panda; one process, or ``jacobian-lab serve --workers N`` with ``--workers``) for
+every run, then connects N tabs from this process over viser's websocket protocol (no rendering), each
+as a browser does: a camera message first, then its joint sliders and its first drawing. After
+``--warmup`` seconds of unmeasured exploring, every tab moves its ``q2`` slider every ~200 ms (±50 ms)
+for ``--seconds``. A sample is the time from sending a change to the first frame after it that carries
+that tab's scene-node messages. Also printed: changes left unanswered, the CPU of the server's whole
+process tree (``bench/common.py``) and of this client, with the load average. ``--hostile`` adds a tab
+flooding slider changes; ``--limits`` installs :func:`app.viser_adapter.install_message_limits` first.
 
 Usage::
 
     python bench/bench_app_load.py                       # 10, 30, 60 tabs, 20 s each
-    python bench/bench_app_load.py --tabs 60 --seconds 10 --hostile --limits
+    python bench/bench_app_load.py --tabs 60 --workers 1 2   # one process and two, side by side
     python bench/bench_app_load.py --tabs 30 --timeline --profile /tmp/prof   # where the time goes
 
-Printed per run: p50/p95/p99/max latency, the server's CPU (% of one core) and its CPU per slider
-change [ms] (what one change costs the server: the number to bring down) and its threads' voluntary
-context switches per change (thread hand-offs, which cost most on a busy machine); ``--timeline`` adds the
-p95 of every second of the window, ``--profile`` samples the server with py-spy (see
-``bench/profile_stacks.py``).
+Printed per run: p50/p95/p99/max latency, the server's CPU (% of one core), its CPU per slider change
+[ms] and voluntary context switches per change; ``--timeline`` adds the p95 of every second,
+``--profile`` samples the server with py-spy (``bench/profile_stacks.py``).
 
-Target (issue 7): 60 tabs, p95 < 50 ms on a 2-core machine.
+Target (issues 7 and 17): 60 tabs, p95 < 50 ms on a 2-core machine.
 """
 
 from __future__ import annotations
@@ -46,16 +36,13 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import msgspec.msgpack
 import numpy as np
 import viser
 import websockets
-import zstandard
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from app.viser_adapter import message_class  # noqa: E402
-
-CLK_TCK = os.sysconf("SC_CLK_TCK")
+from bench.common import cpu_seconds, decode, encode, switches  # noqa: E402
 
 
 def start_server(
@@ -96,60 +83,6 @@ def start_server(
             return proc, int(match.group(1))
     proc.kill()
     raise RuntimeError("the server did not start")
-
-
-def _stat(pid: int) -> list[str] | None:
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    except OSError:  # the process just ended
-        return None
-
-
-def tree(pid: int) -> list[int]:
-    """``pid`` and every live descendant (the workers of ``serve --workers``, symbolic workers)."""
-    parents: dict[int, int] = {}
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit() and (fields := _stat(int(entry.name))) is not None:
-            parents[int(entry.name)] = int(fields[1])
-    found, frontier = [pid], [pid]
-    while frontier:
-        frontier = [p for p, parent in parents.items() if parent in frontier]
-        found += frontier
-    return found
-
-
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU time so far of process ``pid`` and its live descendants [s] (a descendant that
-    ended during the run leaves its time in its parent's children counters, not counted here)."""
-    total = 0
-    for p in tree(pid):
-        if (fields := _stat(p)) is not None:
-            total += int(fields[11]) + int(fields[12])
-    return total / CLK_TCK
-
-
-def switches(pid: int) -> int:
-    """Voluntary context switches of every thread of process ``pid`` and its descendants so far."""
-    total = 0
-    for status in (s for p in tree(pid) for s in Path(f"/proc/{p}/task").glob("*/status")):
-        try:
-            text = status.read_text()
-        except OSError:  # a thread that just ended
-            continue
-        total += int(re.search(r"^voluntary_ctxt_switches:\s*(\d+)", text, re.M).group(1))
-    return total
-
-
-def decode(frame: bytes) -> list[dict]:
-    """The messages of one server frame (binary buffers left out: only types and names are needed)."""
-    raw_size = int.from_bytes(frame[:8], "little")
-    size = int.from_bytes(frame[8:16], "little")
-    inner = zstandard.ZstdDecompressor().decompress(frame[16 : 16 + size], max_output_size=raw_size)
-    return msgspec.msgpack.decode(inner)["messages"]
-
-
-def encode(message) -> bytes:
-    return msgspec.msgpack.encode(message.as_serializable_dict())
 
 
 CAMERA = encode(
