@@ -118,7 +118,24 @@ def test_add_clicked_24_times_a_second_stops_at_the_row_limit(tmp_path):
         server.cleanup()
 
 
+def _stop_time(server: Server) -> float:
+    start = time.monotonic()
+    os.kill(server.pid, signal.SIGTERM)
+    server.proc.wait(60)
+    return time.monotonic() - start
+
+
 def test_a_busy_server_stops_within_5_s_of_sigterm(tmp_path):
+    """Busy (uploads building, rows being added), the server stops within 5 s of what an idle one
+    takes on this machine now (measured first: a loaded machine slows both alike)."""
+    (tmp_path / "idle").mkdir()
+    idle = Server(tmp_path / "idle", SERVE)
+    try:
+        with ViserWsClient(idle.url()) as tab:
+            slider(tab)
+            reference = _stop_time(idle)
+    finally:
+        idle.cleanup()
     server = Server(tmp_path, SERVE)
     try:
         with ViserWsClient(server.url()) as bad:
@@ -128,11 +145,8 @@ def test_a_busy_server_stops_within_5_s_of_sigterm(tmp_path):
                 _upload(bad, f"twenty{i}.urdf", chain_urdf(20))
             for _ in range(20):
                 bad.send(UPDATE(add, {"value": "+ Add"}))
-            start = time.monotonic()
-            os.kill(server.pid, signal.SIGTERM)
-            server.proc.wait(30)
-            stopped = time.monotonic() - start
-        assert stopped < 5.0, f"stopped after {stopped:.1f} s"
+            stopped = _stop_time(server)
+        assert stopped < 5.0 + reference, f"stopped after {stopped:.1f} s (idle: {reference:.1f} s)"
     finally:
         server.cleanup()
 
@@ -148,10 +162,17 @@ def test_one_tab_s_downloads_queue_behind_each_other_not_in_front_of_another_s()
             labels = ["LaTeX", "Python", "JSON", "LaTeX"]
             for label in labels:  # four symbolic exports at once from one tab
                 hog.commands._download(hog.state, label)
+            asked = time.perf_counter()  # the other tab asks now (the clock of ws.messages' times)
             other.commands._download(other.state, "JSON")
             wait_until(lambda: download(ws_other), timeout=240)
-            before_other = len(download(ws_hog))
-            assert before_other <= 1, f"{before_other} of the first tab's downloads went before the other's"
+            t_other = next(t for t, m in ws_other.messages if m["type"] == "FileTransferStartDownload")
+            hog_times = [t for t, m in ws_hog.messages if m["type"] == "FileTransferStartDownload"]
+            done_before_asking = sum(t < asked for t in hog_times)
+            before_other = sum(t < t_other for t in hog_times)
+            assert before_other <= done_before_asking + 1, (
+                f"{before_other} of the first tab's downloads went before the other's "
+                f"({done_before_asking} were done before it asked)"
+            )
             wait_until(lambda: len(download(ws_hog)) == len(labels), timeout=240)
 
 
