@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 import robots
+from kinematics import Robot
 from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.files import write_user_file
@@ -26,7 +27,7 @@ from kinematics.urdf import parse_xacro_args
 
 from .args import MAX_TIMEOUT, bounded
 
-__all__ = ["main", "add_chain_arguments", "xacro_arguments", "StderrProgress", "write_output"]
+__all__ = ["main", "add_chain_arguments", "load_robot", "xacro_arguments", "StderrProgress", "write_output"]
 
 
 def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
@@ -47,6 +48,12 @@ def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
         default=[],
         help="xacro only: an argument of the .xacro file (repeat for several)",
     )
+
+
+def load_robot(args: argparse.Namespace) -> Robot:
+    """The robot the command line names: ``args.robot`` with ``--base``, ``--tip`` and ``--xacro-arg``
+    (see :func:`add_chain_arguments`)."""
+    return robots.load(args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args))
 
 
 def xacro_arguments(args: argparse.Namespace) -> dict[str, str] | None:
@@ -143,9 +150,7 @@ def main(argv: list[str] | None = None) -> int:
         return int(exc.code or 0)
     files: list[tuple[str, str | None]] = []
     try:
-        robot = robots.load(
-            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
-        )
+        robot = load_robot(args)
         options = (args.frame, args.symbolic_params)
         with StderrProgress() as progress:
             if args.output and args.format == "c":  # FILE.c and its header FILE.h

@@ -26,7 +26,7 @@ from kinematics.symbolic.core import DEFAULT_TIMEOUT
 from kinematics.symbolic.handout import HANDOUT_METHODS, handout
 
 from .args import MAX_TIMEOUT, bounded
-from .export import StderrProgress, add_chain_arguments, write_output, xacro_arguments
+from .export import StderrProgress, add_chain_arguments, load_robot, write_output
 
 __all__ = ["main"]
 
@@ -117,9 +117,7 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 2
     try:
-        robot = robots.load(
-            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
-        )
+        robot = load_robot(args)
         rates = None
         if args.rates is not None:
             if len(args.rates) != robot.dof:

@@ -14,12 +14,11 @@ import os
 import sys
 from pathlib import Path
 
-import robots
 from kinematics.errors import JacobianLabError
 
 from ..demo.record import DEFAULT_FPS, DEFAULT_SECONDS, UnknownPreset, check_preset, record, write_demo
 from .args import MAX_FPS, MAX_SECONDS, bounded
-from .export import add_chain_arguments, xacro_arguments
+from .export import add_chain_arguments, load_robot
 
 __all__ = ["main"]
 
@@ -89,9 +88,7 @@ def main(argv: list[str] | None = None) -> int:
     if round(args.seconds * args.fps) < 1:
         return _fail(f"{args.seconds:g} s at {args.fps:g} frames per second is not one frame")
     try:
-        robot = robots.load(
-            args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args)
-        )
+        robot = load_robot(args)
     except JacobianLabError as exc:
         return _fail(str(exc))
     name = robot.name if robot.urdf_path else args.robot

@@ -108,20 +108,3 @@ class DeriveScene:
     def remove(self) -> None:
         for node in (self.arrows.node, self.thin.node, self.lines, *self.labels):
             node.remove()
-
-
-def _readable(vectors: list[np.ndarray], size: float) -> list[np.ndarray | None]:
-    """Drawn lengths for vectors of one kind: the longest 0.35 × ``size``, none shorter than
-    0.08 × ``size`` (direction kept), a zero vector not drawn (``None``)."""
-    norms = [float(np.linalg.norm(v)) for v in vectors]
-    top = max(norms, default=0.0)
-    if not np.isfinite(top) or top <= 1e-12:
-        return [None] * len(vectors)
-    out: list[np.ndarray | None] = []
-    for v, n in zip(vectors, norms, strict=True):
-        if n <= 1e-9 * top:
-            out.append(None)
-            continue
-        length = max(0.35 * size * n / top, 0.08 * size)
-        out.append(np.asarray(v, float) / n * length)
-    return out
