@@ -37,7 +37,13 @@ from multiprocessing.connection import Connection
 from multiprocessing.connection import wait as wait_for_handles
 from typing import Any
 
-from app.services.lifecycle import check_listen_address, install_stop_signals, watch_parent
+from app.services.lifecycle import (
+    check_listen_address,
+    dump_stacks_on_sigusr1,
+    install_stop_signals,
+    wait_in_main_thread,
+    watch_parent,
+)
 
 __all__ = ["WORKER_CAP", "default_workers", "listening_socket", "serve_workers", "WorkerPool"]
 
@@ -113,8 +119,9 @@ def _worker_main(
     signals = install_stop_signals(stop.set)
     ready.send(("ready", os.getpid(), lab.port))
     ready.close()
+    dump_stacks_on_sigusr1()
     try:
-        stop.wait()
+        wait_in_main_thread(stop)
     finally:
         signals.restore()
         lab.stop()

@@ -17,12 +17,14 @@ Example (the blocking path of :func:`app.server.serve`)::
 from __future__ import annotations
 
 import dataclasses
+import faulthandler
 import logging
 import multiprocessing
 import os
 import signal
 import socket
 import threading
+import time
 from collections.abc import Callable
 from multiprocessing.connection import wait as wait_for_handles
 from types import FrameType
@@ -32,6 +34,8 @@ __all__ = [
     "StopSignals",
     "install_stop_signals",
     "wait_for_stop",
+    "wait_in_main_thread",
+    "dump_stacks_on_sigusr1",
     "terminate_children",
     "check_listen_address",
 ]
@@ -100,12 +104,46 @@ def wait_for_stop(stop: Callable[[], None], timeout: float | None = None) -> str
     """
     stopped = threading.Event()
     signals = install_stop_signals(stopped.set)
+    dump_stacks_on_sigusr1()
     try:
-        stopped.wait(timeout)
+        wait_in_main_thread(stopped, timeout)
     finally:
         signals.restore()
         stop()
     return signals.received
+
+
+WAKE_EVERY = 0.2
+"""Seconds between the main thread's wake-ups while it waits for a stop signal."""
+
+
+def wait_in_main_thread(event: threading.Event, timeout: float | None = None) -> bool:
+    """Wait for ``event`` in short slices, so that a signal's Python handler runs within WAKE_EVERY s.
+
+    A signal sent to the process may be taken by any of its threads. Python then only flags it, and
+    runs the handler when the main thread next runs Python code: a main thread blocked in one long
+    ``event.wait()`` would never run it (a SIGTERM ignored until something else wakes it).
+
+    Returns:
+        Whether the event was set (``False`` after ``timeout`` seconds).
+    """
+    end = None if timeout is None else time.monotonic() + timeout
+    while True:
+        left = WAKE_EVERY if end is None else min(WAKE_EVERY, end - time.monotonic())
+        if left <= 0:
+            return event.is_set()
+        if event.wait(left):
+            return True
+
+
+def dump_stacks_on_sigusr1() -> None:
+    """``kill -USR1 PID`` prints every thread's stack to standard error (for a server that seems stuck).
+
+    No-op where the platform has no SIGUSR1 (Windows).
+    """
+    number = getattr(signal, "SIGUSR1", None)
+    if number is not None and threading.current_thread() is threading.main_thread():
+        faulthandler.register(number, all_threads=True, chain=False)
 
 
 def check_listen_address(host: str, port: int) -> None:

@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
 import time
 import uuid
 
 import pytest
 from app_helpers import running_lab, wait_until
+from fakes import poll
 from hostile_helpers import RoundTrips, slider, widget
 from server_process import Server
 from wsclient import ViserWsClient
@@ -121,7 +123,12 @@ def test_add_clicked_24_times_a_second_stops_at_the_row_limit(tmp_path):
 def _stop_time(server: Server) -> float:
     start = time.monotonic()
     os.kill(server.pid, signal.SIGTERM)
-    server.proc.wait(60)
+    try:
+        server.proc.wait(60)
+    except subprocess.TimeoutExpired:
+        os.kill(server.pid, signal.SIGUSR1)  # the server prints every thread's stack to its log
+        poll(lambda: "most recent call first" in server.log.read_text(), what="the stacks in the log")
+        pytest.fail(f"still running 60 s after SIGTERM; its threads:\n{server.log.read_text()[-8000:]}")
     return time.monotonic() - start
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import signal
+import threading
 import time
 from pathlib import Path
 
@@ -18,7 +19,7 @@ from fakes import POLL_TIMEOUT, poll
 from server_process import Server, alive, children, cmdline, session_processes
 from wsclient import ViserWsClient
 
-from app.services.lifecycle import check_listen_address
+from app.services.lifecycle import check_listen_address, wait_in_main_thread
 
 ROBOT = "planar2"  # its symbolic J takes a second
 
@@ -138,3 +139,24 @@ def test_impossible_addresses_fail_at_once_in_words(host, port, message):
         check_listen_address(host, port)
     assert message in str(info.value)
     assert time.monotonic() - start < 5.0
+
+
+def test_a_stop_signal_taken_by_another_thread_still_wakes_the_waiting_main_thread():
+    """The CI hang of a busy server: the kernel gave SIGTERM to a viser thread, Python flagged it, and a
+    main thread blocked in one long ``Event.wait()`` never ran the handler. Sent here to a thread of
+    our own (``pthread_kill``), so that it is never the main thread that takes it."""
+    stopped = threading.Event()
+    previous = signal.signal(signal.SIGUSR2, lambda number, frame: stopped.set())
+    try:
+        # Sent once the main thread is (most likely) blocked waiting; if it comes earlier, the test
+        # passes trivially; it never fails when waking works.
+        other = threading.Timer(0.3, lambda: signal.pthread_kill(threading.get_ident(), signal.SIGUSR2))
+        other.start()
+        assert wait_in_main_thread(stopped, timeout=60.0)
+        other.join()
+    finally:
+        signal.signal(signal.SIGUSR2, previous)
+
+
+def test_wait_in_main_thread_returns_false_after_its_timeout():
+    assert not wait_in_main_thread(threading.Event(), timeout=0.05)
