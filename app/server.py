@@ -37,6 +37,7 @@ from .viser_adapter import (
     install_fast_prop_casts,
     install_icon_cache,
     install_input_checks,
+    install_loop_safe_events,
     install_message_limits,
     listen_on,
 )
@@ -99,6 +100,7 @@ class Lab:
         install_message_limits()  # what one websocket message and one tab may cost
         self.room = install_input_checks(RoomLimits())  # every value a tab sends, checked as it enters
         install_fast_prop_casts()
+        install_loop_safe_events()  # the renderer thread's sends never touch the event loop's waiters
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
         self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)

@@ -35,11 +35,15 @@ Wrapped:
   (through ``handle._impl.props`` and the scene's ``_queue_scene_message``).
 * :func:`install_icon_cache` — viser's ``_icons.svg_from_icon`` (also as imported by ``_gui_api`` and
   ``_gui_handles``), reading its icon archive once instead of once per icon and thread.
+* :func:`install_loop_safe_events` — every ``AsyncMessageBuffer``'s ``message_event`` a
+  :class:`~.events.LoopSafeEvent`, which the renderer thread may set without touching the event
+  loop's waiters (viser's ``push`` sets an ``asyncio.Event`` from the calling thread).
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of seven modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
-:mod:`.mirror`, :mod:`.icons`), so each stays short; nothing outside this package touches viser's private API.
+A package of eight modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
+:mod:`.mirror`, :mod:`.icons`, :mod:`.events`), so each stays short;
+ nothing outside this package touches viser's private API.
 """
 
 from .core import (
@@ -55,6 +59,7 @@ from .core import (
     scene_handles,
     set_page_title,
 )
+from .events import LoopSafeEvent, install_loop_safe_events
 from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
 from .handshake import allow_origins, handshake_refusal
 from .icons import install_icon_cache
@@ -96,6 +101,8 @@ __all__ = [
     "UPLOAD_PART_BYTES",
     "install_fast_prop_casts",
     "install_icon_cache",
+    "install_loop_safe_events",
+    "LoopSafeEvent",
     "capture_scene",
     "replay_scene",
     "update_props",

@@ -7,6 +7,7 @@ the installed viser version.
 
 from __future__ import annotations
 
+import asyncio
 import json
 import re
 import threading
@@ -266,3 +267,65 @@ def test_the_page_title_is_set_in_a_real_browser_and_kept(server):
             page.wait_for_function("document.title === 'Jacobian Lab'")
         finally:
             browser.close()
+
+
+def _loop_waiting_on(make_event):
+    """(loop, its thread, the event, a future of one task awaiting the event) with the task waiting."""
+    loop = asyncio.new_event_loop()
+    thread = threading.Thread(target=loop.run_forever, daemon=True)
+    thread.start()
+    event = asyncio.run_coroutine_threadsafe(_make(make_event), loop).result(POLL_TIMEOUT)
+    waiting = asyncio.run_coroutine_threadsafe(event.wait(), loop)
+    poll(lambda: len(event._waiters) == 1, what="the task waiting")
+    return loop, thread, event, waiting
+
+
+async def _make(make_event):
+    return make_event()
+
+
+def _stop(loop, thread):
+    loop.call_soon_threadsafe(loop.stop)
+    thread.join(POLL_TIMEOUT)
+    loop.close()
+
+
+def test_an_asyncio_event_set_off_its_loop_completes_the_loops_futures_from_the_wrong_thread():
+    """What viser's push does from the renderer thread (the cause of 'deque mutated during iteration')."""
+    loop, thread, event, waiting = _loop_waiting_on(asyncio.Event)
+    try:
+        event.set()  # from this thread, which runs no loop
+        assert event._waiters[0].done()  # completed here, while the loop's thread may change the deque
+    finally:
+        _stop(loop, thread)
+
+
+def test_a_loop_safe_event_set_off_its_loop_leaves_the_waking_to_the_loops_thread():
+    loop, thread, event, waiting = _loop_waiting_on(va.LoopSafeEvent)
+    try:
+        event.set()
+        assert event.is_set()  # seen at once (viser reads it synchronously)
+        assert not event._waiters[0].done()  # the loop's futures untouched from this thread
+        loop.call_soon_threadsafe(event.set)  # what viser's push does next: the flag is up already
+        assert waiting.result(POLL_TIMEOUT) is True
+    finally:
+        _stop(loop, thread)
+
+
+def test_install_loop_safe_events_gives_every_buffer_one_and_messages_still_arrive():
+    va.install_loop_safe_events()
+    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    try:
+        with ViserWsClient(f"ws://127.0.0.1:{srv.get_port()}") as ws:
+            poll(lambda: len(srv.get_clients()) == 1)
+            (client,) = srv.get_clients().values()
+            buffers = [
+                srv._websock_server.get_message_buffer(),
+                client._websock_connection.get_message_buffer(),
+            ]
+            assert all(isinstance(b.message_event, va.LoopSafeEvent) for b in buffers)
+            mark = ws.mark()
+            threading.Thread(target=lambda: client.gui.add_markdown("from another thread")).start()
+            ws.wait_for(lambda m: "from another thread" in json.dumps(m, default=str), after=mark)
+    finally:
+        srv.stop()
