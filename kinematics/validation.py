@@ -129,9 +129,9 @@ def _limit_value(x: object, where: str) -> float:
 def joint_limits(qlim: object, where: str) -> tuple[float, float] | None:
     """Normalised joint limits: a finite ``(lower, upper)`` with lower < upper, or ``None``.
 
-    A side of magnitude ≥ :data:`UNLIMITED` (``-1e16``, ``-inf``, ``1e308``) means that side is
-    unlimited, and a joint unlimited on either side is stored as unlimited (``None``): limits
-    bound sliders and sampling only, which need both ends. A lower limit of ``+inf`` (or an
+    Both sides of magnitude ≥ :data:`UNLIMITED` (``-1e16``, ``-inf``, ``1e308``) mean an unlimited
+    joint (``None``). One such side beside a finite one is refused in words (limits bound sliders
+    and sampling, which need both ends; dropping the finite one would change the file silently). A lower limit of ``+inf`` (or an
     upper limit of ``-inf``) is not a sentinel but an error, as is NaN.
 
     Args:
@@ -152,8 +152,14 @@ def joint_limits(qlim: object, where: str) -> tuple[float, float] | None:
             f"{where}: lower limit {lo:g} must be below upper limit {hi:g}; "
             f"an unlimited side is written -inf (lower) or inf (upper), or beyond ±{UNLIMITED:g}"
         )
-    if lo <= -UNLIMITED or hi >= UNLIMITED:
+    if lo <= -UNLIMITED and hi >= UNLIMITED:
         return None
+    if lo <= -UNLIMITED or hi >= UNLIMITED:  # dropping the finite side would be a silent change
+        side, bound = ("lower", hi) if lo <= -UNLIMITED else ("upper", lo)
+        raise RobotDefinitionError(
+            f"{where}: a joint limited on one side only ({side} unlimited, the other {bound:g}) is "
+            "not supported: give both limits, or neither for an unlimited joint"
+        )
     if not lo < hi:
         raise RobotDefinitionError(f"{where}: lower limit {lo} must be below upper limit {hi}")
     return (lo, hi)

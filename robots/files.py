@@ -17,6 +17,7 @@ parsed (tomllib); nothing is ever evaluated, and every text written is escaped.
 from __future__ import annotations
 
 import math
+import re
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -127,8 +128,14 @@ def parse(text: str, file_name: str) -> dict[str, Any]:
         raise RobotDefinitionError(f"{file_name}: not valid TOML: {exc}") from None
     except RecursionError:
         raise RobotDefinitionError(f"{file_name}: not valid TOML: nested too deeply") from None
-    except ValueError as exc:  # an integer of more digits than Python converts
-        raise RobotDefinitionError(f"{file_name}: not valid TOML: {exc}") from None
+    except ValueError as exc:  # an integer of more digits than Python converts (4300 by default)
+        digits = re.search(r"value has (\d+) digits", str(exc))
+        raise RobotDefinitionError(
+            f"{file_name}: an integer of {digits.group(1)} digits; write a number within float range, "
+            "e.g. 1.5e3"
+            if digits
+            else f"{file_name}: not valid TOML: {exc}"
+        ) from None
     return validated(doc, file_name)
 
 

@@ -117,11 +117,27 @@ def _local(tag: object) -> str:
     return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
 
 
+MAX_NUMBER_CHARACTERS = 64
+"""The longest text read as one number (a 60 kB digit string is refused, not read as ∞)."""
+
+
+def _clip(text: str, limit: int = 40) -> str:
+    """``text`` itself, or its start and its length when it is longer than ``limit`` characters."""
+    return text if len(text) <= limit else f"{text[:limit]}… ({len(text)} characters)"
+
+
+def _check_length(tok: str, what: str) -> None:
+    if len(tok) > MAX_NUMBER_CHARACTERS:
+        raise UrdfError(
+            f"{what}: a number of {len(tok)} characters; a number has at most {MAX_NUMBER_CHARACTERS}"
+        )
+
+
 def _numbers(el: Element, attr: str, count: int, where: str, default: tuple[float, ...]) -> FloatArray:
     text = el.get(attr) if el is not None else None
     if text is None:
         return np.array(default, dtype=float)
-    what = f'{where}: <{_local(el.tag)} {attr}="{text}">'
+    what = f'{where}: <{_local(el.tag)} {attr}="{_clip(text)}">'
     if "," in text:
         raise UrdfError(f"{what}: numbers must be separated by spaces, not commas")
     tokens = text.split()
@@ -129,10 +145,11 @@ def _numbers(el: Element, attr: str, count: int, where: str, default: tuple[floa
         raise UrdfError(f"{what}: expected {count} numbers, found {len(tokens)}")
     values = []
     for tok in tokens:
+        _check_length(tok, what)
         try:
             v = float(tok)
         except ValueError:
-            raise UrdfError(f"{what}: {tok!r} is not a number") from None
+            raise UrdfError(f"{what}: {_clip(tok)!r} is not a number") from None
         if not math.isfinite(v):
             raise UrdfError(f"{what}: {tok!r} is not a finite number")
         if abs(v) > MAX_MAGNITUDE:
@@ -146,7 +163,8 @@ def _number(el: Element, attr: str, where: str, default: float | None, limit: bo
     text = el.get(attr)
     if text is None:
         return default
-    what = f'{where}: <{_local(el.tag)} {attr}="{text}">'
+    what = f'{where}: <{_local(el.tag)} {attr}="{_clip(text)}">'
+    _check_length(text.strip(), what)
     try:
         v = float(text.strip())
     except ValueError:

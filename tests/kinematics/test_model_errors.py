@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from fractions import Fraction
 
 import numpy as np
@@ -331,8 +332,6 @@ def test_urdf_chain_without_meshes(tmp_path):
         ((-1e16, 1e16), None),  # URDF sentinels for "unlimited"
         ((-1e308, 1e308), None),
         ((-math.inf, math.inf), None),
-        ((0.0, math.inf), None),  # unlimited on one side: unlimited (sliders need both ends)
-        ((-(10**400), 0.0), None),  # beyond float range is beyond 1e15 too
         ((-999e12, 999e12), (-999e12, 999e12)),  # just below the sentinel threshold: kept
         (None, None),
     ],
@@ -344,6 +343,34 @@ def test_huge_limits_mean_unlimited_in_every_loader(qlim, expected):
     lo, hi = expected if expected is not None else (-math.inf, math.inf)
     assert robot.qlim[:, 0].tolist() == [lo, hi]
     assert robot.home.tolist() == [0.0 if expected is None else (lo + hi) / 2]
+
+
+@pytest.mark.parametrize(
+    ("qlim", "words"),
+    [
+        ((0.0, math.inf), "upper unlimited, the other 0"),
+        ((-math.inf, 0.0), "lower unlimited, the other 0"),
+        ((-(10**400), 0.5), "lower unlimited, the other 0.5"),  # beyond float range is beyond 1e15 too
+    ],
+)
+def test_a_limit_on_one_side_only_is_refused_in_words_not_dropped(qlim, words):
+    """Issue 18, point 11: DH qlim (-inf, 0) silently lost its finite bound."""
+    with pytest.raises(RobotDefinitionError, match=re.escape(words)):
+        Robot.from_dh([with_(qlim=qlim)])
+
+
+def test_a_60_kB_number_in_a_urdf_is_refused_in_a_short_message():
+    digits = "1" + "0" * 60_000
+    for where in (f'xyz="{digits} 0 0"', None):
+        text = urdf(LINK.format("a"), LINK.format("b"), joint("j1", "a", "b"))
+        text = (
+            text.replace("<parent", f"<origin {where}/><parent")
+            if where
+            else text.replace('lower="-1"', f'lower="-{digits}"')
+        )
+        with pytest.raises(UrdfError, match="a number of 6000[12] characters") as error:
+            robot_from_urdf_string(text)
+        assert len(str(error.value)) < 300
 
 
 def test_urdf_sentinel_limits_mean_unlimited():
