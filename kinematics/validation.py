@@ -131,8 +131,9 @@ def joint_limits(qlim: object, where: str) -> tuple[float, float] | None:
 
     Both sides of magnitude ≥ :data:`UNLIMITED` (``-1e16``, ``-inf``, ``1e308``) mean an unlimited
     joint (``None``). One such side beside a finite one is refused in words (limits bound sliders
-    and sampling, which need both ends; dropping the finite one would change the file silently). A lower limit of ``+inf`` (or an
-    upper limit of ``-inf``) is not a sentinel but an error, as is NaN.
+    and sampling, which need both ends; dropping the finite one would change the file silently).
+    A lower limit of ``+inf`` (or an upper limit of ``-inf``) is not a sentinel but an error, as is
+    NaN.
 
     Args:
         qlim: ``None`` or a pair (lower, upper) [rad] or [m].
