@@ -271,7 +271,7 @@ def serve(
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:
-        link = f"{lab.url}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
+        link = f"{lab.url}/?presenter={urllib.parse.quote(presenter_token, safe='')}"
         print(
             f"Classroom mode: open {link} in the tab you present from (keep the link off the "
             "projector; it fills in the presenter token, masked, and drops it from the address bar). "

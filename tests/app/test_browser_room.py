@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from browser_helpers import app_page, close_notifications, wait
+from browser_helpers import app_page, close_notifications, new_page, wait
 
 from app.core.actions import SetJoint
 from app.core.commands import ChooseRobot
@@ -82,3 +82,30 @@ def test_a_reload_keeps_robot_q_and_tab_and_typed_numbers_are_kept_or_refused(tm
         page.screenshot(path=str(out / "room_after_reload.png"))
         assert "trr" in page.locator("input").first.input_value() or again.panel.robot.value == "trr"
         assert not errors, errors
+
+
+def test_the_token_box_is_masked_typing_tries_once_and_the_presenter_link_leaves_no_token(tmp_path):
+    """Issue 18, point 6, in the browser: the token typed key by key is masked and costs one try (not
+    one per key); the presenter link fills the box, makes that tab present, and the token leaves the
+    address bar."""
+    out = _out(tmp_path)
+    token = "rK4-vq9T-w2Lm"
+    lab = Lab(port=0, presenter_token=token)
+    with app_page(lab) as (page, student, errors):
+        box = page.locator(f'label[for="{handle_uuid(student.panel.classroom.token)}"]').locator(
+            "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
+        )
+        wait(lambda: box.get_attribute("type") == "password")
+        box.press_sequentially("not-the-token", delay=20)
+        wait(lambda: lab.room.wrong_tokens() == 1)  # tried once the typing paused
+        page.screenshot(path=str(out / "room_token_masked.png"))
+        assert not student.role.presenting
+
+        presenter = new_page(page.context.browser)
+        presenter.goto(f"{lab.url}/?presenter={token}")  # the link serve prints
+        presenter.wait_for_selector("[role=slider]")
+        wait(lambda: any(s.role.presenting for s in lab.sessions.values()))
+        assert token not in presenter.evaluate("location.href")
+        wait(lambda: "presenting" in presenter.locator("body").inner_text().lower())
+        presenter.screenshot(path=str(out / "room_presenter_link.png"))
+        assert lab.room.wrong_tokens() == 1 and not errors

@@ -1,7 +1,7 @@
 """The classroom controls of one tab (shown when the server runs with a presenter token).
 
 A text input "Presenter token", masked like a password (typing the token makes this tab the presenter:
-no other click; the presenter link ``serve`` prints, ``…/#presenter=TOKEN``, fills it in and drops the
+no other click; the presenter link ``serve`` prints, ``…/?presenter=TOKEN``, fills it in and drops the
 token from the address bar, so it is never typed or shown where the room can read it), one
 button that says what it does next ("Explore on my own", "Follow the presenter", "Stop presenting")
 and a line saying what the tab is: presenting (and how many tabs follow), following (read-only),
@@ -22,29 +22,37 @@ __all__ = ["ClassroomPanel", "compact_title", "token_js"]
 
 _TOKEN_JS = """(() => {
   const uuid = %s;
-  const hash = new URLSearchParams(location.hash.slice(1));
-  const token = hash.get("presenter");
-  if (token !== null) {  // the presenter link: never left in the address bar
-    hash.delete("presenter");
-    const rest = hash.toString();
-    history.replaceState(null, "", location.pathname + location.search + (rest ? "#" + rest : ""));
+  // The presenter link (…/?presenter=TOKEN; a fragment would stop viser's websocket): taken from the
+  // address, or from the page script that took it first, and never left in the address bar.
+  const fields = new URLSearchParams(location.search);
+  const token = fields.get("presenter") || window.__jacobianLabPresenter || null;
+  window.__jacobianLabPresenter = null;
+  if (fields.has("presenter")) {
+    fields.delete("presenter");
+    const rest = fields.toString();
+    history.replaceState(null, "", location.pathname + (rest ? "?" + rest : ""));
   }
-  let tries = 0;
-  const timer = setInterval(() => {
-    const root = document.getElementById(uuid);
-    const input = root && (root.tagName === "INPUT" ? root : root.querySelector("input"));
-    if (!input) { if (++tries > 200) clearInterval(timer); return; }
-    clearInterval(timer);
-    input.type = "password";
-    input.autocomplete = "off";
-    input.spellcheck = false;
-    input.style.setProperty("-webkit-text-security", "disc");
-    if (token) {
+  // viser gives the text input a generated id (its label is for the handle's uuid), and React may
+  // render a new input (a folded and unfolded box): mask whatever input is there, for the page's life.
+  let filled = false;
+  setInterval(() => {
+    const label = document.querySelector(`label[for="${uuid}"]`);
+    const row = label && label.closest(".mantine-Flex-root");
+    const input = row && row.querySelector("input");
+    if (!input) return;
+    if (input.type !== "password") {
+      input.type = "password";
+      input.autocomplete = "off";
+      input.spellcheck = false;
+      input.style.setProperty("-webkit-text-security", "disc");
+    }
+    if (token && !filled) {
+      filled = true;
       const set = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set;
       set.call(input, token);
       input.dispatchEvent(new Event("input", {bubbles: true}));
     }
-  }, 50);
+  }, 250);
 })();"""
 
 

@@ -25,7 +25,16 @@ _JS = r"""
 (() => {
   const REPORT = %(report)s, STORAGE = %(storage)s, LOST = %(lost)s;
   const w = window;
-  const initial = location.search.slice(1);  // read before anything rewrites it
+  // read before anything rewrites it; a presenter link's token is kept for the token box's script
+  // (app.views.panel.classroom) and never reported nor left in the address bar
+  const first = new URLSearchParams(location.search);
+  if (first.has("presenter")) {
+    w.__jacobianLabPresenter = first.get("presenter");
+    first.delete("presenter");
+    const rest = first.toString();
+    history.replaceState(null, "", location.pathname + (rest ? "?" + rest : ""));
+  }
+  const initial = first.toString();
   let reported = false;  // the server's address is taken only after the page has told its own
   const findInput = () => {
     const label = document.querySelector(`label[for="${REPORT}"]`);
