@@ -46,6 +46,7 @@ __all__ = [
 
 _FAST_BOUND = min(MAX_ANGLE, MAX_LENGTH)
 _MAX_ABS = np.maximum.reduce
+_FLOAT = np.dtype(np.float64)
 
 
 def check_frame(frame: object) -> Frame:
@@ -84,6 +85,11 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> FloatArray:
 
 def _configuration(robot: Robot, c: Kernel, q: object, what: str = "q") -> FloatArray:
     """:func:`as_configuration` with the robot's kernel already at hand."""
+    # Hot path (one float64 configuration, an app redrawing): Σ|q| ≤ min(bound) puts every value
+    # within its bound; NaN and ±inf make the sum fail the test and take the full checks below.
+    if type(q) is np.ndarray and q.dtype is _FLOAT and q.shape == (robot.dof,):
+        if sum(map(abs, q.tolist())) <= _FAST_BOUND:
+            return q
     bound = c.bound
     try:
         a = np.asarray(q)
