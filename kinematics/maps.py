@@ -40,7 +40,7 @@ __all__ = [
 
 UNLIMITED_PRISMATIC = 1.0
 """Half-range [m] sampled for a prismatic joint without limits."""
-CHUNK = 1024
+CHUNK = 4096
 """Configurations per chunk: the working arrays of a batch are those of one chunk (in cache), so
 the memory a map needs beyond its results is bounded by the chunk, whatever the batch's size."""
 
