@@ -197,7 +197,9 @@ def workspace(
     except (TypeError, ValueError):
         raise OptionError(f"seed must be an int ≥ 0 or None, got {show(seed)}") from None
     lim = sampling_range(robot)
-    Q = rng.uniform(lim[0], lim[1], size=(count, robot.dof))
+    Q = np.empty((count, robot.dof))
+    for s in range(0, count, size):  # drawn chunk by chunk: the same numbers as in one draw
+        Q[s : s + size] = rng.uniform(lim[0], lim[1], size=(min(size, count - s), robot.dof))
     found = _evaluate(robot, Q, chosen, size)
     return Workspace(Q, found.points, found.w, found.inverse_kappa)
 

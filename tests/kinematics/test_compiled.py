@@ -14,7 +14,7 @@ import pytest
 from fakes import random_q
 
 import robots
-from kinematics import Robot, fk, jacobian, joint_frames, link_frames
+from kinematics import ConfigurationError, Robot, fk, jacobian, joint_frames, link_frames
 from kinematics.compiled import MAX_AXES, Chain, Compiled, generate
 from kinematics.kernel import (
     batch_scan,
@@ -205,3 +205,21 @@ def test_generated_text_holds_only_fixed_identifiers_and_numbers():
                 assert allowed.match(token.string), token.string
     q = np.array([0.2, 0.3])
     np.testing.assert_allclose(jacobian(robot, q), _reference(robot, q)[2], atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("q", "message"),
+    [
+        ([0.1, np.nan, 0.0, 0.0], r"q contains NaN or infinity \(joint 'q2 elbow': nan\)"),
+        ([0.1, 0.0, 0.0, -np.inf], r"q contains NaN or infinity \(joint 'q4 tool roll': -inf\)"),
+        ([0.1, 0.0, 2e15, 0.0], r"joint 'd3 quill' value 2e\+15 m is out of range"),
+        ([-2e18, 0.0, 0.0, 0.0], r"joint 'q1 shoulder' value -2e\+18 rad is out of range"),
+    ],
+)
+def test_float64_configurations_are_checked_like_any_other(q, message):
+    """A float64 array of the right shape takes the one-configuration hot path of the input
+    checks; NaN, ±inf and out-of-range values are still refused with the reason."""
+    robot = ROBOTS["scara"]
+    for fn in (fk, jacobian, joint_frames, link_frames, frames_and_jacobian):
+        with pytest.raises(ConfigurationError, match=message):
+            fn(robot, np.array(q, dtype=np.float64))
