@@ -131,19 +131,23 @@ def gram_measures(J: FloatArray) -> tuple[FloatArray, FloatArray]:
     return _from_sigma(gram_sigma(J), J.shape[2])
 
 
-def _evaluate(robot: Robot, Q: FloatArray, rows: list[int], chunk: int = CHUNK) -> Measures:
+def _evaluate(
+    robot: Robot, Q: FloatArray, rows: list[int], chunk: int = CHUNK, keep_sigma: bool = True
+) -> Measures:
     """Tool points and measures for Q (N, n), ``chunk`` configurations at a time: one pass of the
     generated chain code (T and J) and one eigvalsh per chunk, written into the results."""
     c = kernel(robot)
     N = len(Q)
-    points, sigma = np.empty((N, 3)), np.empty((N, len(rows)))
+    points, sigma = np.empty((N, 3)), np.empty((N if keep_sigma else 0, len(rows)))
     w, inverse = np.empty(N), np.empty(N)
     full = rows == [0, 1, 2, 3, 4, 5]
     for s in range(0, N, chunk):
         T, J = chain_batch(c, Q[s : s + chunk], want_jacobian=True)
         assert J is not None
         points[s : s + chunk] = T[:, :3, 3]
-        sigma[s : s + chunk] = part = gram_sigma(J if full else J[:, rows])
+        part = gram_sigma(J if full else J[:, rows])
+        if keep_sigma:
+            sigma[s : s + chunk] = part
         w[s : s + chunk], inverse[s : s + chunk] = _from_sigma(part, robot.dof)
     return Measures(points, sigma, w, inverse)
 
@@ -200,7 +204,7 @@ def workspace(
     Q = np.empty((count, robot.dof))
     for s in range(0, count, size):  # drawn chunk by chunk: the same numbers as in one draw
         Q[s : s + size] = rng.uniform(lim[0], lim[1], size=(min(size, count - s), robot.dof))
-    found = _evaluate(robot, Q, chosen, size)
+    found = _evaluate(robot, Q, chosen, size, keep_sigma=False)
     return Workspace(Q, found.points, found.w, found.inverse_kappa)
 
 
@@ -233,5 +237,5 @@ def joint_map(
     Q = np.repeat(qa[None], res * res, axis=0)
     Q[:, i] = np.repeat(vi, res)
     Q[:, j] = np.tile(vj, res)
-    found = _evaluate(robot, Q, chosen)
+    found = _evaluate(robot, Q, chosen, keep_sigma=False)
     return JointMap(int(i), int(j), vi, vj, found.w.reshape(res, res), found.inverse_kappa.reshape(res, res))
