@@ -1,16 +1,20 @@
 """Straight-line chain code generated per robot: one configuration in scalar floats, a batch in
-whole-array NumPy operations, from the same generated text.
+whole-array NumPy operations.
 
 :class:`Compiled` writes, for one robot, Python source that evaluates its chain
 T = F₀ · M₁(q) · F₁ ⋯ M_m(q) · F_m (:meth:`~kinematics.model.Robot.fixed_transforms`) with every
-constant folded in: zeros and ones of the fixed transforms vanish, a rotation by ±π/2 is a renaming,
-and each product is formed once. The text holds only fixed identifiers (``q3``, ``c2``, ``v17``)
-and float literals written with ``repr`` — never a name or any text of the model — and is compiled
-with :func:`compile` once per robot. Run with ``math.cos``/``math.sin`` on Python floats it is the
-single-configuration path; run with ``numpy.cos``/``numpy.sin`` on rows of a batch (every name then
-an array over the batch) it is the batched path. Sine and cosine take the very argument of
-:func:`kinematics.kernel.chain_single` (q·multiplier + offset), and both libraries reduce it modulo
-2π accurately, so a huge |q| gives the same rigid pose.
+constant folded in: zeros and ones of the fixed transforms vanish, a rotation by ±π/2 is a renaming
+with a sign, and each expression is formed once. The text holds only fixed identifiers (``q3``,
+``c2``, ``v17``) and float literals written with ``repr`` — never a name or any text of the model —
+and is compiled with :func:`compile` once per robot and kind of output.
+
+Run on Python floats with ``math.cos``/``math.sin`` it is the single-configuration path (fk, J,
+joint and link frames from one pass, packed into one array). The batched text is the same chain
+run on the rows of a chunk (every name then an array over the chunk), with cos and sin formed
+from ``numpy.tan`` of the half angle (NumPy's vectorised tan costs a fifth of its sin) and each
+array deleted after its last use. The angle is the very argument of
+:func:`kinematics.kernel.chain_scan` (q·multiplier + offset); math, NumPy's sin and cos and its
+tan all reduce it modulo 2π accurately, so a huge |q| gives the same rigid pose.
 """
 
 from __future__ import annotations
@@ -112,7 +116,7 @@ def _clean(x: float) -> float:
     return 0.0 if abs(x) < _TINY else float(x)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Chain:
     """The numbers of a chain: ``fixed`` (m+1, 4, 4), ``base`` (4, 4), and per axis
     ``child`` (T_joint_child, (m, 4, 4)), its joint index, multiplier, offset and kind; ``dof`` joints."""
