@@ -203,10 +203,24 @@ def generate(chain: Chain, frames: bool, links: bool, jacobian: bool, batch: boo
         out += link_frames + out[:16]
     if jacobian:
         out += _jacobian(w, chain, [z for (_, _, z), _ in saved], [pk for _, pk in saved], p)
-    result = f"    return ({''.join(_text(v) + ', ' for v in out)})"
-    lines = _released(w.lines, result) if batch else w.lines
-    body = "\n".join(lines)
-    return f"def chain(q):\n{body}\n{result}\n", len(out)
+    if not batch:
+        body = "\n".join(w.lines)
+        return f"def chain(q):\n{body}\n    return ({''.join(_text(v) + ', ' for v in out)})\n", len(out)
+    # A batch writes each value into its row of ``out`` (size, N): no temporary for a sign or a scale.
+    stores = "\n".join(f"    {_store(i, v)}" for i, v in enumerate(out))
+    body = "\n".join(_released(w.lines, stores))
+    return f"def chain(q, out):\n{body}\n{stores}\n", len(out)
+
+
+def _store(i: int, v: Value) -> str:
+    if not isinstance(v, tuple):
+        return f"out[{i}] = {_literal(v)}"
+    c, n = v
+    if c == 1.0:
+        return f"out[{i}] = {n}"
+    if c == -1.0:
+        return f"negative({n}, out=out[{i}])"
+    return f"multiply({n}, {_literal(c)}, out=out[{i}])"
 
 
 _NAME = re.compile(r"\b[qcstdvhg]\d+\b")
@@ -250,7 +264,7 @@ def _jacobian(w: _Writer, chain: Chain, zs: list[Vector], ps: list[Vector], tool
     return [v for row in J for v in row]
 
 
-Function = Callable[[Any], tuple[Any, ...]]
+Function = Callable[..., tuple[Any, ...]]
 
 
 class Compiled:
@@ -273,6 +287,7 @@ class Compiled:
             text, size = generate(self.chain, "W" in parts, "L" in parts, "J" in parts, batch=not scalar)
             lib: Any = math if scalar else np
             namespace: dict[str, Any] = {"cos": lib.cos, "sin": lib.sin, "tan": lib.tan, "__builtins__": {}}
+            namespace.update(negative=np.negative, multiply=np.multiply)
             # Our own text: fixed identifiers and float literals only (see the module's docstring).
             exec(compile(text, "<kinematics.compiled>", "exec"), namespace)
             found = self._cache[key] = (namespace["chain"], struct.Struct(f"{size}d").pack, size)
@@ -297,7 +312,6 @@ class Compiled:
         function, _, size = self._function("TJ" if jacobian else "T", False)
         N = len(Q)
         out = np.empty((size, N))
-        for i, v in enumerate(function(list(np.ascontiguousarray(Q.T)))):
-            out[i] = v
+        function(list(np.ascontiguousarray(Q.T)), out)
         T = out[:16].T.reshape(N, 4, 4)
         return T, out[16:].T.reshape(N, 6, self.chain.dof) if jacobian else None

@@ -196,7 +196,7 @@ def test_generated_text_holds_only_fixed_identifiers_and_numbers():
     assert "import" in robot.joints[0].name and "import" in robot.name
     compiled = kernel(robot).compiled
     assert compiled is not None
-    allowed = re.compile(r"(chain|cos|sin|tan|return|def|pass|del|q|[qcstdvhg]\d+)\Z")
+    allowed = re.compile(r"(chain|cos|sin|tan|negative|multiply|out|return|def|pass|del|q|[qcstdvhg]\d+)\Z")
     for parts, batch in (("T", False), ("TJ", False), ("TW", False), ("TWLJ", False), ("TJ", True)):
         text, _ = generate(compiled.chain, "W" in parts, "L" in parts, "J" in parts, batch)
         for token in tokenize.generate_tokens(io.StringIO(text).readline):
