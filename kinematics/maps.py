@@ -14,6 +14,7 @@ Sampling follows the limits; a joint without limits is sampled over ±π (revolu
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -33,6 +34,7 @@ __all__ = [
     "workspace",
     "joint_map",
     "measures",
+    "measures_dask",
     "sampling_range",
     "gram_measures",
     "gram_sigma",
@@ -162,6 +164,37 @@ def measures(
     if Q.ndim != 2:
         raise ConfigurationError(f"q must be a batch of configurations (N, {robot.dof}), got shape {Q.shape}")
     return _evaluate(robot, Q, _rows(robot, rows), _int(chunk, "chunk", 1))
+
+
+def measures_dask(
+    robot: Robot, q: Any, *, rows: Part | tuple[int, ...] | None = None, chunk: int = CHUNK
+) -> Any:
+    """:func:`measures` mapped over a Dask array of configurations (N, n), one task per block of
+    ``chunk`` rows (the optional extra ``dask``: for sweeps larger than one machine's memory or
+    cores). Returns a lazy Dask array (N, 3 + k + 2): the tool point, the k singular values, w and
+    σmin/σmax of each configuration, the columns of :class:`Measures` side by side.
+
+    Raises:
+        OptionError: Dask is not installed.
+    """
+    try:
+        import dask.array as da
+    except ImportError:
+        raise OptionError("measures_dask needs Dask: pip install 'dask[array]'") from None
+    chosen = _rows(robot, rows)
+    size = _int(chunk, "chunk", 1)
+    blocks = da.asarray(q).rechunk((size, -1))
+    if blocks.ndim != 2 or blocks.shape[1] != robot.dof:
+        raise ConfigurationError(
+            f"q must be a batch of configurations (N, {robot.dof}), got shape {blocks.shape}"
+        )
+
+    def block(part: FloatArray) -> FloatArray:
+        found = _evaluate(robot, as_configuration(robot, part), chosen, size)
+        return np.column_stack((found.points, found.sigma, found.w, found.inverse_kappa))
+
+    width = 3 + len(chosen) + 2
+    return blocks.map_blocks(block, chunks=(blocks.chunks[0], (width,)), dtype=float)
 
 
 def _rows(robot: Robot, rows: Part | tuple[int, ...] | None) -> list[int]:

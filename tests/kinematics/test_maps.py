@@ -18,7 +18,7 @@ from kinematics import (
     singular_values,
     task_rows,
 )
-from kinematics.maps import joint_map, measures, sampling_range, workspace
+from kinematics.maps import joint_map, measures, measures_dask, sampling_range, workspace
 
 
 @pytest.mark.parametrize("name", ["puma560", "panda", "planar3", "trr", "iiwa14", "scara"])
@@ -161,3 +161,18 @@ def test_measures_of_a_batch_in_one_pass():
         measures(robot, Q[0])
     with pytest.raises(OptionError, match="chunk must be an int"):
         measures(robot, Q, chunk=0)
+
+
+def test_measures_mapped_with_dask_equal_measures():
+    """The same chunk function mapped over a Dask array, one task per chunk: the same numbers."""
+    da = pytest.importorskip("dask.array")
+    robot = robots.load("panda")
+    Q = np.random.default_rng(9).uniform(-2, 2, (100, robot.dof))
+    lazy = measures_dask(robot, da.from_array(Q, chunks=30), chunk=16)
+    assert lazy.numblocks == (7, 1) and lazy.shape == (100, 3 + 6 + 2)
+    got = lazy.compute(scheduler="synchronous")
+    want = measures(robot, Q)
+    columns = np.column_stack((want.points, want.sigma, want.w, want.inverse_kappa))
+    np.testing.assert_allclose(got, columns, rtol=1e-14, atol=1e-15)
+    with pytest.raises(ConfigurationError, match="batch of configurations"):
+        measures_dask(robot, da.from_array(Q[:, :3], chunks=30))
