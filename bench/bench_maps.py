@@ -11,13 +11,15 @@ In one run on this machine:
 
 Run with::
 
-    python bench/bench_maps.py
+    python bench/bench_maps.py                    # add --large 1000000: a million Panda samples
 """
 
 from __future__ import annotations
 
 import argparse
+import time
 import timeit
+import tracemalloc
 
 import numpy as np
 
@@ -82,12 +84,34 @@ def bench_ik() -> None:
     print(f"ratio ours / RTB                   {ours / theirs:8.2f}")
 
 
+def bench_large(n: int) -> None:
+    """``workspace(panda, n)`` once: time, and the peak memory beyond its results (tracemalloc
+    sees NumPy's buffers), which the chunks bound whatever ``n``."""
+    panda = robots.load("panda")
+    workspace(panda, 1000, seed=0)
+    start = time.thread_time()
+    workspace(panda, n, seed=0)
+    seconds = time.thread_time() - start
+    tracemalloc.start()
+    ws = workspace(panda, n, seed=0)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    results = sum(a.nbytes for a in (ws.q, ws.points, ws.w, ws.inverse_kappa))
+    print(
+        f"workspace(panda, {n:,}): {seconds:.1f} s of CPU ({seconds / n * 1e6:.2f} µs per configuration); "
+        f"results {results / 2**20:.0f} MiB, peak beyond them {(peak - results) / 2**20:.1f} MiB"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=100_000, help="workspace samples")
+    parser.add_argument("--large", type=int, default=0, help="also one workspace of this many samples")
     args = parser.parse_args()
     bench_workspace(args.n)
     bench_ik()
+    if args.large:
+        bench_large(args.large)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .compiled import MAX_AXES, Chain, Compiled
 from .conventions import FloatArray
 from .errors import RobotDefinitionError
 from .model import Robot
@@ -26,13 +27,19 @@ __all__ = [
     "Kernel",
     "kernel",
     "chain_single",
+    "chain_scan",
+    "single_jacobian",
+    "frames_jacobian",
+    "single_fk",
     "axis_jacobian",
     "jacobian_from_frames",
     "batched_fk",
+    "chain_batch",
+    "batch_scan",
     "batched_jacobian",
 ]
 
-_CHUNK = 2048  # configurations per chunk in batched kernels (keeps working arrays in cache)
+_CHUNK = 4096  # configurations per chunk in batched kernels (keeps working arrays in cache)
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,6 +64,7 @@ class Kernel:
     rz_const: FloatArray
     tz_lin: FloatArray  # (m, 4, 4): Tz(d) F_k = F_k + d · tz_lin
     bound: FloatArray  # (n,) largest accepted |q| per joint: MAX_ANGLE [rad] or MAX_LENGTH [m]
+    compiled: Compiled | None  # generated straight-line code (None: a chain over MAX_AXES axes)
 
     def __post_init__(self) -> None:
         for value in vars(self).values():
@@ -95,6 +103,20 @@ class Kernel:
             rz_const=E @ F,
             tz_lin=Dz @ F,
             bound=bound,
+            compiled=None
+            if m > MAX_AXES
+            else Compiled(
+                Chain(
+                    fixed=fixed.copy(),
+                    base=np.array(robot.base, dtype=float),
+                    child=np.array([ax.T_joint_child for ax in robot.axes], dtype=float).reshape(m, 4, 4),
+                    index=tuple(int(i) for i in index),
+                    multiplier=tuple(float(x) for x in mult),
+                    offset=tuple(float(x) for x in offset),
+                    revolute=tuple(ax.kind == "revolute" for ax in robot.axes),
+                    dof=n,
+                )
+            ),
         )
 
 
@@ -132,6 +154,40 @@ def _forget(key: int, ref: weakref.ref[Robot]) -> None:
 
 def chain_single(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Joint frames T_base_joint (m, 4, 4) (before each axis moves) and T_base_tool."""
+    if c.compiled is None:
+        return chain_scan(c, q)
+    T, W = c.compiled.single(q, "TW")
+    return W, T
+
+
+def single_fk(c: Kernel, q: FloatArray) -> FloatArray:
+    """T_base_tool (4, 4) of one configuration."""
+    if c.compiled is None:
+        return chain_scan(c, q)[1]
+    return c.compiled.single(q, "T")[0]
+
+
+def single_jacobian(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """T_base_tool (4, 4) and the base-frame J (6, n) of one configuration."""
+    if c.compiled is None:
+        W, T = chain_scan(c, q)
+        return T, jacobian_from_frames(c, W, T)
+    T, J = c.compiled.single(q, "TJ")
+    return T, J
+
+
+def frames_jacobian(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray] | None:
+    """Joint frames (m, 4, 4), link frames (m + 2, 4, 4) and the base-frame J (6, n) of one
+    configuration by the generated code (None for a chain without it)."""
+    if c.compiled is None:
+        return None
+    _, W, L, J = c.compiled.single(q, "TWLJ")
+    return W, L, J
+
+
+def chain_scan(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """:func:`chain_single` by NumPy stack operations (the path of chains over MAX_AXES axes, and
+    the reference the generated code is tested against)."""
     qa = q if c.simple else q[c.index] * c.multiplier
     qa = qa + c.offset
     # Rz(θ) · F = cos θ · (Dc F) + sin θ · (Ds F) + (E F), precomputed per axis, so that the
@@ -214,8 +270,16 @@ def _apply_fixed(cols: list[FloatArray], p: FloatArray, F: FloatArray) -> tuple[
     return new_cols, new_p
 
 
-def _chain_batch(c: Kernel, q: FloatArray, want_jacobian: bool) -> tuple[FloatArray, FloatArray | None]:
-    """Component-wise chain over a chunk. Returns T (N,4,4) and, if asked, J (N,6,n)."""
+def chain_batch(c: Kernel, q: FloatArray, want_jacobian: bool) -> tuple[FloatArray, FloatArray | None]:
+    """T (N, 4, 4) and, if asked, J (N, 6, n) of one chunk q (N, n), by the generated code."""
+    if c.compiled is None:
+        return batch_scan(c, q, want_jacobian)
+    return c.compiled.batch(q, want_jacobian)
+
+
+def batch_scan(c: Kernel, q: FloatArray, want_jacobian: bool) -> tuple[FloatArray, FloatArray | None]:
+    """Component-wise chain over a chunk (the path of chains over MAX_AXES axes, and the reference
+    the generated code is tested against). Returns T (N,4,4) and, if asked, J (N,6,n)."""
     N = q.shape[0]
     m = len(c.offset)
     qa = (q if c.simple else q[:, c.index] * c.multiplier) + c.offset  # (N, m)
@@ -267,7 +331,7 @@ def batched_fk(c: Kernel, q: FloatArray) -> FloatArray:
     """T_base_tool (N, 4, 4) for a batch q (N, n), chunk by chunk."""
     T = np.empty((q.shape[0], 4, 4))
     for s in range(0, q.shape[0], _CHUNK):
-        T[s : s + _CHUNK] = _chain_batch(c, q[s : s + _CHUNK], want_jacobian=False)[0]
+        T[s : s + _CHUNK] = chain_batch(c, q[s : s + _CHUNK], want_jacobian=False)[0]
     return T
 
 
@@ -277,7 +341,7 @@ def batched_jacobian(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray]:
     T = np.empty((N, 4, 4))
     J = np.empty((N, 6, c.selection.shape[1]))
     for s in range(0, N, _CHUNK):
-        Tc, Jc = _chain_batch(c, q[s : s + _CHUNK], want_jacobian=True)
+        Tc, Jc = chain_batch(c, q[s : s + _CHUNK], want_jacobian=True)
         T[s : s + _CHUNK] = Tc
         if Jc is not None:
             J[s : s + _CHUNK] = Jc

@@ -21,8 +21,11 @@ from .kernel import (
     batched_fk,
     batched_jacobian,
     chain_single,
+    frames_jacobian,
     jacobian_from_frames,
     kernel,
+    single_fk,
+    single_jacobian,
 )
 from .model import Robot
 from .validation import MAX_ANGLE, MAX_LENGTH, show
@@ -43,6 +46,7 @@ __all__ = [
 
 _FAST_BOUND = min(MAX_ANGLE, MAX_LENGTH)
 _MAX_ABS = np.maximum.reduce
+_FLOAT = np.dtype(np.float64)
 
 
 def check_frame(frame: object) -> Frame:
@@ -81,6 +85,11 @@ def as_configuration(robot: Robot, q: object, what: str = "q") -> FloatArray:
 
 def _configuration(robot: Robot, c: Kernel, q: object, what: str = "q") -> FloatArray:
     """:func:`as_configuration` with the robot's kernel already at hand."""
+    # Hot path (one float64 configuration, an app redrawing): Σ|q| ≤ min(bound) puts every value
+    # within its bound; NaN and ±inf make the sum fail the test and take the full checks below.
+    if type(q) is np.ndarray and q.dtype is _FLOAT and q.shape == (robot.dof,):
+        if sum(map(abs, q.tolist())) <= _FAST_BOUND:
+            return q
     bound = c.bound
     try:
         a = np.asarray(q)
@@ -139,7 +148,7 @@ def fk(robot: Robot, q: npt.ArrayLike) -> FloatArray:
     c = kernel(robot)
     q = _configuration(robot, c, q)
     if q.ndim == 1:
-        return chain_single(c, q)[1]
+        return single_fk(c, q)
     return batched_fk(c, q)
 
 
@@ -173,27 +182,34 @@ def link_frames(robot: Robot, q: npt.ArrayLike) -> FloatArray:
 
     For a DH robot these are the DH frames 0 … n of its convention, then the tool frame.
     """
-    _, q, W, T = _one_chain(robot, q, "link_frames")
-    return _link_frames(robot, q, W, T)
+    c, qc = _one(robot, q, "link_frames")
+    fast = frames_jacobian(c, qc)
+    if fast is not None:
+        return fast[1]
+    W, T = chain_single(c, qc)
+    return _link_frames(robot, qc, W, T)
 
 
 def frames_and_jacobian(robot: Robot, q: npt.ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
     """:func:`link_frames`, :func:`joint_frames` and the base-frame :func:`jacobian` of one
     configuration (n,) from one evaluation of the chain (an app redrawing on every move needs all three).
     """
-    c, q, W, T = _one_chain(robot, q, "frames_and_jacobian")
-    return _link_frames(robot, q, W, T), W, jacobian_from_frames(c, W, T)
+    c, qc = _one(robot, q, "frames_and_jacobian")
+    fast = frames_jacobian(c, qc)
+    if fast is not None:
+        W, L, J = fast
+        return L, W, J
+    W, T = chain_single(c, qc)
+    return _link_frames(robot, qc, W, T), W, jacobian_from_frames(c, W, T)
 
 
-def _one_chain(robot: Robot, q: object, who: str) -> tuple[Kernel, FloatArray, FloatArray, FloatArray]:
-    """The kernel, the checked configuration (n,) and its joint frames and tool pose; ``who`` names
-    the caller when ``q`` is a batch."""
+def _one(robot: Robot, q: object, who: str) -> tuple[Kernel, FloatArray]:
+    """The kernel and the checked configuration (n,); ``who`` names the caller when ``q`` is a batch."""
     c = kernel(robot)
     qc = _configuration(robot, c, q)
     if qc.ndim != 1:
         raise ConfigurationError(f"{who} takes one configuration of shape ({robot.dof},), got {qc.shape}")
-    W, T = chain_single(c, qc)
-    return c, qc, W, T
+    return c, qc
 
 
 def _link_frames(robot: Robot, q: FloatArray, W: FloatArray, T: FloatArray) -> FloatArray:
@@ -237,8 +253,7 @@ def jacobian(robot: Robot, q: npt.ArrayLike, frame: Frame = "base") -> FloatArra
     c = kernel(robot)
     q = _configuration(robot, c, q)
     if q.ndim == 1:
-        W, T = chain_single(c, q)
-        J = jacobian_from_frames(c, W, T)
+        T, J = single_jacobian(c, q)
         if frame == "tool":
             Rt = T[:3, :3].T
             J = np.vstack([Rt @ J[:3], Rt @ J[3:]])

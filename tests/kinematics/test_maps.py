@@ -18,7 +18,7 @@ from kinematics import (
     singular_values,
     task_rows,
 )
-from kinematics.maps import joint_map, sampling_range, workspace
+from kinematics.maps import joint_map, measures, measures_dask, sampling_range, workspace
 
 
 @pytest.mark.parametrize("name", ["puma560", "panda", "planar3", "trr", "iiwa14", "scara"])
@@ -107,3 +107,72 @@ def test_bad_inputs(call, error, word):
     with pytest.raises(error, match=word) as info:
         call(robots.load("puma560"))
     assert isinstance(info.value, JacobianLabError)
+
+
+# ------------------------------------------------------------- batches in chunks
+@pytest.mark.parametrize("chunk", [1, 7, 64])
+def test_workspace_in_chunks_equals_one_chunk(chunk):
+    """The chunk size changes how a batch is cut, not what it gives."""
+    robot = robots.load("panda")
+    whole = workspace(robot, 200, seed=3, chunk=200)
+    cut = workspace(robot, 200, seed=3, chunk=chunk)
+    np.testing.assert_array_equal(cut.q, whole.q)
+    for name in ("points", "w", "inverse_kappa"):
+        np.testing.assert_allclose(getattr(cut, name), getattr(whole, name), rtol=1e-14, atol=1e-15)
+
+
+def test_workspace_memory_is_bounded_by_the_chunk_not_the_batch():
+    """Beyond its results, a workspace's peak memory (tracemalloc sees NumPy's buffers) is that of
+    one chunk: 16 times more configurations raise the peak by their results only, far below
+    what the whole batch's Jacobians alone would take."""
+    import tracemalloc
+
+    robot = robots.load("panda")
+
+    def extra(n: int) -> int:
+        workspace(robot, 64, seed=0, chunk=256)  # generated code compiled outside the measure
+        tracemalloc.start()
+        try:
+            ws = workspace(robot, n, seed=0, chunk=256)
+            _, peak = tracemalloc.get_traced_memory()
+        finally:
+            tracemalloc.stop()
+        results = ws.q.nbytes + ws.points.nbytes + ws.w.nbytes + ws.inverse_kappa.nbytes
+        return peak - results
+
+    small, large = extra(2_000), extra(32_000)
+    assert large < small + 64 * 1024
+    assert large < 32_000 * 6 * 7 * 8 / 4  # a quarter of the batch's J alone
+
+
+def test_measures_of_a_batch_in_one_pass():
+    """σ (largest first), w = Πσ and σmin/σmax of a batch, against the SVD of each J."""
+    robot = robots.load("puma560")
+    Q = np.random.default_rng(8).uniform(-3, 3, (50, robot.dof))
+    found = measures(robot, Q, chunk=16)
+    assert found.sigma.shape == (50, 6) and found.points.shape == (50, 3)
+    for k in range(0, 50, 7):
+        s = np.linalg.svd(jacobian(robot, Q[k]), compute_uv=False)
+        np.testing.assert_allclose(found.sigma[k], s, rtol=1e-7, atol=1e-7)
+        assert found.w[k] == pytest.approx(np.prod(s), rel=1e-8, abs=1e-12)
+        assert found.inverse_kappa[k] == pytest.approx(s[-1] / s[0], abs=1e-7)
+        np.testing.assert_allclose(found.points[k], fk(robot, Q[k])[:3, 3], atol=1e-12)
+    with pytest.raises(ConfigurationError, match="batch of configurations"):
+        measures(robot, Q[0])
+    with pytest.raises(OptionError, match="chunk must be an int"):
+        measures(robot, Q, chunk=0)
+
+
+def test_measures_mapped_with_dask_equal_measures():
+    """The same chunk function mapped over a Dask array, one task per chunk: the same numbers."""
+    da = pytest.importorskip("dask.array")
+    robot = robots.load("panda")
+    Q = np.random.default_rng(9).uniform(-2, 2, (100, robot.dof))
+    lazy = measures_dask(robot, da.from_array(Q, chunks=30), chunk=16)
+    assert lazy.numblocks == (7, 1) and lazy.shape == (100, 3 + 6 + 2)
+    got = lazy.compute(scheduler="synchronous")
+    want = measures(robot, Q)
+    columns = np.column_stack((want.points, want.sigma, want.w, want.inverse_kappa))
+    np.testing.assert_allclose(got, columns, rtol=1e-14, atol=1e-15)
+    with pytest.raises(ConfigurationError, match="batch of configurations"):
+        measures_dask(robot, da.from_array(Q[:, :3], chunks=30))
