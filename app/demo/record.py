@@ -15,6 +15,7 @@ the motion.
 
 from __future__ import annotations
 
+import base64
 import contextlib
 import html
 import io
@@ -46,6 +47,7 @@ __all__ = [
     "Recording",
     "record_frames",
     "demo_files",
+    "embedded_page",
     "UnknownPreset",
     "plan",
     "check_preset",
@@ -333,3 +335,19 @@ def demo_files(recording: Recording) -> dict[str, bytes]:
             title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)
         ).encode("utf-8"),
     }
+
+
+def embedded_page(recording: Recording, dark_mode: bool = False) -> str:
+    """One self-contained HTML page that plays ``recording`` with no server and no other file: viser's
+    client page with the recording inside (as viser's own ``as_html`` embeds a scene), for a notebook
+    cell or a single file to mail."""
+    page = client_page().read_text(encoding="utf-8")
+    page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
+    data = base64.b64encode(recording.data).decode("ascii")
+    dark = "true" if dark_mode else "false"
+    inject = (
+        f'<script>window.__VISER_EMBED_DATA__="{data}";'
+        f"window.__VISER_EMBED_CONFIG__={{darkMode:{dark}}};</script>"
+    )
+    head_end = page.index("</head>")
+    return page[:head_end] + inject + page[head_end:]
