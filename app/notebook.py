@@ -22,9 +22,7 @@ client page with the recording inside, in an ``<iframe srcdoc>`` (no server behi
 from __future__ import annotations
 
 import atexit
-import contextlib
 import html
-import io
 import threading
 from collections.abc import Mapping, Sequence
 
@@ -36,7 +34,7 @@ from .core.actions import SetConfiguration
 from .core.reducer import reduce
 from .core.snapshot import Snapshot, compute
 from .core.state import LabState
-from .demo.record import Recording, embedded_page
+from .demo.record import Recording, embedded_page, quiet
 from .server import Lab
 from .tab.session import ClientSession
 
@@ -159,7 +157,7 @@ class NotebookLab:
             return
         self._stopped = True
         atexit.unregister(self.stop)
-        with contextlib.redirect_stdout(io.StringIO()):  # viser's "Server stopped"
+        with quiet():  # viser's "Server stopped"
             self.lab.stop()
 
 
@@ -189,7 +187,7 @@ def show(
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot cannot be loaded.
     """
-    with contextlib.redirect_stdout(io.StringIO()):  # viser's banner: the cell shows the lab instead
+    with quiet():  # viser's banner: the cell shows the lab instead
         lab = Lab(
             robot=robot,
             urdf=urdf,

@@ -20,7 +20,7 @@ import contextlib
 import html
 import io
 import json
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -48,6 +48,7 @@ __all__ = [
     "record_frames",
     "demo_files",
     "embedded_page",
+    "quiet",
     "UnknownPreset",
     "plan",
     "check_preset",
@@ -207,6 +208,21 @@ class _Labels:
         )
 
 
+@contextlib.contextmanager
+def quiet() -> Iterator[None]:
+    """Nothing printed inside: viser prints its URL and "Server stopped" with ``rich``, which writes to
+    stdout in a terminal and straight into the cell's output in a notebook (past ``redirect_stdout``)."""
+    import rich
+
+    console = rich.get_console()  # viser's server thread prints "Server stopped": not a thread-local capture
+    was, console.quiet = console.quiet, True
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):
+            yield
+    finally:
+        console.quiet = was
+
+
 def record(
     name: str,
     robot: Robot,
@@ -234,8 +250,7 @@ def record_frames(
     must be of ``robot``."""
     if not states or len(states) != len(snaps):
         raise ValueError("a recording needs one snapshot per state, and at least one state")
-    quiet = contextlib.redirect_stdout(io.StringIO())  # viser prints its URL and "Server stopped"
-    with quiet:
+    with quiet():
         server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
     try:
         view = SceneView(server, robot, root="/demo/lab")
@@ -260,7 +275,7 @@ def record_frames(
             labels.readout.text = readout(snap, state)
         data = serializer.serialize()
     finally:
-        with quiet:
+        with quiet():
             server.stop()
     return Recording(data, title, tuple(states), float(fps))
 
