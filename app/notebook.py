@@ -112,7 +112,7 @@ class NotebookLab:
         action = SetConfiguration(tuple(float(v) for v in values))
         with self._lock:
             self._state, self._snapshot, self._set = reduce(self._state, action), None, True
-        sessions = self._sessions()
+        sessions = self.lab.open_sessions()
         for session in sessions:
             session.dispatch(action)
         for session in sessions:
@@ -121,10 +121,6 @@ class NotebookLab:
             except TimeoutError:
                 pass  # a slow tab draws it later; the notebook's state already says it
         return self.q
-
-    def _sessions(self) -> list[ClientSession]:
-        with self.lab._lock:
-            return list(self.lab.sessions.values())
 
     def _follow(self, session: ClientSession) -> None:
         """A tab connected: it starts at the notebook's q (if set), and what it draws becomes the state."""

@@ -179,6 +179,11 @@ class Lab:
             except Exception as exc:  # one hook's error never stops the tab
                 log.error("client %s: a session hook failed", client.client_id, exc_info=exc)
 
+    def open_sessions(self) -> list[ClientSession]:
+        """The sessions of the tabs open now."""
+        with self._lock:
+            return list(self.sessions.values())
+
     def on_session(self, hook: Callable[[ClientSession], None]) -> None:
         """Call ``hook(session)`` for every tab's session once it is running (a notebook follows them)."""
         self._session_hooks.append(hook)
