@@ -19,7 +19,7 @@ import sys
 import threading
 import time
 import urllib.parse
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 import viser
@@ -124,6 +124,7 @@ class Lab:
         )
         self._gone: set[int] = set()
         self._lock = threading.Lock()
+        self._session_hooks: list[Callable[[ClientSession], None]] = []
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
 
@@ -171,8 +172,23 @@ class Lab:
         log.info("tab %d connected (%d open in process %d)", client.client_id, open_tabs, os.getpid())
         if gone:  # the tab closed while its session was being built
             session.close()
-        elif self.classroom is not None:
+            return
+        if self.classroom is not None:
             self.classroom.join(client.client_id, session.following)
+        for hook in list(self._session_hooks):
+            try:
+                hook(session)
+            except Exception as exc:  # one hook's error never stops the tab
+                log.error("client %s: a session hook failed", client.client_id, exc_info=exc)
+
+    def open_sessions(self) -> list[ClientSession]:
+        """The sessions of the tabs open now."""
+        with self._lock:
+            return list(self.sessions.values())
+
+    def on_session(self, hook: Callable[[ClientSession], None]) -> None:
+        """Call ``hook(session)`` for every tab's session once it is running (a notebook follows them)."""
+        self._session_hooks.append(hook)
 
     def _disconnect(self, client: viser.ClientHandle) -> None:
         with self._lock:

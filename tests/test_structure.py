@@ -56,13 +56,14 @@ ALLOWED: dict[str, tuple[str, ...]] = {
     ),
     "app.cli": ("app", "kinematics", "robots"),
     "app.server": ("app", "kinematics", "robots"),
+    "app.notebook": ("app", "kinematics", "robots"),  # a lab in a Jupyter cell: a composition root too
     "app": ("app.server",),  # app/__init__: serve() starts the server
     "kinematics": (),
     "robots": ("kinematics",),
 }
 REFUSED: dict[str, tuple[str, ...]] = {"app.core": ("viser",), "kinematics": ("viser",)}
 """Outside packages a layer never imports (the pure core and the maths know nothing of viser)."""
-SERVER_IMPORTERS = ("app.cli", "app")
+SERVER_IMPORTERS = ("app.cli", "app.notebook", "app")
 """The only modules that may import app.server (the composition root)."""
 MAX_MODULES = {"app": 8, "kinematics": 20}
 """Modules directly in these folders, at most (the rest lives in sub-packages that name a layer)."""
@@ -252,7 +253,7 @@ def test_the_checker_finds_a_planted_violation_and_circle_in_a_small_graph():
     }
     assert violations(graph) == [
         "app.core.reducer → viser (refused in app.core)",
-        "app.tab.session → app.server (only app.cli, app import the server)",
+        "app.tab.session → app.server (only app.cli, app.notebook, app import the server)",
         "app.views.panel → app.services.catalog (app.views may import app.core, app.viser_adapter, "
         "kinematics, robots)",
         "kinematics.numeric → robots (kinematics may import only itself)",

@@ -38,8 +38,9 @@ def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--tip",
         metavar="LINK",
-        help="URDF only: link the chain ends at (default: tool0, *_tcp, flange, ee_link, *hand*, "
-        "else the leaf with the most moving joints)",
+        help="URDF only: link the chain ends at (default: tool0, *_tcp, flange, ee_link, a tool frame "
+        "(*_tool_frame, *tool_link, ee_gripper_link, *_grasptarget), *hand*, else the leaf with the most "
+        "moving joints)",
     )
     parser.add_argument(
         "--xacro-arg",

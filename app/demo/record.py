@@ -15,11 +15,12 @@ the motion.
 
 from __future__ import annotations
 
+import base64
 import contextlib
 import html
 import io
 import json
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -46,6 +47,8 @@ __all__ = [
     "Recording",
     "record_frames",
     "demo_files",
+    "embedded_page",
+    "quiet",
     "UnknownPreset",
     "plan",
     "check_preset",
@@ -205,6 +208,21 @@ class _Labels:
         )
 
 
+@contextlib.contextmanager
+def quiet() -> Iterator[None]:
+    """Nothing printed inside: viser prints its URL and "Server stopped" with ``rich``, which writes to
+    stdout in a terminal and straight into the cell's output in a notebook (past ``redirect_stdout``)."""
+    import rich
+
+    console = rich.get_console()  # viser's server thread prints "Server stopped": not a thread-local capture
+    was, console.quiet = console.quiet, True
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):
+            yield
+    finally:
+        console.quiet = was
+
+
 def record(
     name: str,
     robot: Robot,
@@ -232,8 +250,7 @@ def record_frames(
     must be of ``robot``."""
     if not states or len(states) != len(snaps):
         raise ValueError("a recording needs one snapshot per state, and at least one state")
-    quiet = contextlib.redirect_stdout(io.StringIO())  # viser prints its URL and "Server stopped"
-    with quiet:
+    with quiet():
         server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
     try:
         view = SceneView(server, robot, root="/demo/lab")
@@ -258,7 +275,7 @@ def record_frames(
             labels.readout.text = readout(snap, state)
         data = serializer.serialize()
     finally:
-        with quiet:
+        with quiet():
             server.stop()
     return Recording(data, title, tuple(states), float(fps))
 
@@ -333,3 +350,19 @@ def demo_files(recording: Recording) -> dict[str, bytes]:
             title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)
         ).encode("utf-8"),
     }
+
+
+def embedded_page(recording: Recording, dark_mode: bool = False) -> str:
+    """One self-contained HTML page that plays ``recording`` with no server and no other file: viser's
+    client page with the recording inside (as viser's own ``as_html`` embeds a scene), for a notebook
+    cell or a single file to mail."""
+    page = client_page().read_text(encoding="utf-8")
+    page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
+    data = base64.b64encode(recording.data).decode("ascii")
+    dark = "true" if dark_mode else "false"
+    inject = (
+        f'<script>window.__VISER_EMBED_DATA__="{data}";'
+        f"window.__VISER_EMBED_CONFIG__={{darkMode:{dark}}};</script>"
+    )
+    head_end = page.index("</head>")
+    return page[:head_end] + inject + page[head_end:]

@@ -28,7 +28,7 @@ from ..errors import UrdfError
 from ..files import decode_utf8
 from ..model import Robot
 from ..transforms import matrix_to_rpy, rot_z, trans
-from .build import build_robot, with_home
+from .build import build_robot, hold_fixed_ranges, limit_notes, with_home
 from .expand import expand_xacro, is_xacro, parse_xacro_args, read_description
 from .mesh import mesh_filename_handler, mesh_report, resolve_mesh
 from .tree import ChainInfo, Tree
@@ -106,19 +106,22 @@ def chains(
     first with ``is_default=True``, then one chain per leaf link (and, for a leaf
     below a gripper jaw, the chain cut above the jaw), each with a moving joint.
     """
-    return Tree(parse_urdf(_read(path, xacro_args))).chains(base_link)
+    return Tree(hold_fixed_ranges(parse_urdf(_read(path, xacro_args)))).chains(base_link)
 
 
 def _robot(
     data: bytes, base_link: str | None, tip_link: str | None, stem: str, urdf_path: str | None, file: str
 ) -> Robot:
-    doc = parse_urdf(data)
+    doc = hold_fixed_ranges(parse_urdf(data))
     tree = Tree(doc)
     choice = tree.choose(base_link, tip_link)
     name = doc.name or stem
     where = f" of {file}" if file else ""
-    description = (
-        f"Chain from link {choice.base_link!r} to link {choice.tip_link!r}{where} ({choice.reason})."
+    description = " ".join(
+        (
+            f"Chain from link {choice.base_link!r} to link {choice.tip_link!r}{where} ({choice.reason}).",
+            *limit_notes(choice.path),
+        )
     )
     robot = build_robot(
         tree,

@@ -26,9 +26,17 @@ from ..model import Axis, Joint, NamedConfiguration, Robot
 from ..numeric import jacobian
 from ..transforms import rotation_z_to
 from .tree import ChainChoice, Tree
-from .xml import UrdfJoint
+from .xml import UrdfDoc, UrdfJoint
 
-__all__ = ["build_robot", "regular_home", "HOME_GOOD_RATIO", "HOME_MIN_RATIO", "UNLIMITED"]
+__all__ = [
+    "build_robot",
+    "hold_fixed_ranges",
+    "limit_notes",
+    "regular_home",
+    "HOME_GOOD_RATIO",
+    "HOME_MIN_RATIO",
+    "UNLIMITED",
+]
 
 _KIND = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic"}
 HOME_MIN_RATIO = 1e-3
@@ -50,9 +58,55 @@ def _qlim(j: UrdfJoint) -> tuple[float, float] | None:
     lo, hi = j.lower, j.upper
     if not (abs(lo) < UNLIMITED and abs(hi) < UNLIMITED):
         return None
-    if lo > hi:
-        raise UrdfError(f"joint {j.name!r} (line {j.line}): <limit> lower={lo} is above upper={hi}")
-    return (lo, hi) if lo < hi else None
+    return (lo, hi) if lo < hi else None  # lower > upper: Bullet's "no limit" (see limit_notes)
+
+
+def _finite_range(j: UrdfJoint) -> tuple[float, float] | None:
+    if j.type not in ("revolute", "prismatic") or j.lower is None or j.upper is None:
+        return None
+    if not (abs(j.lower) < UNLIMITED and abs(j.upper) < UNLIMITED):
+        return None
+    return j.lower, j.upper
+
+
+def hold_fixed_ranges(doc: UrdfDoc) -> UrdfDoc:
+    """``doc`` with every revolute or prismatic joint whose ``<limit>`` has lower = upper (a joint that may
+    not move) turned into a fixed joint at that value, unless a mimic joint follows or it follows one."""
+    led = {j.mimic[0] for j in doc.joints if j.mimic is not None}
+    out = []
+    for j in doc.joints:
+        r = _finite_range(j)
+        if r is None or r[0] != r[1] or j.mimic is not None or j.name in led:
+            out.append(j)
+            continue
+        motion = np.eye(4)
+        if j.type == "revolute":
+            k = np.asarray(j.axis, float)
+            K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+            motion[:3, :3] = np.eye(3) + math.sin(r[0]) * K + (1 - math.cos(r[0])) * K @ K
+        else:
+            motion[:3, 3] = np.asarray(j.axis, float) * r[0]
+        out.append(dataclasses.replace(j, type="fixed", origin=j.origin @ motion, lower=r[0], upper=r[1]))
+    return dataclasses.replace(doc, joints=tuple(out))
+
+
+def limit_notes(path: tuple[UrdfJoint, ...]) -> tuple[str, ...]:
+    """What the chain's limits were read as, when the file does not say it plainly: lower > upper
+    (Bullet's way of writing "no limit") is unlimited; lower = upper holds the joint fixed."""
+    notes = []
+    for j in path:
+        if j.type == "fixed" and j.lower is not None and j.lower == j.upper:
+            notes.append(
+                f"Joint {j.name!r}: <limit> lower = upper = {j.lower:g}, a joint that may not move: "
+                "held there, as a fixed joint."
+            )
+        r = _finite_range(j)
+        if r is not None and r[0] > r[1]:
+            notes.append(
+                f"Joint {j.name!r}: <limit> lower={r[0]:g} is above upper={r[1]:g} (Bullet's way of "
+                "writing no limit): read as unlimited."
+            )
+    return tuple(notes)
 
 
 def build_robot(tree: Tree, choice: ChainChoice, name: str, **meta: object) -> Robot:

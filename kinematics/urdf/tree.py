@@ -1,13 +1,18 @@
 """The link tree of a parsed URDF and the choice of a serial chain in it.
 
 Without a ``tip_link`` the chain ends at a link named like an arm's end (in
-this order of preference: ``tool0``, ``*_tcp``, ``flange``, ``ee_link``,
-``*hand*``, case-insensitive; the uppermost such link of a branch) with moving
-joints above it; else at the leaf with the most moving joints above it.
+this order of preference: ``tool0``, ``*_tcp``, ``flange``, ``ee_link``, a tool
+frame (``*_tool_frame`` as PR2's ``r_gripper_tool_frame``, ``*tool_link`` as
+TIAGo's ``arm_tool_link``, ``ee_gripper_link`` as the Interbotix arms',
+``*_grasptarget`` as pybullet's Panda), ``*hand*``, case-insensitive, a
+``prefix/`` allowed; the uppermost such link of a branch) with moving joints
+above it; else at the leaf with the most moving joints above it.
 Gripper jaws never extend an arm by default: a moving joint whose name or
-child link says finger, jaw, knuckle, claw, thumb, index, middle, ring, pinky
-or gripper (but not a wrist yaw, roll or pitch), or a mimic pair whose two
-joints sit on sibling branches, ends a default chain just above it. Without a
+child link says finger, jaw, knuckle, claw, thumb or gripper (but not a wrist
+yaw, roll or pitch), or a mimic pair whose two joints sit on sibling branches,
+ends a default chain just above it. A joint named only index, middle, ring,
+pinky or little is a finger when nothing below it branches (a humanoid's
+``middle_*`` spine carries the arms and the head: it is no finger). Without a
 ``base_link`` the chain starts at the root, or just below the last floating or
 planar joint above the tip.
 """
@@ -22,16 +27,21 @@ from .xml import UrdfDoc, UrdfJoint
 
 __all__ = ["ChainInfo", "Tree", "ChainChoice"]
 
+_PREFIX = r"(.*[_/])?"  # "r_gripper_", "wx250s/"
 _PREFERRED = (
     ("a link named tool0", re.compile(r"tool0")),
-    ("a link named *_tcp", re.compile(r"(.*_)?tcp")),
-    ("a link named flange", re.compile(r"(.*_)?flange")),
-    ("a link named ee_link", re.compile(r"(.*_)?ee_link")),
+    ("a link named *_tcp", re.compile(rf"{_PREFIX}tcp")),
+    ("a link named flange", re.compile(rf"{_PREFIX}flange")),
+    ("a link named ee_link", re.compile(rf"{_PREFIX}ee_link")),
+    (
+        "a tool frame (*_tool_frame, *tool_link, ee_gripper_link, *_grasptarget)",
+        re.compile(rf"{_PREFIX}(tool_frame|tool_link|ee_gripper_link|grasptarget)"),
+    ),
     ("a link named *hand*", re.compile(r".*hand.*")),
 )
-_JAW = re.compile(
-    r"finger|jaw|knuckle|claw|thumb|(^|_)(index|middle|ring|pinky|little)(_|\d|$)", re.IGNORECASE
-)
+_JAW = re.compile(r"finger|jaw|knuckle|claw|thumb", re.IGNORECASE)
+_FINGER_WORD = re.compile(r"(^|[_/])(index|middle|ring|pinky|little)(_|\d|$)", re.IGNORECASE)
+"""Words that name a finger in a hand, and a spine ("middle_*") or a link elsewhere: see _jaw_joints."""
 _GRIPPER = re.compile(r"gripper", re.IGNORECASE)  # a moving "gripper" joint is the jaw drive...
 _WRIST = re.compile(r"yaw|roll|pitch|wrist", re.IGNORECASE)  # ...unless it is a wrist axis
 
@@ -113,12 +123,25 @@ class Tree:
 
     def _jaw_joints(self) -> set[str]:
         jaws = {j.name for j in self.doc.joints if j.moving and _jaw_like(j)}
+        worded = [j for j in self.doc.joints if j.moving and _FINGER_WORD.search(f"{j.name}/{j.child}")]
+        jaws |= {j.name for j in worded if self._unbranched(j.child)}
         for j in self.doc.joints:
             leader = self.by_name.get(j.mimic[0]) if j.mimic else None
             if leader is not None and j.moving and leader.moving:
                 if not (self._above(leader, j.child) or self._above(j, leader.child)):
                     jaws |= {j.name, leader.name}
         return jaws
+
+    def _unbranched(self, link: str) -> bool:
+        """True when no link at or below ``link`` has two child branches with moving joints (a finger's
+        phalanges; not a spine that carries arms and a head)."""
+        moving_below: dict[str, bool] = {}
+        for name in reversed(self._depth_first(link)):  # children before parents
+            moving_below[name] = any(j.moving or moving_below[j.child] for j in self.children[name])
+        return all(
+            sum(1 for j in self.children[name] if j.moving or moving_below[j.child]) < 2
+            for name in moving_below
+        )
 
     def _above(self, joint: UrdfJoint, link: str) -> bool:
         """True when ``joint`` lies on the path from the root to ``link``."""

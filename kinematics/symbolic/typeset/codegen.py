@@ -91,8 +91,9 @@ def python_source(
     if kw:
         kw = ", *" + kw
     names = ", ".join(str(s) for s in model.q) + ("," if n == 1 else "")
-    units = ", ".join(
-        f"{s} [{'rad' if k == 'revolute' else 'm'}]" for s, k in zip(model.q, model.joint_kinds, strict=True)
+    units = ", ".join(  # the joint's own name (the slider's, the URDF's) beside its symbol
+        f"{s}{'' if name == str(s) else ' ' + py_docstring(name, 60)} [{'rad' if k == 'revolute' else 'm'}]"
+        for s, k, name in zip(model.q, model.joint_kinds, robot.joint_names, strict=True)
     )
 
     def tuple_of(items: Sequence[str]) -> str:

@@ -8,8 +8,8 @@ code or markup. One function per destination:
 * :func:`latex_text`: for ``\\text{...}`` and comments (``\\ { } $ % # & _ ^ ~`` escaped);
 * :func:`xml_text`: for HTML and MathML element contents and attributes;
 * :func:`py_literal`: a Python string literal (``ascii()``: quotes and backslashes escaped);
-* :func:`py_docstring`: words safe inside a docstring or comment (letters, digits and a few
-  punctuation marks; anything else becomes ``?``);
+* :func:`py_docstring`: words safe inside a docstring or a C or MATLAB comment (letters, digits and
+  punctuation but ``" \\ * <`` and a backtick; anything else becomes ``?``);
 * :func:`py_identifier`: a valid Python identifier that is not a keyword.
 
 JSON needs nothing more than ``json.dumps``.
@@ -81,8 +81,11 @@ def py_literal(text: object) -> str:
 
 
 def py_docstring(text: object, max_chars: int = MAX_CHARS) -> str:
-    """``text`` reduced to characters harmless in a docstring or a comment."""
-    return re.sub(r"[^A-Za-z0-9 _.,:;()+\-/=]", "?", plain(text, max_chars))
+    """``text`` reduced to characters harmless in a Python docstring, a C or a MATLAB comment: letters,
+    digits, space and ``_.,:;()+-/=>[]{}'#&@$%^~!|`` stay (a joint's name, ``rpy (...) -> rpy (...)``
+    in a note); anything else (a double quote, a backslash, ``*``, ``<`` (no tag ever), a backtick,
+    non-ASCII) becomes ``?``."""
+    return re.sub(r"[^A-Za-z0-9 _.,:;()+\-/=>\[\]{}'#&@$%^~!|]", "?", plain(text, max_chars))
 
 
 def py_identifier(text: object, fallback: str = "name") -> str:

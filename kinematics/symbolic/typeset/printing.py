@@ -26,7 +26,8 @@ __all__ = ["Notation", "decimal_text"]
 
 
 def decimal_text(r: sp.Rational, max_digits: int = 12) -> str | None:
-    """``r`` as an exact decimal if its expansion is finite and short (2159/5000 → "0.4318"), else None."""
+    """``r`` as an exact decimal if its expansion is finite and has at most ``max_digits`` significant
+    digits (2159/5000 → "0.4318", 26673/3200000000 → "0.0000083353125"), else None."""
     q = int(r.q)
     for f in (2, 5):
         while q % f == 0:
@@ -36,7 +37,8 @@ def decimal_text(r: sp.Rational, max_digits: int = 12) -> str | None:
     with localcontext() as ctx:
         ctx.prec = 60
         text = format((Decimal(int(r.p)) / Decimal(int(r.q))).normalize(), "f")
-    return text if len(text.replace("-", "").replace(".", "")) <= max_digits else None
+    significant = text.replace("-", "").replace(".", "").lstrip("0")
+    return text if len(significant) <= max_digits else None
 
 
 class Notation:

@@ -1,0 +1,226 @@
+"""Jacobian Lab in a Jupyter notebook: the live app in a cell, and a recorded demo with no server.
+
+Example (one cell)::
+
+    from app.notebook import show
+    lab = show("puma560")          # the live app in the cell, served from this kernel
+    lab.q, lab.J                   # what the cell shows, read from Python
+    lab.set_q([0, 0.3, 0, 0, 0, 0])  # ... and set from Python: the cell's arm moves
+
+:func:`show` starts a :class:`~app.server.Lab` on 127.0.0.1 and a free port in the kernel's own
+process (stopped with the kernel, or by :meth:`NotebookLab.stop`) and displays it in an ``<iframe>``.
+The framed page is the lab's own (``http://127.0.0.1:PORT``), so its websocket passes the Host and
+Origin checks of :mod:`app.viser_adapter.handshake` unchanged: the notebook's page never connects to
+the lab itself. When the notebook reaches the lab through a proxy (JupyterHub, a remote VS Code),
+give the address the browser uses as ``url`` and the notebook's origin as ``allow_origin``: that
+origin is then allowed explicitly, and every other page still refused.
+
+:func:`show_recording` embeds a recorded demo (:func:`app.demo.record.record`) in a cell: viser's
+client page with the recording inside, in an ``<iframe srcdoc>`` (no server behind it).
+"""
+
+from __future__ import annotations
+
+import atexit
+import html
+import threading
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from kinematics import Robot
+
+from .core.actions import SetConfiguration
+from .core.reducer import reduce
+from .core.snapshot import Snapshot, compute
+from .core.state import LabState
+from .demo.record import Recording, embedded_page, quiet
+from .server import Lab
+from .tab.session import ClientSession
+
+__all__ = ["NotebookLab", "show", "show_recording", "RecordingView", "DEFAULT_HEIGHT"]
+
+DEFAULT_HEIGHT = 620
+"""Height of the cell's view [px]: the panel and the 3-D view side by side at a notebook's width."""
+
+
+class NotebookLab:
+    """A running lab shown in a notebook cell, with the library's state API.
+
+    ``state``, ``snapshot``, ``q`` and ``J`` are what the cell shows: the latest state any of its tabs
+    drew (a slider moved in the cell counts), or, before any tab connected, the notebook's own.
+    :meth:`set_q` moves every tab of the lab (and any tab that connects later starts there).
+    """
+
+    def __init__(self, lab: Lab, height: int = DEFAULT_HEIGHT, url: str | None = None) -> None:
+        self.lab = lab
+        self.height = int(height)
+        self.url = url or f"http://127.0.0.1:{lab.port}/"
+        name = lab.default_robot
+        self._lock = threading.Lock()
+        self._state = LabState.initial(name, lab.catalog.load(name))
+        self._snapshot: Snapshot | None = None
+        self._set = False  # whether set_q was called (a new tab then starts at the notebook's q)
+        self._stopped = False
+        lab.on_session(self._follow)
+        atexit.register(self.stop)  # the kernel's end stops the server and its symbolic workers
+
+    # ------------------------------------------------------------------ what the cell shows
+    @property
+    def state(self) -> LabState:
+        """The frozen state on screen (:class:`~app.core.state.LabState`)."""
+        with self._lock:
+            return self._state
+
+    @property
+    def snapshot(self) -> Snapshot:
+        """Everything computed from :attr:`state` (J, κ, the singularity report, the ellipsoids …)."""
+        with self._lock:
+            state, snap = self._state, self._snapshot
+        if snap is None:
+            snap = compute(state)
+            with self._lock:
+                if self._state is state:
+                    self._snapshot = snap
+        return snap
+
+    @property
+    def robot(self) -> Robot:
+        return self.state.robot
+
+    @property
+    def q(self) -> np.ndarray:
+        """Joint values (n,) [rad | m]."""
+        return np.array(self.state.q, dtype=float)
+
+    @property
+    def J(self) -> np.ndarray:
+        """Geometric Jacobian (6, n), rows [v; ω] in base axes."""
+        return np.array(self.snapshot.J_base, dtype=float)
+
+    def set_q(self, q: Sequence[float] | np.ndarray, wait: float = 5.0) -> np.ndarray:
+        """Move the arm to ``q`` (n,) [rad | m] in every tab (clamped to the sliders like a drag), and
+        wait up to ``wait`` seconds for the tabs to draw it; returns the joint values now shown.
+
+        Raises:
+            ValueError: ``q`` is not n finite numbers for the robot on screen.
+        """
+        values = np.asarray(q, dtype=float).reshape(-1)
+        n = self.state.robot.dof
+        if values.shape != (n,) or not np.isfinite(values).all():
+            raise ValueError(f"q must be {n} finite numbers for {self.state.robot.name}, got {q!r}")
+        action = SetConfiguration(tuple(float(v) for v in values))
+        with self._lock:
+            self._state, self._snapshot, self._set = reduce(self._state, action), None, True
+        sessions = self.lab.open_sessions()
+        for session in sessions:
+            session.dispatch(action)
+        for session in sessions:
+            try:
+                session.settle(wait)
+            except TimeoutError:
+                pass  # a slow tab draws it later; the notebook's state already says it
+        return self.q
+
+    def _follow(self, session: ClientSession) -> None:
+        """A tab connected: it starts at the notebook's q (if set), and what it draws becomes the state."""
+        with self._lock:
+            start = self._state.q if self._set and self._state.robot is session.state.robot else None
+        if start is not None:
+            session.dispatch(SetConfiguration(tuple(float(v) for v in start)))
+        session.subscribe(self._drawn)
+
+    def _drawn(self, state: LabState, snapshot: Snapshot) -> None:
+        with self._lock:
+            self._state, self._snapshot = state, snapshot
+
+    # ------------------------------------------------------------------ the cell
+    def _repr_html_(self) -> str:
+        src = html.escape(self.url, quote=True)
+        return (
+            f'<iframe src="{src}" width="100%" height="{self.height}" '
+            'style="border:1px solid #ddd;display:block" '
+            f'title="Jacobian Lab: {html.escape(self.state.robot.name)}"></iframe>'
+        )
+
+    def __repr__(self) -> str:
+        state = "stopped" if self._stopped else f"serving {self.url}"
+        return f"<Jacobian Lab: {self.state.robot.name}, {state}>"
+
+    def stop(self) -> None:
+        """Stop the server and its symbolic workers (the cell's view then says it lost its server)."""
+        if self._stopped:
+            return
+        self._stopped = True
+        atexit.unregister(self.stop)
+        with quiet():  # viser's "Server stopped"
+            self.lab.stop()
+
+
+def show(
+    robot: str | None = None,
+    urdf: str | None = None,
+    *,
+    height: int = DEFAULT_HEIGHT,
+    port: int = 0,
+    url: str | None = None,
+    allow_origin: Sequence[str] = (),
+    base_link: str | None = None,
+    tip_link: str | None = None,
+    xacro_args: Mapping[str, str] | None = None,
+) -> NotebookLab:
+    """Start the app for ``robot`` (a library name or robot file) or ``urdf`` in this kernel and show
+    it in the cell (the returned :class:`NotebookLab` displays itself as the cell's value).
+
+    Args:
+        height: Height of the cell's view [px].
+        port: Port on 127.0.0.1 (0: a free one).
+        url: The lab's address as the notebook's browser reaches it (default ``http://127.0.0.1:PORT/``).
+        allow_origin: Origins of pages allowed to connect besides the lab's own (a notebook behind a
+            proxy: its own origin), as ``jacobian-lab serve --allow-origin``.
+        base_link, tip_link, xacro_args: The chain of a URDF and a xacro file's arguments.
+
+    Raises:
+        UnknownRobotError, RobotDefinitionError: the robot cannot be loaded.
+    """
+    with quiet():  # viser's banner: the cell shows the lab instead
+        lab = Lab(
+            robot=robot,
+            urdf=urdf,
+            host="127.0.0.1",
+            port=port,
+            base_link=base_link,
+            tip_link=tip_link,
+            allow_origin=allow_origin,
+            xacro_args=xacro_args,
+        )
+    return NotebookLab(lab, height=height, url=url)
+
+
+class RecordingView:
+    """A recorded demo as a cell's value: viser's client page playing it, inline (no server)."""
+
+    def __init__(self, recording: Recording, height: int = 480) -> None:
+        self.recording = recording
+        self.height = int(height)
+
+    def html(self) -> str:
+        """The page alone (save it as ``demo.html``: it plays from the file)."""
+        return embedded_page(self.recording)
+
+    def _repr_html_(self) -> str:
+        page = html.escape(self.html(), quote=True)
+        return (
+            f'<iframe srcdoc="{page}" width="100%" height="{self.height}" '
+            'style="border:1px solid #ddd;display:block" '
+            f'title="{html.escape(self.recording.title, quote=True)}"></iframe>'
+        )
+
+    def __repr__(self) -> str:
+        r = self.recording
+        return f"<recorded demo: {r.title}, {r.frames} frames, {r.duration:.1f} s>"
+
+
+def show_recording(recording: Recording, height: int = 480) -> RecordingView:
+    """Embed ``recording`` in the cell (the returned view displays itself as the cell's value)."""
+    return RecordingView(recording, height)

@@ -1,0 +1,136 @@
+"""The app in a notebook (app.notebook): the live lab's state API, its iframe, the Origin check it keeps,
+and a recorded demo embedded with no server."""
+
+from __future__ import annotations
+
+import base64
+import html
+import re
+import socket
+
+import numpy as np
+import pytest
+import websockets.sync.client
+from fakes import FakeSymbolicService, poll
+from websockets.exceptions import InvalidStatus
+from wsclient import ViserWsClient
+
+import robots
+from app.core.actions import SetJoint
+from app.demo.record import record
+from app.notebook import NotebookLab, show, show_recording
+from app.server import Lab
+from kinematics import jacobian
+
+
+def _notebook_lab(robot: str = "planar2", **kwargs) -> NotebookLab:
+    return NotebookLab(Lab(robot=robot, port=0, symbolic=FakeSymbolicService(), **kwargs))
+
+
+def test_the_state_api_before_any_tab_is_the_notebooks_own():
+    nb = _notebook_lab("puma560")
+    try:
+        robot = robots.load("puma560")
+        assert np.array_equal(nb.q, robot.home)
+        np.testing.assert_allclose(nb.J, jacobian(robot, robot.home), atol=1e-12)
+        q = np.array([0.1, -0.4, 0.3, 0.2, 0.5, -0.7])
+        shown = nb.set_q(q)  # no tab yet: the notebook's own state moves
+        np.testing.assert_allclose(shown, q, atol=1e-12)
+        np.testing.assert_allclose(nb.J, jacobian(robot, q), atol=1e-12)
+        assert nb.snapshot.report.condition == pytest.approx(np.linalg.cond(jacobian(robot, q)), rel=1e-9)
+        with pytest.raises(ValueError, match="6 finite numbers for puma560"):
+            nb.set_q([0.0, 1.0])
+        with pytest.raises(ValueError, match="finite"):
+            nb.set_q([np.nan] * 6)
+    finally:
+        nb.stop()
+
+
+def test_set_q_moves_every_tab_and_a_slider_moved_in_the_cell_is_read_back():
+    nb = _notebook_lab("planar2")
+    robot = robots.load("planar2")
+    try:
+        with ViserWsClient(f"ws://127.0.0.1:{nb.lab.port}") as ws:
+            session = nb.lab.session()
+            mark = ws.mark()
+            nb.set_q([0.3, -0.5])
+            assert np.allclose(session.state.q, [0.3, -0.5]) and np.allclose(session.snapshot.q, [0.3, -0.5])
+            ws.wait_for(lambda m: m["type"] == "SceneNodeUpdateMessage", after=mark)  # the cell's arm moved
+            np.testing.assert_allclose(nb.J, jacobian(robot, [0.3, -0.5]), atol=1e-12)
+            session.dispatch(SetJoint(0, 0.1))  # the student drags joint 1 in the cell
+            session.settle()
+            np.testing.assert_allclose(nb.q, [0.1, -0.5], atol=1e-12)
+            np.testing.assert_allclose(nb.J, jacobian(robot, [0.1, -0.5]), atol=1e-12)
+            # a tab opened later (the notebook reloaded) starts where the notebook put the arm
+            nb.set_q([0.7, 0.2])
+            with ViserWsClient(f"ws://127.0.0.1:{nb.lab.port}"):
+                poll(lambda: len(nb.lab.sessions) == 2)
+                late = nb.lab.session()
+                assert late is not session
+                poll(lambda: np.allclose(late.state.q, [0.7, 0.2]))
+    finally:
+        nb.stop()
+
+
+def test_the_cell_frames_the_labs_own_page_and_the_origin_check_still_holds():
+    nb = _notebook_lab("planar2")
+    try:
+        port = nb.lab.port
+        frame = nb._repr_html_()
+        assert re.search(rf'<iframe src="http://127\.0\.0\.1:{port}/"', frame), frame
+        url, proto = f"ws://127.0.0.1:{port}", [f"viser-v{__import__('viser').__version__}"]
+        # the framed page is the lab's own: its websocket says the lab's origin, and is accepted
+        with websockets.sync.client.connect(url, origin=f"http://127.0.0.1:{port}", subprotocols=proto):
+            pass
+        # the notebook's page (another origin) may not connect, as any other page
+        with pytest.raises(InvalidStatus) as refused:
+            websockets.sync.client.connect(url, origin="http://localhost:8888", subprotocols=proto)
+        assert refused.value.response.status_code == 403
+    finally:
+        nb.stop()
+    # behind a proxy the notebook's origin is allowed explicitly, and only it
+    nb = _notebook_lab("planar2", allow_origin=["https://hub.example.org"])
+    try:
+        url = f"ws://127.0.0.1:{nb.lab.port}"
+        with websockets.sync.client.connect(url, origin="https://hub.example.org", subprotocols=proto):
+            pass
+        with pytest.raises(InvalidStatus):
+            websockets.sync.client.connect(url, origin="https://evil.example.org", subprotocols=proto)
+    finally:
+        nb.stop()
+
+
+def test_show_serves_from_the_kernel_and_stop_closes_the_port(monkeypatch):
+    monkeypatch.setattr("app.server.SymbolicService", FakeSymbolicService)
+    nb = show("planar2", height=500)
+    port = nb.lab.port
+    assert 'height="500"' in nb._repr_html_() and "serving http://127.0.0.1" in repr(nb)
+    with socket.create_connection(("127.0.0.1", port), timeout=5):
+        pass
+    nb.stop()
+    nb.stop()  # twice is harmless (the kernel's exit calls it again)
+    assert "stopped" in repr(nb)
+    poll(lambda: _refused(port))
+
+
+def _refused(port: int) -> bool:
+    try:
+        socket.create_connection(("127.0.0.1", port), timeout=1).close()
+        return False
+    except OSError:
+        return True
+
+
+def test_a_recorded_demo_is_embedded_whole_in_the_cell():
+    robot = robots.load("planar2")
+    rec = record("planar2", robot, seconds=1.0, fps=10)
+    view = show_recording(rec, height=400)
+    cell = view._repr_html_()
+    assert cell.startswith('<iframe srcdoc="') and 'height="400"' in cell
+    page = html.unescape(re.search(r'srcdoc="([^"]*)"', cell).group(1))
+    assert page == view.html()
+    data = re.search(r'window\.__VISER_EMBED_DATA__="([A-Za-z0-9+/=]*)"', page).group(1)
+    assert base64.b64decode(data) == rec.data  # the whole recording, no file or server behind it
+    assert f"<title>{html.escape(rec.title)}</title>" in page
+    assert page.index("__VISER_EMBED_DATA__") < page.index("</head>")
+    assert "11 frames, 1.0 s" in repr(view)
