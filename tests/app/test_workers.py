@@ -188,11 +188,13 @@ def test_serve_chooses_one_process_or_the_pool(monkeypatch, capsys):
     single, pooled = [], []
     monkeypatch.setattr(app.server, "serve", lambda **kwargs: single.append(kwargs))
     monkeypatch.setattr(
-        app.cli.workers, "serve_workers", lambda n, options, host, port: pooled.append(n) or 0
+        app.cli.workers,
+        "serve_workers",
+        lambda n, options, host, port, presenter_token=None: pooled.append((n, presenter_token)) or 0,
     )
     assert main(["serve", "--workers", "1", "--port", "8124"]) == 0 and len(single) == 1
-    assert main(["serve", "--workers", "3", "--port", "8124"]) == 0 and pooled == [3]
-    # Classroom mode keeps the presenter's followers in its process: one worker, said in words.
-    assert main(["serve", "--workers", "3", "--presenter", "--port", "8124"]) == 0
-    assert len(single) == 2 and pooled == [3]
-    assert "classroom mode serves from one process" in capsys.readouterr().err
+    assert main(["serve", "--workers", "3", "--port", "8124"]) == 0 and pooled == [(3, None)]
+    # Classroom mode spans the workers: the pool gets the token (only its parent keeps it).
+    assert main(["serve", "--workers", "3", "--presenter-token", "Xq7-vR2pLw9sKd4TzY", "--port", "8124"]) == 0
+    assert len(single) == 1 and pooled[-1] == (3, "Xq7-vR2pLw9sKd4TzY")
+    assert "ignored" not in capsys.readouterr().err
