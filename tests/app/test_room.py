@@ -238,3 +238,23 @@ def test_a_worker_that_ends_leaves_the_room_and_its_presenter_may_come_back():
     clock.now += 121.0  # too late now
     assert not hub.handle(1, {"op": "resume", "id": 3, "key": 8, "resume": resume})[0][1]["ok"]
     assert hub.handle(2, {"op": "state", "state": {}}) == []  # only the presenter's worker speaks for it
+
+
+def test_an_uploaded_urdf_robot_crosses_as_urdf_text():
+    """An uploaded URDF (no DH table) travels as a URDF document and comes back with the same J."""
+    from pathlib import Path
+
+    from kinematics.urdf import robot_from_urdf_string
+
+    text = (Path(__file__).parents[1] / "data" / "xarm7_like.urdf").read_bytes()
+    uploaded = robot_from_urdf_string(text, name="xarm7_like")
+    state = LabState.initial("xarm7_like (uploaded)", uploaded).replace(
+        q=np.linspace(-0.5, 0.7, uploaded.dof)
+    )
+    sender, receiver = RobotWire(RobotCatalog([])), RobotWire(RobotCatalog([]))
+    ref = sender.reference(state)
+    assert ref["kind"] == ("urdf" if uploaded.dh is None else "toml")
+    again = decode_state(loads(dumps(encode_state(state, ref))), receiver)
+    assert again.robot_name == state.robot_name and again.robot.dof == uploaded.dof
+    assert np.allclose(compute(again).J_base, compute(state).J_base, atol=1e-12)
+    assert decode_state(loads(dumps(encode_state(state, ref))), receiver).robot is again.robot
