@@ -259,8 +259,12 @@ class WorkerPool:
         assert self.hub is not None and worker.room is not None
         try:
             while worker.room.poll():
-                self._send(self.hub.handle(worker.index, loads(worker.room.recv_bytes())))
-        except (OSError, EOFError, ValueError):
+                raw = worker.room.recv_bytes()
+                try:
+                    self._send(self.hub.handle(worker.index, loads(raw)))
+                except Exception:  # one bad message never stops the parent
+                    log.exception("worker %d: a room message could not be taken", worker.index)
+        except (OSError, EOFError):
             worker.room = None
 
     def supervise(self, stop_requested: Any) -> None:

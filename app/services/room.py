@@ -99,7 +99,7 @@ class RoomHub:
             if op == "count":
                 self.counts[worker] = max(0, int(message.get("n", 0)))
                 return self._counts()
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, KeyError):
             return []
         if self.presenter is None or self.presenter[0] != worker:
             return []  # only the presenter's worker speaks for the presenter

@@ -238,6 +238,8 @@ def test_a_worker_that_ends_leaves_the_room_and_its_presenter_may_come_back():
     clock.now += 121.0  # too late now
     assert not hub.handle(1, {"op": "resume", "id": 3, "key": 8, "resume": resume})[0][1]["ok"]
     assert hub.handle(2, {"op": "state", "state": {}}) == []  # only the presenter's worker speaks for it
+    for garbage in ([1], {"op": "claim", "id": 4}, {"op": "count", "n": "many"}, {"op": "nope"}, None):
+        assert hub.handle(2, garbage) == []  # dropped, never raised into the parent's loop
 
 
 def test_an_uploaded_urdf_robot_crosses_as_urdf_text():
