@@ -56,8 +56,10 @@ class Tab:
             fn(self.state, self.snapshot)
 
     def mirror(self, state, snapshot, scene=()):
-        self.state, self.snapshot = state, snapshot
+        # In this order: a test that sees the new state (it polls for it) sees the rest too.
         self.mirrored.append((state, snapshot))
+        self.snapshot = snapshot
+        self.state = state
 
     def mirror_camera(self, *pose):
         self.cameras.append(pose)
@@ -132,10 +134,14 @@ def test_followers_in_every_worker_follow_and_each_worker_computes_once(room):
     poll(lambda: all(t.role is not None and t.role.following for t in near + far), what="all follow")
     # The presenter is shown the room's followers, not its worker's.
     poll(lambda: presenter.role.followers == 5, what="the room's count told to the presenter")
-    assert presenter.role.presenting and room.workers[1].followers() == 5 == room.workers[2].followers()
+    poll(lambda: room.workers[1].followers() == 5 == room.workers[2].followers(), what="both workers count 5")
+    assert presenter.role.presenting
     for i, q0 in enumerate((0.3, -0.7, 1.1)):
         presenter.commit(_moved(presenter, q0))
-        poll(lambda q0=q0: all(t.state.q[0] == q0 for t in near + far), what="every follower at q0")
+        poll(
+            lambda q0=q0: all(t.state.q[0] == q0 and t.snapshot.q[0] == q0 for t in near + far),
+            what="every follower at q0",
+        )
         # The presenter's worker hands over its own snapshot; the other computes one for all its tabs.
         assert all(t.snapshot is presenter.snapshot for t in near)
         assert far[0].snapshot is far[1].snapshot is far[2].snapshot

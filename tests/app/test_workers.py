@@ -8,6 +8,7 @@ outright leaves nothing behind. Linux only (it reads /proc).
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import signal
@@ -314,3 +315,41 @@ def _notice(ws: ViserWsClient, mark: int, title: str) -> str:
         lambda m: m["type"] == "NotificationShowMessage" and m["props"]["title"] == title, after=mark
     )
     return str(m["props"]["body"])
+
+
+@pytest.mark.slow
+def test_the_presenter_s_worker_killed_the_presenter_comes_back_with_its_key_and_the_room_follows(room2):
+    """SIGKILL the presenter's worker: the other worker's followers are told, the presenter's page comes
+    back (a new tab, on whichever worker accepts it) with its reconnect key and presents again without
+    the token, and the surviving followers follow it."""
+    from app.services.classroom import PRESENTER_AWAY
+
+    tabs = room2.spread_tabs(per_worker=2)
+    doomed, survivors = tabs[room2.workers[0]], tabs[room2.workers[1]]
+    presenter = doomed[0]
+    back = None
+    try:
+        mark = _token(presenter, TOKEN)
+        _, kept = presenter.wait_for(lambda m: "remember(" in str(m), after=mark)
+        key = re.search(r'remember\("([A-Za-z0-9_\-]{16,64})"\)', str(kept))
+        assert key, kept
+        for ws in survivors:
+            ws.wait_for(lambda m: _label(m).startswith("Classroom · following"))
+        marks = [ws.mark() for ws in survivors]
+        os.kill(room2.workers[0], signal.SIGKILL)
+        for ws, after in zip(survivors, marks, strict=True):
+            assert _notice(ws, after, "Classroom") == PRESENTER_AWAY
+        back, _ = room2.connect()
+        _, box = back.wait_for(lambda m: m["type"] == "GuiTextMessage" and m["props"].get("label") == "page")
+        mark = back.mark()
+        report = json.dumps({"kind": "load", "address": "", "resume": key.group(1)})
+        back.send(message_class("GuiUpdateMessage")(box["uuid"], {"value": report}))
+        back.wait_for(lambda m: _label(m).startswith("Classroom · presenting"), after=mark)
+        uuids = [slider(ws) for ws in survivors]
+        marks = [ws.mark() for ws in survivors]
+        back.set_value(slider(back), 25.0)
+        for ws, uuid, after in zip(survivors, uuids, marks, strict=True):
+            _slider_value(ws, uuid, 25.0, after)
+    finally:
+        for ws in doomed + survivors + ([back] if back is not None else []):
+            ws.close()
