@@ -104,8 +104,8 @@ class _Outbox:
         self._queue: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
         threading.Thread(target=self._send, name="room-outbox", daemon=True).start()
 
-    def put(self, message: dict[str, Any]) -> None:
-        self._queue.put(dumps(message))
+    def put(self, raw: bytes) -> None:
+        self._queue.put(raw)
 
     def close(self) -> None:
         self._queue.put(None)
@@ -248,10 +248,14 @@ class WorkerPool:
             self._send(self.hub.started(worker.index))
 
     def _send(self, outgoing: list[tuple[int, dict[str, Any]]]) -> None:
+        encoded: dict[int, bytes] = {}  # a message for several workers is encoded once
         for index, message in outgoing:
             worker = self.workers.get(index)
             if worker is not None and worker.outbox is not None:
-                worker.outbox.put(message)
+                raw = encoded.get(id(message))
+                if raw is None:
+                    raw = encoded[id(message)] = dumps(message)
+                worker.outbox.put(raw)
 
     def _room_message(self, worker: _Worker) -> None:
         """Take what ``worker`` said to the room (all it has sent); a closed pipe is left to the
