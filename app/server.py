@@ -26,6 +26,7 @@ import viser
 
 from .services.catalog import RobotCatalog
 from .services.classroom import Classroom
+from .services.classroom_relay import RelayedClassroom, RoomChannel
 from .services.lifecycle import check_listen_address, wait_for_stop
 from .services.ratelimit import RoomLimits
 from .services.renderer import Renderer
@@ -67,6 +68,9 @@ class Lab:
         listen_socket: A listening socket to accept on instead of binding ``host`` and ``port``
             (shared by the worker processes of ``jacobian-lab serve --workers N``).
         xacro_args: ``NAME -> VALUE`` arguments of a ``.xacro`` file given as ``urdf`` or ``robot``.
+        room_pipe: A worker's end of its pipe to the parent of ``serve --workers N --presenter``: classroom
+            mode whose token, presenter and follower count the parent keeps for every worker
+            (:mod:`app.services.classroom_relay`); ``presenter_token`` is then not given.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -86,6 +90,7 @@ class Lab:
         symbolic: SymbolicService | None = None,
         listen_socket: socket.socket | None = None,
         xacro_args: Mapping[str, str] | None = None,
+        room_pipe: object = None,
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
@@ -117,11 +122,15 @@ class Lab:
         self.server.initial_camera.look_at = (0.2, 0.0, 0.1)
         self.sessions: dict[int, ClientSession] = {}
         self.renderer = Renderer()
-        self.classroom = (
-            Classroom(presenter_token, limits=self.room, address_of=self._address)
-            if presenter_token
-            else None
-        )
+        self.classroom: Classroom | None = None
+        if room_pipe is not None:
+            channel = RoomChannel(room_pipe)
+            self.classroom = RelayedClassroom(
+                channel, self.catalog, limits=self.room, address_of=self._address
+            )
+            channel.start()
+        elif presenter_token:
+            self.classroom = Classroom(presenter_token, limits=self.room, address_of=self._address)
         self._gone: set[int] = set()
         self._lock = threading.Lock()
         self._session_hooks: list[Callable[[ClientSession], None]] = []

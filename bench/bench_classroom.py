@@ -1,23 +1,28 @@
 """Classroom latency: a presenter's slider move → every follower's redrawn 3-D view, measured by
 websocket clients of the running app.
 
-Starts ``app.server.serve`` with a presenter token in a separate process, connects one presenter
-(it types the token into "Presenter token", as a teacher would) and N followers (viser's websocket
-protocol, no rendering), then moves the presenter's q2 slider every ``--period`` seconds. Each sample
-is the time from sending the presenter's new value to one follower receiving the frame that carries
-its redrawn arm (the batched update of ``/lab/arm/cylinders``): N samples per move.
+Starts ``app.server.serve`` with a presenter token in a separate process (or, with ``--workers N``,
+``jacobian-lab serve --workers N --presenter-token``: the followers then land on every worker), connects
+one presenter (it types the token into "Presenter token", as a teacher would) and N followers (viser's
+websocket protocol, no rendering), then moves the presenter's q2 slider every ``--period`` seconds. Each
+sample is the time from sending the presenter's new value to one follower receiving the frame that
+carries its redrawn arm (the batched update of ``/lab/arm/cylinders``): N samples per move. Also printed:
+how the followers spread over the workers, the CPU of the server's whole process tree per presenter
+move (``bench/common.py``), this client's CPU and the load average before and after.
 
 Usage::
 
     python bench/bench_classroom.py                   # 30 and 60 followers, Panda
     python bench/bench_classroom.py --followers 10 30 --moves 40
+    python bench/bench_classroom.py --followers 60 --workers 1 2   # one process and two, side by side
 
-Target: p95 < 150 ms with 30 followers on a 2-core machine.
+Target: p95 < 150 ms with 60 followers on a 2-core machine, none missed.
 """
 
 from __future__ import annotations
 
 import argparse
+import collections
 import os
 import re
 import subprocess
@@ -31,16 +36,23 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
 
+from bench.common import cpu_seconds  # noqa: E402
+
 ARM_NODE = "/lab/arm/cylinders"
 TOKEN = "bench-token"
 
 
-def start_server(robot: str) -> tuple[subprocess.Popen, int]:
+def start_server(robot: str, workers: int | None, log: Path) -> tuple[subprocess.Popen, int]:
+    """The app with a presenter token: one process (``workers`` None) or ``serve --workers N``."""
     code = f"from app.server import serve; serve(robot={robot!r}, port=0, presenter_token={TOKEN!r})"
+    command = ["-c", code]
+    if workers is not None:
+        command = ["-m", "app.cli.main", "serve", "--robot", robot, "--port", "0", "--workers", str(workers)]
+        command += ["--presenter-token", TOKEN]
     proc = subprocess.Popen(
-        [sys.executable, "-u", "-c", code],
+        [sys.executable, "-u", *command],
         stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
+        stderr=log.open("w"),
         text=True,
         cwd=str(ROOT),
         env=dict(os.environ, PYTHONUNBUFFERED="1"),
@@ -68,8 +80,14 @@ def is_arm_update(m: dict) -> bool:
     return m["type"] == "SceneNodeUpdateMessage" and m["name"] == ARM_NODE
 
 
-def run(robot: str, followers: int, moves: int, period: float) -> np.ndarray:
-    proc, port = start_server(robot)
+def spread(log: Path) -> list[int]:
+    """Tabs connected per server process (from the log), most first."""
+    pids = re.findall(r"tab \d+ connected \(\d+ open in process (\d+)\)", log.read_text())
+    return sorted(collections.Counter(pids).values(), reverse=True)
+
+
+def run(robot: str, followers: int, moves: int, period: float, workers: int | None, log: Path) -> dict:
+    proc, port = start_server(robot, workers, log)
     url = f"ws://127.0.0.1:{port}"
     clients: list[ViserWsClient] = []
     try:
@@ -91,15 +109,28 @@ def run(robot: str, followers: int, moves: int, period: float) -> np.ndarray:
         for c in room:  # each follower has drawn the presenter's arm once
             c.wait_for(is_arm_update, timeout=120)
         time.sleep(1.0)  # let the joining burst settle
-        samples = []
+        samples, missed = [], 0
+        cpu0, own0, t0 = cpu_seconds(proc.pid), time.process_time(), time.perf_counter()
         for i in range(moves):
             marks = [c.mark() for c in room]
             sent = presenter.set_value(slider, float(-30.0 + (i % 60)))
             for c, mark in zip(room, marks, strict=True):
-                received, _ = c.wait_for(is_arm_update, after=mark, timeout=30)
-                samples.append((received - sent) * 1e3)
+                try:
+                    received, _ = c.wait_for(is_arm_update, after=mark, timeout=10)
+                    samples.append((received - sent) * 1e3)
+                except TimeoutError:
+                    missed += 1
             time.sleep(max(0.0, period - (time.perf_counter() - sent)))
-        return np.array(samples)
+        wall = time.perf_counter() - t0
+        cpu = cpu_seconds(proc.pid) - cpu0
+        return {
+            "samples": np.array(samples),
+            "missed": missed,
+            "cpu_per_move": cpu / moves * 1e3,
+            "cpu": cpu / wall * 100,
+            "client": (time.process_time() - own0) / wall * 100,
+            "spread": spread(log),
+        }
     finally:
         for c in clients:
             c.close()
@@ -116,13 +147,32 @@ def main() -> int:
     parser.add_argument("--followers", type=int, nargs="+", default=[30, 60])
     parser.add_argument("--moves", type=int, default=30)
     parser.add_argument("--period", type=float, default=0.2, help="seconds between presenter moves")
+    parser.add_argument(
+        "--workers",
+        type=int,
+        nargs="+",
+        default=None,
+        help="serve with `jacobian-lab serve --workers N` for each N (default: one process)",
+    )
+    parser.add_argument("--log", type=Path, default=Path("/tmp/bench-classroom.log"), help="the server's log")
     args = parser.parse_args()
     print(f"robot {args.robot}; presenter moves q2 every {args.period:g} s; {os.cpu_count()} CPUs")
-    print("followers   p50 ms   p95 ms   max ms   (presenter slider → each follower's redrawn arm)")
-    for n in args.followers:
-        s = run(args.robot, n, args.moves, args.period)
-        p50, p95 = np.percentile(s, [50, 95])
-        print(f"{n:9d} {p50:8.1f} {p95:8.1f} {s.max():8.1f}")
+    print(f"load average before: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
+    print(
+        "workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move  client %"
+        "   (presenter slider → each follower's redrawn arm; CPU: the server's process tree)"
+    )
+    for n, workers in [(n, w) for n in args.followers for w in (args.workers or [None])]:
+        r = run(args.robot, n, args.moves, args.period, workers, args.log)
+        s = r["samples"]
+        p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)
+        mx = s.max() if len(s) else np.nan
+        spread_ = "+".join(str(k) for k in r["spread"])
+        print(
+            f"{workers or '-':>7} {n:9d} {spread_:>7} {p50:8.1f} {p95:8.1f} {mx:8.1f} "
+            f"{r['missed']:7d} {r['cpu']:6.0f} {r['cpu_per_move']:8.1f} {r['client']:9.0f}"
+        )
+    print(f"load average after: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     return 0
 
 

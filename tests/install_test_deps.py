@@ -4,7 +4,9 @@
 * Node.js and npm, which run KaTeX (pinned in ``tests/katex``) to check that
   the exported LaTeX typesets;
 * a C compiler and Octave, which compile and run the exported C and MATLAB/Octave
-  Jacobians (``tests/test_export_code.py``).
+  Jacobians (``tests/test_export_code.py``);
+* nginx (``nginx-light``) and openssl, which run the reverse-proxy configuration of
+  ``docs/classroom.md`` (``tests/app/test_reverse_proxy.py``).
 
 Run by the README's test command before pytest. Idempotent and quick when
 everything is already there. Never downloads a browser build of its own
@@ -50,7 +52,7 @@ def _apt_install(packages: list[str], recommends: bool = True) -> bool:
 
 
 def ensure_packages() -> bool:
-    """Chromium, node, npm, a C compiler and Octave, each installed only when missing."""
+    """Chromium, node, npm, a C compiler, Octave, nginx and openssl, each installed only when missing."""
     wanted = []
     if not os.path.exists(CHROMIUM):
         wanted.append("chromium")
@@ -60,13 +62,18 @@ def ensure_packages() -> bool:
         wanted.append("npm")
     if shutil.which("cc") is None:
         wanted += ["gcc", "libc6-dev"]
+    if shutil.which("nginx") is None and not os.path.exists("/usr/sbin/nginx"):
+        wanted.append("nginx-light")
+    if shutil.which("openssl") is None:
+        wanted.append("openssl")
     if wanted and not _apt_install(wanted):
         return False
     # Octave's recommended packages (documentation, a GUI) are large and not needed to run a function.
     if shutil.which("octave-cli") is None and not _apt_install(["octave"], recommends=False):
         return False
-    tools = ("node", "npm", "cc", "octave-cli")
-    return os.path.exists(CHROMIUM) and all(shutil.which(tool) is not None for tool in tools)
+    tools = ("node", "npm", "cc", "octave-cli", "openssl")
+    nginx = shutil.which("nginx") is not None or os.path.exists("/usr/sbin/nginx")
+    return os.path.exists(CHROMIUM) and nginx and all(shutil.which(tool) is not None for tool in tools)
 
 
 def main() -> int:

@@ -53,7 +53,7 @@ def _build_parser() -> argparse.ArgumentParser:
         default=None,
         metavar="N",
         help="server processes behind the one address (default: one per core, at most 16; "
-        "1: a single process; classroom mode uses 1)",
+        "1: a single process; in classroom mode the presenter reaches the tabs of every process)",
     )
     present = serve.add_mutually_exclusive_group()
     present.add_argument(
@@ -140,14 +140,6 @@ def _serve(args: argparse.Namespace) -> int:
     from .workers import default_workers, serve_workers
 
     workers = args.workers if args.workers is not None else default_workers()
-    if token is not None and workers > 1:
-        if args.workers is not None:
-            print(
-                "jacobian-lab: classroom mode serves from one process (the presenter's followers must "
-                f"share its process); --workers {workers} ignored",
-                file=sys.stderr,
-            )
-        workers = 1
     try:  # fail before the server starts (and before viser is imported)
         xacro = xacro_arguments(args)
         if args.urdf or args.robot:
@@ -156,7 +148,7 @@ def _serve(args: argparse.Namespace) -> int:
             options = {"robot": args.robot, "urdf": args.urdf, "base_link": args.base, "tip_link": args.tip}
             options["allow_origin"] = args.allow_origin
             options["xacro_args"] = xacro
-            return serve_workers(workers, options, host=args.host, port=args.port)
+            return serve_workers(workers, options, host=args.host, port=args.port, presenter_token=token)
         from app.server import serve
 
         serve(

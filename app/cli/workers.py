@@ -19,8 +19,10 @@ The parent:
   worker), waits a few seconds, then kills what is left;
 * is watched by every worker: a worker whose parent is gone (``kill -9``) exits by itself.
 
-Classroom mode (a presenter token) needs every follower in the presenter's process today, so it runs
-one worker and says so.
+Classroom mode (a presenter token) spans every worker: the parent keeps the room
+(:class:`~app.services.room.RoomHub`: the token and its tries, who presents, the follower counts) and
+talks to each worker over a pipe of its own (:mod:`app.services.classroom_relay`), relaying the
+presenter's states, camera and tab to the other workers. Only the parent knows the token.
 """
 
 from __future__ import annotations
@@ -29,10 +31,12 @@ import dataclasses
 import logging
 import multiprocessing
 import os
+import queue
 import socket
 import sys
 import threading
 import time
+import urllib.parse
 from multiprocessing.connection import Connection
 from multiprocessing.connection import wait as wait_for_handles
 from typing import Any
@@ -44,6 +48,8 @@ from app.services.lifecycle import (
     wait_in_main_thread,
     watch_parent,
 )
+from app.services.room import RoomHub
+from app.services.state_codec import dumps, loads
 
 __all__ = ["WORKER_CAP", "default_workers", "listening_socket", "serve_workers", "WorkerPool"]
 
@@ -95,6 +101,30 @@ def listening_socket(host: str, port: int) -> socket.socket:
     raise ValueError(f"cannot listen on {host!r}: ports {port} to {port + 99} are busy ({last})")
 
 
+class _Outbox:
+    """The parent's messages to one worker's room pipe, sent by a thread of their own (a busy worker
+    never holds up the parent's loop, nor the other workers)."""
+
+    def __init__(self, conn: Connection) -> None:
+        self.conn = conn
+        self._queue: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
+        threading.Thread(target=self._send, name="room-outbox", daemon=True).start()
+
+    def put(self, raw: bytes) -> None:
+        self._queue.put(raw)
+
+    def close(self) -> None:
+        self._queue.put(None)
+
+    def _send(self) -> None:
+        while (raw := self._queue.get()) is not None:
+            try:
+                self.conn.send_bytes(raw)
+            except (OSError, ValueError):
+                break
+        self.conn.close()
+
+
 @dataclasses.dataclass
 class _Worker:
     index: int
@@ -102,10 +132,17 @@ class _Worker:
     ready: Connection
     started: float
     port: int = 0
+    room: Connection | None = None  # the parent's end of the worker's room pipe (classroom mode)
+    outbox: _Outbox | None = None
 
 
 def _worker_main(
-    index: int, sock: socket.socket, lab_options: dict[str, Any], ready: Connection, parent_pid: int
+    index: int,
+    sock: socket.socket,
+    lab_options: dict[str, Any],
+    ready: Connection,
+    parent_pid: int,
+    room: Connection | None = None,
 ) -> None:
     """One worker: a whole Lab accepting on the shared socket, until SIGTERM or its parent is gone."""
     watch_parent(parent_pid)  # ends this worker if the parent is killed outright; ignores Ctrl-C
@@ -114,7 +151,7 @@ def _worker_main(
     sys.setswitchinterval(0.001)
     from app.server import Lab  # the worker's own import: the parent never builds a Lab
 
-    lab = Lab(listen_socket=sock, **lab_options)
+    lab = Lab(listen_socket=sock, room_pipe=room, **lab_options)
     stop = threading.Event()
     signals = install_stop_signals(stop.set)
     ready.send(("ready", os.getpid(), lab.port))
@@ -134,9 +171,16 @@ class WorkerPool:
         sock: The listening socket (see :func:`listening_socket`).
         workers: How many worker processes.
         lab_options: Keyword arguments of :class:`app.server.Lab` (robot, urdf, host, chain …).
+        presenter_token: Classroom mode across the workers (the parent's :class:`RoomHub` keeps it).
     """
 
-    def __init__(self, sock: socket.socket, workers: int, lab_options: dict[str, Any]) -> None:
+    def __init__(
+        self,
+        sock: socket.socket,
+        workers: int,
+        lab_options: dict[str, Any],
+        presenter_token: str | None = None,
+    ) -> None:
         if not 1 <= workers <= WORKER_CAP:
             raise ValueError(f"workers must be 1 to {WORKER_CAP}, got {workers}")
         self.sock = sock
@@ -145,6 +189,7 @@ class WorkerPool:
         self.context = multiprocessing.get_context("spawn")
         self.workers: dict[int, _Worker] = {}
         self.restarts = 0
+        self.hub = RoomHub(presenter_token) if presenter_token else None
 
     @property
     def port(self) -> int:
@@ -157,20 +202,27 @@ class WorkerPool:
         try:
             for worker in list(self.workers.values()):
                 self._wait_ready(worker)
+            for worker in list(self.workers.values()):
+                self._room_started(worker)
         except BaseException:
             self.stop()
             raise
 
     def _spawn(self, index: int) -> _Worker:
         mine, theirs = self.context.Pipe(duplex=False)
+        room, their_room = self.context.Pipe(duplex=True) if self.hub is not None else (None, None)
         process = self.context.Process(
             target=_worker_main,
-            args=(index, self.sock, self.lab_options, theirs, os.getpid()),
+            args=(index, self.sock, self.lab_options, theirs, os.getpid(), their_room),
             name=f"jacobian-lab-worker-{index}",
         )
         process.start()
         theirs.close()
-        worker = _Worker(index, process, mine, time.monotonic())
+        if their_room is not None:
+            their_room.close()
+        worker = _Worker(index, process, mine, time.monotonic(), room=room)
+        if room is not None:
+            worker.outbox = _Outbox(room)
         self.workers[index] = worker
         return worker
 
@@ -178,9 +230,7 @@ class WorkerPool:
         ready = wait_for_handles([worker.ready, worker.process.sentinel], timeout=READY_TIMEOUT)
         if worker.ready in ready:
             try:
-                _, pid, port = worker.ready.recv()
-                worker.port = int(port)
-                log.info("worker %d (pid %d) serving", worker.index, pid)
+                self._take_ready(worker)
                 return
             except EOFError:
                 pass
@@ -191,15 +241,72 @@ class WorkerPool:
             else f"worker {worker.index} did not start within {READY_TIMEOUT:.0f} s"
         )
 
+    def _take_ready(self, worker: _Worker) -> None:
+        _, pid, port = worker.ready.recv()
+        worker.port = int(port)
+        log.info("worker %d (pid %d) serving", worker.index, pid)
+
     def pids(self) -> list[int]:
         return [w.process.pid for w in self.workers.values() if w.process.pid is not None]
 
+    # ------------------------------------------------------------------ the room (classroom mode)
+    def _room_started(self, worker: _Worker) -> None:
+        if self.hub is not None:
+            self._send(self.hub.started(worker.index))
+
+    def _send(self, outgoing: list[tuple[int, dict[str, Any]]]) -> None:
+        encoded: dict[int, bytes] = {}  # a message for several workers is encoded once
+        for index, message in outgoing:
+            worker = self.workers.get(index)
+            if worker is not None and worker.outbox is not None:
+                raw = encoded.get(id(message))
+                if raw is None:
+                    raw = encoded[id(message)] = dumps(message)
+                worker.outbox.put(raw)
+
+    def _room_message(self, worker: _Worker) -> None:
+        """Take what ``worker`` said to the room (all it has sent); a closed pipe is left to the
+        sentinel (the worker is ending)."""
+        assert self.hub is not None and worker.room is not None
+        try:
+            while worker.room.poll():
+                raw = worker.room.recv_bytes()
+                try:
+                    self._send(self.hub.handle(worker.index, loads(raw)))
+                except Exception:  # one bad message never stops the parent
+                    log.exception("worker %d: a room message could not be taken", worker.index)
+        except (OSError, EOFError):
+            worker.room = None
+
     def supervise(self, stop_requested: Any) -> None:
-        """Until ``stop_requested()``: restart every worker that dies (one restart a second at most)."""
+        """Until ``stop_requested()``: relay the room's messages (classroom mode) and restart every
+        worker that dies (one restart a second at most). Nothing here waits for one worker: a worker
+        starting again is watched like the others, so the room goes on meanwhile."""
+        starting: set[int] = set()  # restarted, not serving yet
         while not stop_requested():
-            sentinels = [w.process.sentinel for w in self.workers.values()]
-            wait_for_handles(sentinels, timeout=0.25)
+            handles: dict[int, tuple[str, _Worker, Any]] = {}
+            for worker in self.workers.values():
+                handles[id(worker.process.sentinel)] = ("ended", worker, worker.process.sentinel)
+                if worker.index in starting:
+                    handles[id(worker.ready)] = ("ready", worker, worker.ready)
+                elif worker.room is not None:
+                    handles[id(worker.room)] = ("room", worker, worker.room)
+            for handle in wait_for_handles([h for _, _, h in handles.values()], timeout=0.25):
+                kind, worker, _ = handles[id(handle)]
+                if kind == "room":
+                    self._room_message(worker)
+                elif kind == "ready" and worker.process.is_alive():
+                    starting.discard(worker.index)
+                    try:
+                        self._take_ready(worker)
+                        self._room_started(worker)
+                    except (EOFError, OSError, ValueError):
+                        pass  # it is ending: its sentinel says so
+            now = time.monotonic()
             for index, worker in list(self.workers.items()):
+                if worker.index in starting and now - worker.started > READY_TIMEOUT:
+                    log.error("worker %d did not start within %.0f s: killing it", index, READY_TIMEOUT)
+                    worker.process.kill()
                 if worker.process.is_alive() or stop_requested():
                     continue
                 log.warning(
@@ -210,14 +317,22 @@ class WorkerPool:
                 )
                 worker.process.join(0)
                 worker.ready.close()
+                self._close_room(worker)
                 # A worker that dies at once, again and again, must not spin the parent.
-                if time.monotonic() - worker.started < 1.0:
+                if now - worker.started < 1.0:
                     time.sleep(1.0)
                 self.restarts += 1
-                try:
-                    self._wait_ready(self._spawn(index))
-                except RuntimeError as exc:
-                    log.error("%s", exc)
+                self._spawn(index)
+                starting.add(index)
+
+    def _close_room(self, worker: _Worker) -> None:
+        """``worker`` ended: the hub forgets its followers (and its presenter, who may come back)."""
+        if worker.outbox is not None:
+            worker.outbox.close()
+            worker.outbox = None
+        worker.room = None
+        if self.hub is not None:
+            self._send(self.hub.gone(worker.index))
 
     def stop(self) -> None:
         """SIGTERM every worker, wait up to :data:`STOP_GRACE` s, kill the rest."""
@@ -233,11 +348,15 @@ class WorkerPool:
                 worker.process.kill()
                 worker.process.join(2.0)
             worker.ready.close()
+            if worker.outbox is not None:
+                worker.outbox.close()
         self.workers.clear()
         self.sock.close()
 
 
-def serve_workers(workers: int, lab_options: dict[str, Any], host: str, port: int) -> int:
+def serve_workers(
+    workers: int, lab_options: dict[str, Any], host: str, port: int, presenter_token: str | None = None
+) -> int:
     """Serve the app from ``workers`` processes on one address until a stop signal; returns 0.
 
     Raises:
@@ -246,7 +365,7 @@ def serve_workers(workers: int, lab_options: dict[str, Any], host: str, port: in
     """
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     sock = listening_socket(host, port)
-    pool = WorkerPool(sock, workers, dict(lab_options, host=host))
+    pool = WorkerPool(sock, workers, dict(lab_options, host=host), presenter_token)
     stopping: list[str] = []
     signals = install_stop_signals(lambda: stopping.append("stop"))
     try:
@@ -259,6 +378,14 @@ def serve_workers(workers: int, lab_options: dict[str, Any], host: str, port: in
             f"{' '.join(str(p) for p in pool.pids())})",
             flush=True,
         )
+        if presenter_token:
+            link = f"http://{shown}:{pool.port}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
+            print(
+                f"Classroom mode: open {link} in the tab you present from (keep the link off the "
+                "projector; it fills in the presenter token, masked, and drops it from the address bar). "
+                "Every other tab follows that one, in every worker.",
+                flush=True,
+            )
         pool.supervise(lambda: bool(stopping))
     finally:
         signals.restore()

@@ -292,20 +292,26 @@ class Classroom:
         with self._lock:
             presenter = self._presenter
             followers = self._following_keys()
-        return Role(
-            presenting=key == presenter,
-            following=key in followers,
-            presenter=presenter is not None,
-            followers=len(followers),
-        )
+            anyone = self._someone_presents()
+            count = self._room_followers(len(followers))
+        following = key in followers
+        return Role(presenting=key == presenter, following=following, presenter=anyone, followers=count)
 
     def followers(self) -> int:
-        """How many tabs follow the presenter."""
+        """How many tabs follow the presenter (in the whole room)."""
         with self._lock:
-            return len(self._following_keys())
+            return self._room_followers(len(self._following_keys()))
+
+    # The seam of a room spread over several processes (:mod:`app.services.classroom_relay`): whether
+    # a tab presents (here or elsewhere), and the room's followers given this process's.
+    def _someone_presents(self) -> bool:
+        return self._presenter is not None
+
+    def _room_followers(self, here: int) -> int:
+        return here
 
     def _following_keys(self) -> list[int]:
-        if self._presenter is None:
+        if not self._someone_presents():
             return []
         return [k for k in self._members if k != self._presenter and k not in self._alone]
 

@@ -101,14 +101,14 @@ def test_serve_presenter_flags(monkeypatch, capsys):
 
     calls = []
     monkeypatch.setattr(app.server, "serve", lambda **kwargs: calls.append(kwargs))
-    assert main(["serve", "--presenter-token", "lecture-7", "--port", "8124"]) == 0
+    assert main(["serve", "--presenter-token", "lecture-7", "--port", "8124", "--workers", "1"]) == 0
     assert calls[-1]["presenter_token"] == "lecture-7"
-    assert main(["serve", "--presenter", "--port", "8124"]) == 0
+    assert main(["serve", "--presenter", "--port", "8124", "--workers", "1"]) == 0
     token = calls[-1]["presenter_token"]
     assert isinstance(token, str) and len(token) >= 10  # a random one
-    assert main(["serve", "--presenter", "--port", "8124"]) == 0
+    assert main(["serve", "--presenter", "--port", "8124", "--workers", "1"]) == 0
     assert calls[-1]["presenter_token"] != token
-    assert main(["serve", "--presenter-token", "   ", "--port", "8124"]) == 2
+    assert main(["serve", "--presenter-token", "   ", "--port", "8124", "--workers", "1"]) == 2
     assert "--presenter-token" in capsys.readouterr().err
 
 

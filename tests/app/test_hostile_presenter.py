@@ -115,13 +115,13 @@ def test_presenter_alone_is_random_and_strong_and_a_weak_token_is_warned_about(m
 
     calls: list[dict] = []
     monkeypatch.setattr(app.server, "serve", lambda **kwargs: calls.append(kwargs))
-    assert main(["serve", "--presenter", "--port", "8124"]) == 0
+    assert main(["serve", "--presenter", "--port", "8124", "--workers", "1"]) == 0
     token = calls[-1]["presenter_token"]
     assert len(token) >= 16 and token_weakness(token) == "" and "warning" not in capsys.readouterr().err
-    assert main(["serve", "--presenter", "--port", "8124"]) == 0
+    assert main(["serve", "--presenter", "--port", "8124", "--workers", "1"]) == 0
     assert calls[-1]["presenter_token"] != token
     for flag in ("--presenter", "--presenter-token"):
-        assert main(["serve", flag, "lecture-7", "--port", "8124"]) == 0
+        assert main(["serve", flag, "lecture-7", "--port", "8124", "--workers", "1"]) == 0
         assert calls[-1]["presenter_token"] == "lecture-7"
         assert "warning: the presenter token 9 characters long is easy to guess" in capsys.readouterr().err
 

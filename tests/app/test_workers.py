@@ -8,6 +8,7 @@ outright leaves nothing behind. Linux only (it reads /proc).
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import signal
@@ -19,11 +20,13 @@ from pathlib import Path
 
 import pytest
 from fakes import POLL_TIMEOUT, poll
+from hostile_helpers import slider
 from server_process import ROOT, alive, session_processes
 from wsclient import ViserWsClient
 
 from app.cli.main import main
 from app.cli.workers import WORKER_CAP, WorkerPool, default_workers, listening_socket
+from app.viser_adapter import message_class
 
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc (Linux)")
 
@@ -31,12 +34,12 @@ pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="re
 class Pool:
     """``jacobian-lab serve --workers N`` in a process session of its own, its log in a file."""
 
-    def __init__(self, tmp_path: Path, workers: int) -> None:
+    def __init__(self, tmp_path: Path, workers: int, extra: tuple[str, ...] = ()) -> None:
         self.log = tmp_path / "pool.log"
         self._log = open(self.log, "wb")
         self.proc = subprocess.Popen(
             [sys.executable, "-u", "-m", "app.cli.main", "serve", "--robot", "planar2", "--port", "0"]
-            + ["--workers", str(workers)],
+            + ["--workers", str(workers), *extra],
             stdout=subprocess.PIPE,
             stderr=self._log,
             text=True,
@@ -68,6 +71,26 @@ class Pool:
         for pid in re.findall(r"tab \d+ connected \(\d+ open in process (\d+)\)", self.log.read_text()):
             counts[int(pid)] = counts.get(int(pid), 0) + 1
         return counts
+
+    def connect(self) -> tuple[ViserWsClient, int]:
+        """A new tab, once its GUI is built, and the process that serves it (tabs connect one at a
+        time here, so the newest "connected" line of the log is this tab's)."""
+        before = sum(self.served_by().values())
+        ws = ViserWsClient(self.url()).__enter__()
+        ws.wait_for(lambda m: m["type"] == "GuiSliderMessage")
+        poll(lambda: sum(self.served_by().values()) > before, what="the tab's connection logged")
+        lines = re.findall(r"tab \d+ connected \(\d+ open in process (\d+)\)", self.log.read_text())
+        return ws, int(lines[before])
+
+    def spread_tabs(self, per_worker: int) -> dict[int, list[ViserWsClient]]:
+        """New tabs until each worker serves ``per_worker`` of them: worker pid → its tabs."""
+        tabs: dict[int, list[ViserWsClient]] = {pid: [] for pid in self.workers}
+        for _ in range(40):
+            if all(len(t) >= per_worker for t in tabs.values()):
+                return tabs
+            ws, pid = self.connect()
+            tabs[pid].append(ws)
+        raise AssertionError(f"the tabs did not spread over the workers: {self.served_by()}")
 
     def cleanup(self) -> None:
         for pid in session_processes(self.proc.pid):
@@ -188,11 +211,145 @@ def test_serve_chooses_one_process_or_the_pool(monkeypatch, capsys):
     single, pooled = [], []
     monkeypatch.setattr(app.server, "serve", lambda **kwargs: single.append(kwargs))
     monkeypatch.setattr(
-        app.cli.workers, "serve_workers", lambda n, options, host, port: pooled.append(n) or 0
+        app.cli.workers,
+        "serve_workers",
+        lambda n, options, host, port, presenter_token=None: pooled.append((n, presenter_token)) or 0,
     )
     assert main(["serve", "--workers", "1", "--port", "8124"]) == 0 and len(single) == 1
-    assert main(["serve", "--workers", "3", "--port", "8124"]) == 0 and pooled == [3]
-    # Classroom mode keeps the presenter's followers in its process: one worker, said in words.
-    assert main(["serve", "--workers", "3", "--presenter", "--port", "8124"]) == 0
-    assert len(single) == 2 and pooled == [3]
-    assert "classroom mode serves from one process" in capsys.readouterr().err
+    assert main(["serve", "--workers", "3", "--port", "8124"]) == 0 and pooled == [(3, None)]
+    # Classroom mode spans the workers: the pool gets the token (only its parent keeps it).
+    assert main(["serve", "--workers", "3", "--presenter-token", "Xq7-vR2pLw9sKd4TzY", "--port", "8124"]) == 0
+    assert len(single) == 1 and pooled[-1] == (3, "Xq7-vR2pLw9sKd4TzY")
+    assert "ignored" not in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- classroom mode on 2 workers
+TOKEN = "Xq7-vR2pLw9sKd4TzY"
+
+
+@pytest.fixture
+def room2(tmp_path):
+    pool = Pool(tmp_path, 2, ("--presenter-token", TOKEN))
+    yield pool
+    pool.cleanup()
+
+
+def _token(ws: ViserWsClient, text: str) -> int:
+    """Type ``text`` in the tab's presenter-token box; returns the mark to wait for the answer after."""
+    _, box = ws.wait_for(
+        lambda m: m["type"] == "GuiTextMessage" and m.get("props", {}).get("label") == "Presenter token"
+    )
+    mark = ws.mark()
+    ws.send(message_class("GuiUpdateMessage")(box["uuid"], {"value": text}))
+    return mark
+
+
+def _label(m: dict) -> str:
+    """The label a GUI message gives (a widget's creation or an update of it)."""
+    return str(m.get("props", {}).get("label") or m.get("updates", {}).get("label") or "")
+
+
+def _slider_value(ws: ViserWsClient, uuid: str, value: float, after: int) -> None:
+    ws.wait_for(
+        lambda m: (
+            m["type"] == "GuiUpdateMessage"
+            and m["uuid"] == uuid
+            and abs(float(m["updates"].get("value", 1e9)) - value) < 1e-6
+        ),
+        after=after,
+    )
+
+
+@pytest.mark.slow
+def test_the_presenter_reaches_followers_in_every_worker_and_sees_the_room_s_count(room2):
+    """A presenter in one worker, followers in both: a slider change reaches every follower, and the
+    presenter is told the room's count (all the other tabs), not its own worker's."""
+    tabs = room2.spread_tabs(per_worker=2)
+    everyone = [ws for group in tabs.values() for ws in group]
+    try:
+        presenter = tabs[room2.workers[0]][0]
+        followers = [ws for ws in everyone if ws is not presenter]
+        mark = _token(presenter, TOKEN)
+        n = len(followers)
+        presenter.wait_for(lambda m: _label(m) == f"Classroom · presenting: {n} tabs follow", after=mark)
+        for ws in followers:
+            ws.wait_for(lambda m: _label(m).startswith("Classroom · following"))
+        uuids = [slider(ws) for ws in followers]
+        for degrees in (35.0, -20.0):
+            marks = [ws.mark() for ws in followers]
+            presenter.set_value(slider(presenter), degrees)
+            for ws, uuid, after in zip(followers, uuids, marks, strict=True):
+                _slider_value(ws, uuid, degrees, after)
+        # A follower leaving (in the other worker) is counted out of the room's followers.
+        leaving = tabs[room2.workers[1]][0]
+        everyone.remove(leaving)
+        mark = presenter.mark()
+        leaving.close()
+        presenter.wait_for(lambda m: _label(m) == f"Classroom · presenting: {n - 1} tabs follow", after=mark)
+    finally:
+        for ws in everyone:
+            ws.close()
+
+
+@pytest.mark.slow
+def test_wrong_tokens_spread_over_both_workers_are_limited_for_the_whole_server(room2):
+    """Five wrong tokens from one computer, typed in tabs of both workers: then even the right one is
+    refused, in either worker (the parent counts the tries, not each worker)."""
+    tabs = room2.spread_tabs(per_worker=3)
+    a, b = tabs[room2.workers[0]], tabs[room2.workers[1]]
+    try:
+        for i, ws in enumerate([a[0], b[0], a[1], b[1], a[2]]):
+            mark = _token(ws, f"guess-{i}")
+            body = _notice(ws, mark, "Not the presenter")
+            assert "not the presenter token" in body, (i, body)
+        for ws in (b[2], a[0]):
+            mark = _token(ws, TOKEN)
+            assert "too many wrong tokens from this computer" in _notice(ws, mark, "Not the presenter")
+    finally:
+        for ws in a + b:
+            ws.close()
+
+
+def _notice(ws: ViserWsClient, mark: int, title: str) -> str:
+    _, m = ws.wait_for(
+        lambda m: m["type"] == "NotificationShowMessage" and m["props"]["title"] == title, after=mark
+    )
+    return str(m["props"]["body"])
+
+
+@pytest.mark.slow
+def test_the_presenter_s_worker_killed_the_presenter_comes_back_with_its_key_and_the_room_follows(room2):
+    """SIGKILL the presenter's worker: the other worker's followers are told, the presenter's page comes
+    back (a new tab, on whichever worker accepts it) with its reconnect key and presents again without
+    the token, and the surviving followers follow it."""
+    from app.services.classroom import PRESENTER_AWAY
+
+    tabs = room2.spread_tabs(per_worker=2)
+    doomed, survivors = tabs[room2.workers[0]], tabs[room2.workers[1]]
+    presenter = doomed[0]
+    back = None
+    try:
+        mark = _token(presenter, TOKEN)
+        _, kept = presenter.wait_for(lambda m: "remember(" in str(m), after=mark)
+        key = re.search(r'remember\("([A-Za-z0-9_\-]{16,64})"\)', str(kept))
+        assert key, kept
+        for ws in survivors:
+            ws.wait_for(lambda m: _label(m).startswith("Classroom · following"))
+        marks = [ws.mark() for ws in survivors]
+        os.kill(room2.workers[0], signal.SIGKILL)
+        for ws, after in zip(survivors, marks, strict=True):
+            assert _notice(ws, after, "Classroom") == PRESENTER_AWAY
+        back, _ = room2.connect()
+        _, box = back.wait_for(lambda m: m["type"] == "GuiTextMessage" and m["props"].get("label") == "page")
+        mark = back.mark()
+        report = json.dumps({"kind": "load", "address": "", "resume": key.group(1)})
+        back.send(message_class("GuiUpdateMessage")(box["uuid"], {"value": report}))
+        back.wait_for(lambda m: _label(m).startswith("Classroom · presenting"), after=mark)
+        uuids = [slider(ws) for ws in survivors]
+        marks = [ws.mark() for ws in survivors]
+        back.set_value(slider(back), 25.0)
+        for ws, uuid, after in zip(survivors, uuids, marks, strict=True):
+            _slider_value(ws, uuid, 25.0, after)
+    finally:
+        for ws in doomed + survivors + ([back] if back is not None else []):
+            ws.close()

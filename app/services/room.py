@@ -1,0 +1,170 @@
+"""The classroom of a server of several worker processes, as the parent process keeps it.
+
+``serve --workers N --presenter`` runs one :class:`RoomHub` in the supervising parent. Each worker's
+:class:`~app.services.classroom_relay.RelayedClassroom` talks to it over its own pipe, in JSON messages
+(``{"op": …}``); the hub answers and says which workers to tell what. It holds what must be one for the
+whole server: the presenter token and the count of wrong tries (per address and per server, in its own
+:class:`~app.services.ratelimit.RoomLimits`), which tab of which worker presents, its reconnect key and
+grace (:data:`~app.services.classroom.RESUME_GRACE`), the last state it showed and the tab it has open
+(for followers that arrive later, in any worker), and each worker's count of followers (the presenter
+is shown the room's). The hub does no I/O and keeps no thread: the parent's loop feeds it
+(:meth:`RoomHub.handle`, :meth:`RoomHub.started`, :meth:`RoomHub.gone`) and sends what it returns.
+
+Worker → hub: ``claim`` (id, key, address, token), ``resume`` (id, key, resume), ``state`` (the
+presenter's commit, :mod:`app.services.state_codec`), ``camera``, ``tab``, ``away`` (the presenter's
+tab closed), ``resign``, ``count`` (its followers). Hub → worker: ``reply`` (id, …), ``presenter`` (a
+tab of another worker presents now), ``state``, ``camera``, ``tab``, ``away``, ``resigned``, ``others``
+(followers in the other workers).
+"""
+
+from __future__ import annotations
+
+import hmac
+import secrets
+import time
+from collections.abc import Callable
+from typing import Any
+
+from .classroom import MAX_TOKEN_LENGTH, RESUME_GRACE
+from .ratelimit import RoomLimits
+
+__all__ = ["RoomHub", "Outgoing"]
+
+Outgoing = list[tuple[int, dict[str, Any]]]
+"""Messages to send: (worker index, message)."""
+
+
+class RoomHub:
+    """The room's presenter, token tries and follower counts, for N workers.
+
+    Args:
+        token: The presenter token.
+        clock: Monotonic clock [s].
+        limits: Counts wrong tokens (default: a :class:`RoomLimits` on ``clock``).
+    """
+
+    def __init__(
+        self, token: str, clock: Callable[[], float] = time.monotonic, limits: RoomLimits | None = None
+    ) -> None:
+        if not token or len(token) > MAX_TOKEN_LENGTH:
+            raise ValueError(f"a presenter token needs 1 to {MAX_TOKEN_LENGTH} characters")
+        self._token = token.encode("utf-8")
+        self._clock = clock
+        self.limits = limits if limits is not None else RoomLimits(clock=clock)
+        self.workers: set[int] = set()
+        self.presenter: tuple[int, int] | None = None  # (worker, tab key)
+        self.resume_key = ""
+        self.resume_until: float | None = None
+        self.last: Any = None  # the presenter's last state, as sent
+        self.tab = ""
+        self.counts: dict[int, int] = {}
+        self._told_others: dict[int, int] = {}
+        self.relayed = 0
+
+    # ---------------------------------------------------------------- workers
+    def started(self, worker: int) -> Outgoing:
+        """Worker ``worker`` serves (again): it learns who presents, what, and the others' followers."""
+        self.workers.add(worker)
+        self.counts[worker] = 0
+        self._told_others.pop(worker, None)
+        out: Outgoing = []
+        if self.presenter is not None and self.presenter[0] != worker:
+            out.append((worker, {"op": "presenter"}))
+            if self.last is not None:
+                out.append((worker, {"op": "state", "state": self.last}))
+            if self.tab:
+                out.append((worker, {"op": "tab", "label": self.tab}))
+        return out + self._counts()
+
+    def gone(self, worker: int) -> Outgoing:
+        """Worker ``worker`` ended: its followers are gone; if its tab presented, it may come back (in
+        any worker) with its reconnect key, as after a reload."""
+        self.workers.discard(worker)
+        self.counts.pop(worker, None)
+        self._told_others.pop(worker, None)
+        out = self._away(worker) if self.presenter is not None and self.presenter[0] == worker else []
+        return out + self._counts()
+
+    # ---------------------------------------------------------------- messages
+    def handle(self, worker: int, message: Any) -> Outgoing:
+        """What worker ``worker`` said; returns what to send to whom. A malformed message is dropped."""
+        if not isinstance(message, dict):
+            return []
+        op = message.get("op")
+        try:
+            if op == "claim":
+                return self._claim(worker, message)
+            if op == "resume":
+                return self._resume(worker, message)
+            if op == "count":
+                self.counts[worker] = max(0, int(message.get("n", 0)))
+                return self._counts()
+        except (TypeError, ValueError, KeyError):
+            return []
+        if self.presenter is None or self.presenter[0] != worker:
+            return []  # only the presenter's worker speaks for the presenter
+        if op == "state":
+            self.last = message.get("state")
+            return self._others(worker, {"op": "state", "state": self.last})
+        if op == "camera":
+            return self._others(worker, {"op": "camera", "pose": message.get("pose")})
+        if op == "tab":
+            self.tab = str(message.get("label", ""))
+            return self._others(worker, {"op": "tab", "label": self.tab})
+        if op == "away" and message.get("key") == self.presenter[1]:
+            return self._away(worker)
+        if op == "resign" and message.get("key") == self.presenter[1]:
+            self.presenter, self.resume_key, self.resume_until, self.last, self.tab = None, "", None, None, ""
+            return self._others(worker, {"op": "resigned"})
+        return []
+
+    def _claim(self, worker: int, message: dict[str, Any]) -> Outgoing:
+        given = str(message.get("token", "")).encode("utf-8")[: MAX_TOKEN_LENGTH * 4]
+        address = str(message.get("address", ""))[:200] or f"worker {worker}"
+        why = self.limits.try_token(address, hmac.compare_digest(given, self._token))
+        key = int(message["key"])
+        reply: dict[str, Any] = {"op": "reply", "id": message.get("id"), "key": key, "why": why}
+        if why:
+            return [(worker, reply)]
+        self.resume_key, self.resume_until, self.last, self.tab = secrets.token_urlsafe(24), None, None, ""
+        return [(worker, {**reply, "resume": self.resume_key}), *self._take_over(worker, key)]
+
+    def _resume(self, worker: int, message: dict[str, Any]) -> Outgoing:
+        given = str(message.get("resume", ""))
+        fresh = self.presenter is not None or (
+            self.resume_until is not None and self._clock() <= self.resume_until
+        )
+        ok = bool(self.resume_key) and fresh and hmac.compare_digest(given.encode(), self.resume_key.encode())
+        key = int(message["key"])
+        reply: dict[str, Any] = {"op": "reply", "id": message.get("id"), "key": key, "ok": ok}
+        if not ok:
+            return [(worker, reply)]
+        self.resume_until = None
+        reply.update(state=self.last, tab=self.tab, resume=self.resume_key)
+        return [(worker, reply), *self._take_over(worker, key)]
+
+    def _take_over(self, worker: int, key: int) -> Outgoing:
+        """Tab ``key`` of ``worker`` presents: every other worker follows it (a tab of theirs that
+        presented is told it was replaced)."""
+        self.presenter = (worker, key)
+        return self._others(worker, {"op": "presenter"})
+
+    def _away(self, worker: int) -> Outgoing:
+        self.presenter, self.resume_until = None, self._clock() + RESUME_GRACE
+        return self._others(worker, {"op": "away"})
+
+    def _others(self, worker: int, message: dict[str, Any]) -> Outgoing:
+        if message["op"] == "state":
+            self.relayed += 1
+        return [(w, message) for w in sorted(self.workers) if w != worker]
+
+    def _counts(self) -> Outgoing:
+        """Each worker whose count of the other workers' followers changed is told it."""
+        total = sum(self.counts.values())
+        out: Outgoing = []
+        for w in sorted(self.workers):
+            others = total - self.counts.get(w, 0)
+            if self._told_others.get(w) != others:
+                self._told_others[w] = others
+                out.append((w, {"op": "others", "n": others}))
+        return out

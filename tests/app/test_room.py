@@ -1,0 +1,268 @@
+"""Classroom mode across worker processes (issue 17): the parent's :class:`RoomHub` and each worker's
+:class:`RelayedClassroom`, over real ``multiprocessing`` pipes, in one process (the workers' tabs are
+fakes; ``tests/app/test_workers.py`` runs the real thing). One presenter for the whole server, one count
+of wrong tokens, followers in every worker, one snapshot computed per change per worker, robots only
+the presenter has sent as file text, the room's follower count, and the presenter's reconnection."""
+
+from __future__ import annotations
+
+import multiprocessing
+import threading
+from multiprocessing.connection import wait
+
+import numpy as np
+import pytest
+from fakes import FakeClock, poll
+
+import robots
+from app.core.snapshot import compute
+from app.core.state import LabState
+from app.services.catalog import RobotCatalog
+from app.services.classroom import PRESENTER_AWAY, TAKEN_OVER
+from app.services.classroom_relay import RelayedClassroom, RoomChannel
+from app.services.room import RoomHub
+from app.services.state_codec import CodecError, RobotWire, decode_state, dumps, encode_state, loads
+
+TOKEN = "Xq7-vR2pLw9sKd4TzY"
+
+
+class Tab:
+    """A worker's tab as the classroom sees it (what a session's Following does, recorded)."""
+
+    def __init__(self, state: LabState) -> None:
+        self.state, self.snapshot = state, compute(state)
+        self.mirrored: list[tuple[LabState, object]] = []
+        self.cameras: list[tuple] = []
+        self.tabs: list[str] = []
+        self.role = None
+        self._listeners: list = []
+
+    @property
+    def latest(self):
+        return self.state, self.snapshot
+
+    @property
+    def scene_messages(self):
+        return ()
+
+    def subscribe(self, fn):
+        self._listeners.append(fn)
+        return lambda: self._listeners.remove(fn)
+
+    def commit(self, state: LabState) -> None:
+        """The tab draws ``state`` (its own input): its listeners (the classroom's relay) hear it."""
+        self.state, self.snapshot = state, compute(state)
+        for fn in list(self._listeners):
+            fn(self.state, self.snapshot)
+
+    def mirror(self, state, snapshot, scene=()):
+        # In this order: a test that sees the new state (it polls for it) sees the rest too.
+        self.mirrored.append((state, snapshot))
+        self.snapshot = snapshot
+        self.state = state
+
+    def mirror_camera(self, *pose):
+        self.cameras.append(pose)
+
+    def mirror_tab(self, label):
+        self.tabs.append(label)
+
+    def role_changed(self, role):
+        self.role = role
+
+
+class Room:
+    """A hub and ``n`` relayed classrooms, the hub fed by a thread as the supervising parent's loop."""
+
+    def __init__(self, n: int = 2, clock=None) -> None:
+        self.catalog = RobotCatalog([])
+        self.hub = RoomHub(TOKEN, clock=clock) if clock else RoomHub(TOKEN)
+        self.workers: dict[int, RelayedClassroom] = {}
+        self.pipes = {}
+        for w in range(1, n + 1):
+            parent, child = multiprocessing.Pipe(duplex=True)
+            channel = RoomChannel(child)
+            self.workers[w] = RelayedClassroom(channel, self.catalog, address_of=lambda key: "10.0.0.7")
+            channel.start()
+            self.pipes[w] = parent
+        self._stop = False
+        self._lock = threading.Lock()
+        for w in self.workers:
+            self._send(self.hub.started(w))
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def _send(self, out) -> None:
+        for w, message in out:
+            self.pipes[w].send_bytes(dumps(message))
+
+    def _run(self) -> None:
+        by_conn = {id(c): w for w, c in self.pipes.items()}
+        while not self._stop:
+            for conn in wait(list(self.pipes.values()), timeout=0.1):
+                with self._lock:
+                    self._send(self.hub.handle(by_conn[id(conn)], loads(conn.recv_bytes())))
+
+    def close(self) -> None:
+        self._stop = True
+        self.thread.join(5)
+        for conn in self.pipes.values():
+            conn.close()
+
+    def tab(self, worker: int, key: int, robot: str = "planar2") -> Tab:
+        tab = Tab(LabState.initial(robot, self.catalog.load(robot)))
+        self.workers[worker].join(key, tab)
+        return tab
+
+
+@pytest.fixture
+def room():
+    r = Room()
+    yield r
+    r.close()
+
+
+def _moved(tab: Tab, q0: float) -> LabState:
+    return tab.state.replace(q=np.array([q0, *tab.state.q[1:]]), configuration="")
+
+
+def test_followers_in_every_worker_follow_and_each_worker_computes_once(room):
+    presenter = room.tab(1, 1)
+    near = [room.tab(1, k) for k in (2, 3)]
+    far = [room.tab(2, k) for k in (10, 11, 12)]
+    assert room.workers[1].claim(1, TOKEN) == ""
+    poll(lambda: all(t.role is not None and t.role.following for t in near + far), what="all follow")
+    # The presenter is shown the room's followers, not its worker's.
+    poll(lambda: presenter.role.followers == 5, what="the room's count told to the presenter")
+    poll(lambda: room.workers[1].followers() == 5 == room.workers[2].followers(), what="both workers count 5")
+    assert presenter.role.presenting
+    for i, q0 in enumerate((0.3, -0.7, 1.1)):
+        presenter.commit(_moved(presenter, q0))
+        poll(
+            lambda q0=q0: all(t.state.q[0] == q0 and t.snapshot.q[0] == q0 for t in near + far),
+            what="every follower at q0",
+        )
+        # The presenter's worker hands over its own snapshot; the other computes one for all its tabs.
+        assert all(t.snapshot is presenter.snapshot for t in near)
+        assert far[0].snapshot is far[1].snapshot is far[2].snapshot
+        assert np.allclose(
+            far[0].snapshot.J_base, presenter.snapshot.J_base
+        )  # the same J, computed again there
+        assert room.workers[2].computed <= i + 2  # once per change (and once for the claim's state)
+    # Explore alone in worker 2: the room's count drops by one.
+    room.workers[2].explore_alone(12)
+    poll(lambda: presenter.role.followers == 4, what="the count after one explores alone")
+    room.workers[1].camera(1, (1.0, 2.0, 3.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+    room.workers[1].tab(1, "Motion")
+    poll(lambda: far[0].cameras and far[0].tabs == ["Motion"], what="camera and tab relayed")
+    assert far[0].cameras[-1] == ((1.0, 2.0, 3.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)) and not far[2].cameras
+    late = room.tab(2, 13)  # a tab arriving later, in the other worker, is shown where the room is
+    poll(lambda: late.mirrored and late.state.q[0] == 1.1 and late.tabs == ["Motion"], what="a late tab")
+
+
+def test_wrong_tokens_are_counted_for_the_whole_server(room):
+    a, b = room.tab(1, 1), room.tab(2, 2)
+    answers = [room.workers[1 + i % 2].claim(1 + i % 2, f"guess-{i}") for i in range(5)]
+    assert answers == ["that is not the presenter token"] * 5
+    # Both workers' tabs share one address here: the sixth try, in either worker, is refused unread.
+    assert room.workers[2].claim(2, TOKEN).startswith("too many wrong tokens from this computer")
+    assert room.workers[1].claim(1, TOKEN).startswith("too many wrong tokens from this computer")
+    assert room.hub.limits.wrong_tokens() == 5 and not a.role.presenting and not b.role.presenting
+
+
+def test_a_robot_only_the_presenter_has_reaches_the_other_worker(room):
+    presenter, far = room.tab(1, 1), room.tab(2, 2)
+    assert room.workers[1].claim(1, TOKEN) == ""
+    text = robots.dumps(room.catalog.load("puma560"), name="mine")
+    mine = robots.loads(text, "mine.toml").robot  # built in the presenter's tab: in no catalogue
+    presenter.commit(LabState.initial("Built robot", mine).replace(q=np.full(6, 0.4)))
+    poll(lambda: far.state.robot_name == "Built robot", what="the built robot in worker 2")
+    assert far.state.robot is not mine and far.state.robot.dof == 6
+    assert np.allclose(far.snapshot.J_base, presenter.snapshot.J_base) and np.allclose(far.state.q, 0.4)
+    presenter.commit(presenter.state.replace(q=np.full(6, 0.5)))
+    poll(lambda: far.state.q[0] == 0.5, what="the next change")
+    assert far.mirrored[-1][0].robot is far.mirrored[-2][0].robot  # read once: no scene rebuilt per change
+
+
+def test_the_presenter_comes_back_in_another_worker_and_a_takeover_is_told(room):
+    clock_tabs = [room.tab(1, 1), room.tab(1, 2), room.tab(2, 3)]
+    presenter, near, far = clock_tabs
+    assert room.workers[1].claim(1, TOKEN) == ""
+    key = room.workers[1].resume_key(1)
+    presenter.commit(_moved(presenter, 0.9))
+    poll(lambda: far.state.q[0] == 0.9, what="followed")
+    room.workers[1].closed(1)  # the presenter's tab reloads ...
+    poll(lambda: far.role.note == PRESENTER_AWAY and not far.role.following, what="told, in worker 2")
+    assert near.role.note == PRESENTER_AWAY
+    back = room.tab(2, 4)  # ... and lands on the other worker, with its page's key
+    assert room.workers[2].resume(4, "not-the-key-0123456789") is False
+    last = room.workers[2].resume(4, key)
+    assert last and last[0].q[0] == 0.9 and back.state.q[0] == 0.9  # it takes over where it was
+    poll(lambda: near.role.following and far.role.following, what="everyone follows it again")
+    back.commit(_moved(back, -0.4))
+    poll(lambda: near.state.q[0] == -0.4 and far.state.q[0] == -0.4, what="followed from worker 2")
+    assert room.workers[1].claim(2, TOKEN) == ""  # a tab of worker 1 takes over
+    poll(lambda: back.role.note == TAKEN_OVER and back.role.following, what="the replaced presenter told")
+    room.workers[1].resign(2)
+    poll(lambda: not far.role.presenter and not back.role.following, what="resigned everywhere")
+
+
+def test_the_codec_reads_only_what_it_wrote():
+    catalog = RobotCatalog([])
+    wire = RobotWire(catalog)
+    state = LabState.initial("panda", catalog.load("panda"))
+    data = loads(dumps(encode_state(state, wire.reference(state))))
+    again = decode_state(data, wire)
+    assert again.robot is state.robot and np.array_equal(again.q, state.q) and again.options == state.options
+    assert not again.q.flags.writeable
+    for bad in (
+        {"state": {"$c": "Popen", "f": {}}, "robot": {"kind": "shared", "name": "panda"}},
+        {"state": {"$c": "LabState", "f": {"q": {"$a": ["|O", [1], "AA=="]}}}, "robot": {}},
+        {"state": {"$c": "LabState", "f": {"bogus": 1}}, "robot": {"kind": "shared", "name": "panda"}},
+        [1, 2],
+    ):
+        with pytest.raises(CodecError):
+            decode_state(bad, wire)
+
+
+def test_a_worker_that_ends_leaves_the_room_and_its_presenter_may_come_back():
+    clock = FakeClock(100.0)
+    hub = RoomHub(TOKEN, clock=clock)
+    hub.started(1), hub.started(2)
+    out = hub.handle(1, {"op": "claim", "id": 1, "key": 5, "address": "a", "token": TOKEN})
+    resume = out[0][1]["resume"]
+    hub.handle(2, {"op": "count", "n": 3})
+    assert hub.handle(1, {"op": "count", "n": 2}) == [(2, {"op": "others", "n": 2})]
+    assert (1, {"op": "others", "n": 0}) in hub.gone(2) and hub.counts == {1: 2}
+    assert (2, {"op": "away"}) not in hub.gone(1)  # worker 1 (the presenter's) ended: no one left to tell
+    assert hub.presenter is None
+    hub.started(1)
+    clock.now += 119.0  # within the grace: the presenter's page comes back with its key
+    assert hub.handle(1, {"op": "resume", "id": 2, "key": 7, "resume": resume})[0][1]["ok"]
+    assert hub.presenter == (1, 7)
+    hub.handle(1, {"op": "away", "key": 7})
+    clock.now += 121.0  # too late now
+    assert not hub.handle(1, {"op": "resume", "id": 3, "key": 8, "resume": resume})[0][1]["ok"]
+    assert hub.handle(2, {"op": "state", "state": {}}) == []  # only the presenter's worker speaks for it
+    for garbage in ([1], {"op": "claim", "id": 4}, {"op": "count", "n": "many"}, {"op": "nope"}, None):
+        assert hub.handle(2, garbage) == []  # dropped, never raised into the parent's loop
+
+
+def test_an_uploaded_urdf_robot_crosses_as_urdf_text():
+    """An uploaded URDF (no DH table) travels as a URDF document and comes back with the same J."""
+    from pathlib import Path
+
+    from kinematics.urdf import robot_from_urdf_string
+
+    text = (Path(__file__).parents[1] / "data" / "xarm7_like.urdf").read_bytes()
+    uploaded = robot_from_urdf_string(text, name="xarm7_like")
+    state = LabState.initial("xarm7_like (uploaded)", uploaded).replace(
+        q=np.linspace(-0.5, 0.7, uploaded.dof)
+    )
+    sender, receiver = RobotWire(RobotCatalog([])), RobotWire(RobotCatalog([]))
+    ref = sender.reference(state)
+    assert ref["kind"] == ("urdf" if uploaded.dh is None else "toml")
+    again = decode_state(loads(dumps(encode_state(state, ref))), receiver)
+    assert again.robot_name == state.robot_name and again.robot.dof == uploaded.dof
+    assert np.allclose(compute(again).J_base, compute(state).J_base, atol=1e-12)
+    assert decode_state(loads(dumps(encode_state(state, ref))), receiver).robot is again.robot
