@@ -144,9 +144,40 @@ def test_the_live_app_and_a_recorded_demo_in_cells(tmp_path, monkeypatch):
     assert "viser" not in out["live"] + out["recorded"]  # no server banner in the cells
 
 
+def test_the_pandas_null_space_self_motion_and_climb(tmp_path, monkeypatch):
+    """The course's self-motion and q̇ = (I − J⁺J)∇w, checked independently of redundancy.py: the
+    printed null direction against an SVD here, the tool held (fk here), w recomputed here."""
+    out = _run("05_panda_null_space.ipynb", tmp_path, monkeypatch)
+    panda = robots.load("panda")
+    q0 = panda.configuration("home")
+    J = jacobian(panda, q0)
+    assert "J is (6, 7) of rank 6 ; null space dimension 1" in out["null"]
+    direction = _numbers(_after(out["null"], "null direction =").split("\n")[0])
+    assert np.linalg.norm(J @ direction) < 1e-3  # printed to 4 decimals
+    assert abs(abs(direction @ np.linalg.svd(J)[2][-1]) - 1) < 1e-3
+    assert float(_numbers(_after(out["null"], "|J q̇| for that direction ="))[0]) < 1e-12
+
+    moved = out["self-motion"]
+    assert float(_numbers(_after(moved, "largest joint change ="))[0]) > 0.5  # the arm really moves
+    drift, turn = _numbers(_after(moved, "tool drift ="))[:2]
+    assert drift < 1e-9 and turn < 1e-9
+    dq = _numbers(_after(moved, "joints moved [rad] =").split("\n")[0])
+    q_end = q0 + dq  # rounded to 3 decimals: the tool within a few mm of where it was
+    assert np.linalg.norm(fk(panda, q_end)[:3, 3] - fk(panda, q0)[:3, 3]) < 5e-3
+
+    up = out["climb"]
+    before, after = _numbers(_after(up, "w before ="))[:2]
+    assert after > before and "w never decreased: True" in up
+    assert float(_numbers(_after(up, "tool drift ="))[0]) < 1e-9
+    rows = task_rows(panda)
+    w_here = np.sqrt(np.linalg.det(select_rows(J, rows) @ select_rows(J, rows).T))
+    assert f"from {w_here:.4f}" in moved  # the self-motion starts at home's w, recomputed here
+
+
 CHECKED = (
     "01_trr_and_a_urdf.ipynb",
     "02_symbolic_latex_and_c.ipynb",
     "03_puma_singularities.ipynb",
     "04_live_app_and_a_recorded_demo.ipynb",
+    "05_panda_null_space.ipynb",
 )
