@@ -69,14 +69,23 @@ def _finite_range(j: UrdfJoint) -> tuple[float, float] | None:
     return j.lower, j.upper
 
 
+def _no_range(j: UrdfJoint) -> bool:
+    """True for a revolute or prismatic ``<limit>`` with lower = upper = 0: written so (the SolidWorks
+    exporter writes ``lower="0" upper="0" effort="0" velocity="0"`` on every joint it exports, as the
+    double pendulum of example-robot-data) or with lower and upper left out (``<limit effort velocity>``,
+    both default to 0). It gives no range: the joint moves, unlimited."""
+    return _finite_range(j) == (0.0, 0.0)
+
+
 def hold_fixed_ranges(doc: UrdfDoc) -> UrdfDoc:
-    """``doc`` with every revolute or prismatic joint whose ``<limit>`` has lower = upper (a joint that may
-    not move) turned into a fixed joint at that value, unless a mimic joint follows or it follows one."""
+    """``doc`` with every revolute or prismatic joint whose ``<limit>`` has lower = upper ≠ 0 (a joint that
+    may not move) turned into a fixed joint at that value, unless a mimic joint follows or it follows one.
+    lower = upper = 0 is no range at all (see :func:`_no_range`): that joint stays a moving joint."""
     led = {j.mimic[0] for j in doc.joints if j.mimic is not None}
     out = []
     for j in doc.joints:
         r = _finite_range(j)
-        if r is None or r[0] != r[1] or j.mimic is not None or j.name in led:
+        if r is None or r[0] != r[1] or _no_range(j) or j.mimic is not None or j.name in led:
             out.append(j)
             continue
         motion = np.eye(4)
@@ -92,9 +101,15 @@ def hold_fixed_ranges(doc: UrdfDoc) -> UrdfDoc:
 
 def limit_notes(path: tuple[UrdfJoint, ...]) -> tuple[str, ...]:
     """What the chain's limits were read as, when the file does not say it plainly: lower > upper
-    (Bullet's way of writing "no limit") is unlimited; lower = upper holds the joint fixed."""
+    (Bullet's way of writing "no limit") is unlimited; lower = upper = 0 (no range given) is unlimited;
+    lower = upper ≠ 0 holds the joint fixed."""
     notes = []
     for j in path:
+        if _no_range(j):
+            notes.append(
+                f"Joint {j.name!r}: <limit> gives no range (lower = upper = 0, or both left out): read as "
+                "unlimited."
+            )
         if j.type == "fixed" and j.lower is not None and j.lower == j.upper:
             notes.append(
                 f"Joint {j.name!r}: <limit> lower = upper = {j.lower:g}, a joint that may not move: "

@@ -10,9 +10,11 @@ above it; else at the leaf with the most moving joints above it.
 Gripper jaws never extend an arm by default: a moving joint whose name or
 child link says finger, jaw, knuckle, claw, thumb or gripper (but not a wrist
 yaw, roll or pitch), or a mimic pair whose two joints sit on sibling branches,
-ends a default chain just above it. A joint named only index, middle, ring,
-pinky or little is a finger when nothing below it branches (a humanoid's
-``middle_*`` spine carries the arms and the head: it is no finger). Without a
+ends a default chain just above it (and above any fixed link named like a
+finger it hangs from, as a ``*_thumb_base`` that carries a hand's fingers).
+A joint named only index, middle, ring, pinky or little is a finger when
+nothing below it branches (a humanoid's ``middle_*`` spine carries the arms
+and the head: it is no finger). Without a
 ``base_link`` the chain starts at the root, or just below the last floating or
 planar joint above the tip.
 """
@@ -235,9 +237,9 @@ class Tree:
         for b, tip, path in candidates:
             if tip not in leaves:
                 continue
-            cut = next((i for i, j in enumerate(path) if j.name in self._jaws), None)
+            cut = self._cut_above_jaw(path)
             if cut is not None:
-                tip, path = path[cut].parent, path[:cut]
+                tip, path = cut
             if any(j.moving for j in path):
                 ends.append((b, tip, path))
         if not ends:  # every chain is a gripper (or no leaf ends a chain): take the longest as it is
@@ -245,6 +247,20 @@ class Tree:
         rank = {link: i for i, link in enumerate(self.order)}
         b, tip, path = min(ends, key=lambda c: (-_moving(c[2]), rank[c[1]]))
         return ChainChoice(b, tip, tuple(path), "the leaf with the most moving joints above it")
+
+    def _cut_above_jaw(self, path: list[UrdfJoint]) -> tuple[str, list[UrdfJoint]] | None:
+        """``path`` cut just above its first gripper jaw: (tip, path), or ``None`` when it has no jaw.
+
+        The tip then climbs fixed joints while its own name is a finger's: the Alex humanoid's fingers
+        hang from a fixed ``Left_thumb_base`` below the hand's ``LeftPsyonicAbilityBaseLink``, which is
+        the hand's frame, not a thumb."""
+        cut = next((i for i, j in enumerate(path) if j.name in self._jaws), None)
+        if cut is None:
+            return None
+        tip, path = path[cut].parent, path[:cut]
+        while path and path[-1].type == "fixed" and (_JAW.search(tip) or _FINGER_WORD.search(tip)):
+            tip, path = path[-1].parent, path[:-1]
+        return tip, path
 
     def driver(self, joint: UrdfJoint) -> tuple[UrdfJoint, float, float]:
         """The joint whose value moves ``joint`` and the (multiplier, offset) relating them.
@@ -285,10 +301,10 @@ class Tree:
         out = [self._info(default.base_link, default.tip_link, default.path, True)]
         leaves = {link for link, js in self.children.items() if not js}
         for b, tip, path in self._candidates(base_link):
-            cut = next((i for i, j in enumerate(path) if j.name in self._jaws), None)
+            cut = self._cut_above_jaw(path)
             ends = [(tip, path)] if tip in leaves else []
-            if tip in leaves and cut is not None and any(j.moving for j in path[:cut]):
-                ends.insert(0, (path[cut].parent, path[:cut]))
+            if tip in leaves and cut is not None and any(j.moving for j in cut[1]):
+                ends.insert(0, cut)
             for t, p in ends:
                 if (b, t) not in seen:
                     seen.add((b, t))

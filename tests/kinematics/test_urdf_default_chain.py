@@ -212,3 +212,38 @@ def test_a_tool_frame_ranks_below_ee_link_and_above_a_hand(tip):
     _opens(_urdf("t", j), tip, ("a_joint", "b_joint"))
     j += [("to_ee", "fixed", "wrist", "ee_link")]
     _opens(_urdf("t", j), "ee_link", ("a_joint", "b_joint"))
+
+
+def test_a_hand_whose_fingers_hang_from_a_fixed_thumb_base_opens_at_the_hands_frame():
+    """example-robot-data's alex_psyonic_hands.urdf: the arm ends at LeftGripperYawLink, the hand's frame
+    LeftPsyonicAbilityBaseLink is fixed below it, and a fixed Left_thumb_base below that carries every
+    finger (index/middle/ring/pinky/thumb). The chain opened ends at the hand's frame, not at a link named
+    after the thumb."""
+    names = [
+        "ShoulderPitch",
+        "ShoulderRoll",
+        "ShoulderYaw",
+        "ElbowPitch",
+        "WristYaw",
+        "WristRoll",
+        "GripperYaw",
+    ]
+    j, at = [], "Torso"
+    for n in names:
+        j.append((f"Left{n}", "revolute", at, f"Left{n}Link"))
+        at = f"Left{n}Link"
+    j += [
+        ("leftGrippertAttachmentFixedJoint", "fixed", at, "LeftPsyonicAbilityBaseLink"),
+        ("Left_wrist2thumb", "fixed", "LeftPsyonicAbilityBaseLink", "Left_thumb_base"),
+    ]
+    for finger in ("index", "middle", "ring", "pinky", "thumb"):
+        j += [
+            (f"Left_{finger}_q1", "revolute", "Left_thumb_base", f"Left_{finger}_L1"),
+            (f"Left_{finger}_q2", "revolute", f"Left_{finger}_L1", f"Left_{finger}_L2"),
+        ]
+    text = _urdf("alex", j)
+    _opens(text, "LeftPsyonicAbilityBaseLink", tuple(f"Left{n}" for n in names))
+    listed = [(c.tip_link, c.dof) for c in chains_of(text)]
+    assert ("Left_thumb_base", 7) not in listed and listed[0] == ("LeftPsyonicAbilityBaseLink", 7)
+    # the finger chains are still offered, whole
+    assert ("Left_index_L2", 9) in listed and ("Left_thumb_L2", 9) in listed

@@ -52,11 +52,54 @@ def test_lower_equal_upper_holds_the_joint_fixed_there(kind, value):
 
 
 def test_a_chain_of_only_held_joints_says_it_has_no_moving_joint(tmp_path):
-    text = _arm(lo1="0.2", hi1="0.2", lo2="0", hi2="0").replace(
-        'lower="-1" upper="1"/></joint><link name="end"', 'lower="0" upper="0"/></joint><link name="end"'
+    text = _arm(lo1="0.2", hi1="0.2", lo2="-0.1", hi2="-0.1").replace(
+        'lower="-1" upper="1"/></joint><link name="end"', 'lower="0.4" upper="0.4"/></joint><link name="end"'
     )
     with pytest.raises(ValueError, match="no moving joint"):
         robot_from_urdf_string(text)
     path = tmp_path / "held.urdf"
     path.write_text(_arm(lo2="0.3", hi2="0.3"))
     assert chains(path)[0].joints == ("j1", "j3")
+
+
+def _pendulum(limit: str) -> str:
+    """example-robot-data's double_pendulum.urdf (SolidWorks exporter): two revolute joints, each with
+    ``limit`` (there ``<limit lower="0" upper="0" effort="0" velocity="0"/>``)."""
+    return (
+        '<robot name="double_pendulum"><link name="base_link"/><link name="link1"/><link name="link2"/>'
+        '<joint name="joint1" type="revolute"><origin xyz="0.006 0 0.035"/><parent link="base_link"/>'
+        f'<child link="link1"/><axis xyz="1 0 0"/>{limit}</joint>'
+        '<joint name="joint2" type="revolute"><origin xyz="0.015 0 0.2"/><parent link="link1"/>'
+        f'<child link="link2"/><axis xyz="1 0 0"/>{limit}</joint></robot>'
+    )
+
+
+@pytest.mark.parametrize(
+    "limit",
+    [
+        '<limit lower="0" upper="0" effort="0" velocity="0"/>',  # double_pendulum.urdf, written out
+        '<limit effort="35" velocity="20.0"/>',  # centauro.urdf's wheels: lower and upper left out
+        '<limit lower="-0" upper="0.0" effort="1" velocity="1"/>',
+    ],
+)
+def test_lower_equal_upper_zero_gives_no_range_the_joint_moves_unlimited(limit):
+    robot = robot_from_urdf_string(_pendulum(limit))
+    assert robot.joint_names == ("joint1", "joint2")
+    assert all(j.qlim is None for j in robot.joints)
+    assert (
+        "Joint 'joint1': <limit> gives no range (lower = upper = 0, or both left out): read as unlimited."
+        in robot.description
+    )
+    # it is the same pendulum as one with its joints written continuous: same fk and J everywhere
+    free = robot_from_urdf_string(_pendulum("").replace('type="revolute"', 'type="continuous"'))
+    assert "gives no range" not in free.description
+    for q in np.random.default_rng(2).uniform(-3, 3, (20, 2)):
+        np.testing.assert_allclose(fk(robot, q), fk(free, q), atol=1e-12)
+        np.testing.assert_allclose(jacobian(robot, q), jacobian(free, q), atol=1e-12)
+
+
+def test_a_prismatic_joint_with_no_range_moves_and_a_held_nonzero_one_does_not():
+    robot = robot_from_urdf_string(_arm(kind2="prismatic", lo2="0", hi2="0"))
+    assert robot.joint_names == ("j1", "j2", "j3") and robot.joints[1].qlim is None
+    held = robot_from_urdf_string(_arm(kind2="prismatic", lo2="0.1", hi2="0.1"))
+    assert held.joint_names == ("j1", "j3")
