@@ -2,11 +2,14 @@
 
 ``package://PKG/rest`` is looked up in a folder named PKG: the URDF's own
 folder or one of its ancestors when it is named PKG, a PKG folder next to the
-URDF or next to one of its ancestors, then the ``package_dirs`` given, the
+URDF or next to one of its ancestors (``package:///PKG/rest``, with an empty
+name, as ``package://PKG/rest``), then the ``package_dirs`` given, the
 ``ROS_PACKAGE_PATH`` entries (a package, or a folder of packages) and
 ``AMENT_PREFIX_PATH`` entries (``PREFIX/share/PKG``). Any other file name is
 relative to the URDF's folder (``file://`` URIs and absolute paths too, but
-only when they point inside it).
+only when they point inside it), or, when it is not there and its first part is
+the name of that folder or of an ancestor (a path from the package's top, as
+pybullet writes them), relative to that folder's parent, inside that folder.
 
 The result is always a mesh file (``.stl``, ``.dae``, ``.obj``, ...) inside the
 URDF's own folder tree or inside the package folder found: the candidate is
@@ -23,7 +26,7 @@ from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
 from .expand import read_description
-from .packages import package_name, package_roots
+from .packages import ANCESTOR_LEVELS, package_name, package_roots
 from .xml import parse_urdf
 
 __all__ = [
@@ -81,6 +84,8 @@ def resolve_mesh(
     here = Path(urdf_path).resolve().parent
     if uri.startswith(_PACKAGE):
         package, _, rest = uri[len(_PACKAGE) :].partition("/")
+        if not package:  # package:///PKG/rest (Talos's files): the first part names the package
+            package, _, rest = rest.partition("/")
         for root in package_roots(urdf_path, package, package_dirs or ()):
             found = _contained_file(root, rest)
             if found is not None:
@@ -93,7 +98,16 @@ def resolve_mesh(
         uri = unquote(parts.path)
     elif "://" in uri:
         return None  # http:// and other schemes are never fetched
-    return _contained_file(here, uri)
+    found = _contained_file(here, uri)
+    if found is None and not Path(uri).is_absolute():
+        # A path from the package's top (pybullet_data's differential/diff_ring.stl, written in
+        # differential/x.urdf): its first part names the URDF's folder or an ancestor, inside which it
+        # must then lie.
+        first, _, rest = uri.replace("\\", "/").partition("/")
+        for folder in [here, *here.parents][: ANCESTOR_LEVELS + 1]:
+            if rest and folder.name == first:
+                return _contained_file(folder, rest)
+    return found
 
 
 def mesh_report(

@@ -166,3 +166,34 @@ def test_yourdfpy_with_our_handler_loads_only_the_resolved_meshes():
     assert len(hostile.scene.geometry) == 0
     handler = mesh_filename_handler(ARM)
     assert handler(fname="/etc/passwd") == "" and handler(fname="meshes_local/hand.stl").endswith("hand.stl")
+
+
+def _file(path, text="solid x\nendsolid x\n"):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+def test_an_empty_package_name_takes_the_first_part_as_the_package(tmp_path):
+    """example-robot-data's Talos: package:///example-robot-data/robots/talos_data/meshes/... from
+    share/example-robot-data/robots/talos_data/robots/talos.urdf (50 meshes were missing)."""
+    top = tmp_path / "share" / "example-robot-data"
+    mesh = _file(top / "robots" / "talos_data" / "meshes" / "torso" / "torso_1.STL")
+    urdf = _file(top / "robots" / "talos_data" / "robots" / "talos.urdf", "<robot/>")
+    uri = "package:///example-robot-data/robots/talos_data/meshes/torso/torso_1.STL"
+    assert resolve_mesh(urdf, uri) == mesh.resolve()
+    assert resolve_mesh(urdf, "package:///example-robot-data/../../secret.stl") is None
+    _file(tmp_path / "secret.stl")
+    assert resolve_mesh(urdf, "package:///../secret.stl") is None
+
+
+def test_a_path_from_the_package_top_resolves_inside_the_folder_it_names(tmp_path):
+    """pybullet_data/differential/diff_ring.urdf names differential/diff_ring.stl (pybullet reads it
+    from its data folder); the file must lie inside the folder whose name the path starts with."""
+    data = tmp_path / "pybullet_data"
+    mesh = _file(data / "differential" / "diff_ring.stl")
+    urdf = _file(data / "differential" / "diff_ring.urdf", "<robot/>")
+    assert resolve_mesh(urdf, "differential/diff_ring.stl") == mesh.resolve()
+    _file(data / "other" / "x.stl")
+    assert resolve_mesh(urdf, "differential/../other/x.stl") is None  # outside the named folder
+    assert resolve_mesh(urdf, "other/x.stl") is None  # a sibling folder is not the URDF's
