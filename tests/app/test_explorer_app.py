@@ -125,6 +125,37 @@ def test_dragging_the_handle_moves_the_arm(session):
     assert "iterations" in session.panel.motion.ik.content
 
 
+def test_the_ik_readout_counts_the_iterations_of_the_drag_not_of_its_release(session):
+    """A drag ends with the handle's release at the pose already reached: the readout keeps the count of
+    the solve that moved the arm (the same count as ik.solve from the same start), not "0 iterations"."""
+    from app.core.actions import DriveTool
+    from app.core.motion_rules import IK_DAMPING, IK_ITERATIONS, IK_STEP
+    from kinematics.motion import ik
+
+    session.panel.motion.gizmo.value = True
+    session.settle()
+    robot, q0 = session.state.robot, np.array(session.state.q)
+    T = fk(robot, q0)
+    T[:3, 3] += [0.08, -0.05, 0.04]
+    expected = ik.solve(
+        robot,
+        T[:3, 3],
+        q0,
+        method="dls",
+        damping=max(session.state.options.damping, IK_DAMPING),
+        max_iterations=IK_ITERATIONS,
+        step_limit=IK_STEP,
+    ).iterations
+    assert expected >= 2
+    session.dispatch(DriveTool(tuple(T.ravel())))  # the drag's last update
+    session.settle()
+    session.dispatch(DriveTool(tuple(T.ravel())))  # the release, at the same pose
+    session.settle()
+    assert session.state.motion.ik.iterations == expected
+    assert f"{expected} iterations" in session.panel.motion.ik.content
+    assert "0 iterations" not in session.panel.motion.ik.content
+
+
 def test_self_motion_slider_and_ghost_on_the_panda(session):
     choose(session, "panda")
     motion = session.panel.motion
