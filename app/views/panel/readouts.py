@@ -151,6 +151,7 @@ def _status_html(snap: Snapshot, state: LabState) -> str:
         f"<b>representation singular</b> ({a.convention.upper()}, "
         f"{'pitch ±90°' if a.convention == 'zyx' else 'θ = 0 or 180°'}): no J<sub>A</sub>; "
         f"J {r.status}, rank {snap.rank}"
+        + (f"; {a.regular_instead.upper()} is regular here" if a.regular_instead else "")
         if a is not None and a.singular
         else ""
     )
