@@ -23,8 +23,9 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.commands import ChooseChain, ChooseRobot, PageReport, ResetView, ToggleRecording
+from ...core.commands import ChooseChain, ChooseRobot, Message, PageReport, ResetView, ToggleRecording
 from ...core.options import options_of
+from ...core.robot_menu import robot_menu
 from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
@@ -85,8 +86,11 @@ class PanelView:
         bind(self.report, dispatch, lambda v: PageReport(str(v)) if str(v) else None)
         run_javascript(client, page_state_js(handle_uuid(self.report)))
         set_page_title(client, PAGE_TITLE)
-        self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
-        bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
+        self.menu = robot_menu(robot_names)
+        self.robot = gui.add_dropdown(
+            "Robot", self.menu.labels, initial_value=self.menu.label_of(state.robot_name), order=1
+        )
+        bind(self.robot, dispatch, self._chosen_robot)
         self.chain: viser.GuiDropdownHandle | None = None
         self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
@@ -174,10 +178,15 @@ class PanelView:
         run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
 
     def set_robot_names(self, names: Sequence[str]) -> None:
-        """List ``names`` in the tab's robot dropdown (its own robots first, see app.tab.robots)."""
-        names = tuple(names)
-        if tuple(self.robot.options) != names:
-            self.robot.options = names
+        """List ``names`` in the tab's robot dropdown (its own robots first, see app.tab.robots), each
+        by its label (a library robot's title and name)."""
+        self.menu = robot_menu(names)
+        if tuple(self.robot.options) != self.menu.labels:
+            self.robot.options = self.menu.labels
+
+    def _chosen_robot(self, value: Any) -> Message | None:
+        name = self.menu.name_of(value)
+        return None if name is None else ChooseRobot(name)
 
     def remove_robot(self) -> None:
         if self.chain is not None:
@@ -192,7 +201,7 @@ class PanelView:
     def draw(self, state: LabState, snap: Snapshot) -> None:
         """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes)."""
         assert self.joints is not None
-        sync_value(self.robot, state.robot_name)
+        sync_value(self.robot, self.menu.label_of(state.robot_name))
         self.joints.show(state.q, state.configuration)
         self._show_options(state.options)
         self.status.content = status_html(snap, state)

@@ -160,7 +160,14 @@ def _status_html(snap: Snapshot, state: LabState) -> str:
         for x in (representation, sub, lost)
         if x
     )
-    return f'<div class="jl">{banner}{lines}</div>'
+    hint = "" if state.started else f'<div class="jl-hint">{FIRST_HINT}</div>'
+    return f'<div class="jl">{banner}{lines}{hint}</div>'
+
+
+FIRST_HINT = (
+    "<b>First:</b> drag a joint slider and watch J(q) change; then pick a singularity under Configuration."
+)
+"""The one line a new tab shows under the status until its first change (gone for good after it)."""
 
 
 def measures_html(snap: Snapshot, robot: Robot) -> str:

@@ -20,8 +20,9 @@ BASE_CSS = """
 .jl-status { display: flex; align-items: center; gap: 0.5em; padding: 0.3em 0.6em; border-radius: 8px;
   font-weight: 700; font-size: 18px; letter-spacing: 0.2px; margin-bottom: 10px; }
 .jl-status small { font-weight: 600; font-size: 14px; }
-.jl-sub { color: #3d434b; font-size: 13px; margin: -4px 0 6px 0; white-space: nowrap; overflow: hidden;
-  text-overflow: ellipsis; }
+.jl-sub { color: #3d434b; font-size: 13px; margin: -4px 0 6px 0; overflow-wrap: anywhere; }
+.jl-hint { color: #1f3a93; background: #eef2ff; font-size: 13px; border-radius: 6px; padding: 2px 6px;
+  margin: -2px 0 6px 0; }
 .jl-table { border-collapse: collapse; width: 100%; }
 .jl-table td, .jl-table th { padding: 1px 4px; vertical-align: baseline; }
 .jl-table th { text-align: left; font-weight: 500; color: #3d434b; }

@@ -1,0 +1,56 @@
+"""A new student's first screen in a real headless Chromium at 1280×720 (issue 21, item 15): the robot
+menu lists titles, one line says what to do first and goes at the first move, the status lines wrap
+instead of ending in "…". Screenshots go to ``$APP_SCREENSHOT_DIR`` (default: pytest's temporary
+directory).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from browser_helpers import app_page
+from fakes import poll
+
+from app.core.actions import GoTo
+from app.server import Lab
+
+pytestmark = pytest.mark.browser
+
+_CUT = """() => [...document.querySelectorAll('.jl-sub, .jl-hint')]
+  .filter((e) => e.offsetParent !== null)
+  .map((e) => ({text: e.textContent, cut: e.scrollWidth > e.clientWidth + 1, lines: Math.round(e.getBoundingClientRect().height / parseFloat(getComputedStyle(e).lineHeight || 17))}))"""
+
+
+def _out(tmp_path: Path) -> Path:
+    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+@pytest.mark.slow
+def test_the_first_screen_says_what_to_do_and_lists_robots_by_title(tmp_path):
+    out = _out(tmp_path)
+    with app_page(Lab(port=0)) as (page, session, errors):
+        hint = page.locator(".jl-hint")
+        hint.wait_for(state="visible")
+        assert "drag a joint slider" in hint.inner_text()
+        assert hint.bounding_box()["height"] < 45  # one or two lines, not a block
+        menu = page.get_by_label("Robot", exact=True).first
+        assert menu.input_value() == "Unimation PUMA 560 (puma560)"
+        page.screenshot(path=str(out / "first_screen_1280x720.png"))
+        menu.click()
+        page.get_by_role("option", name="Stanford arm (Scheinman) (stanford)", exact=True).wait_for()
+        page.screenshot(path=str(out / "first_screen_robot_menu.png"))
+        page.get_by_role("option", name="TRR robot (course example) (trr)", exact=True).click()
+        poll(lambda: session.state.robot_name == "trr")
+        poll(lambda: page.locator(".jl-hint").count() == 0)  # choosing a robot was the first change
+        assert not session.state.started or page.locator(".jl-hint").count() == 0
+        session.dispatch(GoTo("stretched"))
+        poll(lambda: session.state.configuration == "stretched")
+        page.wait_for_function("() => [...document.querySelectorAll('.jl-sub')].some((e) => e.offsetParent)")
+        lines = page.evaluate(_CUT)
+        assert lines and not [x for x in lines if x["cut"]], lines  # wrapped, never cut with "…"
+        page.screenshot(path=str(out / "first_screen_status_wraps.png"))
+        assert not errors, errors
