@@ -6,11 +6,12 @@ runs it on the app's own reducer (one :class:`~app.core.actions.Step` per frame)
 every frame with the app's :class:`~app.views.scene.SceneView` on a private in-process viser server and
 returns viser's recording, and :func:`write_demo` writes a folder any static web server can serve:
 ``index.html`` (sends the browser to the player), ``viser-client.html`` (viser's own client page,
-one self-contained file) and ``recording.viser``.
+one self-contained file), ``recording.viser`` and ``joint_rates.csv``.
 
-Only the 3-D scene is recorded (viser records no GUI panel), so κ and the status are drawn as a
-scene label above the arm, with a title label above it; the initial camera frames every frame of
-the motion.
+Only the 3-D scene is recorded (viser records no GUI panel), so κ, the status and the joint rates
+q̇ are drawn as a scene label above the arm, with a title label above it; the initial camera frames
+every frame of the motion. The folder also keeps every frame's q and q̇ as numbers
+(``joint_rates.csv``).
 """
 
 from __future__ import annotations
@@ -53,6 +54,10 @@ __all__ = [
     "record",
     "write_demo",
     "readout",
+    "rates_readout",
+    "joint_rates",
+    "rates_csv",
+    "RATES",
     "CLIENT_PAGE",
     "RECORDING",
     "DEFAULT_SECONDS",
@@ -63,6 +68,8 @@ __all__ = [
 CLIENT_PAGE = "viser-client.html"
 """viser's client page, copied next to the recording."""
 RECORDING = "recording.viser"
+RATES = "joint_rates.csv"
+"""Every frame's q and the motion's q̇, with units (the recording draws them; this keeps the numbers)."""
 DEFAULT_SECONDS = 15.0
 DEFAULT_FPS = 30.0
 LEAD = 1e-3
@@ -192,6 +199,63 @@ def readout(snap: Snapshot, state: LabState) -> str:
     return f"{text}   ·   {state.stopped}" if state.stopped and not state.playing else text
 
 
+def joint_rates(state: LabState) -> np.ndarray | None:
+    """The motion's joint rates q̇ (n,) [rad/s | m/s] at this frame: the last sample of its trace while
+    it plays, or the rates that stopped it; ``None`` when no motion drives the joints."""
+    trace = state.motion.trace
+    if trace is None or len(trace) == 0 or float(trace.t[-1]) < state.time:
+        return None
+    if not (state.playing or state.stopped):
+        return None
+    return np.asarray(trace.qd[-1], dtype=float)
+
+
+def rates_readout(state: LabState) -> str:
+    """The label under the readout: "q̇  q1 12 °/s · q2 −40 °/s · …" ("" when nothing moves the joints)."""
+    qd = joint_rates(state)
+    if qd is None:
+        return ""
+    parts = [
+        f"{j.name.split()[0]} {_rate(j.kind, float(x))}" for j, x in zip(state.robot.joints, qd, strict=True)
+    ]
+    return "q̇   " + " · ".join(parts)
+
+
+def _rate(kind: str, x: float) -> str:
+    return f"{number(x, 3)} m/s" if kind == "prismatic" else f"{number(np.degrees(x), 3)} °/s"
+
+
+def rates_csv(recording: Recording) -> str:
+    """Every frame's time, joint values and the motion's joint rates, one row per frame (units in the
+    header: degrees and °/s for revolute joints, metres and m/s for prismatic; empty q̇ cells where no
+    motion drives the joints)."""
+    robot = recording.states[0].robot
+    heads = ["frame", "t [s]"]
+    for j in robot.joints:
+        heads.append(f"{j.name} [{'m' if j.kind == 'prismatic' else 'deg'}]")
+    for j in robot.joints:
+        heads.append(f"{j.name} rate [{'m/s' if j.kind == 'prismatic' else 'deg/s'}]")
+    rows = [",".join(_csv_cell(h) for h in heads)]
+    for k, state in enumerate(recording.states):
+        q = [_si(j.kind, float(x)) for j, x in zip(robot.joints, state.q, strict=True)]
+        qd = joint_rates(state)
+        rates = (
+            [_si(j.kind, float(x)) for j, x in zip(robot.joints, qd, strict=True)]
+            if qd is not None
+            else [""] * robot.dof
+        )
+        rows.append(",".join([str(k), f"{k / recording.fps:.6g}", *q, *rates]))
+    return "\n".join(rows) + "\n"
+
+
+def _si(kind: str, x: float) -> str:
+    return f"{x:.9g}" if kind == "prismatic" else f"{np.degrees(x):.9g}"
+
+
+def _csv_cell(text: str) -> str:
+    return '"' + text.replace('"', '""') + '"' if any(c in text for c in ',"\n') else text
+
+
 class _Labels:
     """The title and the live readout, one above the other above the arm (screen-size text)."""
 
@@ -255,7 +319,8 @@ def record_frames(
         for k, (snap, state) in enumerate(zip(snaps, states, strict=True)):
             serializer.insert_sleep(LEAD if k == 0 else 1.0 / fps)
             view.update(snap, state)
-            labels.readout.text = readout(snap, state)
+            rates = rates_readout(state)  # a second line (viser's labels keep line breaks)
+            labels.readout.text = readout(snap, state) + (f"\n{rates}" if rates else "")
         data = serializer.serialize()
     finally:
         with quiet:
@@ -307,8 +372,8 @@ def client_page() -> Path:
 
 
 def write_demo(recording: Recording, out_dir: str | Path) -> Sequence[Path]:
-    """Write ``index.html``, the client page and ``recording.viser`` into ``out_dir`` (created if
-    needed); returns the files written.
+    """Write ``index.html``, the client page, ``recording.viser`` and ``joint_rates.csv`` into
+    ``out_dir`` (created if needed); returns the files written.
 
     Raises:
         OSError: the folder or a file cannot be written.
@@ -322,12 +387,14 @@ def write_demo(recording: Recording, out_dir: str | Path) -> Sequence[Path]:
 
 
 def demo_files(recording: Recording) -> dict[str, bytes]:
-    """The files of a demo folder by name: ``index.html``, the client page and ``recording.viser``."""
+    """The files of a demo folder by name: ``index.html``, the client page, ``recording.viser`` and the
+    joint rates (``joint_rates.csv``)."""
     target = f"{CLIENT_PAGE}?playbackPath={RECORDING}"
     page = client_page().read_text(encoding="utf-8")
     page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
     return {
         RECORDING: recording.data,
+        RATES: rates_csv(recording).encode("utf-8"),
         CLIENT_PAGE: page.encode("utf-8"),
         "index.html": _INDEX.format(
             title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)
