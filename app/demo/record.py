@@ -41,6 +41,7 @@ from ..views.camera import FROM_ABOVE, View, facing, framing, in_view
 from ..views.fmt import number
 from ..views.scene import SceneView
 from ..views.scene.geometry import finite
+from .rates import rates_csv, rates_readout
 
 __all__ = [
     "Demo",
@@ -54,9 +55,6 @@ __all__ = [
     "record",
     "write_demo",
     "readout",
-    "rates_readout",
-    "joint_rates",
-    "rates_csv",
     "RATES",
     "CLIENT_PAGE",
     "RECORDING",
@@ -199,63 +197,6 @@ def readout(snap: Snapshot, state: LabState) -> str:
     return f"{text}   ·   {state.stopped}" if state.stopped and not state.playing else text
 
 
-def joint_rates(state: LabState) -> np.ndarray | None:
-    """The motion's joint rates q̇ (n,) [rad/s | m/s] at this frame: the last sample of its trace while
-    it plays, or the rates that stopped it; ``None`` when no motion drives the joints."""
-    trace = state.motion.trace
-    if trace is None or len(trace) == 0 or float(trace.t[-1]) < state.time:
-        return None
-    if not (state.playing or state.stopped):
-        return None
-    return np.asarray(trace.qd[-1], dtype=float)
-
-
-def rates_readout(state: LabState) -> str:
-    """The label under the readout: "q̇  q1 12 °/s · q2 −40 °/s · …" ("" when nothing moves the joints)."""
-    qd = joint_rates(state)
-    if qd is None:
-        return ""
-    parts = [
-        f"{j.name.split()[0]} {_rate(j.kind, float(x))}" for j, x in zip(state.robot.joints, qd, strict=True)
-    ]
-    return "q̇   " + " · ".join(parts)
-
-
-def _rate(kind: str, x: float) -> str:
-    return f"{number(x, 3)} m/s" if kind == "prismatic" else f"{number(np.degrees(x), 3)} °/s"
-
-
-def rates_csv(recording: Recording) -> str:
-    """Every frame's time, joint values and the motion's joint rates, one row per frame (units in the
-    header: degrees and °/s for revolute joints, metres and m/s for prismatic; empty q̇ cells where no
-    motion drives the joints)."""
-    robot = recording.states[0].robot
-    heads = ["frame", "t [s]"]
-    for j in robot.joints:
-        heads.append(f"{j.name} [{'m' if j.kind == 'prismatic' else 'deg'}]")
-    for j in robot.joints:
-        heads.append(f"{j.name} rate [{'m/s' if j.kind == 'prismatic' else 'deg/s'}]")
-    rows = [",".join(_csv_cell(h) for h in heads)]
-    for k, state in enumerate(recording.states):
-        q = [_si(j.kind, float(x)) for j, x in zip(robot.joints, state.q, strict=True)]
-        qd = joint_rates(state)
-        rates = (
-            [_si(j.kind, float(x)) for j, x in zip(robot.joints, qd, strict=True)]
-            if qd is not None
-            else [""] * robot.dof
-        )
-        rows.append(",".join([str(k), f"{k / recording.fps:.6g}", *q, *rates]))
-    return "\n".join(rows) + "\n"
-
-
-def _si(kind: str, x: float) -> str:
-    return f"{x:.9g}" if kind == "prismatic" else f"{np.degrees(x):.9g}"
-
-
-def _csv_cell(text: str) -> str:
-    return '"' + text.replace('"', '""') + '"' if any(c in text for c in ',"\n') else text
-
-
 class _Labels:
     """The title and the live readout, one above the other above the arm (screen-size text)."""
 
@@ -394,7 +335,7 @@ def demo_files(recording: Recording) -> dict[str, bytes]:
     page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
     return {
         RECORDING: recording.data,
-        RATES: rates_csv(recording).encode("utf-8"),
+        RATES: rates_csv(recording.states, recording.fps).encode("utf-8"),
         CLIENT_PAGE: page.encode("utf-8"),
         "index.html": _INDEX.format(
             title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)

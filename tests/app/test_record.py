@@ -31,15 +31,13 @@ from app.core.actions import ApplyPreset, Play, Step
 from app.core.reducer import reduce
 from app.core.snapshot import compute
 from app.core.state import LabState
+from app.demo.rates import joint_rates, rates_csv, rates_readout
 from app.demo.record import (
     CLIENT_PAGE,
     LEAD,
     RATES,
     RECORDING,
-    joint_rates,
     plan,
-    rates_csv,
-    rates_readout,
     readout,
     record,
 )
@@ -170,7 +168,7 @@ def test_the_recording_keeps_the_joint_rates_of_every_frame_with_their_units():
     q and q̇, in m, m/s, deg and deg/s, and q̇ is J⁺ v (J q̇ gives back the preset's twist)."""
     robot = robots.load("trr")
     rec = record("trr", robot, seconds=1.0, fps=10.0)
-    lines = rates_csv(rec).splitlines()
+    lines = rates_csv(rec.states, rec.fps).splitlines()
     heads = lines[0].split(",")
     names = [j.name for j in robot.joints]
     assert heads[:2] == ["frame", "t [s]"]
