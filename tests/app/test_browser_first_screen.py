@@ -54,3 +54,41 @@ def test_the_first_screen_says_what_to_do_and_lists_robots_by_title(tmp_path):
         assert lines and not [x for x in lines if x["cut"]], lines  # wrapped, never cut with "…"
         page.screenshot(path=str(out / "first_screen_status_wraps.png"))
         assert not errors, errors
+
+
+_FIGURE = """() => {
+  const fig = document.querySelector('.jl-mapfig');
+  const box = (s) => { const b = fig.querySelector(s).getBoundingClientRect();
+    return {left: b.left, right: b.right, top: b.top, bottom: b.bottom, width: b.width, height: b.height}; };
+  const column = document.querySelector('[data-dock-region="right"]').getBoundingClientRect();
+  return {map: box('.jl-map img'), bar: box('.bar'), wticks: box('.wticks'), yticks: box('.yticks'),
+          ylabel: box('.ylabel'), xticks: box('.xticks'), xlabel: box('.xlabel'), wlabel: box('.wlabel'),
+          column: {left: column.left, right: column.right}};
+}"""
+
+
+@pytest.mark.slow
+def test_the_joint_map_and_the_cloud_say_what_their_axes_and_colours_are(tmp_path):
+    out = _out(tmp_path)
+    with app_page(Lab(port=0)) as (page, session, errors):
+        page.get_by_role("tab", name="Maps").click()
+        page.get_by_label("Joint-space map of w", exact=True).first.check()
+        page.get_by_label("Workspace cloud", exact=True).first.check()
+        poll(lambda: page.locator(".jl-mapfig").count() > 0 and page.locator(".jl-cloudkey").count() > 0)
+        page.locator(".jl-mapfig .xlabel").scroll_into_view_if_needed()
+        f = page.evaluate(_FIGURE)
+        m = f["map"]
+        assert m["width"] > 200 and abs(m["width"] - m["height"]) < 2  # square cells, a readable size
+        # Left to right: axis title, ticks, map, colour bar, its ticks, all inside the panel.
+        assert f["column"]["left"] <= f["ylabel"]["left"] < f["yticks"]["left"] < m["left"]
+        assert m["right"] <= f["bar"]["left"] and f["bar"]["right"] <= f["wticks"]["left"]
+        assert f["wticks"]["right"] <= f["column"]["right"]
+        assert m["bottom"] <= f["xticks"]["top"] + 1 and f["xticks"]["bottom"] <= f["xlabel"]["top"] + 1
+        assert abs(f["bar"]["height"] - m["height"]) < 3
+        assert (
+            f["wlabel"]["left"] >= f["wticks"]["right"] - 1 and f["wlabel"]["right"] <= f["column"]["right"]
+        )
+        page.mouse.move(5, 5)  # no hint of the checkbox over the status
+        page.evaluate("document.querySelector('.jl-mapfig').scrollIntoView({block: 'start'})")
+        page.screenshot(path=str(out / "maps_axes_and_colour_bar.png"))
+        assert not errors, errors

@@ -6,6 +6,7 @@ the drawing thread. Each test starts from a fresh state of the default robot (th
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -16,6 +17,7 @@ import robots
 from app.core.actions import Play, SetOption, Step
 from app.core.commands import ChooseRobot, FindSingularity
 from app.core.motion_rules import FRAME_DT
+from app.core.ranges import joint_ranges
 from app.tab.ticker import Ticker
 from app.views.panel.motion import OWN_TWIST
 from kinematics import fk, jacobian
@@ -198,6 +200,63 @@ def test_joint_map_values_and_click_target(session):
     session.dispatch(SetOption("map_j", 4))
     session.settle()
     assert session.snapshot.joint_map.j == 4
+
+
+def _spans(html: str, cls: str) -> list[str]:
+    block = re.search(rf'<div class="{cls}">(.*?)</div>', html).group(1)
+    return re.findall(r"<span>(.*?)</span>", block)
+
+
+def test_the_joint_map_has_axes_with_joint_names_ticks_and_a_colour_bar_of_w(session):
+    """Item 15: the map says which joint is on which axis (name and unit), the values at its ends and
+    middle (the sliders' range, in degrees), and what its colours mean (a bar from w = 0 to w_max in
+    the colours the cells are painted with)."""
+    from app.core.snapshot.maps import colormap
+    from app.views.panel.maps import COLOUR_STOPS
+
+    maps = session.panel.maps
+    maps.show_map.value = True
+    session.settle()
+    robot, jm = session.state.robot, session.snapshot.joint_map
+    html = maps.map.content
+    ranges = joint_ranges(robot)
+    assert re.search(r'class="xlabel">q2 shoulder \[°\]<', html) and robot.joints[jm.i].name == "q2 shoulder"
+    assert re.search(r'class="ylabel">q3 elbow \[°\]<', html) and robot.joints[jm.j].name == "q3 elbow"
+    lo_i, hi_i = (math.degrees(ranges[jm.i].clamp_si(x)) for x in (-math.inf, math.inf))
+    lo_j, hi_j = (math.degrees(ranges[jm.j].clamp_si(x)) for x in (-math.inf, math.inf))
+    assert [float(t.replace("−", "-")) for t in _spans(html, "xticks")] == pytest.approx(
+        [lo_i, (lo_i + hi_i) / 2, hi_i], abs=0.5
+    )
+    assert [float(t.replace("−", "-")) for t in _spans(html, "yticks")] == pytest.approx(
+        [hi_j, (lo_j + hi_j) / 2, lo_j],
+        abs=0.5,  # top to bottom: j grows upwards, as the cells
+    )
+    w_ticks = [float(t) for t in _spans(html, "wticks")]
+    assert w_ticks == pytest.approx([jm.w_max, jm.w_max / 2, 0.0], rel=2e-3)
+    assert jm.w_max == pytest.approx(float(jm.w.max()))
+    # The bar's colours are the cells' colours at w = 0 … w_max.
+    ends = colormap(np.array([0.0, 1.0]))
+    assert COLOUR_STOPS[0] == "#{:02x}{:02x}{:02x}".format(*ends[0])
+    assert COLOUR_STOPS[-1] == "#{:02x}{:02x}{:02x}".format(*ends[1])
+    assert f"linear-gradient(to top, {', '.join(COLOUR_STOPS)})" in html
+    assert 'class="jl-map" data-i=' in html  # the click target keeps its data
+
+
+def test_the_workspace_cloud_has_a_legend_of_its_colours(session):
+    from app.views.panel.maps import COLOUR_STOPS
+
+    key = session.panel.maps.cloud_key
+    assert key.content == ""
+    session.panel.maps.cloud.value = True
+    session.settle()
+    cloud = session.snapshot.cloud
+    assert "coloured by w" in key.content and "20\u2009000 random configurations" in key.content
+    assert f"linear-gradient(to right, {', '.join(COLOUR_STOPS)})" in key.content
+    shown = re.findall(r"<span>(.*?)</span>", key.content)
+    assert shown[0] == "w = 0" and float(shown[1]) == pytest.approx(cloud.w_max, rel=2e-3)
+    session.panel.maps.cloud.value = False
+    session.settle()
+    assert key.content == ""
 
 
 def test_workspace_cloud_is_drawn_from_tool_points(session):

@@ -38,8 +38,9 @@ from .joints import JointsPanel, configurations_html
 from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
 from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
+from .maps import MapsPanel, slider_ids
 from .matrix import MatrixPanel
-from .motion import MapsPanel, MotionPanel, slider_ids
+from .motion import MotionPanel
 from .page import page_js as page_state_js
 from .readouts import source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js

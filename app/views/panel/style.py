@@ -107,6 +107,8 @@ def slider_css(uuid: str, joint: int) -> str:
         f'[id="{uuid}"] .mantine-Slider-bar {{ background: {color} !important; }}\n'
         f'[id="{uuid}"] .mantine-Slider-thumb {{ background: {color} !important; }}\n'
         f'label[for="{uuid}"] {{ color: {text}; font-weight: 700; }}\n'
+        # The joint's one name and unit on one line ("q6 wrist swivel [°]"): a wider label box.
+        f'div:has(> .mantine-Text-root label[for="{uuid}"]) {{ width: 8.6em !important; }}\n'
     )
 
 
