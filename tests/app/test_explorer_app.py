@@ -259,6 +259,16 @@ def test_the_workspace_cloud_has_a_legend_of_its_colours(session):
     assert key.content == ""
 
 
+def test_the_charts_y_axes_ask_for_ticks_every_14_px(session):
+    """uPlot's default (a tick per 30 px at least) left one or two ticks on the 150 px charts: the y axes
+    ask for one every 14 px (five on the Puma's joint-rate chart, 1280×720 screenshot), with labels."""
+    motion = session.panel.motion
+    for chart in (motion.rates, motion.kappa, motion.measures):
+        x, y = chart.axes
+        assert y["space"] == 14 and y["label"] and x["label"] == "t [s]"
+    assert motion.rates.axes[1]["label"] == "q̇ [°/s]"
+
+
 def test_workspace_cloud_is_drawn_from_tool_points(session):
     session.panel.maps.cloud.value = True
     session.settle()

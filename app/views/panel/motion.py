@@ -37,6 +37,8 @@ __all__ = ["MotionPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 OWN_TWIST = "your own v (set in q̇ = J⁺v)"
 PLAY_BUTTONS = ("Play", "Pause", "Step", "Reset")
 _CHART_HEIGHT = 150
+_Y_TICK_SPACE = 14
+"""Least space between two y ticks [px] (uPlot's default, 30, left one or two ticks on a 150 px chart)."""
 
 
 def _chart(
@@ -51,7 +53,7 @@ def _chart(
         tuple(series),
         title=title,
         scales=scales,
-        axes=({"label": "t [s]"}, {"label": y}),
+        axes=({"label": "t [s]", "space": 40}, {"label": y, "space": _Y_TICK_SPACE}),
         height=_CHART_HEIGHT,
         aspect=2.0,
     )
@@ -145,7 +147,7 @@ class MotionPanel:
                         ({"label": "s"}, {"label": "w", "stroke": "#3b5bdb", "width": 2}),
                         title="w along the self-motion",
                         scales={"x": {"time": False}},
-                        axes=({"label": "s"}, {"label": "w"}),
+                        axes=({"label": "s"}, {"label": "w", "space": _Y_TICK_SPACE}),
                         height=_CHART_HEIGHT,
                         aspect=2.0,
                     )
