@@ -18,9 +18,10 @@ from app.server import Lab
 
 pytestmark = pytest.mark.browser
 
-_CUT = """() => [...document.querySelectorAll('.jl-sub, .jl-hint')]
+_CUT = """() => [...document.querySelectorAll('.jl-sub')]
   .filter((e) => e.offsetParent !== null)
-  .map((e) => ({text: e.textContent, cut: e.scrollWidth > e.clientWidth + 1, lines: Math.round(e.getBoundingClientRect().height / parseFloat(getComputedStyle(e).lineHeight || 17))}))"""
+  .map((e) => ({text: e.textContent, desc: e.classList.contains('jl-desc'), cut: e.scrollWidth > e.clientWidth + 1,
+                lines: Math.round(e.clientHeight / parseFloat(getComputedStyle(e).lineHeight))}))"""
 
 
 def _out(tmp_path: Path) -> Path:
@@ -36,7 +37,10 @@ def test_the_first_screen_says_what_to_do_and_lists_robots_by_title(tmp_path):
         hint = page.locator(".jl-hint")
         hint.wait_for(state="visible")
         assert "drag a joint slider" in hint.inner_text()
-        assert hint.bounding_box()["height"] < 45  # one or two lines, not a block
+        box = hint.bounding_box()
+        assert box["height"] < 36  # one line …
+        canvas = page.locator("canvas").first.bounding_box()
+        assert box["x"] + box["width"] <= canvas["x"] + canvas["width"]  # … over the 3-D view, not the panel
         menu = page.get_by_label("Robot", exact=True).first
         assert menu.input_value() == "Unimation PUMA 560 (puma560)"
         page.screenshot(path=str(out / "first_screen_1280x720.png"))
@@ -51,7 +55,9 @@ def test_the_first_screen_says_what_to_do_and_lists_robots_by_title(tmp_path):
         poll(lambda: session.state.configuration == "stretched")
         page.wait_for_function("() => [...document.querySelectorAll('.jl-sub')].some((e) => e.offsetParent)")
         lines = page.evaluate(_CUT)
-        assert lines and not [x for x in lines if x["cut"]], lines  # wrapped, never cut with "…"
+        assert lines and not [x for x in lines if x["cut"]], lines  # wrapped, never cut sideways with "…"
+        assert any(x["lines"] >= 2 for x in lines), lines  # the lost direction says all it has to say
+        assert all(x["lines"] <= 2 for x in lines if x["desc"]), lines  # a description: two lines at most
         page.screenshot(path=str(out / "first_screen_status_wraps.png"))
         assert not errors, errors
 

@@ -56,12 +56,13 @@ def test_the_dropdown_shows_titles_and_the_browser_may_send_only_a_label():
 
 
 def test_the_first_hint_shows_until_the_first_change_and_never_again(session):
-    status = session.panel.status
+    hint = session.panel.hint
     assert not session.state.started
-    assert FIRST_HINT in status.content and "joint slider" in status.content
+    assert hint.visible and FIRST_HINT in hint.content and "joint slider" in hint.content
+    assert FIRST_HINT not in session.panel.status.content  # over the 3-D view, not in the panel's flow
     session.dispatch(SetJoint(1, 0.2))
     session.settle()
-    assert session.state.started and FIRST_HINT not in status.content
+    assert session.state.started and not hint.visible and hint.content == ""
     session.dispatch(ChooseRobot("trr"))  # a new robot: the hint stays gone
     session.settle()
-    assert session.state.robot_name == "trr" and FIRST_HINT not in status.content
+    assert session.state.robot_name == "trr" and not hint.visible

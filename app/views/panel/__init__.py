@@ -42,7 +42,7 @@ from .maps import MapsPanel, slider_ids
 from .matrix import MatrixPanel
 from .motion import MotionPanel
 from .page import page_js as page_state_js
-from .readouts import source_html, status_html
+from .readouts import hint_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import NUMBER_GUARD_JS
 
@@ -96,6 +96,7 @@ class PanelView:
         self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
+        self.hint = gui.add_html("", order=2.6, visible=False)  # what to do first, over the 3-D view
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
         if self.classroom is not None:  # masked, and filled from the presenter link
             run_javascript(client, token_js(handle_uuid(self.classroom.token)))
@@ -213,6 +214,11 @@ class PanelView:
             self.live.content = live
         if self.live.visible != bool(live):
             self.live.visible = bool(live)
+        hint = hint_html(state)
+        if hint != self.hint.content:
+            self.hint.content = hint
+        if self.hint.visible != bool(hint):
+            self.hint.visible = bool(hint)
 
     def show_recording(self, recording: bool) -> None:
         """The record button says what a click does next."""
