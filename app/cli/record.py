@@ -1,10 +1,11 @@
 """``jacobian-lab record``: a demo any static web server can play, with no Python behind it.
 
 ``jacobian-lab record ROBOT -o DIR [--preset NAME] [--seconds S] [--fps F]``, with ROBOT a library
-name or a path to a robot file (.toml) or URDF. Writes ``DIR/index.html``, ``DIR/viser-client.html``
-and ``DIR/recording.viser`` (see :mod:`app.demo.record`); serve DIR (``python -m http.server -d DIR``) and
-open ``index.html``. Every mistake (an unknown robot or preset, a folder that cannot be written, a
-non-positive duration or frame rate) is one line on stderr and exit status 2.
+name or a path to a robot file (.toml) or URDF. Writes ``DIR/index.html``, ``DIR/viser-client.html``,
+``DIR/recording.viser`` and ``DIR/joint_rates.csv`` (see :mod:`app.demo.record`); serve DIR
+(``python -m http.server -d DIR``) and open ``index.html``. Every mistake (an unknown robot or
+preset, a folder that cannot be written, a non-positive duration or frame rate) is one line on stderr
+and exit status 2.
 """
 
 from __future__ import annotations

@@ -320,6 +320,10 @@ def drive_tool(state: LabState, values: tuple[float, ...]) -> LabState:
         )
     except JacobianLabError as exc:
         raise MotionRefused(str(exc)) from None
+    if result.iterations == 0 and result.converged and state.motion.ik is not None:
+        # The handle's release repeats the last pose, already reached: the readout keeps the solve
+        # that got there (else every drag would end on "0 iterations").
+        return state
     lo, hi = _bounds(state)
     q = np.clip(np.array(result.q, dtype=float), lo, hi)
     reached = fk(robot, q)[:3, 3]

@@ -108,6 +108,8 @@ def reduce(state: LabState, action: Action) -> LabState:
         after = _reduce(state, action)
     except MotionRefused as exc:
         raise InvalidAction(str(exc)) from None
+    if not after.started and after is not state and not isinstance(action, (ReplaceState, Step)):
+        after = after.replace(started=True)  # the first change: the first hint goes
     m = after.motion
     if m.anchor is not None and m.kind != "climb" and not isinstance(action, (SelfMove, Step)):
         if after.q is not state.q or after.robot is not state.robot:  # moved by hand: a new self-motion

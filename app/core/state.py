@@ -78,6 +78,8 @@ class LabState:
         chain: Tip link of the URDF chain shown ("" for the default chain or a non-URDF robot).
         motion: What Play runs, where it started, what it traced
             (:class:`~app.core.motion_state.MotionState`).
+        started: The tab has changed something since it opened (the first hint, "what to do first",
+            is gone for good).
     """
 
     robot_name: str
@@ -93,6 +95,7 @@ class LabState:
     stopped: str = ""
     chain: str = ""
     motion: MotionState = field(default_factory=MotionState)
+    started: bool = False
 
     def __post_init__(self) -> None:
         n = self.robot.dof

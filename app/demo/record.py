@@ -6,11 +6,12 @@ runs it on the app's own reducer (one :class:`~app.core.actions.Step` per frame)
 every frame with the app's :class:`~app.views.scene.SceneView` on a private in-process viser server and
 returns viser's recording, and :func:`write_demo` writes a folder any static web server can serve:
 ``index.html`` (sends the browser to the player), ``viser-client.html`` (viser's own client page,
-one self-contained file) and ``recording.viser``.
+one self-contained file), ``recording.viser`` and ``joint_rates.csv``.
 
-Only the 3-D scene is recorded (viser records no GUI panel), so κ and the status are drawn as a
-scene label above the arm, with a title label above it; the initial camera frames every frame of
-the motion.
+Only the 3-D scene is recorded (viser records no GUI panel), so κ, the status and the joint rates
+q̇ are drawn as a scene label above the arm, with a title label above it; the initial camera frames
+every frame of the motion. The folder also keeps every frame's q and q̇ as numbers
+(``joint_rates.csv``).
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from ..views.camera import FROM_ABOVE, View, facing, framing, in_view
 from ..views.fmt import number
 from ..views.scene import SceneView
 from ..views.scene.geometry import finite
+from .rates import rates_csv, rates_readout
 
 __all__ = [
     "Demo",
@@ -56,6 +58,7 @@ __all__ = [
     "record",
     "write_demo",
     "readout",
+    "RATES",
     "CLIENT_PAGE",
     "RECORDING",
     "DEFAULT_SECONDS",
@@ -66,6 +69,8 @@ __all__ = [
 CLIENT_PAGE = "viser-client.html"
 """viser's client page, copied next to the recording."""
 RECORDING = "recording.viser"
+RATES = "joint_rates.csv"
+"""Every frame's q and the motion's q̇, with units (the recording draws them; this keeps the numbers)."""
 DEFAULT_SECONDS = 15.0
 DEFAULT_FPS = 30.0
 LEAD = 1e-3
@@ -272,7 +277,8 @@ def record_frames(
         for k, (snap, state) in enumerate(zip(snaps, states, strict=True)):
             serializer.insert_sleep(LEAD if k == 0 else 1.0 / fps)
             view.update(snap, state)
-            labels.readout.text = readout(snap, state)
+            rates = rates_readout(state)  # a second line (viser's labels keep line breaks)
+            labels.readout.text = readout(snap, state) + (f"\n{rates}" if rates else "")
         data = serializer.serialize()
     finally:
         with quiet():
@@ -324,8 +330,8 @@ def client_page() -> Path:
 
 
 def write_demo(recording: Recording, out_dir: str | Path) -> Sequence[Path]:
-    """Write ``index.html``, the client page and ``recording.viser`` into ``out_dir`` (created if
-    needed); returns the files written.
+    """Write ``index.html``, the client page, ``recording.viser`` and ``joint_rates.csv`` into
+    ``out_dir`` (created if needed); returns the files written.
 
     Raises:
         OSError: the folder or a file cannot be written.
@@ -339,12 +345,14 @@ def write_demo(recording: Recording, out_dir: str | Path) -> Sequence[Path]:
 
 
 def demo_files(recording: Recording) -> dict[str, bytes]:
-    """The files of a demo folder by name: ``index.html``, the client page and ``recording.viser``."""
+    """The files of a demo folder by name: ``index.html``, the client page, ``recording.viser`` and the
+    joint rates (``joint_rates.csv``)."""
     target = f"{CLIENT_PAGE}?playbackPath={RECORDING}"
     page = client_page().read_text(encoding="utf-8")
     page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
     return {
         RECORDING: recording.data,
+        RATES: rates_csv(recording.states, recording.fps).encode("utf-8"),
         CLIENT_PAGE: page.encode("utf-8"),
         "index.html": _INDEX.format(
             title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)

@@ -44,7 +44,8 @@ def test_urdf_robot_drawn_with_its_meshes_or_generated_geometry(tmp_path, fore, 
         assert any(name.startswith("/lab/arm/urdf") for name in props) == meshes
         cylinders = props["/lab/arm/cylinders"]  # the generated links and the two revolute axes
         assert (len(cylinders["batched_positions"]) > 2) == links
-        assert session.panel.robot.options[0] == "two_link" and "puma560" in session.panel.robot.options
+        assert session.panel.robot.options[0] == "two_link"
+        assert "Unimation PUMA 560 (puma560)" in session.panel.robot.options
         session.panel.joints.sliders[1].value = -30.0
         session.settle()
         assert session.state.q[1] == pytest.approx(math.radians(-30.0))

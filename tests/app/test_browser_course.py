@@ -30,7 +30,7 @@ def test_trr_course_example_in_three_clicks(tmp_path):
     with app_page(lab) as (page, session, errors):
         # Click 1: the robot.
         page.get_by_label("Robot", exact=True).first.click()
-        page.get_by_role("option", name="trr", exact=True).click()
+        page.get_by_role("option", name="TRR robot (course example) (trr)", exact=True).click()
         poll(lambda: session.state.robot_name == "trr")
         # Click 2: the tab. Click 3: the course's example.
         page.get_by_role("tab", name="q̇ = J⁺v").click()

@@ -107,8 +107,9 @@ SIZES = [
     ("1920x1080", {"width": 1920, "height": 1080}, 1.0, 340),
 ]
 """Name, viewport [CSS px], device pixels per CSS pixel, and the least height of the views of J [px]
-(before: 226, 206, 110 and 350; at 1920×1080 the panel is now 1.5 times larger, its text too). At
-1024×768 the Puma's "q6 wrist swivel [°]" takes two lines in the 400 px panel (8 px)."""
+(before: 226, 206, 110 and 350; at 1920×1080 the panel is now 1.5 times larger, its text too). The
+joint labels keep one line ("q6 wrist swivel [°]"); the home's description wraps to two lines (issue 21:
+no longer cut at one), paid for by tighter margins under the status."""
 
 
 @pytest.mark.parametrize(("name", "viewport", "scale", "least"), SIZES, ids=[s[0] for s in SIZES])

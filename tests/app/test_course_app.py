@@ -215,6 +215,34 @@ def test_representation_singular_at_a_pitch_of_90_degrees(session):
     assert_all_finite(session)
 
 
+def test_the_first_analytic_try_at_the_puma_home_says_so_and_offers_the_regular_angles(session):
+    """At the Puma's home the tool's x axis points down (R₃₁ = −1): roll-pitch-yaw, the menu's first
+    analytic entry, is singular there. The tab says it is the angles' singularity, not the arm's, and
+    its button switches to Euler ZYZ (θ = 90° here), which gives J_A at once."""
+    choose(session, "puma560")
+    matrix = session.panel.matrix
+    assert not matrix.use_instead.visible
+    matrix.representation.value = next(v for v in matrix.representation.options if "ZYX" in v)
+    session.settle()
+    R = fk(session.state.robot, session.state.q)[:3, :3]
+    assert R[2, 0] == pytest.approx(-1.0, abs=1e-12) and abs(R[2, 2]) < 1e-9  # ZYX singular, ZYZ not
+    view = session.snapshot.analytic
+    assert view.singular and view.regular_instead == "zyz"
+    assert "not of the arm" in matrix.analytic.content and "Euler ZYZ is regular" in matrix.analytic.content
+    assert "ZYZ is regular here" in session.panel.status.content
+    assert matrix.use_instead.visible and "ZYZ" in matrix.use_instead.label
+    matrix.use_instead.value = True  # a click
+    session.settle()
+    view = session.snapshot.analytic
+    assert session.state.options.representation == "zyz" and not view.singular
+    assert not matrix.use_instead.visible
+    assert euler_angles(R, "zyz")[1] == pytest.approx(math.pi / 2, abs=1e-9)
+    J = jacobian(session.state.robot, session.state.q)
+    np.testing.assert_allclose(view.M @ view.J_A[3:], J[3:], atol=1e-9)  # ω = M(φ) φ̇, column by column
+    assert "representation singular" not in session.panel.status.content
+    assert_all_finite(session)
+
+
 def test_jdot_qd_arrow_and_readout_match_finite_differences(session):
     choose(session, "puma560")
     robot = session.state.robot

@@ -6,6 +6,7 @@ the drawing thread. Each test starts from a fresh state of the default robot (th
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -16,6 +17,7 @@ import robots
 from app.core.actions import Play, SetOption, Step
 from app.core.commands import ChooseRobot, FindSingularity
 from app.core.motion_rules import FRAME_DT
+from app.core.ranges import joint_ranges
 from app.tab.ticker import Ticker
 from app.views.panel.motion import OWN_TWIST
 from kinematics import fk, jacobian
@@ -125,6 +127,37 @@ def test_dragging_the_handle_moves_the_arm(session):
     assert "iterations" in session.panel.motion.ik.content
 
 
+def test_the_ik_readout_counts_the_iterations_of_the_drag_not_of_its_release(session):
+    """A drag ends with the handle's release at the pose already reached: the readout keeps the count of
+    the solve that moved the arm (the same count as ik.solve from the same start), not "0 iterations"."""
+    from app.core.actions import DriveTool
+    from app.core.motion_rules import IK_DAMPING, IK_ITERATIONS, IK_STEP
+    from kinematics.motion import ik
+
+    session.panel.motion.gizmo.value = True
+    session.settle()
+    robot, q0 = session.state.robot, np.array(session.state.q)
+    T = fk(robot, q0)
+    T[:3, 3] += [0.08, -0.05, 0.04]
+    expected = ik.solve(
+        robot,
+        T[:3, 3],
+        q0,
+        method="dls",
+        damping=max(session.state.options.damping, IK_DAMPING),
+        max_iterations=IK_ITERATIONS,
+        step_limit=IK_STEP,
+    ).iterations
+    assert expected >= 2
+    session.dispatch(DriveTool(tuple(T.ravel())))  # the drag's last update
+    session.settle()
+    session.dispatch(DriveTool(tuple(T.ravel())))  # the release, at the same pose
+    session.settle()
+    assert session.state.motion.ik.iterations == expected
+    assert f"{expected} iterations" in session.panel.motion.ik.content
+    assert "0 iterations" not in session.panel.motion.ik.content
+
+
 def test_self_motion_slider_and_ghost_on_the_panda(session):
     choose(session, "panda")
     motion = session.panel.motion
@@ -167,6 +200,73 @@ def test_joint_map_values_and_click_target(session):
     session.dispatch(SetOption("map_j", 4))
     session.settle()
     assert session.snapshot.joint_map.j == 4
+
+
+def _spans(html: str, cls: str) -> list[str]:
+    block = re.search(rf'<div class="{cls}">(.*?)</div>', html).group(1)
+    return re.findall(r"<span>(.*?)</span>", block)
+
+
+def test_the_joint_map_has_axes_with_joint_names_ticks_and_a_colour_bar_of_w(session):
+    """Item 15: the map says which joint is on which axis (name and unit), the values at its ends and
+    middle (the sliders' range, in degrees), and what its colours mean (a bar from w = 0 to w_max in
+    the colours the cells are painted with)."""
+    from app.core.snapshot.maps import colormap
+    from app.views.panel.maps import COLOUR_STOPS
+
+    maps = session.panel.maps
+    maps.show_map.value = True
+    session.settle()
+    robot, jm = session.state.robot, session.snapshot.joint_map
+    html = maps.map.content
+    ranges = joint_ranges(robot)
+    assert re.search(r'class="xlabel">q2 shoulder \[°\]<', html) and robot.joints[jm.i].name == "q2 shoulder"
+    assert re.search(r'class="ylabel">q3 elbow \[°\]<', html) and robot.joints[jm.j].name == "q3 elbow"
+    lo_i, hi_i = (math.degrees(ranges[jm.i].clamp_si(x)) for x in (-math.inf, math.inf))
+    lo_j, hi_j = (math.degrees(ranges[jm.j].clamp_si(x)) for x in (-math.inf, math.inf))
+    assert [float(t.replace("−", "-")) for t in _spans(html, "xticks")] == pytest.approx(
+        [lo_i, (lo_i + hi_i) / 2, hi_i], abs=0.5
+    )
+    assert [float(t.replace("−", "-")) for t in _spans(html, "yticks")] == pytest.approx(
+        [hi_j, (lo_j + hi_j) / 2, lo_j],
+        abs=0.5,  # top to bottom: j grows upwards, as the cells
+    )
+    w_ticks = [float(t) for t in _spans(html, "wticks")]
+    assert w_ticks == pytest.approx([jm.w_max, jm.w_max / 2, 0.0], rel=2e-3)
+    assert jm.w_max == pytest.approx(float(jm.w.max()))
+    # The bar's colours are the cells' colours at w = 0 … w_max.
+    ends = colormap(np.array([0.0, 1.0]))
+    assert COLOUR_STOPS[0] == "#{:02x}{:02x}{:02x}".format(*ends[0])
+    assert COLOUR_STOPS[-1] == "#{:02x}{:02x}{:02x}".format(*ends[1])
+    assert f"linear-gradient(to top, {', '.join(COLOUR_STOPS)})" in html
+    assert 'class="jl-map" data-i=' in html  # the click target keeps its data
+
+
+def test_the_workspace_cloud_has_a_legend_of_its_colours(session):
+    from app.views.panel.maps import COLOUR_STOPS
+
+    key = session.panel.maps.cloud_key
+    assert key.content == ""
+    session.panel.maps.cloud.value = True
+    session.settle()
+    cloud = session.snapshot.cloud
+    assert "coloured by w" in key.content and "20\u2009000 random configurations" in key.content
+    assert f"linear-gradient(to right, {', '.join(COLOUR_STOPS)})" in key.content
+    shown = re.findall(r"<span>(.*?)</span>", key.content)
+    assert shown[0] == "w = 0" and float(shown[1]) == pytest.approx(cloud.w_max, rel=2e-3)
+    session.panel.maps.cloud.value = False
+    session.settle()
+    assert key.content == ""
+
+
+def test_the_charts_y_axes_ask_for_ticks_every_14_px(session):
+    """uPlot's default (a tick per 30 px at least) left one or two ticks on the 150 px charts: the y axes
+    ask for one every 14 px (five on the Puma's joint-rate chart, 1280×720 screenshot), with labels."""
+    motion = session.panel.motion
+    for chart in (motion.rates, motion.kappa, motion.measures):
+        x, y = chart.axes
+        assert y["space"] == 14 and y["label"] and x["label"] == "t [s]"
+    assert motion.rates.axes[1]["label"] == "q̇ [°/s]"
 
 
 def test_workspace_cloud_is_drawn_from_tool_points(session):

@@ -31,8 +31,18 @@ from app.core.actions import ApplyPreset, Play, Step
 from app.core.reducer import reduce
 from app.core.snapshot import compute
 from app.core.state import LabState
-from app.demo.record import CLIENT_PAGE, LEAD, RECORDING, plan, readout, record
+from app.demo.rates import joint_rates, rates_csv, rates_readout
+from app.demo.record import (
+    CLIENT_PAGE,
+    LEAD,
+    RATES,
+    RECORDING,
+    plan,
+    readout,
+    record,
+)
 from app.views.fmt import number
+from kinematics import jacobian
 from kinematics.numeric import fk
 
 
@@ -132,11 +142,17 @@ def test_a_preset_is_played_on_the_apps_reducer_until_it_stops():
 
     # The readout says the last frame's status and κ, and why it stopped.
     snap = compute(state)
-    text = _last(f["messages"], "/demo/readout", "text")
+    text, rates = _last(f["messages"], "/demo/readout", "text").split("\n")
     assert text == readout(snap, state)
     assert text.startswith(f"{snap.report.text()}   κ = {number(snap.report.condition)}")
     assert snap.report.status == "near singular" and "wrist" in text and "q4" in text
     assert _last(f["messages"], "/demo/title", "text") == rec.title
+    # Its second line: the joint rates of the last frame, J⁺ v of the preset's twist at the q it came from.
+    assert rates == rates_readout(state)
+    qd = joint_rates(state)
+    np.testing.assert_allclose(qd, state.motion.trace.qd[-1])
+    for j, x in zip(robot.joints, qd, strict=True):
+        assert f"{j.name.split()[0]} {number(np.degrees(x), 3)} °/s" in rates
 
     # The initial camera (recorded) frames the motion: it looks at the arm from a few sizes away.
     cam = _camera(f["messages"])
@@ -145,6 +161,34 @@ def test_a_preset_is_played_on_the_apps_reducer_until_it_stops():
     distance = np.linalg.norm(cam["position"] - cam["look_at"])
     assert 0.5 < distance < 5.0
     assert np.linalg.norm(cam["look_at"] - (tool + start_tool) / 2) < 0.6
+
+
+def test_the_recording_keeps_the_joint_rates_of_every_frame_with_their_units():
+    """The TRR's preset (a prismatic joint and two revolute ones): joint_rates.csv holds each frame's
+    q and q̇, in m, m/s, deg and deg/s, and q̇ is J⁺ v (J q̇ gives back the preset's twist)."""
+    robot = robots.load("trr")
+    rec = record("trr", robot, seconds=1.0, fps=10.0)
+    lines = rates_csv(rec.states, rec.fps).splitlines()
+    heads = lines[0].split(",")
+    names = [j.name for j in robot.joints]
+    assert heads[:2] == ["frame", "t [s]"]
+    assert heads[2:5] == [f"{names[0]} [m]", f"{names[1]} [deg]", f"{names[2]} [deg]"]
+    assert heads[5:] == [f"{names[0]} rate [m/s]", f"{names[1]} rate [deg/s]", f"{names[2]} rate [deg/s]"]
+    assert len(lines) == 1 + rec.frames
+    v = np.array(rec.states[0].v_desired)
+    rows = [0, 1, 2]
+    moving = 0
+    for line, state in zip(lines[1:], rec.states, strict=True):
+        cells = line.split(",")
+        q = np.array([float(cells[2]), *np.radians([float(c) for c in cells[3:5]])])
+        np.testing.assert_allclose(q, state.q, atol=1e-7)
+        if cells[5] and state.time > 0:
+            qd = np.array([float(cells[5]), *np.radians([float(c) for c in cells[6:8]])])
+            # J q̇ = v at the q the step started from (the previous frame's): the rates are J⁺ v.
+            before = rec.states[rec.states.index(state) - 1]
+            np.testing.assert_allclose(jacobian(robot, before.q)[rows] @ qd, v[rows], atol=1e-6)
+            moving += 1
+    assert moving >= 5
 
 
 def test_without_presets_the_arm_goes_smoothly_from_home_to_its_first_singular_configuration():
@@ -193,7 +237,7 @@ def test_a_preset_is_chosen_by_name_and_an_unknown_one_is_refused():
 def test_record_writes_a_folder_that_plays_the_recording(tmp_path, capsys):
     out = tmp_path / "demo"
     assert main(["record", "planar2", "-o", str(out), "--seconds", "0.5", "--fps", "10"]) == 0
-    assert sorted(p.name for p in out.iterdir()) == sorted(["index.html", CLIENT_PAGE, RECORDING])
+    assert sorted(p.name for p in out.iterdir()) == sorted(["index.html", CLIENT_PAGE, RECORDING, RATES])
     index = (out / "index.html").read_text()
     assert f"{CLIENT_PAGE}?playbackPath={RECORDING}" in index
     client = (out / CLIENT_PAGE).read_text()

@@ -66,9 +66,16 @@ def test_record_from_the_gui_downloads_a_demo_that_replays_what_was_done(session
     names = sorted(files.namelist())
     assert names == [
         "jacobian-lab-demo/index.html",
+        "jacobian-lab-demo/joint_rates.csv",
         "jacobian-lab-demo/recording.viser",
         "jacobian-lab-demo/viser-client.html",
     ]
+    # Moved by hand (no motion drives the joints): q per frame, the rate cells empty.
+    rows = files.read("jacobian-lab-demo/joint_rates.csv").decode().splitlines()
+    last = rows[-1].split(",")
+    dof = final.robot.dof
+    np.testing.assert_allclose(np.radians([float(c) for c in last[2 : 2 + dof]]), final.q, atol=1e-7)
+    assert last[2 + dof :] == [""] * dof
     recording = read_viser(files.read("jacobian-lab-demo/recording.viser"))
     # The last frame: the ellipsoid on the tool where fk of the last state puts it.
     drawn = _last(recording["messages"], "/demo/lab/jacobian/velocity_ellipsoid", "position")

@@ -93,15 +93,66 @@ def test_spatial_3r_agrees_with_course_001():
 
 
 # ------------------------------------------------------------------------------- the worked example
+_UNITS = r"(?:\\;\\begin\{matrix\}(.*)\\end\{matrix\})?"
+
+
 def _matrices(tex: str) -> dict[str, np.ndarray]:
-    """Numeric bmatrix displays of the worked example by left-hand side."""
+    """Numeric bmatrix displays of the worked example by left-hand side (a column of units beside a
+    vector is left out: see :func:`_units`)."""
     out = {}
     for f in display_formulas(tex):
-        m = re.fullmatch(r"(.*?) = \\begin\{bmatrix\}([-0-9.&\\ ]*)\\end\{bmatrix\}", f)
+        m = re.fullmatch(r"(.*?) = \\begin\{bmatrix\}([-0-9.&\\ ]*)\\end\{bmatrix\}" + _UNITS, f)
         if m:
             rows = [[float(x) for x in row.split("&")] for row in m.group(2).split("\\\\")]
             out[m.group(1)] = np.array(rows)
     return out
+
+
+def _units(tex: str) -> dict[str, list[str]]:
+    """The units set beside each vector of the worked example, row by row, by left-hand side."""
+    out = {}
+    for f in display_formulas(tex):
+        m = re.fullmatch(r"(.*?) = \\begin\{bmatrix\}[-0-9.&\\ ]*\\end\{bmatrix\}" + _UNITS, f)
+        if m and m.group(2):
+            out[m.group(1)] = re.findall(r"\\text\{([^}]*)\}", m.group(2))
+    return out
+
+
+def test_trr_worked_example_gives_units_per_row(tmp_path):
+    """The TRR's q̇ mixes a prismatic joint's m/s with two revolute joints' rad/s: each row says its unit."""
+    out = tmp_path / "trr.tex"
+    assert cli_main(["handout", "trr", "--method", "whitney", "-o", str(out)]) == 0
+    units = _units(out.read_text(encoding="utf-8"))
+    assert units["\\dot{q} = J^{-1} v"] == ["m/s", "rad/s", "rad/s"]
+    assert units["v"] == ["m/s", "m/s", "m/s"]  # the task rows: vx, vy, vz
+    html_out = tmp_path / "trr.html"
+    assert (
+        cli_main(["handout", "trr", "--method", "whitney", "--rates", "0.5", "90", "45", "-o", str(html_out)])
+        == 0
+    )
+    page = html_out.read_text(encoding="utf-8")
+    assert "in rad/s and m/s" not in page
+    cells = re.findall(r"<mtext>(m/s|rad/s)</mtext>", page)
+    assert cells[:3] == ["m/s", "rad/s", "rad/s"]  # q̇ beside its column, then J q̇ (m/s)
+
+
+def test_the_result_comes_first_and_the_derivation_after(tmp_path):
+    """J(q) and det J (with the singular sets) open the handout; the DH table, transforms and methods
+    follow, and the contents line says where."""
+    out = tmp_path / "trr.html"
+    assert cli_main(["handout", "trr", "-o", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    heads = re.findall(r"<h2>(.*?)</h2>", page)
+    assert heads[0] == "1. The result: J(q) and det J" and heads[1].startswith("2. The Denavit")
+    assert heads[-2].endswith("Worked example") and heads[-1] == "Notation"
+    result = page[page.index(heads[0]) : page.index(heads[1])]
+    assert "det" in result and "Singular configurations" in result and "<mtable" in result
+    assert "The derivation follows: §2 The Denavit–Hartenberg table" in result
+    assert page.count("The Jacobian and its singularities") == 0
+    tex = tmp_path / "trr.tex"
+    assert cli_main(["handout", "trr", "-o", str(tex)]) == 0
+    sections = re.findall(r"\\section\*\{(.*?)\}\n", tex.read_text(encoding="utf-8"))
+    assert sections[0].startswith("1. The result") and sections[1].startswith("2. The Denavit")
 
 
 def test_trr_worked_example_is_the_courses(tmp_path):
@@ -145,7 +196,7 @@ def test_tex_document_typesets_in_katex(katex, tmp_path, args):  # noqa: F811
     assert len(formulas) > 10
     errors = [(f[:100], e) for f, e in zip(formulas, katex(formulas), strict=True) if e is not None]
     assert errors == []
-    for section in ("Denavit", "Link transforms", "The Jacobian and its singularities", "Worked example"):
+    for section in ("The result", "Denavit", "Link transforms", "Worked example"):
         assert section in tex
 
 

@@ -53,3 +53,18 @@ def test_symbolic_j_fits_the_panel(measure, name):
     without_wrapping, _ = measure(jacobian_mathml(robot, "base", timeout=120, layout="matrix"))
     if robot.dof >= 6:  # the whole matrix would not fit: the layout is what makes it fit
         assert without_wrapping > PANEL
+
+
+APP_TEXT = 380
+"""Width of the app's panel text [px] (the panel is 400 px, scaled as a whole at other sizes)."""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("letters", [False, True], ids=["numbers", "letters"])
+@pytest.mark.parametrize("name", ["planar2", "planar3", "trr", "elbow3r", "scara", "wrist"])
+def test_the_small_arms_j_fits_the_apps_panel_with_or_without_course_letters(measure, name, letters):
+    """Issue 21: the 3R's lettered J (l₁ s₁ + l₂ s₁₂ + l₃ s₁₂₃ …, 455 px as one matrix) scrolled sideways
+    in the 380 px of the app's panel; a J wider than the panel is now shown column by column."""
+    robot = robots.load(name)
+    widest, scroll = measure(jacobian_mathml(robot, "base", timeout=120, symbolic_params=letters))
+    assert 0 < widest <= APP_TEXT, widest

@@ -79,6 +79,8 @@ class AnalyticView:
         M: M(φ) (3, 3) with ω = M(φ) φ̇ (``kinematics.analytic_jacobian.euler_rate_matrix``).
         det_M: det M(φ) (−cos pitch for ZYX, −sin θ for ZYZ).
         J_A: diag(I, M(φ)⁻¹) J (6, n), rows [v; φ̇]; ``None`` at the representation singularity.
+        regular_instead: At a representation singularity, the other convention when it is regular at
+            this orientation (the fix the J(q) tab offers), else "".
     """
 
     convention: str
@@ -86,6 +88,7 @@ class AnalyticView:
     M: np.ndarray
     det_M: float
     J_A: np.ndarray | None
+    regular_instead: str = ""
 
     @property
     def singular(self) -> bool:
@@ -97,4 +100,8 @@ def analytic_view(T_tool: np.ndarray, J_base: np.ndarray, convention: str) -> An
     """φ, M(φ) and J_A for the tool pose ``T_tool`` (4, 4) and the base-frame J (6, n)."""
     conv: Literal["zyx", "zyz"] = "zyz" if convention == "zyz" else "zyx"
     parts = analytic_parts(T_tool[:3, :3], J_base, conv)
-    return AnalyticView(conv, parts.phi, parts.B, parts.det_B, parts.J_A)
+    instead = ""
+    if parts.J_A is None:
+        other: Literal["zyx", "zyz"] = "zyx" if conv == "zyz" else "zyz"
+        instead = other if analytic_parts(T_tool[:3, :3], J_base, other).J_A is not None else ""
+    return AnalyticView(conv, parts.phi, parts.B, parts.det_B, parts.J_A, instead)

@@ -23,8 +23,9 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.commands import ChooseChain, ChooseRobot, PageReport, ResetView, ToggleRecording
+from ...core.commands import ChooseChain, ChooseRobot, Message, PageReport, ResetView, ToggleRecording
 from ...core.options import options_of
+from ...core.robot_menu import robot_menu
 from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
@@ -37,10 +38,11 @@ from .joints import JointsPanel, configurations_html
 from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
 from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
+from .maps import MapsPanel, slider_ids
 from .matrix import MatrixPanel
-from .motion import MapsPanel, MotionPanel, slider_ids
+from .motion import MotionPanel
 from .page import page_js as page_state_js
-from .readouts import source_html, status_html
+from .readouts import hint_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import NUMBER_GUARD_JS
 
@@ -85,12 +87,16 @@ class PanelView:
         bind(self.report, dispatch, lambda v: PageReport(str(v)) if str(v) else None)
         run_javascript(client, page_state_js(handle_uuid(self.report)))
         set_page_title(client, PAGE_TITLE)
-        self.robot = gui.add_dropdown("Robot", robot_names, initial_value=state.robot_name, order=1)
-        bind(self.robot, dispatch, lambda v: ChooseRobot(str(v)))
+        self.menu = robot_menu(robot_names)
+        self.robot = gui.add_dropdown(
+            "Robot", self.menu.labels, initial_value=self.menu.label_of(state.robot_name), order=1
+        )
+        bind(self.robot, dispatch, self._chosen_robot)
         self.chain: viser.GuiDropdownHandle | None = None
         self.source = gui.add_html("", order=1.5, visible=False)
         self.status = gui.add_html("", order=2)
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
+        self.hint = gui.add_html("", order=2.6, visible=False)  # what to do first, over the 3-D view
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
         if self.classroom is not None:  # masked, and filled from the presenter link
             run_javascript(client, token_js(handle_uuid(self.classroom.token)))
@@ -174,10 +180,15 @@ class PanelView:
         run_javascript(self.client, steps_js({handle_uuid(s): float(s.step) for s in sliders}))
 
     def set_robot_names(self, names: Sequence[str]) -> None:
-        """List ``names`` in the tab's robot dropdown (its own robots first, see app.tab.robots)."""
-        names = tuple(names)
-        if tuple(self.robot.options) != names:
-            self.robot.options = names
+        """List ``names`` in the tab's robot dropdown (its own robots first, see app.tab.robots), each
+        by its label (a library robot's title and name)."""
+        self.menu = robot_menu(names)
+        if tuple(self.robot.options) != self.menu.labels:
+            self.robot.options = self.menu.labels
+
+    def _chosen_robot(self, value: Any) -> Message | None:
+        name = self.menu.name_of(value)
+        return None if name is None else ChooseRobot(name)
 
     def remove_robot(self) -> None:
         if self.chain is not None:
@@ -192,7 +203,7 @@ class PanelView:
     def draw(self, state: LabState, snap: Snapshot) -> None:
         """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes)."""
         assert self.joints is not None
-        sync_value(self.robot, state.robot_name)
+        sync_value(self.robot, self.menu.label_of(state.robot_name))
         self.joints.show(state.q, state.configuration)
         self._show_options(state.options)
         self.status.content = status_html(snap, state)
@@ -203,6 +214,11 @@ class PanelView:
             self.live.content = live
         if self.live.visible != bool(live):
             self.live.visible = bool(live)
+        hint = hint_html(state)
+        if hint != self.hint.content:
+            self.hint.content = hint
+        if self.hint.visible != bool(hint):
+            self.hint.visible = bool(hint)
 
     def show_recording(self, recording: bool) -> None:
         """The record button says what a click does next."""

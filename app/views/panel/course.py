@@ -144,8 +144,14 @@ def analytic_html(view: AnalyticView | None, robot: Robot, rank: int, rows: tupl
         parts.append(
             f'<div class="jl-warn">Representation singular ({which}): M(φ) has no inverse, so '
             f"J<sub>A</sub> does not exist here — while the geometric J is fine (rank {rank} of "
-            f"{min(len(rows), robot.dof)}).</div>"
+            f"{min(len(rows), robot.dof)}). A singularity of the angles chosen, not of the arm.</div>"
         )
+        if view.regular_instead:
+            other = REPRESENTATIONS[view.regular_instead]
+            parts.append(
+                f'<div class="jl-note">{fmt.escape(other)} is regular at this orientation: the button '
+                "below shows J<sub>A</sub> with it.</div>"
+            )
     else:
         assert view.J_A is not None
         row_heads = [*ROW_NAMES[:3], *rate_heads]

@@ -67,8 +67,6 @@ label, .mantine-InputWrapper-label {{ color: {_C["label"]}; }}
   box-shadow: inset 0 -3px 0 0 {_C["selected tab"]} !important; }}
 [data-dock-tab][role="tab"] > div:first-child {{ margin-right: 0.3em !important; }}
 .mantine-Paper-root legend, .mantine-Paper-root .mantine-Text-root {{ color: {_C["folder title"]}; }}
-/* The lost direction is said in full (it wraps); the configuration's description keeps one line. */
-.jl-sub[title^="Lost direction"] {{ white-space: normal !important; }}
 .jl-matrix sub, .jl-vec sub {{ font-size: 0.9em; }}
 [data-dock-region] .jl-mathml {{ overflow-x: auto; }}
 /* The enlarged J leaves the panel free: its sliders move J while it is watched. */

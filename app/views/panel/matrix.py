@@ -17,7 +17,7 @@ import viser
 
 from kinematics import Robot
 
-from ...core.actions import GoToRepresentationSingularity
+from ...core.actions import GoToRepresentationSingularity, SetOption
 from ...core.commands import RequestDownload
 from ...core.downloads import EXPORT_FORMATS
 from ...core.snapshot import Snapshot
@@ -89,6 +89,12 @@ class MatrixPanel:
             self.representation = option_widget(gui, dispatch, "representation")
             self.numeric = gui.add_html("")
             self.analytic = gui.add_html("")
+            # At a representation singularity: switch to the convention that is regular here.
+            self._instead = ""
+            self.use_instead = gui.add_button(
+                "Use the regular angles", icon=viser.Icon.ARROWS_EXCHANGE, visible=False
+            )
+            bind_click(self.use_instead, dispatch, lambda: SetOption("representation", self._instead))
             self.go_singular: viser.GuiButtonHandle | None = None
             self._convention = "zyx"
             if robot.dof >= 6:
@@ -128,6 +134,14 @@ class MatrixPanel:
         if self.letters is not None:
             show_option(self.letters, "course_letters", o.course_letters)
         self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows)
+        instead = snap.analytic.regular_instead if snap.analytic is not None else ""
+        if instead:
+            self._instead = instead
+            label = "Use Euler ZYZ here" if instead == "zyz" else "Use roll-pitch-yaw (ZYX) here"
+            if self.use_instead.label != label:
+                self.use_instead.label = label
+        if self.use_instead.visible != bool(instead):
+            self.use_instead.visible = bool(instead)
 
     def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:
         """Show the numeric J and measures, and in the enlarged view (if open) J under the status."""

@@ -1,14 +1,13 @@
-"""The singularity explorer's tabs: Motion (resolved rate, drive the tool, redundancy, the nearest
-singularity) and Maps (a joint-space map of w, the workspace cloud).
+"""The singularity explorer's Motion tab (resolved rate, drive the tool, redundancy, the nearest
+singularity); the Maps tab is :mod:`.maps`.
 
-Views only: every control dispatches an action; :meth:`MotionPanel.draw` and :meth:`MapsPanel.draw`
-put a state and its snapshot on screen. Charts are uPlot (viser's ``add_uplot``) fed from the
+Views only: every control dispatches an action; :meth:`MotionPanel.draw` puts a state and its
+snapshot on screen. Charts are uPlot (viser's ``add_uplot``) fed from the
 state's trace, which holds only finite numbers.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Sequence
 from typing import Any
@@ -22,24 +21,24 @@ from kinematics import Robot
 from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_TEXT
 
-from ...core.actions import ApplyPreset, Play, ResetMotion, SelfMove, SetOption, StepOnce
+from ...core.actions import ApplyPreset, Play, ResetMotion, SelfMove, StepOnce
 from ...core.commands import FindSingularity
 from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
-from ...core.ranges import joint_ranges
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
-from ...viser_adapter import handle_uuid
 from .. import fmt
 from ..palette import joint_hex
 from .common import Dispatch, bind, option_widget, show_option, sync_value
 from .errata import erratum_html
 
-__all__ = ["MotionPanel", "MapsPanel", "OWN_TWIST", "PLAY_BUTTONS"]
+__all__ = ["MotionPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 
 OWN_TWIST = "your own v (set in q̇ = J⁺v)"
 PLAY_BUTTONS = ("Play", "Pause", "Step", "Reset")
 _CHART_HEIGHT = 150
+_Y_TICK_SPACE = 14
+"""Least space between two y ticks [px] (uPlot's default, 30, left one or two ticks on a 150 px chart)."""
 
 
 def _chart(
@@ -54,7 +53,7 @@ def _chart(
         tuple(series),
         title=title,
         scales=scales,
-        axes=({"label": "t [s]"}, {"label": y}),
+        axes=({"label": "t [s]", "space": 40}, {"label": y, "space": _Y_TICK_SPACE}),
         height=_CHART_HEIGHT,
         aspect=2.0,
     )
@@ -148,7 +147,7 @@ class MotionPanel:
                         ({"label": "s"}, {"label": "w", "stroke": "#3b5bdb", "width": 2}),
                         title="w along the self-motion",
                         scales={"x": {"time": False}},
-                        axes=({"label": "s"}, {"label": "w"}),
+                        axes=({"label": "s"}, {"label": "w", "space": _Y_TICK_SPACE}),
                         height=_CHART_HEIGHT,
                         aspect=2.0,
                     )
@@ -306,77 +305,3 @@ def _sorted_unique(samples: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     s_sorted, w_sorted = s[order], samples[order, 1]
     keep = np.r_[s_sorted[1:] != s_sorted[:-1], True]  # the last sample at each s
     return s_sorted[keep], w_sorted[keep]
-
-
-class MapsPanel:
-    """The Maps tab: w over two joints (click to go there) and the workspace cloud."""
-
-    def __init__(
-        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, slider_ids: Sequence[str], order: float
-    ):
-        self.robot = robot
-        self.slider_ids = list(slider_ids)
-        self.root = gui.add_folder(None, order=order)
-        names = [f"q{i + 1}" for i in range(robot.dof)]
-        with self.root:
-            self.cloud = option_widget(gui, dispatch, "workspace")
-            self.show_map = option_widget(gui, dispatch, "joint_map", disabled=robot.dof < 2)
-            self.i = gui.add_dropdown("x axis", names, initial_value=names[1 if robot.dof >= 3 else 0])
-            bind(self.i, dispatch, functools.partial(_map_joint, "map_i", names))
-            self.j = gui.add_dropdown(
-                "y axis", names, initial_value=names[2 if robot.dof >= 3 else min(1, robot.dof - 1)]
-            )
-            bind(self.j, dispatch, functools.partial(_map_joint, "map_j", names))
-            self.map = gui.add_html("")
-        self._shown: str | None = None
-
-    def draw(self, state: LabState, snap: Snapshot) -> None:
-        o = state.options
-        names = [f"q{i + 1}" for i in range(self.robot.dof)]
-        show_option(self.cloud, "workspace", o.workspace)
-        show_option(self.show_map, "joint_map", o.joint_map)
-        sync_value(self.i, names[o.map_i])
-        sync_value(self.j, names[o.map_j])
-        jm = snap.joint_map
-        if jm is None:
-            note = "Tick the box to compute w over two joints (the others held where they are)."
-            if o.joint_map and o.map_i == o.map_j:
-                note = "Choose two different joints."
-            html = f'<div class="jl-note">{note}</div>'
-        else:
-            html = self._map_html(state, jm)
-        if html != self._shown:
-            self._shown = html
-            self.map.content = html
-
-    def _map_html(self, state: LabState, jm: Any) -> str:
-        ranges = joint_ranges(self.robot)
-        ri, rj = ranges[jm.i], ranges[jm.j]
-        xi = math.degrees(state.q[jm.i]) if ri.degrees else float(state.q[jm.i])
-        xj = math.degrees(state.q[jm.j]) if rj.degrees else float(state.q[jm.j])
-        left = min(max(100.0 * (xi - jm.lo[0]) / (jm.hi[0] - jm.lo[0]), 0.0), 100.0)
-        top = min(max(100.0 * (1.0 - (xj - jm.lo[1]) / (jm.hi[1] - jm.lo[1])), 0.0), 100.0)
-        ids = f'data-i="{self.slider_ids[jm.i]}" data-j="{self.slider_ids[jm.j]}"'
-        box = " ".join(
-            f'data-{k}="{v:.6g}"' for k, v in zip(("ilo", "jlo", "ihi", "jhi"), (*jm.lo, *jm.hi), strict=True)
-        )
-        return (
-            f'<div class="jl"><div class="jl-map" {ids} {box}>'
-            f'<img alt="w over q{jm.i + 1} and q{jm.j + 1}" src="data:image/png;base64,{jm.png}">'
-            f'<div class="jl-map-dot" style="left:{left:.2f}%;top:{top:.2f}%"></div></div>'
-            f'<div class="jl-note">x: q{jm.i + 1} {jm.lo[0]:g} … {jm.hi[0]:g} {ri.unit}; y: q{jm.j + 1} '
-            f"{jm.lo[1]:g} … {jm.hi[1]:g} {rj.unit}. Colour: w from 0 (purple) to {fmt.number(jm.w_max)} "
-            f"(yellow); white ring: the arm now. Click the map to go there.</div></div>"
-        )
-
-    def remove(self) -> None:
-        self.root.remove()
-
-
-def _map_joint(option: str, names: list[str], value: Any) -> SetOption | None:
-    return SetOption(option, names.index(str(value))) if str(value) in names else None
-
-
-def slider_ids(sliders: Sequence[viser.GuiSliderHandle]) -> list[str]:
-    """DOM ids of the joint sliders (the map's click types into their number boxes)."""
-    return [handle_uuid(s) for s in sliders]

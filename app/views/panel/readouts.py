@@ -151,15 +151,29 @@ def _status_html(snap: Snapshot, state: LabState) -> str:
         f"<b>representation singular</b> ({a.convention.upper()}, "
         f"{'pitch ±90°' if a.convention == 'zyx' else 'θ = 0 or 180°'}): no J<sub>A</sub>; "
         f"J {r.status}, rank {snap.rank}"
+        + (f"; {a.regular_instead.upper()} is regular here" if a.regular_instead else "")
         if a is not None and a.singular
         else ""
     )
+    # Every line wraps; a configuration's description (up to 376 characters) keeps at most two lines
+    # (the rest in its tooltip), so the sliders stay in sight on a projector.
     lines = "".join(
-        f'<div class="jl-sub" title="{fmt.escape(_plain(x))}">{x}</div>'
-        for x in (representation, sub, lost)
+        f'<div class="jl-sub{extra}" title="{fmt.escape(_plain(x))}">{x}</div>'
+        for x, extra in ((representation, ""), (sub, " jl-desc" if not state.stopped else ""), (lost, ""))
         if x
     )
     return f'<div class="jl">{banner}{lines}</div>'
+
+
+FIRST_HINT = (
+    "<b>First:</b> drag a joint slider and watch J(q) change; then pick a singularity under Configuration."
+)
+"""What a new tab says to do first, in the 3-D view's lower corner, until its first change."""
+
+
+def hint_html(state: LabState) -> str:
+    """The first hint ("" once the tab has changed anything: gone for good)."""
+    return "" if state.started else f'<div class="jl jl-hint">{FIRST_HINT}</div>'
 
 
 def measures_html(snap: Snapshot, robot: Robot) -> str:

@@ -18,10 +18,15 @@ BASE_CSS = """
 <style>
 .jl { font-size: 14px; line-height: 1.35; color: #1f2328; }
 .jl-status { display: flex; align-items: center; gap: 0.5em; padding: 0.3em 0.6em; border-radius: 8px;
-  font-weight: 700; font-size: 18px; letter-spacing: 0.2px; margin-bottom: 10px; }
+  font-weight: 700; font-size: 18px; letter-spacing: 0.2px; margin-bottom: 7px; }
 .jl-status small { font-weight: 600; font-size: 14px; }
-.jl-sub { color: #3d434b; font-size: 13px; margin: -4px 0 6px 0; white-space: nowrap; overflow: hidden;
-  text-overflow: ellipsis; }
+.jl-sub { color: #3d434b; font-size: 13px; margin: -4px 0 6px 0; overflow-wrap: anywhere; }
+.jl-desc { display: -webkit-box; -webkit-line-clamp: 2; -webkit-box-orient: vertical; overflow: hidden;
+  line-height: 1.2; margin-bottom: 2px; }
+/* The first hint: one line over the 3-D view's lower edge (out of the panel's flow: no slider moves). */
+.jl-hint { position: fixed; left: 72px; bottom: 14px; max-width: min(640px, calc(100vw - 500px)); z-index: 20;
+  color: #1f3a93; background: #eef2ff; font-size: 15px; border: 1px solid #8ea2e6; border-radius: 8px;
+  padding: 4px 10px; box-shadow: 0 1px 6px rgba(0,0,0,.15); }
 .jl-table { border-collapse: collapse; width: 100%; }
 .jl-table td, .jl-table th { padding: 1px 4px; vertical-align: baseline; }
 .jl-table th { text-align: left; font-weight: 500; color: #3d434b; }
@@ -106,6 +111,8 @@ def slider_css(uuid: str, joint: int) -> str:
         f'[id="{uuid}"] .mantine-Slider-bar {{ background: {color} !important; }}\n'
         f'[id="{uuid}"] .mantine-Slider-thumb {{ background: {color} !important; }}\n'
         f'label[for="{uuid}"] {{ color: {text}; font-weight: 700; }}\n'
+        # The joint's one name and unit on one line ("q6 wrist swivel [°]"): a wider label box.
+        f'div:has(> .mantine-Text-root label[for="{uuid}"]) {{ width: 8.6em !important; }}\n'
     )
 
 

@@ -11,6 +11,9 @@ from ..typeset.printing import Notation
 from ..typeset.render import MATH_STYLE
 from .content import INTRO, TITLES, Handout
 from .parts import (
+    ASSEMBLED,
+    RESULT_TITLE,
+    contents_sentence,
     dh_cell,
     example_lines,
     example_math,
@@ -53,7 +56,17 @@ def render_html(h: Handout) -> str:
     N = handout_notation(h)
     out = [f"<h1>{xml_text(handout_title(h))}</h1>"]
     out += [f'<p class="sub">{xml_text(t, NOTE_CHARS)}</p>' for t in intro(h)]
-    out.append("<h2>1. The Denavit–Hartenberg table</h2>")
+    # The result first (what a reader looks for), the derivation after it.
+    out.append(f"<h2>{xml_text(RESULT_TITLE)}</h2>")
+    for s in h.result:
+        out += _html_steps([s], N)
+        if s.key == "J":
+            out.append(f"<p>{xml_text(jacobian_sentence(h))}</p>")
+        if s.key == "detJ" and s.singular:
+            out.append("<p>Singular configurations (a factor of the determinant vanishes):</p>")
+            out += [_mblock(t) for t in singular_texts(N, s, False)]
+    out.append(f'<p class="note">{xml_text(contents_sentence(h), NOTE_CHARS)}</p>')
+    out.append("<h2>2. The Denavit–Hartenberg table</h2>")
     if h.table:
         heads = "".join(f"<th><math>{lhs_mathml(c)}</math></th>" for c in DH_COLUMNS[h.table[0].convention])
         rows = []
@@ -76,28 +89,21 @@ def render_html(h: Handout) -> str:
             "URDF file.</p>"
         )
     sections = [
-        ("2. Link transforms", [s for s in h.transforms if not s.key.startswith("T0_")]),
-        ("3. The frames in the base: ⁰Tᵢ = A₁ A₂ ⋯ Aᵢ", [s for s in h.transforms if s.key.startswith("T0_")]),
+        ("3. Link transforms", [s for s in h.transforms if not s.key.startswith("T0_")]),
+        ("4. The frames in the base: ⁰Tᵢ = A₁ A₂ ⋯ Aᵢ", [s for s in h.transforms if s.key.startswith("T0_")]),
     ]
     for head, steps in sections:
         out.append(f"<h2>{xml_text(head)}</h2>")
         out += _html_steps(steps, N)
-    number = 4
+    number = 5
     for m in h.methods:
         # ᵀ as a superscript T: the bold serif of headings draws the modifier letter like an ˢ.
         title = xml_text(TITLES[m]).replace("ᵀ", "<sup>T</sup>")
         out.append(f"<h2>{number}. {title}</h2><p>{xml_text(INTRO[m])}</p>")
         out += _html_steps(h.method_steps[m], N)
+        out.append(f"<p>{xml_text(ASSEMBLED)}</p>")
         number += 1
-    out.append(f"<h2>{number}. The Jacobian and its singularities</h2>")
-    for s in h.result:
-        out += _html_steps([s], N)
-        if s.key == "J":
-            out.append(f"<p>{xml_text(jacobian_sentence(h))}</p>")
-        if s.key == "detJ" and s.singular:
-            out.append("<p>Singular configurations (a factor of the determinant vanishes):</p>")
-            out += [_mblock(t) for t in singular_texts(N, s, False)]
-    out.append(f"<h2>{number + 1}. Worked example</h2>")
+    out.append(f"<h2>{number}. Worked example</h2>")
     for line in example_lines(h.example, h.robot.joint_types):
         out.append(f"<p>{xml_text(line, NOTE_CHARS)}</p>")
     for cap, formula in example_math(h.example, h.robot.joint_types, False):

@@ -10,12 +10,16 @@ import sympy as sp
 from ..steps.step import Step, lhs_mathml, step_notation
 from ..typeset.printing import Notation
 from ..typeset.render import KIND_TEXT
-from .content import ROW_NAMES, Example, Handout, angle_parts, degrees_text
+from .content import ROW_NAMES, TITLES, Example, Handout, angle_parts, degrees_text
 
 __all__ = [
     "handout_title",
     "intro",
     "jacobian_sentence",
+    "contents",
+    "contents_sentence",
+    "RESULT_TITLE",
+    "ASSEMBLED",
     "example_lines",
     "example_math",
     "dh_cell",
@@ -62,12 +66,32 @@ def intro(h: Handout) -> list[str]:
 
 
 def jacobian_sentence(h: Handout) -> str:
+    """What the result section says of J: how the derivation that follows reaches it."""
     if len(h.methods) > 1:
         agree = (
             "give this same J (checked numerically at random configurations)" if h.same_J else "do NOT agree"
         )
-        return f"The {len(h.methods)} methods above {agree}."
-    return "Assembled from the steps above."
+        return f"The {len(h.methods)} methods derived below {agree}."
+    return "Derived step by step below."
+
+
+def contents(h: Handout) -> list[tuple[int, str]]:
+    """The handout's numbered sections after the result (§1): (number, title) of the derivation, then
+    the worked example."""
+    out = [(2, "The Denavit–Hartenberg table"), (3, "Link transforms"), (4, "The frames in the base")]
+    out += [(5 + k, TITLES[m]) for k, m in enumerate(h.methods)]
+    out.append((5 + len(h.methods), "Worked example"))
+    return out
+
+
+def contents_sentence(h: Handout) -> str:
+    """The line under the result: where the derivation is."""
+    parts = ", ".join(f"§{n} {title}" for n, title in contents(h))
+    return f"The derivation follows: {parts}."
+
+
+RESULT_TITLE = "1. The result: J(q) and det J"
+ASSEMBLED = "These steps give the J(q) of §1."
 
 
 def example_lines(ex: Example, robot_kinds: tuple[str, ...]) -> list[str]:
@@ -111,6 +135,22 @@ def _rates(v: np.ndarray, kinds: tuple[str, ...]) -> str:
     return ", ".join(_rate_text(x, k) for x, k in zip(v, kinds, strict=True))
 
 
+def _units(units: list[str], latex: bool) -> str:
+    """A column of units, set beside a column vector (one per row: a joint's rad/s or m/s)."""
+    if latex:
+        return r"\;\begin{matrix}" + r"\\".join(rf"\text{{{u}}}" for u in units) + r"\end{matrix}"
+    rows = "".join(f"<mtr><mtd><mtext>{u}</mtext></mtd></mtr>" for u in units)
+    return f'<mspace width="0.4em"/><mtable columnalign="left">{rows}</mtable>'
+
+
+def _joint_units(kinds: tuple[str, ...]) -> list[str]:
+    return ["rad/s" if k == "revolute" else "m/s" for k in kinds]
+
+
+def _row_units(rows: tuple[int, ...]) -> list[str]:
+    return ["m/s" if r < 3 else "rad/s" for r in rows]
+
+
 def example_math(ex: Example, kinds: tuple[str, ...], latex: bool) -> list[tuple[str, str]]:
     """(caption, formula) pairs of the worked example."""
     num = _num_latex if latex else _num_mathml
@@ -138,25 +178,26 @@ def example_math(ex: Example, kinds: tuple[str, ...], latex: bool) -> list[tuple
         out.append(("", f"{det_q}{eq}{_scalar(ex.det, latex)}"))
     else:
         out.append(("Manipulability √det(J Jᵀ):", f"{w_q}{eq}{_scalar(ex.det, latex)}"))
+    joint_units, row_units = _units(_joint_units(kinds), latex), _units(_row_units(ex.rows), latex)
     if ex.rates is not None and ex.velocity is not None:
         out.append(
             (
-                f"With the joint rates q̇ = ({_rates(ex.rates, kinds)}), in rad/s and m/s:",
-                f"{qd}{eq}{num(col(ex.rates), 4)}",
+                f"With the joint rates q̇ = ({_rates(ex.rates, kinds)}):",
+                f"{qd}{eq}{num(col(ex.rates), 4)}{joint_units}",
             )
         )
-        out.append(("the tool velocity (task rows) is", f"{Jqd}{eq}{num(col(ex.velocity), 3)}"))
+        out.append(("the tool velocity (task rows) is", f"{Jqd}{eq}{num(col(ex.velocity), 3)}{row_units}"))
     if ex.inverse is not None:
         out.append(("J is square and regular here; its inverse:", f"{J_inv}{eq}{num(ex.inverse, 4)}"))
     elif ex.square:
         out.append(("J is singular here (det J = 0): it has no inverse.", ""))
     if ex.twist is not None:
-        out.append(("For the tool velocity (task rows)", f"{v}{eq}{num(col(ex.twist), 3)}"))
+        out.append(("For the tool velocity (task rows)", f"{v}{eq}{num(col(ex.twist), 3)}{row_units}"))
         if ex.solved is not None:
             out.append(
                 (
                     f"the joints must move at q̇ = ({_rates(ex.solved, kinds)}):",
-                    f"{solved}{eq}{num(col(ex.solved), 4)}",
+                    f"{solved}{eq}{num(col(ex.solved), 4)}{joint_units}",
                 )
             )
     return out

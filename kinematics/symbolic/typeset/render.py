@@ -226,8 +226,9 @@ def jacobian_latex(
 
 
 _LEFT_MTD = '<mtd style="text-align: left">'
-PANEL_WIDTH = 56
-"""Width of the app's panel in characters (about 600 px): a wider J is shown column by column."""
+PANEL_WIDTH = 38
+"""Width of the app's panel text in characters (380 px of the 400 px panel): a wider J is shown column
+by column (the planar 3R's lettered J, 48 characters, was 455 px as one matrix)."""
 
 
 def _matrix_width(robot: Robot, frame: str, symbolic_params: bool, timeout: float | None) -> float:
