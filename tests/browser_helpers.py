@@ -141,5 +141,34 @@ def app_page(
         lab.stop()
 
 
+_CONTRAST_JS = r"""() => {
+  const parse = (c) => { const m = c.match(/rgba?\(([^)]+)\)/); if (!m) return null; const p = m[1].split(/[ ,\/]+/).filter(Boolean).map(Number); return [p[0], p[1], p[2], p.length > 3 ? p[3] : 1]; };
+  const lum = (c) => { const f = (v) => { v /= 255; return v <= 0.03928 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4); }; return 0.2126 * f(c[0]) + 0.7152 * f(c[1]) + 0.0722 * f(c[2]); };
+  const bgOf = (el) => { let layers = []; for (let e = el; e; e = e.parentElement) { const b = parse(getComputedStyle(e).backgroundColor); if (b && b[3] > 0) { layers.push(b); if (b[3] >= 1) break; } } let c = [255, 255, 255]; for (const l of layers.reverse()) c = [0,1,2].map(i => l[i] * l[3] + c[i] * (1 - l[3])); return c; };
+  const out = [];
+  const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+  for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+    const t = n.textContent.trim(); if (!t) continue;
+    const el = n.parentElement; const r = el.getBoundingClientRect();
+    if (r.width === 0 || r.height === 0 || r.bottom < 0 || r.top > innerHeight || r.right < 0 || r.left > innerWidth) continue;
+    const s = getComputedStyle(el); if (s.visibility === "hidden" || s.display === "none") continue;
+    let op = 1; for (let e = el; e; e = e.parentElement) op *= Number(getComputedStyle(e).opacity);
+    if (op < 0.05) continue;
+    const fg = parse(s.color); if (!fg) continue;
+    const bg = bgOf(el); const f = [0,1,2].map(i => fg[i] * fg[3] * op + bg[i] * (1 - fg[3] * op));
+    const L1 = lum(f), L2 = lum(bg); const ratio = (Math.max(L1, L2) + 0.05) / (Math.min(L1, L2) + 0.05);
+    out.push({t: t.slice(0, 30), ratio: Math.round(ratio * 100) / 100, size: s.fontSize, color: s.color, bg: bg.map(Math.round).join(","), tag: el.tagName, cls: (el.className || "").toString().slice(0, 40)});
+  }
+  return out;
+}"""
+
+
+def text_contrasts(page) -> list[dict[str, Any]]:
+    """Every visible text of the page in its viewport: ``t`` (its start), ``ratio`` (WCAG contrast of its
+    colour, with its own and its ancestors' opacity, over the backgrounds stacked behind it), ``size``
+    (its computed font size), ``color`` and ``bg``."""
+    return list(page.evaluate(_CONTRAST_JS))
+
+
 wait = poll
 """The name of :func:`fakes.poll` here before tests/fakes.py (for tests written before it)."""

@@ -12,7 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
-from browser_helpers import app_page, wait
+from browser_helpers import app_page, text_contrasts, wait
 
 from app.server import Lab
 from app.views.panel.layout import TOP_MAX
@@ -170,3 +170,19 @@ def test_the_enlarged_j_leaves_the_sliders_free(tmp_path):
         assert page.locator(".mantine-Modal-content .jl-big").count() > 0  # still open
         page.screenshot(path=str(_out(tmp_path) / "lecture_enlarged_1280x720.png"))
     assert not errors, errors
+
+
+@pytest.mark.parametrize("tab", ["J(q)", "v = J q̇", "Motion", "Maps", "Derive", "View", "Build"])
+def test_every_visible_text_reaches_4_5_to_1_on_screen(tmp_path, tab):
+    """Issue 21, item 9, as the projector shows it: the computed colour of every visible text, with the
+    opacity of its element and ancestors, over the backgrounds stacked behind it (viser fades an
+    unselected tab to 0.65: its 11:1 colour read 4.04:1 on screen)."""
+    out = _out(tmp_path)
+    lab = Lab(port=0)
+    with app_page(lab) as (page, session, errors):
+        page.locator(f'[role=tab][title="{tab}"]').first.click(timeout=120_000)
+        wait(lambda: page.locator(f'[role=tab][title="{tab}"][aria-selected="true"]').count() > 0)
+        texts = wait(lambda: [t for t in text_contrasts(page) if t["t"]] or None)
+        page.screenshot(path=str(out / f"contrast_{re.sub(r'[^A-Za-z]', '', tab) or 'J'}.png"))
+        low = [t for t in texts if t["ratio"] < 4.5]
+        assert len(texts) > 30 and not low, low

@@ -38,6 +38,7 @@ TEXT_COLOURS = {
     "scroll cue": ("#1f2328", "#ffffff"),
     "folder title": ("#1f2328", "#ffffff"),
     "readout head": ("#1f2328", "#f1f3f5"),
+    "outlined button": ("#1c3c9c", "#ffffff"),
     "slowed": ("#8a3b00", "#f1f3f5"),
 }
 """(text, background) of what the page shows: field labels (joint sliders' labels have their joint's
@@ -62,9 +63,11 @@ LAYOUT_CSS = f"""
 label, .mantine-InputWrapper-label {{ color: {_C["label"]}; }}
 .mantine-InputWrapper-description, .mantine-Slider-markLabel {{ color: {_C["hint and description"]}; }}
 [data-dock-tab][role="tab"] {{ color: {_C["tab"]} !important; padding: 0 0.5em !important;
-  height: 2.2em !important; }}
+  height: 2.2em !important; opacity: 1 !important; }}  /* viser fades unselected tabs to 0.65: 4.04:1 */
 [data-dock-tab][role="tab"][aria-selected="true"] {{ color: {_C["selected tab"]} !important; font-weight: 700;
   box-shadow: inset 0 -3px 0 0 {_C["selected tab"]} !important; }}
+.mantine-Button-root[data-variant="outline"] {{ color: {_C["outlined button"]} !important;
+  border-color: {_C["outlined button"]} !important; }}  /* Play, Pause, …: Mantine's #617be2 is 3.86:1 */
 [data-dock-tab][role="tab"] > div:first-child {{ margin-right: 0.3em !important; }}
 .mantine-Paper-root legend, .mantine-Paper-root .mantine-Text-root {{ color: {_C["folder title"]}; }}
 .jl-matrix sub, .jl-vec sub {{ font-size: 0.9em; }}
