@@ -9,7 +9,8 @@ cheap, predictable steps do what a person does by hand:
    (a Gröbner basis, so the remainder is canonical: an expression is
    identically zero exactly when its normal form is 0, see :func:`is_zero`);
 2. :func:`collapse`: sums of angles collapsed, c₂c₃ − s₂s₃ → c₂₃ (SymPy's
-   ``fu`` rule TR10i, keeping only collapses into sums of joint angles);
+   ``fu`` rule TR10i, with an index of the pairs that can combine (:mod:`.tr10i`),
+   keeping only collapses into sums of joint angles);
 3. :func:`nest`: common factors pulled out, greedily, outermost joints first.
 
 :mod:`.simplify` runs them entry by entry within a :class:`Deadline`.
@@ -23,7 +24,8 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import sympy as sp
-from sympy.simplify.fu import TR10i
+
+from .tr10i import tr10i
 
 __all__ = [
     "Deadline",
@@ -139,7 +141,7 @@ def collapse(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
 
     Collapses that would introduce a phase (s₁ + c₁ → √2 sin(q₁ + π/4)) are undone.
     """
-    out = TR10i(expr)
+    out = tr10i(expr)
     bad = {
         f: sp.expand_trig(f)
         for f in out.atoms(sp.sin, sp.cos)
