@@ -2,7 +2,9 @@
 
 :func:`kinematics.symbolic.tr10i.tr10i` (TR10i with an index of the pairs that can combine) must
 return the very expression ``sympy.simplify.fu.TR10i`` returns, on real Jacobian entries and on
-sums built to hit every branch of TR10i (phases √2, √3 ratios, constant angles, common factors).
+sums built to hit every branch of TR10i (phases √2, √3 ratios, constant angles, common factors);
+:func:`kinematics.symbolic.trig.normal_form` (polynomial rings over ℚ) the very expression of
+:func:`kinematics.symbolic.trig.normal_form_sympy` (SymPy's ``expand`` and ``reduced``).
 """
 
 from __future__ import annotations
@@ -14,9 +16,10 @@ import sympy as sp
 
 import robots
 from kinematics.symbolic import build_model, jacobian_whitney
+from kinematics.symbolic.chain import frames
 from kinematics.symbolic.simplify import COLLAPSE_MAX
 from kinematics.symbolic.tr10i import pair_keys, tr10i
-from kinematics.symbolic.trig import AngleShift, normal_form
+from kinematics.symbolic.trig import AngleShift, normal_form, normal_form_sympy
 
 fu = importlib.import_module("sympy.simplify.fu")
 q1, q2, q3, q4 = sp.symbols("q1:5", real=True)
@@ -59,3 +62,32 @@ def test_pair_keys_meet_exactly_for_pairs_that_may_combine():
     assert pair_keys(a * c1 * c2).isdisjoint(pair_keys(b * s1 * s2))  # a ≠ b: no common factor left
     assert pair_keys(a * c1 * c2).isdisjoint(pair_keys(a**2 * s1 * s2))
     assert pair_keys(c1 / c2) is None  # anything unusual may pair with anything
+
+
+# ------------------------------------------------------------------ normal form on polynomial rings
+NF_CASES = [
+    sp.sin(q1) ** 2 + sp.cos(q1) ** 2,
+    (a * c1 + b * sp.cos(q1 + q2)) * (s1 - sp.sqrt(2) * s2) ** 2,
+    (sp.sqrt(6) - sp.sqrt(2)) / 4 * s1 * sp.sqrt(3) + sp.sqrt(2) * sp.sqrt(3) * c2,
+    sp.cos(sp.Rational(3, 10)) ** 2 * s3 + sp.sin(sp.Rational(3, 10)) ** 2 * s3 - s3,
+    sp.sin(q1 + sp.pi / 12) * sp.cos(q2 - q3) * q4**2,
+    sp.Float(0.5) * s1**2,  # not over ℚ: the reference path
+    c1 / a + s1**3,  # not a polynomial: the reference path
+]
+
+
+@pytest.mark.parametrize("expr", NF_CASES, ids=range(len(NF_CASES)))
+def test_normal_form_is_the_reference_normal_form(expr):
+    q = (q1, q2, q3, q4)
+    assert normal_form(expr, q) == normal_form_sympy(expr, q)
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "ur5", "elbow3r", "scara"])
+@pytest.mark.parametrize("params", [False, True])
+def test_normal_form_is_the_reference_on_jacobian_and_fk_entries(name, params):
+    robot = robots.load(name)
+    model = build_model(robot, params)
+    shift = AngleShift(model.q, model.angle_offsets())
+    for entry in [*jacobian_whitney(robot, "base", params), *frames(model).tool]:
+        e = shift.apply(entry)
+        assert normal_form(e, shift.vars) == normal_form_sympy(e, shift.vars)
