@@ -5,8 +5,9 @@ thousands of pairs for a 7-joint arm's entry): on a Panda it was more than half 
 symbolic Jacobian. :func:`tr10i` is the same algorithm, in the same order, taking the same first
 pair that works, so its result is identical; it only skips the pairs that ``trig_split`` would
 reject anyway. Two terms ``a``, ``b`` combine only if, after their common factors are divided
-out, each keeps one or two sines/cosines (times numbers and square roots): so both share the
-key "the term without one or two of its sines/cosines, numbers and square roots". Every term is
+out, each keeps one sine/cosine of the same angle (times numbers and square roots), or two of
+the same two angles (``trig_split``): so both share the key "the term without one (two) of its
+sines/cosines, numbers and square roots, and the angle(s) of what was left out". Every term is
 indexed by all those keys; a pair is tried only if the two terms share one.
 """
 
@@ -48,7 +49,8 @@ def pair_keys(term: sp.Expr) -> frozenset[Any] | None:
     for size in (1, 2):
         for drop in combinations(range(len(trig)), size):
             left = units - Counter(trig[k] for k in drop)
-            keys.add((fixed, frozenset(left.items())))
+            angles = frozenset(trig[k].args[0] for k in drop)
+            keys.add((fixed, frozenset(left.items()), size, angles))
     return frozenset(keys)
 
 

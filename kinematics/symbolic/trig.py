@@ -115,42 +115,36 @@ def normal_form(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
     """
     if not _single_angle(expr, q):
         expr = sp.expand_trig(expr)
-    fwd, ss, cs = {}, [], []
-    for a in trig_angles(expr, q):
-        s, c = sp.Dummy(f"s{a}"), sp.Dummy(f"c{a}")
-        fwd[sp.sin(a)], fwd[sp.cos(a)] = s, c
-        ss.append(s)
-        cs.append(c)
-    poly = expr.xreplace(fwd)
+    angles = trig_angles(expr, q)
     roots = sorted(
-        {p for p in poly.atoms(sp.Pow) if p.exp is sp.S.Half and p.base.is_Integer and p.base > 1},
+        {p for p in expr.atoms(sp.Pow) if p.exp is sp.S.Half and p.base.is_Integer and p.base > 1},
         key=sp.default_sort_key,
     )
-    rs = [sp.Dummy(f"r{p.base}") for p in roots]
-    poly = poly.xreplace(dict(zip(roots, rs, strict=True)))
-    others = sorted(poly.free_symbols - {*ss, *cs, *rs}, key=sp.default_sort_key)
-    ring = PolyRing([*ss, *cs, *others, *rs], QQ, lex)  # lex, sᵢ first: sᵢ² leads sᵢ² + cᵢ² − 1
+    others = sorted(expr.free_symbols, key=sp.default_sort_key)
+    # lex with every sᵢ first: sᵢ² leads sᵢ² + cᵢ² − 1
+    atoms = [*(sp.sin(a) for a in angles), *(sp.cos(a) for a in angles), *others, *roots]
+    ring = PolyRing([sp.Dummy() for _ in atoms], QQ, lex)
     try:
-        p = _ring_element(poly, ring)
+        p = _ring_element(expr, dict(zip(atoms, ring.gens, strict=True)), ring)
     except _NotPolynomial:
         return normal_form_sympy(expr, q)
-    g = dict(zip(ring.symbols, ring.gens, strict=True))
-    divisors = [g[s] ** 2 + g[c] ** 2 - 1 for s, c in zip(ss, cs, strict=True)]
-    divisors += [g[r] ** 2 - int(root.base) for r, root in zip(rs, roots, strict=True)]
+    n, k = len(angles), len(atoms) - len(roots)
+    g = ring.gens
+    divisors = [g[i] ** 2 + g[n + i] ** 2 - 1 for i in range(n)]
+    divisors += [g[k + i] ** 2 - int(root.base) for i, root in enumerate(roots)]
     if divisors:
         p = p.rem(divisors)
-    back = {v: k for k, v in fwd.items()} | dict(zip(rs, roots, strict=True))
-    return sp.expand(p.as_expr().xreplace(back))
+    return sp.expand(p.as_expr(*atoms))
 
 
 class _NotPolynomial(Exception):
     pass
 
 
-def _ring_element(expr: sp.Expr, ring: Any) -> Any:
-    """``expr`` as an element of ``ring`` (shared subexpressions built once); raises
-    :class:`_NotPolynomial` for anything but sums, products, powers ≥ 2, rationals and generators."""
-    gens = dict(zip(ring.symbols, ring.gens, strict=True))
+def _ring_element(expr: sp.Expr, gens: dict[sp.Expr, Any], ring: Any) -> Any:
+    """``expr`` as an element of ``ring``, ``gens`` the expressions that are its generators (shared
+    subexpressions built once); raises :class:`_NotPolynomial` for anything but sums, products,
+    powers ≥ 2, rationals and generators."""
     memo: dict[sp.Expr, Any] = {}
 
     def build(e: sp.Expr) -> Any:

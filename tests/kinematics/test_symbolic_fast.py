@@ -38,6 +38,9 @@ HANDMADE = [
     sp.expand((a * c1 + b * s2 + c3) * (c1 * c2 - s1 * s2 + s3 * c1)),
     sp.sqrt(q4) * c1 * c2 - s1 * s2,
     c1 / c2 - s1 * s2 / c2**2,
+    a * c1 * s1 + a * c1 * c2 - a * s1 * s2 + c1 * s1 * c2,
+    c1 * s1 + s2 * c2 + c1 * c2 * s1 * s2 - sp.sqrt(3) * c1 * s1,
+    sp.sqrt(2) * c1 * c2 - sp.sqrt(2) * s1 * s2 + sp.sqrt(2) * c3 + sp.sqrt(2) * s3,
 ]
 
 
