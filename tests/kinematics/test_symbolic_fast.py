@@ -11,10 +11,14 @@ from __future__ import annotations
 
 import importlib
 
+import numpy as np
 import pytest
 import sympy as sp
+from fakes import random_configurations
 
+import kinematics
 import robots
+from kinematics import symbolic
 from kinematics.symbolic import build_model, jacobian_whitney
 from kinematics.symbolic.chain import frames
 from kinematics.symbolic.simplify import COLLAPSE_MAX
@@ -94,3 +98,36 @@ def test_normal_form_is_the_reference_on_jacobian_and_fk_entries(name, params):
     for entry in [*jacobian_whitney(robot, "base", params), *frames(model).tool]:
         e = shift.apply(entry)
         assert normal_form(e, shift.vars) == normal_form_sympy(e, shift.vars)
+
+
+# ------------------------------------------------------------------ whole derivations
+def _sympy_steps(monkeypatch):
+    """The simplification as it was: SymPy's expand + reduced and SymPy's TR10i."""
+    from kinematics.symbolic import analytic, det, simplify, trig
+
+    for module in (trig, simplify, det, analytic):
+        monkeypatch.setattr(module, "normal_form", trig.normal_form_sympy)
+    monkeypatch.setattr(trig, "tr10i", fu.TR10i)
+
+
+@pytest.mark.parametrize("name", ["planar2", "planar3", "trr", "elbow3r", "wrist", "scara", "stanford"])
+@pytest.mark.parametrize("params", [False, True])
+def test_derivation_is_the_one_of_sympys_steps(name, params, monkeypatch):
+    robot = robots.load(name)
+    ours = symbolic.derive(robot, symbolic_params=params, use_cache=False, timeout=None)
+    _sympy_steps(monkeypatch)
+    theirs = symbolic.derive(robot, symbolic_params=params, use_cache=False, timeout=None)
+    assert ours.J == theirs.J and ours.T == theirs.T and ours.notes == theirs.notes
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", [n for n in robots.names() if robots.load(n).dof <= 7])
+def test_derived_jacobian_is_the_numeric_one_to_1e_12(name):
+    robot = robots.load(name)
+    d = symbolic.derive(robot, use_cache=False, timeout=None)
+    assert d.complete
+    model = build_model(robot, False)
+    J, T = symbolic.numeric_function(d.J, model), symbolic.numeric_function(d.T, model)
+    for q in random_configurations(robot, 10, seed=7):
+        np.testing.assert_allclose(J(q), kinematics.jacobian(robot, q), atol=1e-12, rtol=0)
+        np.testing.assert_allclose(T(q), kinematics.fk(robot, q), atol=1e-12, rtol=0)
