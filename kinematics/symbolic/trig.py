@@ -7,7 +7,8 @@ cheap, predictable steps do what a person does by hand:
 
 1. :func:`normal_form`: expand into cᵢ, sᵢ and reduce modulo sᵢ² + cᵢ² − 1
    (a Gröbner basis, so the remainder is canonical: an expression is
-   identically zero exactly when its normal form is 0, see :func:`is_zero`);
+   identically zero exactly when its normal form is 0, see :func:`is_zero`),
+   on SymPy's sparse polynomials over ℚ rather than on expressions;
 2. :func:`collapse`: sums of angles collapsed, c₂c₃ − s₂s₃ → c₂₃ (SymPy's
    ``fu`` rule TR10i, with an index of the pairs that can combine (:mod:`.tr10i`),
    keeping only collapses into sums of joint angles);
