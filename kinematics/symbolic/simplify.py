@@ -34,11 +34,13 @@ NEGLIGIBLE = 1e-12
 """Terms smaller than this fraction of the largest term of their entry are dropped."""
 
 COLLAPSE_MAX = 64
-"""Entries with more terms than this (in normal form) are not collapsed: SymPy's TR10i is
-quadratic in the terms (120 terms: 18 s on a 2-core machine) and finds little in such sums."""
+"""Entries with more terms than this (in normal form) are not collapsed: TR10i is quadratic in the
+terms (SymPy's own: 120 terms, 18 s on a 2-core machine) and finds little in such sums."""
 
-COLLAPSE_COST = 1.5e-3
-"""Expected seconds of collapsing per squared term (measured: 60 terms, 4.7 s)."""
+COLLAPSE_COST = 3e-4
+"""Expected seconds of collapsing per squared term: the largest measured with :mod:`.tr10i` on the
+entries of 20–64 terms of the Panda, iiwa14, Centauro and xArm7 (2.5e-4; typically 3e-5; SymPy's
+own TR10i: 1.5e-3)."""
 
 
 def _magnitude(term: sp.Expr, q: Sequence[sp.Symbol], values: dict[sp.Symbol, float]) -> float:

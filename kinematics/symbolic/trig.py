@@ -7,9 +7,11 @@ cheap, predictable steps do what a person does by hand:
 
 1. :func:`normal_form`: expand into cᵢ, sᵢ and reduce modulo sᵢ² + cᵢ² − 1
    (a Gröbner basis, so the remainder is canonical: an expression is
-   identically zero exactly when its normal form is 0, see :func:`is_zero`);
+   identically zero exactly when its normal form is 0, see :func:`is_zero`),
+   on SymPy's sparse polynomials over ℚ rather than on expressions;
 2. :func:`collapse`: sums of angles collapsed, c₂c₃ − s₂s₃ → c₂₃ (SymPy's
-   ``fu`` rule TR10i, keeping only collapses into sums of joint angles);
+   ``fu`` rule TR10i, with an index of the pairs that can combine (:mod:`.tr10i`),
+   keeping only collapses into sums of joint angles);
 3. :func:`nest`: common factors pulled out, greedily, outermost joints first.
 
 :mod:`.simplify` runs them entry by entry within a :class:`Deadline`.
@@ -23,11 +25,16 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import sympy as sp
-from sympy.simplify.fu import TR10i
+from sympy.polys.domains import QQ
+from sympy.polys.orderings import lex
+from sympy.polys.rings import PolyRing
+
+from .tr10i import tr10i
 
 __all__ = [
     "Deadline",
     "normal_form",
+    "normal_form_sympy",
     "is_zero",
     "collapse",
     "nest",
@@ -98,10 +105,77 @@ def normal_form(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
     most one in each (cᵢ, sᵢ) pair. Sines and cosines of constant angles (a
     link twist that is not a multiple of π/2) are reduced the same way.
 
+    Computed with SymPy's sparse polynomials over ℚ (sᵢ, cᵢ, the other symbols and the square
+    roots of integers as generators, reduced modulo sᵢ² + cᵢ² − 1 and r² − n), never expanding
+    the expression itself: the same result as :func:`normal_form_sympy` (tested), 4–5× faster.
+    Expressions that are not polynomials in those generators take :func:`normal_form_sympy`.
+
     Args:
         expr: A polynomial in sines and cosines of sums of joint angles.
         q: The joint symbols.
     """
+    if not _single_angle(expr, q):
+        expr = sp.expand_trig(expr)
+    angles = trig_angles(expr, q)
+    roots = sorted(
+        {p for p in expr.atoms(sp.Pow) if p.exp is sp.S.Half and p.base.is_Integer and p.base > 1},
+        key=sp.default_sort_key,
+    )
+    others = sorted(expr.free_symbols, key=sp.default_sort_key)
+    # lex with every sᵢ first: sᵢ² leads sᵢ² + cᵢ² − 1
+    atoms = [*(sp.sin(a) for a in angles), *(sp.cos(a) for a in angles), *others, *roots]
+    ring = PolyRing([sp.Dummy() for _ in atoms], QQ, lex)
+    try:
+        p = _ring_element(expr, dict(zip(atoms, ring.gens, strict=True)), ring)
+    except _NotPolynomial:
+        return normal_form_sympy(expr, q)
+    n, k = len(angles), len(atoms) - len(roots)
+    g = ring.gens
+    divisors = [g[i] ** 2 + g[n + i] ** 2 - 1 for i in range(n)]
+    divisors += [g[k + i] ** 2 - int(root.base) for i, root in enumerate(roots)]
+    if divisors:
+        p = p.rem(divisors)
+    return sp.expand(p.as_expr(*atoms))
+
+
+class _NotPolynomial(Exception):
+    pass
+
+
+def _ring_element(expr: sp.Expr, gens: dict[sp.Expr, Any], ring: Any) -> Any:
+    """``expr`` as an element of ``ring``, ``gens`` the expressions that are its generators (shared
+    subexpressions built once); raises :class:`_NotPolynomial` for anything but sums, products,
+    powers ≥ 2, rationals and generators."""
+    memo: dict[sp.Expr, Any] = {}
+
+    def build(e: sp.Expr) -> Any:
+        out = memo.get(e)
+        if out is not None:
+            return out
+        if e in gens:
+            out = gens[e]
+        elif e.is_Add:
+            out = ring.zero
+            for t in e.args:
+                out = out + build(t)
+        elif e.is_Mul:
+            out = ring.one
+            for t in e.args:
+                out = out * build(t)
+        elif e.is_Pow and e.exp.is_Integer and e.exp > 1:
+            out = build(e.base) ** int(e.exp)
+        elif e.is_Rational:
+            out = ring(QQ.convert(e))
+        else:
+            raise _NotPolynomial(e)
+        memo[e] = out
+        return out
+
+    return build(expr)
+
+
+def normal_form_sympy(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
+    """:func:`normal_form` with SymPy's ``expand`` and ``reduced`` on expressions (the reference)."""
     if not _single_angle(expr, q):
         expr = sp.expand_trig(expr)
     expr = sp.expand(expr)
@@ -139,7 +213,7 @@ def collapse(expr: sp.Expr, q: Sequence[sp.Symbol]) -> sp.Expr:
 
     Collapses that would introduce a phase (s₁ + c₁ → √2 sin(q₁ + π/4)) are undone.
     """
-    out = TR10i(expr)
+    out = tr10i(expr)
     bad = {
         f: sp.expand_trig(f)
         for f in out.atoms(sp.sin, sp.cos)
