@@ -78,6 +78,8 @@ class PageLink:
             return
         if report.tab:
             self.tab = report.tab
+        elif report.kind == "load":
+            self.tab = TAB_LABELS[0]  # a page opens on the first tab unless its address names one
         if report.kind == "tab":
             if self.following is not None:
                 self.following.tab_opened(report.tab)

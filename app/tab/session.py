@@ -202,7 +202,10 @@ class ClientSession:
         elif isinstance(message, ResetView):
             self.camera.reset(self.screen.scene, batch.state)
         elif isinstance(message, PageReport):
+            shown = self.page.tab
             self.page.take(message.text)
+            if self.page.tab != shown:
+                batch.force = True  # the tab opened is drawn with the state on screen
         else:
             result = self.commands.run(batch.state, message)
             if isinstance(result, Redraw):
@@ -222,6 +225,7 @@ class ClientSession:
         if state.robot_name == BUILT_NAME and not following:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
         self.symbols.update(state, None if rebuild else old)  # what it shows is drawn below
+        self.screen.panel.open_tab = self.page.tab  # only the open tab's readouts are filled
         self._drawing.active = True
         try:
             self.screen.draw(state, snap, rebuild, scene, self.role, self.recorder.recording, self.symbols)
