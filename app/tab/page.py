@@ -22,6 +22,7 @@ from ..core.actions import SetConfiguration
 from ..core.commands import ChooseRobot, Message
 from ..core.page_state import PageError, PageReport, checked_q, page_address, parse_report
 from ..core.state import LabState
+from ..services.later import Call, later
 from ..views.panel import TAB_LABELS
 from ..viser_adapter import run_javascript
 
@@ -64,7 +65,7 @@ class PageLink:
         self._wanted = ""
         self._written_at = 0.0
         self._loaded = False  # the address is written only once the page has told its own
-        self._timer: threading.Timer | None = None
+        self._timer: Call | None = None
         self._lock = threading.Lock()
         self._beat()
 
@@ -129,9 +130,7 @@ class PageLink:
                 return
             wait = self._written_at + ADDRESS_EVERY - time.monotonic()
             if wait > 0:
-                self._timer = threading.Timer(wait, self._write)
-                self._timer.daemon = True
-                self._timer.start()
+                self._timer = later(wait, self._write)
                 return
         self._write()
 
@@ -154,9 +153,7 @@ class PageLink:
         if self._closed():
             return
         self._run("window.__jacobianLabBeat = Date.now();")
-        timer = threading.Timer(BEAT_EVERY, self._beat)
-        timer.daemon = True
-        timer.start()
+        later(BEAT_EVERY, self._beat)
 
     def _run(self, source: str) -> None:
         if self._closed():
