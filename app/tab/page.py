@@ -5,7 +5,9 @@ key, the open tab followed, and a heartbeat so that a lost connection is said in
 (re)connection it gives a presenter its role back (:meth:`app.services.classroom.Classroom.resume`)
 or restores the address's robot and q; later it relays the tab the user opened when the tab
 presents. :meth:`PageLink.update` writes the robot and q into the address after a commit (at most
-every :data:`ADDRESS_EVERY` seconds, the last one always). The page script is
+every :data:`ADDRESS_EVERY` seconds, the last one always): while commits keep coming the write rides
+in a commit's own frame; the last one is written :data:`TRAILING` s after it is due if no commit
+wrote it by then. The page script is
 :mod:`app.views.panel.page`.
 """
 
@@ -30,6 +32,9 @@ __all__ = ["PageLink", "ADDRESS_EVERY", "BEAT_EVERY"]
 
 ADDRESS_EVERY = 0.4
 """The page's address is rewritten at most this often [s] (a dragged slider commits 30 times a second)."""
+TRAILING = 0.25
+"""A wanted address no commit has written is written this long [s] after it became due (a slider
+moved every 200 ms writes it from its commits, in the frame the redraw is sent in anyway)."""
 BEAT_EVERY = 2.0
 """The server tells the page it is there this often [s]; the page says "connection lost" after 7 s."""
 
@@ -126,16 +131,31 @@ class PageLink:
         address = page_address(state.robot_name, list(state.q))
         with self._lock:
             self._wanted = address
-            if address == self.address or self._timer is not None or not self._loaded:
+            if address == self.address or not self._loaded:
                 return
             wait = self._written_at + ADDRESS_EVERY - time.monotonic()
             if wait > 0:
-                self._timer = later(wait, self._write)
+                if self._timer is None:
+                    self._timer = later(wait + TRAILING, self._trailing)
+                return
+        self._write()
+
+    def _trailing(self) -> None:
+        """Write the wanted address unless a commit did; if one is still too recent, wait again."""
+        with self._lock:
+            self._timer = None
+            if self._wanted == self.address:
+                return
+            wait = self._written_at + ADDRESS_EVERY - time.monotonic()
+            if wait > 0:
+                self._timer = later(wait + TRAILING, self._trailing)
                 return
         self._write()
 
     def _write(self) -> None:
         with self._lock:
+            if self._timer is not None:
+                self._timer.cancel()
             self._timer = None
             address, self.address, self._written_at = self._wanted, self._wanted, time.monotonic()
         self._run(f"window.__jacobianLabPage && window.__jacobianLabPage.address({json.dumps(address)});")

@@ -226,11 +226,14 @@ class ClientSession:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
         self.symbols.update(state, None if rebuild else old)  # what it shows is drawn below
         self.screen.panel.open_tab = self.page.tab  # only the open tab's readouts are filled
-        self._drawing.active = True
-        try:
-            self.screen.draw(state, snap, rebuild, scene, self.role, self.recorder.recording, self.symbols)
-        finally:
-            self._drawing.active = False
+        with self.client.atomic():  # the page's address, when due, rides in the redraw's frame
+            self._drawing.active = True
+            try:
+                recording = self.recorder.recording
+                self.screen.draw(state, snap, rebuild, scene, self.role, recording, self.symbols)
+            finally:
+                self._drawing.active = False
+            self.page.update(state)  # a reload or a server restart comes back to this robot and q
         self.state, self.snapshot = state, snap
         self.redraws += 1
         self.pace.redrawn()
@@ -240,7 +243,6 @@ class ClientSession:
             self.ticker.stop()
         if not following:  # a follower's camera is the presenter's
             self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap)
-        self.page.update(state)  # a reload or a server restart comes back to this robot and q
         self.subscribers.tell(state, snap)
 
     def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]:

@@ -98,6 +98,10 @@ def test_a_reload_restores_the_robot_and_q_of_the_address():
         tab.settle()
         wait_until(lambda: tab.page.address == page_address("ur5", [0.25, *q[1:]]))
         assert checked_q(ur5, tuple(q)) == pytest.approx(tuple(q))
+        for k in range(12):  # a burst of changes, faster than the address is written: the last one is
+            tab.dispatch(SetJoint(0, 0.3 + 0.01 * k))
+            tab.settle()
+        wait_until(lambda: tab.page.address == page_address("ur5", [0.41, *q[1:]]))
 
 
 @pytest.mark.parametrize(
