@@ -5,9 +5,11 @@ every run, then connects N tabs from this process over viser's websocket protoco
 as a browser does: a camera message first, then its joint sliders and its first drawing. After
 ``--warmup`` seconds of unmeasured exploring, every tab moves its ``q2`` slider every ~200 ms (±50 ms)
 for ``--seconds``. A sample is the time from sending a change to the first frame after it that carries
-that tab's scene-node messages. Also printed: changes left unanswered, the CPU of the server's whole
-process tree (``bench/common.py``) and of this client, with the load average. ``--hostile`` adds a tab
-flooding slider changes; ``--limits`` installs :func:`app.viser_adapter.install_message_limits` first.
+that tab's scene-node messages. Each tab reports its page loaded as the page script of a browser
+does (no robot, q or tab in its address: it shows the first tab). Also printed: changes left
+unanswered, the CPU of the server's whole process tree (``bench/common.py``) and of this client,
+with the load average. ``--hostile`` adds a tab flooding slider changes; ``--limits`` installs
+:func:`app.viser_adapter.install_message_limits` first.
 
 Usage::
 
@@ -91,6 +93,9 @@ CAMERA = encode(
     )
 )
 UPDATE = message_class("GuiUpdateMessage")
+PAGE_LOADED = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
+"""What a browser's page reports once connected (app/views/panel/page.py): no robot, q or tab in its
+address, so it shows the first tab."""
 
 
 @dataclass
@@ -99,6 +104,7 @@ class Tab:
 
     ws: object = None
     slider: str | None = None
+    report: str | None = None  # the panel's hidden input the page script reports through
     drawn: asyncio.Event = field(default_factory=asyncio.Event)
     pending: list[float] = field(default_factory=list)
     samples: list[float] = field(default_factory=list)
@@ -129,6 +135,9 @@ class Tab:
                 for m in msgs:
                     if m["type"] == "GuiSliderMessage" and m["props"]["label"].startswith("q2 "):
                         self.slider = m["uuid"]
+                    if m["type"] == "GuiTextMessage" and m["props"]["label"] == "page" and not self.report:
+                        self.report = m["uuid"]  # as a browser's page script: say the page loaded
+                        await self.ws.send(encode(UPDATE(self.report, {"value": PAGE_LOADED})))
                     scene = scene or str(m.get("name", "")).startswith("/")
                     if not self.symbolic_at and "<math" in str(m.get("updates", {}).get("content", "")):
                         self.symbolic_at = now

@@ -8,7 +8,8 @@ websocket protocol, no rendering), then moves the presenter's q2 slider every ``
 sample is the time from sending the presenter's new value to one follower receiving the frame that
 carries its redrawn arm (the batched update of ``/lab/arm/cylinders``): N samples per move. Also printed:
 how the followers spread over the workers, the CPU of the server's whole process tree per presenter
-move (``bench/common.py``), this client's CPU and the load average before and after.
+move (``bench/common.py``), this client's CPU and the load average before and after. Every tab reports
+its page loaded, as a browser's page script does (it shows the first tab).
 
 Usage::
 
@@ -69,6 +70,10 @@ def start_server(robot: str, workers: int | None, log: Path) -> tuple[subprocess
     raise RuntimeError("the server did not start")
 
 
+PAGE_LOADED = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
+"""What a browser's page reports once connected (app/views/panel/page.py): it shows the first tab."""
+
+
 def gui(ws: ViserWsClient, kind: str, label_start: str) -> str:
     _, msg = ws.wait_for(
         lambda m: m["type"] == kind and str(m["props"].get("label", "")).startswith(label_start), timeout=60
@@ -95,6 +100,7 @@ def run(robot: str, followers: int, moves: int, period: float, workers: int | No
         presenter.start()
         clients.append(presenter)
         slider = gui(presenter, "GuiSliderMessage", "q2 ")
+        presenter.set_value(gui(presenter, "GuiTextMessage", "page"), PAGE_LOADED)
         presenter.set_value(gui(presenter, "GuiTextMessage", "Presenter token"), TOKEN)
         presenter.wait_for(
             lambda m: m["type"] == "GuiUpdateMessage" and "You are presenting" in str(m.get("updates")),
@@ -104,6 +110,7 @@ def run(robot: str, followers: int, moves: int, period: float, workers: int | No
         for _ in range(followers):
             c = ViserWsClient(url)
             c.start(timeout=60)
+            c.set_value(gui(c, "GuiTextMessage", "page"), PAGE_LOADED)  # as its page script does
             clients.append(c)
             room.append(c)
         for c in room:  # each follower has drawn the presenter's arm once

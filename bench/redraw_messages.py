@@ -1,8 +1,9 @@
 """What one slider change sends to its tab: every message, its node or GUI element, and its size.
 
 Starts a :class:`app.server.Lab` with one headless websocket client, moves the ``q2`` slider a few
-times, and lists the messages that followed the last change (msgpack size, binary buffers counted),
-e.g.::
+times, and lists the messages that followed the last change (msgpack size, binary buffers counted).
+The client reports its page loaded, as a browser's page script does (so only the open tab's readouts
+are drawn; ``--no-report``: every tab's), e.g.::
 
     PYTHONPATH=. python bench/redraw_messages.py --robot panda --port 8711
 """
@@ -36,12 +37,18 @@ def main() -> int:
     parser.add_argument("--robot", default="panda")
     parser.add_argument("--port", type=int, default=0)
     parser.add_argument("--changes", type=int, default=5)
+    parser.add_argument(
+        "--no-report", action="store_true", help="send no page report (not a browser: every tab is drawn)"
+    )
     args = parser.parse_args()
     lab = Lab(robot=args.robot, port=args.port)
     try:
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws:
             session = lab.session()
             session.settle()
+            if not args.no_report:  # as a browser's page script: the page loaded, on its first tab
+                session.panel.report.value = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
+                session.settle()
             time.sleep(1.0)  # the first drawing and its echoes
             uuid = handle_uuid(session.panel.joints.sliders[1])
             mark = ws.mark()

@@ -25,8 +25,20 @@ SUFFIXES = (".toml", ".urdf", ".xacro")
 
 
 def names() -> list[str]:
-    """Names of the robots in the library (the stems of ``robots/data/*.toml``), sorted."""
-    return sorted(p.stem for p in DATA_DIR.glob("*.toml"))
+    """Names of the robots in the library (the stems of ``robots/data/*.toml``), sorted.
+
+    The folder is listed again only when its modification time changed (a file added, removed or
+    renamed): every redraw of every tab asks for the robot menu's entries."""
+    try:
+        stamp = DATA_DIR.stat().st_mtime_ns
+    except OSError:
+        stamp = -1
+    return list(_names(DATA_DIR, stamp))
+
+
+@functools.lru_cache(maxsize=1)
+def _names(folder: Path, stamp: int) -> tuple[str, ...]:
+    return tuple(sorted(p.stem for p in folder.glob("*.toml")))
 
 
 def load(

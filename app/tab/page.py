@@ -5,7 +5,9 @@ key, the open tab followed, and a heartbeat so that a lost connection is said in
 (re)connection it gives a presenter its role back (:meth:`app.services.classroom.Classroom.resume`)
 or restores the address's robot and q; later it relays the tab the user opened when the tab
 presents. :meth:`PageLink.update` writes the robot and q into the address after a commit (at most
-every :data:`ADDRESS_EVERY` seconds, the last one always). The page script is
+every :data:`ADDRESS_EVERY` seconds, the last one always): while commits keep coming the write rides
+in a commit's own frame; the last one is written :data:`TRAILING` s after it is due if no commit
+wrote it by then. The page script is
 :mod:`app.views.panel.page`.
 """
 
@@ -22,6 +24,7 @@ from ..core.actions import SetConfiguration
 from ..core.commands import ChooseRobot, Message
 from ..core.page_state import PageError, PageReport, checked_q, page_address, parse_report
 from ..core.state import LabState
+from ..services.later import Call, later
 from ..views.panel import TAB_LABELS
 from ..viser_adapter import run_javascript
 
@@ -29,6 +32,9 @@ __all__ = ["PageLink", "ADDRESS_EVERY", "BEAT_EVERY"]
 
 ADDRESS_EVERY = 0.4
 """The page's address is rewritten at most this often [s] (a dragged slider commits 30 times a second)."""
+TRAILING = 0.25
+"""A wanted address no commit has written is written this long [s] after it became due (a slider
+moved every 200 ms writes it from its commits, in the frame the redraw is sent in anyway)."""
 BEAT_EVERY = 2.0
 """The server tells the page it is there this often [s]; the page says "connection lost" after 7 s."""
 
@@ -64,7 +70,7 @@ class PageLink:
         self._wanted = ""
         self._written_at = 0.0
         self._loaded = False  # the address is written only once the page has told its own
-        self._timer: threading.Timer | None = None
+        self._timer: Call | None = None
         self._lock = threading.Lock()
         self._beat()
 
@@ -78,6 +84,8 @@ class PageLink:
             return
         if report.tab:
             self.tab = report.tab
+        elif report.kind == "load":
+            self.tab = TAB_LABELS[0]  # a page opens on the first tab unless its address names one
         if report.kind == "tab":
             if self.following is not None:
                 self.following.tab_opened(report.tab)
@@ -123,18 +131,31 @@ class PageLink:
         address = page_address(state.robot_name, list(state.q))
         with self._lock:
             self._wanted = address
-            if address == self.address or self._timer is not None or not self._loaded:
+            if address == self.address or not self._loaded:
                 return
             wait = self._written_at + ADDRESS_EVERY - time.monotonic()
             if wait > 0:
-                self._timer = threading.Timer(wait, self._write)
-                self._timer.daemon = True
-                self._timer.start()
+                if self._timer is None:
+                    self._timer = later(wait + TRAILING, self._trailing)
+                return
+        self._write()
+
+    def _trailing(self) -> None:
+        """Write the wanted address unless a commit did; if one is still too recent, wait again."""
+        with self._lock:
+            self._timer = None
+            if self._wanted == self.address:
+                return
+            wait = self._written_at + ADDRESS_EVERY - time.monotonic()
+            if wait > 0:
+                self._timer = later(wait + TRAILING, self._trailing)
                 return
         self._write()
 
     def _write(self) -> None:
         with self._lock:
+            if self._timer is not None:
+                self._timer.cancel()
             self._timer = None
             address, self.address, self._written_at = self._wanted, self._wanted, time.monotonic()
         self._run(f"window.__jacobianLabPage && window.__jacobianLabPage.address({json.dumps(address)});")
@@ -152,9 +173,7 @@ class PageLink:
         if self._closed():
             return
         self._run("window.__jacobianLabBeat = Date.now();")
-        timer = threading.Timer(BEAT_EVERY, self._beat)
-        timer.daemon = True
-        timer.start()
+        later(BEAT_EVERY, self._beat)
 
     def _run(self, source: str) -> None:
         if self._closed():

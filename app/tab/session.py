@@ -202,7 +202,10 @@ class ClientSession:
         elif isinstance(message, ResetView):
             self.camera.reset(self.screen.scene, batch.state)
         elif isinstance(message, PageReport):
+            shown = self.page.tab
             self.page.take(message.text)
+            if self.page.tab != shown:
+                batch.force = True  # the tab opened is drawn with the state on screen
         else:
             result = self.commands.run(batch.state, message)
             if isinstance(result, Redraw):
@@ -222,11 +225,15 @@ class ClientSession:
         if state.robot_name == BUILT_NAME and not following:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
         self.symbols.update(state, None if rebuild else old)  # what it shows is drawn below
-        self._drawing.active = True
-        try:
-            self.screen.draw(state, snap, rebuild, scene, self.role, self.recorder.recording, self.symbols)
-        finally:
-            self._drawing.active = False
+        self.screen.panel.open_tab = self.page.tab  # only the open tab's readouts are filled
+        with self.client.atomic():  # the page's address, when due, rides in the redraw's frame
+            self._drawing.active = True
+            try:
+                recording = self.recorder.recording
+                self.screen.draw(state, snap, rebuild, scene, self.role, recording, self.symbols)
+            finally:
+                self._drawing.active = False
+            self.page.update(state)  # a reload or a server restart comes back to this robot and q
         self.state, self.snapshot = state, snap
         self.redraws += 1
         self.pace.redrawn()
@@ -236,7 +243,6 @@ class ClientSession:
             self.ticker.stop()
         if not following:  # a follower's camera is the presenter's
             self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap)
-        self.page.update(state)  # a reload or a server restart comes back to this robot and q
         self.subscribers.tell(state, snap)
 
     def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]:

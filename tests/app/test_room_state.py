@@ -98,6 +98,10 @@ def test_a_reload_restores_the_robot_and_q_of_the_address():
         tab.settle()
         wait_until(lambda: tab.page.address == page_address("ur5", [0.25, *q[1:]]))
         assert checked_q(ur5, tuple(q)) == pytest.approx(tuple(q))
+        for k in range(12):  # a burst of changes, faster than the address is written: the last one is
+            tab.dispatch(SetJoint(0, 0.3 + 0.01 * k))
+            tab.settle()
+        wait_until(lambda: tab.page.address == page_address("ur5", [0.41, *q[1:]]))
 
 
 @pytest.mark.parametrize(
@@ -155,3 +159,27 @@ def test_followers_open_the_presenters_tab():
             wait_until(lambda: sent == ["Motion"])
             report(presenter, kind="tab", tab="Maps")
             wait_until(lambda: sent == ["Motion", "Maps"])
+
+
+def test_a_redraw_fills_the_open_tab_and_a_tab_opened_is_drawn_with_the_state_on_screen():
+    """Only the open tab's readouts follow a change (less work per change); the tab the page reports
+    opened is drawn at once with what is on screen, as a page that never reported has it drawn."""
+    with running_lab() as (lab, tab, _ws), ViserWsClient(f"ws://127.0.0.1:{lab.port}"):
+        other = newest(lab, {tab})  # never reports: every tab is drawn
+        assert tab.panel.open_tab == "" and other.panel.open_tab == ""
+        report(tab, kind="load", address="")  # the page opens on its first tab
+        assert tab.panel.open_tab == TAB_LABELS[0]
+        inverse = tab.panel.inverse.inverse  # J⁻¹ of the q̇ = J⁺v tab, a readout of q
+        matrix, hidden = tab.panel.matrix.numeric.content, inverse.content
+        for session in (tab, other):
+            session.dispatch(SetJoint(1, 1.1))
+            session.settle()
+        assert tab.panel.matrix.numeric.content != matrix  # the open tab follows the change
+        assert tab.panel.matrix.numeric.content == other.panel.matrix.numeric.content
+        assert inverse.content == hidden != other.panel.inverse.inverse.content  # the hidden one waits
+        redraws = tab.redraws
+        label = next(t for t in TAB_LABELS if "J⁺" in t)
+        report(tab, kind="tab", tab=label)
+        assert tab.panel.open_tab == label and tab.redraws == redraws + 1
+        assert inverse.content == other.panel.inverse.inverse.content  # drawn at once, for this q
+        assert_all_finite(tab)

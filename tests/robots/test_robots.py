@@ -62,6 +62,28 @@ def test_names_lists_the_library():
     assert robots.names() == NAMES
 
 
+def test_names_follow_files_added_and_removed(tmp_path, monkeypatch):
+    """The listing is kept between calls, and listed again when the folder changes."""
+    import os
+
+    from robots import library
+
+    monkeypatch.setattr(library, "DATA_DIR", tmp_path)
+    (tmp_path / "b.toml").write_text("")
+    (tmp_path / "notes.txt").write_text("")
+    os.utime(tmp_path, ns=(1_000_000_000, 1_000_000_000))
+    first = robots.names()
+    assert first == ["b"]
+    first.append("changed by the caller")  # a copy: the next caller gets the folder's names
+    assert robots.names() == ["b"]
+    (tmp_path / "a.toml").write_text("")
+    os.utime(tmp_path, ns=(2_000_000_000, 2_000_000_000))  # as a later change would (coarse clocks)
+    assert robots.names() == ["a", "b"]
+    (tmp_path / "b.toml").unlink()
+    os.utime(tmp_path, ns=(3_000_000_000, 3_000_000_000))
+    assert robots.names() == ["a"]
+
+
 @pytest.mark.parametrize("name", NAMES)
 def test_every_file_loads_with_metadata_limits_and_home(name):
     r = robots.load(name)

@@ -82,7 +82,8 @@ class Snapshot:
         decoupling: J at the wrist centre in arm and wrist blocks (a spherical wrist), else ``None``.
         losses: Every lost direction, each at its own point (none when regular).
         arm_ellipsoid, wrist_ellipsoid: The decoupled blocks' ellipsoids at the wrist centre (the
-            wrist centre's velocity by the arm joints, the angular velocity by the wrist joints).
+            wrist centre's velocity by the arm joints, the angular velocity by the wrist joints), when
+            the arm or the wrist block loses a direction (they are drawn only then), else ``None``.
         T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
     """
 
@@ -158,7 +159,10 @@ def compute(state: LabState) -> Snapshot:
     shortfall = np.zeros(6)
     shortfall[list(rows)] = state.v_desired[list(rows)] - produced[list(rows)]
     decoupled = decouple(robot, q, J)
-    arm_e, wrist_e = block_ellipsoids(decoupled)
+    every_loss = losses(report, J, rows, length, L[-1, :3, 3], W, decoupled)
+    # The blocks' ellipsoids are drawn only where a block loses a direction (two SVDs spared otherwise).
+    blocks = {loss.part for loss in every_loss} & {"arm", "wrist"}
+    arm_e, wrist_e = block_ellipsoids(decoupled) if blocks else (None, None)
     return Snapshot(
         q=np.array(q),
         link_frames=L,
@@ -192,7 +196,7 @@ def compute(state: LabState) -> Snapshot:
         analytic=analytic_view(L[-1], J, representation) if representation != "geometric" else None,
         jdot_qd=jacobian_dot(robot, q, state.qd) @ state.qd if moving else np.zeros(6),
         decoupling=decoupled,
-        losses=losses(report, J, rows, length, L[-1, :3, 3], W, decoupled),
+        losses=every_loss,
         arm_ellipsoid=arm_e,
         wrist_ellipsoid=wrist_e,
     )

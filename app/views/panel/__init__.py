@@ -126,6 +126,10 @@ class PanelView:
         self.joints: JointsPanel | None = None
         self.parts: dict[str, TabView] = {}
         """The tabs' views for the current robot, by tab name (also ``panel.<name>``)."""
+        self.open_tab = ""
+        """The label of the tab the page has open, as it reported ("": not known, every tab is drawn).
+        A redraw fills only that tab's readouts (and the tabs whose buttons keep what they show);
+        the session redraws when the page reports another tab opened."""
 
     def __getattr__(self, name: str) -> Any:
         """``panel.matrix``, ``panel.derive`` …: the view of tab ``name`` (``None`` before a robot)."""
@@ -207,8 +211,9 @@ class PanelView:
         self.joints.show(state.q, state.configuration)
         self._show_options(state.options)
         self.status.content = status_html(snap, state)
-        for part in self.parts.values():
-            part.draw(state, snap)
+        for name, part in self.parts.items():
+            if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
+                part.draw(state, snap)
         live = live_html(state)
         if live != self.live.content:
             self.live.content = live
@@ -293,6 +298,10 @@ TAB_LABELS = tuple(tab.label for tab in TABS)
 its options are rows of :data:`app.core.options.OPTIONS`. The View tab ("about") also holds the
 option table's glyph toggles and the Build tab the robot editor, both built once per tab."""
 _TAB_NAMES = frozenset(tab.name for tab in TABS)
+_LABELS = {tab.name: tab.label for tab in TABS}
+_ALWAYS_DRAWN = frozenset({"motion", "derive"})
+"""Tabs drawn even when not open: their buttons act on what their last draw kept (the preset a
+click applies, the step a click moves from)."""
 
 
 def _chain_label(chain: ChainInfo) -> str:

@@ -100,12 +100,17 @@ _JS = r"""
   w.__jacobianLabPage = api;
   if (!w.__jacobianLabTabWatch) {  // once per page: tab clicks are reported and kept in the address
     w.__jacobianLabTabWatch = true;
-    document.addEventListener("click", (ev) => {
+    const opened = (ev) => {
       const t = ev.target.closest && ev.target.closest("[role=tab]");
       if (!t) return;
       const label = t.textContent.trim();  // the clicked tab (it is selected after this event)
       setField("tab", label);
       w.__jacobianLabSend && w.__jacobianLabSend({ kind: "tab", tab: label });
+    };
+    document.addEventListener("click", opened, true);
+    // The arrow keys (and Home, End) select a tab without a click: the focused one is the open one.
+    document.addEventListener("keyup", (ev) => {
+      if (/^(Arrow|Home$|End$)/.test(ev.key)) opened(ev);
     }, true);
   }
   w.__jacobianLabSend = send;

@@ -1,0 +1,113 @@
+"""Where one slider change's server CPU goes: per thread, and inside the renderer's visit.
+
+Starts a :class:`app.server.Lab` (the Panda) in this process with ``--tabs`` headless websocket tabs
+(``tests/wsclient.py``), moves the first tab's q2 slider ``--changes`` times, 100 ms apart, and
+prints the CPU each of the server's threads spent per change (``/proc/<pid>/task/<tid>/schedstat``,
+nanoseconds: the renderer that reduces and draws, viser's event loop that serializes and sends,
+the pool threads that take the messages in; this process's own client threads are left out),
+then the functions of the renderer's visit that cost most (:mod:`cProfile`, enabled only inside
+``ClientSession.visit``: profiling slows it, so read the shares). Linux only. E.g.::
+
+    PYTHONPATH=. python bench/profile_change.py --changes 200 --top 40
+"""
+
+from __future__ import annotations
+
+import argparse
+import cProfile
+import os
+import pstats
+import sys
+import threading
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
+
+from app.server import Lab  # noqa: E402
+from app.tab.session import ClientSession  # noqa: E402
+
+
+def thread_cpu() -> dict[int, float]:
+    """CPU time so far [s] of every thread of this process, by native id."""
+    out: dict[int, float] = {}
+    for task in Path(f"/proc/{os.getpid()}/task").iterdir():
+        try:
+            out[int(task.name)] = int((task / "schedstat").read_text().split()[0]) / 1e9
+        except OSError:  # a thread that just ended
+            continue
+    return out
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--robot", default="panda")
+    parser.add_argument("--tabs", type=int, default=1, help="tabs connected (only the last one moves)")
+    parser.add_argument("--changes", type=int, default=200)
+    parser.add_argument("--top", type=int, default=30, help="functions of the visit printed (0: none)")
+    parser.add_argument(
+        "--loop", action="store_true", help="profile viser's event loop (serializing, sending) instead"
+    )
+    args = parser.parse_args()
+    profile = cProfile.Profile()
+    visit = ClientSession.visit
+
+    def profiled(self: ClientSession) -> bool:
+        profile.enable()
+        try:
+            return visit(self)
+        finally:
+            profile.disable()
+
+    if args.top and not args.loop:  # else the per-thread figures are the app's own, unprofiled
+        ClientSession.visit = profiled  # type: ignore[method-assign]
+    lab = Lab(robot=args.robot, port=0)
+    if args.top and args.loop:  # the loop's thread profiles itself from now on (its waits included)
+        lab.server._websock_server._background_event_loop.call_soon_threadsafe(profile.enable)
+    clients = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(args.tabs)]
+    try:
+        for client in clients:
+            client.start()
+        time.sleep(1.0)
+        session = lab.session()
+        session.settle()
+        for each in lab.sessions.values():  # as a browser's page script: the page loaded, on its first tab
+            each.panel.report.value = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
+        session.settle()
+        slider = session.panel.joints.sliders[1]  # type: ignore[union-attr]
+        uuid = slider._impl.uuid
+        for i in range(20):  # warm up: first draws, the symbolic J's arrival
+            clients[-1].set_value(uuid, float(-30 + i % 60))
+            time.sleep(0.1)
+        time.sleep(1.0)
+        own = {t.native_id for t in threading.enumerate() if t.name in ("MainThread", "viser-ws-client")}
+        names = {t.native_id: t.name for t in threading.enumerate()}
+        profile.clear()
+        before, redraws = thread_cpu(), session.redraws
+        for i in range(args.changes):
+            clients[-1].set_value(uuid, float(-30 + i % 60))
+            time.sleep(0.1)
+        time.sleep(0.5)
+        after, drawn = thread_cpu(), session.redraws - redraws
+    finally:
+        for client in clients:
+            client.close()
+        lab.stop()
+    load = Path("/proc/loadavg").read_text().split()[:3]
+    print(f"{args.robot}, {args.tabs} tab(s), {drawn} redraws of {args.changes} changes; load average {load}")
+    spent: dict[str, float] = {}
+    for tid, seconds in after.items():
+        if tid not in own:
+            name = names.get(tid, "other").split("_")[0].split(" (")[0]
+            spent[name] = spent.get(name, 0.0) + seconds - before.get(tid, 0.0)
+    for name, seconds in sorted(spent.items(), key=lambda kv: -kv[1]):
+        print(f"  {name:<40} {seconds / args.changes * 1e3:7.3f} ms per change")
+    print(f"  {'server threads':<40} {sum(spent.values()) / args.changes * 1e3:7.3f} ms per change")
+    if args.top:
+        pstats.Stats(profile).sort_stats("tottime" if args.loop else "cumulative").print_stats(args.top)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
