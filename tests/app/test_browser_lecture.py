@@ -123,7 +123,7 @@ def test_the_layout_serves_the_open_tab(tmp_path, name, viewport, scale, least):
         )
         for tab in ("J(q)", "Motion"):
             page.locator(f'[role=tab][title="{tab}"]').first.click(timeout=120_000)
-            wait(lambda: page.evaluate(_MEASURE)["view"]["height"] >= least, timeout=30)
+            wait(lambda: page.evaluate(_MEASURE)["view"]["height"] >= least)
             m = page.evaluate(_MEASURE)
             # Every joint slider and the Configuration menu are in sight, above the views of J.
             assert len(m["sliders"]) == session.state.robot.dof

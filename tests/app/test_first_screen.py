@@ -42,15 +42,16 @@ def test_the_dropdown_shows_titles_and_the_browser_may_send_only_a_label():
         menu = session.panel.robot
         assert "Unimation PUMA 560 (puma560)" in menu.options
         assert menu.value == "Planar 2R arm (planar2)"
-        (uuid,) = [u for u, m in widgets(ws).items() if m["props"].get("label") == "Robot"]
+        robot_menus = lambda: [u for u, m in widgets(ws).items() if m["props"].get("label") == "Robot"]  # noqa: E731
+        (uuid,) = wait_until(lambda: robot_menus() or None)  # the client may not have it yet
         before = lab.room.refused
         ws.send(UPDATE(uuid, {"value": "trr"}))  # a name, not one of the menu's entries
-        wait_until(lambda: lab.room.refused > before, timeout=20)
+        wait_until(lambda: lab.room.refused > before)
         assert "Robot" in lab.room.refusals[-1][1]
         session.settle()
         assert session.state.robot_name == "planar2"
         ws.send(UPDATE(uuid, {"value": "TRR robot (course example) (trr)"}))
-        wait_until(lambda: session.state.robot_name == "trr", timeout=30)
+        wait_until(lambda: session.state.robot_name == "trr")
         session.settle()
         assert menu.value == "TRR robot (course example) (trr)"
 
