@@ -147,9 +147,14 @@ _CONTRAST_JS = r"""() => {
   const bgOf = (el) => { let layers = []; for (let e = el; e; e = e.parentElement) { const b = parse(getComputedStyle(e).backgroundColor); if (b && b[3] > 0) { layers.push(b); if (b[3] >= 1) break; } } let c = [255, 255, 255]; for (const l of layers.reverse()) c = [0,1,2].map(i => l[i] * l[3] + c[i] * (1 - l[3])); return c; };
   const out = [];
   const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
-  for (let n = walker.nextNode(); n; n = walker.nextNode()) {
-    const t = n.textContent.trim(); if (!t) continue;
-    const el = n.parentElement; const r = el.getBoundingClientRect();
+  const fields = [...document.querySelectorAll("input, textarea")].filter(
+    (e) => !["hidden", "checkbox", "radio", "range"].includes(e.type) && e.value.trim());
+  const items = [];
+  for (let n = walker.nextNode(); n; n = walker.nextNode()) items.push([n.textContent.trim(), n.parentElement]);
+  for (const e of fields) items.push([e.type === "password" ? "•••" : e.value.trim(), e]);
+  for (const [t, el] of items) {
+    if (!t) continue;
+    const r = el.getBoundingClientRect();
     if (r.width === 0 || r.height === 0 || r.bottom < 0 || r.top > innerHeight || r.right < 0 || r.left > innerWidth) continue;
     const s = getComputedStyle(el); if (s.visibility === "hidden" || s.display === "none") continue;
     let op = 1; for (let e = el; e; e = e.parentElement) op *= Number(getComputedStyle(e).opacity);
@@ -157,16 +162,19 @@ _CONTRAST_JS = r"""() => {
     const fg = parse(s.color); if (!fg) continue;
     const bg = bgOf(el); const f = [0,1,2].map(i => fg[i] * fg[3] * op + bg[i] * (1 - fg[3] * op));
     const L1 = lum(f), L2 = lum(bg); const ratio = (Math.max(L1, L2) + 0.05) / (Math.min(L1, L2) + 0.05);
-    out.push({t: t.slice(0, 30), ratio: Math.round(ratio * 100) / 100, size: s.fontSize, color: s.color, bg: bg.map(Math.round).join(","), tag: el.tagName, cls: (el.className || "").toString().slice(0, 40)});
+    let zoom = 1; for (let e = el; e; e = e.parentElement) zoom *= parseFloat(getComputedStyle(e).zoom || 1);
+    out.push({t: t.slice(0, 30), ratio: Math.round(ratio * 100) / 100, size: s.fontSize,
+      px: Math.round(parseFloat(s.fontSize) * zoom * 100) / 100, color: s.color, bg: bg.map(Math.round).join(","), tag: el.tagName, cls: (el.className || "").toString().slice(0, 40)});
   }
   return out;
 }"""
 
 
 def text_contrasts(page) -> list[dict[str, Any]]:
-    """Every visible text of the page in its viewport: ``t`` (its start), ``ratio`` (WCAG contrast of its
-    colour, with its own and its ancestors' opacity, over the backgrounds stacked behind it), ``size``
-    (its computed font size), ``color`` and ``bg``."""
+    """Every visible text of the page in its viewport (the values in its inputs included): ``t`` (its
+    start), ``ratio`` (WCAG contrast of its colour, with its own and its ancestors' opacity, over the backgrounds stacked behind it), ``size``
+    (its computed font size), ``px`` (its size on screen [CSS px]: the font size times the zoom of its
+    ancestors), ``color`` and ``bg``."""
     return list(page.evaluate(_CONTRAST_JS))
 
 

@@ -59,6 +59,21 @@ def test_the_first_screen_says_what_to_do_and_lists_robots_by_title(tmp_path):
         assert any(x["lines"] >= 2 for x in lines), lines  # the lost direction says all it has to say
         assert all(x["lines"] <= 2 for x in lines if x["desc"]), lines  # a description: two lines at most
         page.screenshot(path=str(out / "first_screen_status_wraps.png"))
+        # A description cut at two lines ends in "…" and shows all of it on a click.
+        desc = page.locator(".jl-desc")
+        cut = page.evaluate(
+            "() => { const e = document.querySelector('.jl-desc'); return e.scrollHeight > e.clientHeight + 1; }"
+        )
+        assert cut, lines  # the stretched TRR's 140 characters do not fit two lines at 1280×720
+        two = desc.bounding_box()["height"]
+        desc.click()
+        poll(lambda: desc.bounding_box()["height"] > 1.4 * two)
+        assert page.evaluate(
+            "() => { const e = document.querySelector('.jl-desc'); return e.scrollHeight <= e.clientHeight + 1; }"
+        )
+        stretched = next(c for c in session.state.robot.configurations if c.name == "stretched")
+        assert desc.inner_text().strip().endswith(stretched.description.strip()[-20:])
+        page.screenshot(path=str(out / "first_screen_description_all.png"))
         assert not errors, errors
 
 

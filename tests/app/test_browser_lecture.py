@@ -15,7 +15,7 @@ import pytest
 from browser_helpers import app_page, text_contrasts, wait
 
 from app.server import Lab
-from app.views.panel.layout import TOP_MAX
+from app.views.panel.layout import KEY_TEXT_PX, MIN_TEXT_PX, TOP_MAX
 
 pytestmark = pytest.mark.browser
 
@@ -143,6 +143,10 @@ def test_the_layout_serves_the_open_tab(tmp_path, name, viewport, scale, least):
         zoom = {"1920x1080": 1.5, "zoom150": 0.8}.get(name, 1.0)
         assert m["column"]["width"] == pytest.approx(404 * zoom, abs=2)
         assert m["labelPx"] >= 13 * zoom - 0.5
+        # On the projector's own pixels (× the browser's zoom) no text is smaller than at 1280×720, and at
+        # 150 % every text is 1.2 times larger (the docs' 10.4′ at 8 m).
+        least = min(t["px"] for t in text_contrasts(page) if t["t"]) * scale
+        assert least >= (1.2 if name == "zoom150" else 1.0) * MIN_TEXT_PX - 0.05, least
     assert not errors, errors
 
 
@@ -173,10 +177,11 @@ def test_the_enlarged_j_leaves_the_sliders_free(tmp_path):
 
 
 @pytest.mark.parametrize("tab", ["J(q)", "v = J q̇", "Motion", "Maps", "Derive", "View", "Build"])
-def test_every_visible_text_reaches_4_5_to_1_on_screen(tmp_path, tab):
+def test_every_visible_text_reaches_4_5_to_1_and_12_px_on_screen(tmp_path, tab):
     """Issue 21, item 9, as the projector shows it: the computed colour of every visible text, with the
     opacity of its element and ancestors, over the backgrounds stacked behind it (viser fades an
-    unselected tab to 0.65: its 11:1 colour read 4.04:1 on screen)."""
+    unselected tab to 0.65: its 11:1 colour read 4.04:1 on screen); its size on screen at least
+    MIN_TEXT_PX (J's subscripts were 10.4 px), the status at least KEY_TEXT_PX."""
     out = _out(tmp_path)
     lab = Lab(port=0)
     with app_page(lab) as (page, session, errors):
@@ -186,3 +191,9 @@ def test_every_visible_text_reaches_4_5_to_1_on_screen(tmp_path, tab):
         page.screenshot(path=str(out / f"contrast_{re.sub(r'[^A-Za-z]', '', tab) or 'J'}.png"))
         low = [t for t in texts if t["ratio"] < 4.5]
         assert len(texts) > 30 and not low, low
+        small = [(t["t"], t["px"], t["cls"]) for t in texts if t["px"] < MIN_TEXT_PX]
+        assert not small, small
+        status = page.evaluate(
+            "() => parseFloat(getComputedStyle(document.querySelector('.jl-status')).fontSize)"
+        )
+        assert status >= KEY_TEXT_PX

@@ -45,7 +45,7 @@ DOWNLOADS = {"TOML": "Robot file (TOML)", "URDF": "URDF", **{f"J {k}": k for k i
 
 _CSS = """<style>
 .jl-dh{width:calc(100% - 12px);margin:0 6px;border-collapse:collapse;
-  font:11.5px/1.35 ui-monospace,Menlo,Consolas,monospace;font-variant-numeric:tabular-nums}
+  font:12px/1.35 ui-monospace,Menlo,Consolas,monospace;font-variant-numeric:tabular-nums}
 .jl-dh th{font-weight:600;color:#495057;text-align:right;padding:0 4px;border-bottom:1px solid #ced4da}
 .jl-dh td{text-align:right;padding:0 4px;white-space:nowrap}
 .jl-dh tr.sel td{background:#e7ecfb;font-weight:600}

@@ -19,7 +19,17 @@ Colours here are chosen for at least 4.5:1 on their background (checked by the t
 
 from __future__ import annotations
 
-__all__ = ["LAYOUT_CSS", "LAYOUT_JS", "PANEL_WIDTH", "COLUMN", "ZOOM_MAX", "TOP_MAX", "TEXT_COLOURS"]
+__all__ = [
+    "LAYOUT_CSS",
+    "LAYOUT_JS",
+    "PANEL_WIDTH",
+    "COLUMN",
+    "ZOOM_MAX",
+    "TOP_MAX",
+    "TEXT_COLOURS",
+    "MIN_TEXT_PX",
+    "KEY_TEXT_PX",
+]
 
 PANEL_WIDTH = 400
 """Width of the docked panel at zoom 1 [px]: at 1280×720 the 3-D view keeps 69 % of the window."""
@@ -29,6 +39,16 @@ ZOOM_MAX = 1.6
 """Largest zoom of the panel (at 2048×1152 and beyond)."""
 TOP_MAX = 0.62
 """Largest share of the column the joints' panel takes; the views of J keep the rest."""
+
+MIN_TEXT_PX = 12.0
+"""Least size of any text on screen [CSS px at 1280×720]. A 3 m wide image of 1280 px has 2.34 mm per px,
+the capitals of the page's sans-serif are about 0.72 of its size: 12 px → capitals of 20 mm, which subtend
+11.6 arcmin at 6 m and 8.7′ at 8 m (normal vision resolves letters of 5′; 10′ is the usual least size
+where reading speed does not matter, 16′ for text that is read). Browser zoom 150 % (tested) makes it
+10.4′ at 8 m."""
+KEY_TEXT_PX = 17.0
+"""Least size of what the room reads at a singularity (the status, the motion's numbers, the words at a
+lost direction in the 3-D view) [CSS px at 1280×720]: capitals of 29 mm, 16.4′ at 6 m and 12.3′ at 8 m."""
 
 TEXT_COLOURS = {
     "label": ("#343a40", "#ffffff"),
@@ -62,6 +82,14 @@ LAYOUT_CSS = f"""
 /* Legible from the back: labels, tabs and hints dark enough (≥ 4.5:1). */
 label, .mantine-InputWrapper-label {{ color: {_C["label"]}; }}
 .mantine-InputWrapper-description, .mantine-Slider-markLabel {{ color: {_C["hint and description"]}; }}
+.mantine-Slider-markLabel {{ font-size: {MIN_TEXT_PX:g}px !important; }}  /* Mantine's 8.9 px */
+.mantine-Button-label {{ font-size: max(1em, {MIN_TEXT_PX:g}px); }}  /* compact buttons: 11.1 px */
+/* The joint values and the menus: 11.1 px in viser's compact inputs, whose height is in em: the box
+   keeps its height (1.875 × 11.1 px), the text in it is 12 px. */
+.mantine-Input-input {{ font-size: {MIN_TEXT_PX:g}px !important; min-height: 0 !important;
+  height: 20.8px !important; padding-top: 0 !important; padding-bottom: 0 !important;
+  line-height: 20px !important; }}
+.mantine-Select-option {{ font-size: max(1em, {MIN_TEXT_PX:g}px) !important; }}
 [data-dock-tab][role="tab"] {{ color: {_C["tab"]} !important; padding: 0 0.5em !important;
   height: 2.2em !important; opacity: 1 !important; }}  /* viser fades unselected tabs to 0.65: 4.04:1 */
 [data-dock-tab][role="tab"][aria-selected="true"] {{ color: {_C["selected tab"]} !important; font-weight: 700;
@@ -70,7 +98,7 @@ label, .mantine-InputWrapper-label {{ color: {_C["label"]}; }}
   border-color: {_C["outlined button"]} !important; }}  /* Play, Pause, …: Mantine's #617be2 is 3.86:1 */
 [data-dock-tab][role="tab"] > div:first-child {{ margin-right: 0.3em !important; }}
 .mantine-Paper-root legend, .mantine-Paper-root .mantine-Text-root {{ color: {_C["folder title"]}; }}
-.jl-matrix sub, .jl-vec sub {{ font-size: 0.9em; }}
+.jl sub, .jl sup {{ font-size: max(0.9em, 12px); }}  /* no text under 12 px (10′ at 6 m, see docs) */
 [data-dock-region] .jl-mathml {{ overflow-x: auto; }}
 /* The enlarged J leaves the panel free: its sliders move J while it is watched. */
 .mantine-Modal-root:has(.jl-big) .mantine-Modal-overlay, .mantine-Modal-inner:has(.jl-big) {{

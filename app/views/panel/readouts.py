@@ -155,14 +155,23 @@ def _status_html(snap: Snapshot, state: LabState) -> str:
         if a is not None and a.singular
         else ""
     )
-    # Every line wraps; a configuration's description (up to 376 characters) keeps at most two lines
-    # (the rest in its tooltip), so the sliders stay in sight on a projector.
+    # Every line wraps; a configuration's description (up to 376 characters) keeps at most two lines,
+    # ending in "…" when cut, so the sliders stay in sight on a projector; a click on it shows all of it
+    # (a checkbox and its label: no script), until the next change redraws the status.
     lines = "".join(
-        f'<div class="jl-sub{extra}" title="{fmt.escape(_plain(x))}">{x}</div>'
-        for x, extra in ((representation, ""), (sub, " jl-desc" if not state.stopped else ""), (lost, ""))
+        _description(x) if x is sub and not state.stopped else f'<div class="jl-sub">{x}</div>'
+        for x in (representation, sub, lost)
         if x
     )
     return f'<div class="jl">{banner}{lines}</div>'
+
+
+def _description(html: str) -> str:
+    """A configuration's description: two lines, all of it on a click (and in its tooltip)."""
+    return (
+        '<input type="checkbox" id="jl-desc-all" class="jl-desc-all" hidden>'
+        f'<label for="jl-desc-all" class="jl-sub jl-desc" title="{fmt.escape(_plain(html))}">{html}</label>'
+    )
 
 
 FIRST_HINT = (

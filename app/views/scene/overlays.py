@@ -37,7 +37,7 @@ from ..palette import (
     joint_color,
 )
 from .arm import ArmGeometry
-from .geometry import TINY, finite, finite_tuple, set_if_changed, wxyz_one
+from .geometry import LOST_LABEL_SCALE, TINY, finite, finite_tuple, set_if_changed, wxyz_one
 
 __all__ = ["Overlays", "Arrows", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE", "MAX_LOSSES", "GAP"]
 
@@ -221,7 +221,13 @@ class Overlays:
             visible=False,
         )
         self.lost_labels = [
-            scene.add_label(f"{root}/lost_label_{i}", "lost", visible=False, anchor="bottom-left")
+            scene.add_label(
+                f"{root}/lost_label_{i}",
+                "lost",
+                visible=False,
+                anchor="bottom-left",
+                font_screen_scale=LOST_LABEL_SCALE,
+            )
             for i in range(MAX_LOSSES)
         ]
         self._label_texts = [""] * MAX_LOSSES
