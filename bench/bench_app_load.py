@@ -338,6 +338,7 @@ class WorkerKill:
             "workers_after": len(after),
             "new": [w for w in after if w not in self.before],
             "new_serving": [w for w in after if w not in self.before and w in serving],
+            "spread_after": [len(peer_ports(w, self.port)) for w in after],
         }
 
 
@@ -508,7 +509,8 @@ def kill_lines(k: dict, at: float, left: tuple[list[str], list[str]]) -> list[st
         f"{k['back_p95']:.0f}), first change answered after {k['answered_max']:.0f} ms at most; "
         f"{k['never_back']} never back",
         f"worker processes: {k['workers_before']} before, {k['workers_after']} after"
-        + (f"; new: {new}" if new else "; none started again"),
+        + (f"; new: {new}" if new else "; none started again")
+        + f"; tabs per worker after: {'+'.join(map(str, k['spread_after']))}",
         f"after SIGTERM: {len(left[0])} of its processes running when it exited"
         + (f" ({', '.join(role(p) for p in left[0])})" if left[0] else "")
         + f", {len(left[1])} 5 s later"
