@@ -11,11 +11,26 @@ unanswered, the CPU of the server's whole process tree (``bench/common.py``) and
 with the load average. ``--hostile`` adds a tab flooding slider changes; ``--limits`` installs
 :func:`app.viser_adapter.install_message_limits` first.
 
+``--memory`` adds the memory of the server's whole process tree (``bench/common.py``: the sum of PSS
+from /proc/PID/smaps_rollup, and of RSS for comparison, in MB): idle (the first tab alone, once its
+symbolic J has arrived) and the highest PSS read once a second over the window, with how many
+processes. ``--kill-worker-at S`` (``--workers`` 2 or more) SIGKILLs, S seconds into the window, the
+worker serving the most tabs (the workers are the serve process's spawned children, see
+``bench.common.worker_pids``; which tabs each serves is read from its TCP connections); every tab
+reconnects as viser's page does (at once, then every second, to the same address, as a new tab) and
+goes on moving once drawn again. Then printed: the other tabs' p95 before the kill and in the 5 s
+after, when the killed worker's tabs were drawn again and had a change answered (from the kill), how
+many never came back (10 s after the window), the worker processes before and after (the new one
+serving or not, from the server's log) and, after SIGTERM to the server, which of its processes are
+still running.
+
 Usage::
 
     python bench/bench_app_load.py                       # 10, 30, 60 tabs, 20 s each
     python bench/bench_app_load.py --tabs 60 --workers 1 2   # one process and two, side by side
     python bench/bench_app_load.py --tabs 30 --timeline --profile /tmp/prof   # where the time goes
+    python bench/bench_app_load.py --tabs 60 --workers 1 2 4 --memory          # memory idle and loaded
+    python bench/bench_app_load.py --tabs 60 --workers 2 4 --seconds 20 --kill-worker-at 5
 
 Printed per run: p50/p95/p99/max latency, the server's CPU (% of one core), its CPU per slider change
 [ms] and voluntary context switches per change; ``--timeline`` adds the p95 of every second,
@@ -32,8 +47,10 @@ import multiprocessing
 import os
 import random
 import re
+import signal
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,7 +61,18 @@ import websockets
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from app.viser_adapter import message_class  # noqa: E402
-from bench.common import cpu_seconds, decode, encode, switches  # noqa: E402
+from bench.common import (  # noqa: E402
+    cpu_seconds,
+    decode,
+    encode,
+    identities,
+    memory,
+    peer_ports,
+    still_running,
+    switches,
+    tree,
+    worker_pids,
+)
 
 
 def start_server(
@@ -98,11 +126,27 @@ PAGE_LOADED = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
 address, so it shows the first tab."""
 
 
+RETRY = 1.0
+"""Seconds between a closed tab's tries to reconnect (viser's client: at once, then every second, each
+try given until the next one to open)."""
+
+
 @dataclass
 class Tab:
-    """One simulated browser tab."""
+    """One simulated browser tab. With ``rejoin``, a tab whose connection closes reconnects to the same
+    address as viser's page does (``RETRY``), sends its camera, reports its page loaded again (with no
+    robot, q or tab in its address: a browser's page would report what the app wrote there) and goes
+    on moving its slider once it has drawn its scene again."""
 
     ws: object = None
+    url: str = ""
+    rejoin: bool = False
+    leaving: bool = False  # closed by the bench: no reconnecting
+    task: asyncio.Task | None = None
+    closed_at: float = 0.0  # when its connection closed (rejoin)
+    back_at: float = 0.0  # when it drew its scene again after reconnecting
+    answered_at: float = 0.0  # when the first change after reconnecting was answered
+    lost: int = 0  # changes left unanswered when its connection closed
     slider: str | None = None
     report: str | None = None  # the panel's hidden input the page script reports through
     drawn: asyncio.Event = field(default_factory=asyncio.Event)
@@ -115,16 +159,17 @@ class Tab:
     measuring: bool = False
     error: str = ""
 
-    async def connect(self, url: str) -> None:
+    async def connect(self, url: str, open_timeout: float = 60) -> None:
+        self.url = url
         self.ws = await websockets.connect(
             url,
             subprotocols=[f"viser-v{viser.__version__}"],
             max_size=None,
             compression=None,
-            open_timeout=60,
+            open_timeout=open_timeout,
         )
         await self.ws.send(CAMERA)
-        asyncio.get_running_loop().create_task(self.receive())
+        self.task = asyncio.get_running_loop().create_task(self.receive())
 
     async def receive(self) -> None:
         try:
@@ -147,7 +192,11 @@ class Tab:
                     and any(str(m.get("name", "")).startswith("/lab/") for m in msgs)
                 ):
                     self.drawn.set()  # its own scene (not only the server's shared nodes) and its slider
+                    if self.closed_at and not self.back_at:
+                        self.back_at = now
                     if self.measuring:
+                        if self.back_at and self.pending and not self.answered_at:
+                            self.answered_at = now
                         self.samples += [(now - t) * 1e3 for t in self.pending]
                         self.sent_at += self.pending
                     self.pending.clear()
@@ -155,7 +204,29 @@ class Tab:
             pass
         except Exception as exc:  # a frame this client cannot read: say so instead of waiting forever
             self.error = f"{type(exc).__name__}: {exc}"
-        self.closed = True
+        if self.rejoin and not self.leaving and not self.error:
+            self.task = asyncio.get_running_loop().create_task(self.reconnect())
+        else:
+            self.closed = True
+
+    async def reconnect(self) -> None:
+        """As viser's page: try at once, then every ``RETRY`` s, to the same address, as a new tab."""
+        self.closed_at = self.closed_at or time.perf_counter()  # the first close (the kill) counts
+        self.lost += len(self.pending)
+        self.pending.clear()
+        self.drawn.clear()
+        self.slider = self.report = None
+        while not self.leaving:
+            tried = time.perf_counter()
+            try:
+                await self.connect(self.url, open_timeout=RETRY)
+                return
+            except (OSError, TimeoutError, websockets.InvalidHandshake, websockets.ConnectionClosed):
+                await asyncio.sleep(max(0.0, RETRY - (time.perf_counter() - tried)))
+
+    async def close(self) -> None:
+        self.leaving = True
+        await self.ws.close()
 
     async def change(self, value: float) -> None:
         self.pending.append(time.perf_counter())
@@ -164,11 +235,16 @@ class Tab:
 
 
 async def explore(tab: Tab, end: float, rng: random.Random) -> None:
-    """Move q2 every ~200 ms (±50 ms) until ``end``, like a student dragging it."""
+    """Move q2 every ~200 ms (±50 ms) until ``end``, like a student dragging it (not while the tab is
+    reconnecting: until it has drawn its scene again)."""
     i = rng.randrange(60)
     while time.perf_counter() < end and not tab.closed:
-        await tab.change(float(-30 + i % 60))
-        i += 1
+        if tab.drawn.is_set():
+            try:
+                await tab.change(float(-30 + i % 60))
+            except websockets.ConnectionClosed:
+                pass  # its receiving task reconnects it (or ends it)
+            i += 1
         await asyncio.sleep(rng.uniform(0.15, 0.25))
 
 
@@ -199,6 +275,98 @@ def flood_process(url: str, seconds: float, out: multiprocessing.Queue, go) -> N
     out.put(asyncio.run(flood(url, seconds, out, go)))
 
 
+AFTER_KILL = 5.0
+"""Seconds after the kill over which the latency of the other tabs is reported."""
+
+
+@dataclass
+class WorkerKill:
+    """``--kill-worker-at``: SIGKILL the worker of ``serve --workers`` serving the most tabs ``at`` s into
+    the measured window; which tabs it served is read from the TCP connections each worker holds."""
+
+    pid: int  # the serve process
+    port: int
+    at: float
+    workers: int  # how many it serves with
+    before: list[int] = field(default_factory=list)  # the worker pids at the kill
+    spread: list[int] = field(default_factory=list)  # tabs per worker at the kill
+    killed: int = 0
+    killed_at: float = 0.0
+    dead: set[int] = field(default_factory=set)  # the indices of the tabs the killed worker served
+
+    async def fire(self, clients: list[Tab], t0: float) -> None:
+        await asyncio.sleep(max(0.0, t0 + self.at - time.perf_counter()))
+        self.before = await asyncio.to_thread(worker_pids, self.pid)
+        if len(self.before) != self.workers:
+            raise RuntimeError(f"{len(self.before)} worker processes found, {self.workers} expected")
+        served = {w: await asyncio.to_thread(peer_ports, w, self.port) for w in self.before}
+        self.spread = [len(served[w]) for w in self.before]
+        self.killed = max(self.before, key=lambda w: len(served[w]))
+        ports = {tab.ws.local_address[1]: i for i, tab in enumerate(clients)}
+        self.dead = {ports[p] for p in served[self.killed] if p in ports}
+        self.killed_at = time.perf_counter()
+        os.kill(self.killed, signal.SIGKILL)
+
+    def report(self, clients: list[Tab], t0: float, log: Path | None) -> dict:
+        """What the room saw: the other tabs' latency before and after, when the killed worker's tabs
+        were back, and whether the supervisor started a worker again (``log``: the server's log)."""
+        k = self.killed_at
+
+        def others(lo: float, hi: float) -> float:
+            """p95 [ms] of the changes sent from ``lo`` to ``hi`` by the tabs of the other workers."""
+            live = [t for i, t in enumerate(clients) if i not in self.dead]
+            s = [x for t in live for x, w in zip(t.samples, t.sent_at, strict=True) if lo <= w < hi]
+            return float(np.percentile(s, 95)) if s else np.nan
+
+        dead = [clients[i] for i in self.dead]
+        back = np.array([t.back_at - k for t in dead if t.back_at]) * 1e3
+        answered = np.array([t.answered_at - k for t in dead if t.answered_at]) * 1e3
+        after = worker_pids(self.pid)
+        serving = set(map(int, re.findall(r"\(pid (\d+)\) serving", log.read_text()))) if log else set()
+        return {
+            "spread": self.spread,
+            "dead": len(dead),
+            "p95_before": others(t0, k),
+            "p95_after": others(k, k + AFTER_KILL),
+            "back_max": back.max() if len(back) else np.nan,
+            "back_p95": np.percentile(back, 95) if len(back) else np.nan,
+            "answered_max": answered.max() if len(answered) else np.nan,
+            "never_back": sum(1 for t in dead if not t.back_at),
+            "lost": sum(t.lost for t in dead),
+            "others_closed": sum(1 for i, t in enumerate(clients) if i not in self.dead and t.closed_at),
+            "workers_before": len(self.before),
+            "workers_after": len(after),
+            "new": [w for w in after if w not in self.before],
+            "new_serving": [w for w in after if w not in self.before and w in serving],
+            "spread_after": [len(peer_ports(w, self.port)) for w in after],
+        }
+
+
+@dataclass
+class MemoryWatch:
+    """``--memory``: the server tree's PSS and RSS (``bench/common.py``) with one tab, and at the highest
+    PSS read once a second over the measured window."""
+
+    pid: int
+    idle: tuple[float, float, int] = (np.nan, np.nan, 0)
+    peak: tuple[float, float, int] = (0.0, 0.0, 0)
+
+    async def settle_idle(self, tab: Tab) -> None:
+        """Once the one tab has its symbolic J (its worker's symbolic process started), or after 60 s."""
+        end = time.perf_counter() + 60
+        while not tab.symbolic_at and time.perf_counter() < end:
+            await asyncio.sleep(0.1)
+        await asyncio.sleep(1.0)
+        self.idle = await asyncio.to_thread(memory, self.pid)
+
+    async def watch(self, end: float) -> None:
+        while time.perf_counter() < end:
+            now = await asyncio.to_thread(memory, self.pid)
+            if now[0] > self.peak[0]:
+                self.peak = now
+            await asyncio.sleep(1.0)
+
+
 async def run(
     tabs: int,
     seconds: float,
@@ -209,10 +377,13 @@ async def run(
     warmup: float,
     profile: Path | None = None,
     together: bool = False,
+    kill: WorkerKill | None = None,
+    watch: MemoryWatch | None = None,
+    log: Path | None = None,
 ) -> dict:
     url = f"ws://127.0.0.1:{port}"
     rng = random.Random(seed)
-    clients = [Tab() for _ in range(tabs)]
+    clients = [Tab(rejoin=kill is not None) for _ in range(tabs)]
     if hostile:  # connects while the others do
         ctx = multiprocessing.get_context("spawn")
         out, go = ctx.Queue(), ctx.Event()
@@ -224,10 +395,14 @@ async def run(
         await tab.connect(url)
         await asyncio.wait_for(tab.drawn.wait(), 300)
 
+    if watch is not None:  # the first tab alone, for the idle figure
+        await arrive(clients[0])
+        await watch.settle_idle(clients[0])
+    rest = clients[1:] if watch is not None else clients
     if together:  # every tab opens the page at the same moment (a class told "open the link now")
-        await asyncio.gather(*(arrive(tab) for tab in clients))
+        await asyncio.gather(*(arrive(tab) for tab in rest))
     else:  # one after another, each once the previous one is drawn
-        for tab in clients:
+        for tab in rest:
             await arrive(tab)
     connected = time.perf_counter()
     # Warm up (unmeasured): the first changes also meet one-off work (the symbolic J arriving).
@@ -244,10 +419,17 @@ async def run(
     end = t0 + seconds
     if hostile:
         go.set()
-    await asyncio.gather(*(explore(tab, end, rng) for tab in clients))
-    # Give late answers up to 5 s to arrive.
-    deadline = time.perf_counter() + 5.0
-    while any(t.pending for t in clients) and time.perf_counter() < deadline:
+    side = [kill.fire(clients, t0)] if kill is not None else []
+    side += [watch.watch(end)] if watch is not None else []
+    await asyncio.gather(*(explore(tab, end, rng) for tab in clients), *side)
+    # Give late answers up to 5 s to arrive (and the killed worker's tabs 10 s to be back).
+    deadline = time.perf_counter() + (10.0 if kill is not None else 5.0)
+
+    def waiting() -> bool:
+        away = kill is not None and any(not clients[i].back_at for i in kill.dead)
+        return away or any(t.pending for t in clients)
+
+    while waiting() and time.perf_counter() < deadline:
         await asyncio.sleep(0.02)
     wall = time.perf_counter() - t0
     cpu_s, switched = cpu_seconds(pid) - cpu0, switches(pid) - sw0
@@ -275,11 +457,15 @@ async def run(
         "switches_per_change": switched / max(sum(t.sent for t in clients), 1),
         "client_cpu": own,
     }
+    if kill is not None:
+        result["kill"] = kill.report(clients, t0, log)
+    if watch is not None:
+        result["memory"] = (watch.idle, watch.peak)
     if hostile:
         result["flood_sent"], result["flood_closed"] = await asyncio.to_thread(out.get, True, 60)
         flooder.join(10)
     for tab in clients:
-        await tab.ws.close()
+        await tab.close()
     return result
 
 
@@ -292,6 +478,52 @@ def start_profile(pid: int, seconds: float, folder: Path, tabs: int) -> subproce
     cmd = ["py-spy", "record", "-p", str(pid), "-d", str(int(seconds)), "-r", "100", "-f", "raw"]
     cmd += ["--gil", "--nonblocking", "-o", str(out)]  # only the thread holding the GIL: what queues
     return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def stop_server(proc: subprocess.Popen) -> tuple[list[str], list[str]]:
+    """SIGTERM the server and wait for it to exit (SIGKILL after 15 s); the processes of its tree (as
+    it was just before) still running once it has exited, and 5 s later."""
+    known = identities(tree(proc.pid))
+    proc.terminate()
+    try:
+        proc.wait(15)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait(5)
+    at_exit = still_running(known)
+    end = time.monotonic() + 5.0
+    while still_running(known) and time.monotonic() < end:
+        time.sleep(0.1)
+    return at_exit, still_running(known)
+
+
+def kill_lines(k: dict, at: float, left: tuple[list[str], list[str]]) -> list[str]:
+    """The ``--kill-worker-at`` report of one run, in words."""
+    new = ", ".join(f"{w} ({'serving' if w in k['new_serving'] else 'not serving yet'})" for w in k["new"])
+    return [
+        f"kill at {at:g} s: SIGKILL to the worker serving {k['dead']} tabs "
+        f"(tabs per worker {'+'.join(map(str, k['spread']))}); {k['lost']} of its changes lost",
+        f"other tabs: p95 {k['p95_before']:.1f} ms before the kill, {k['p95_after']:.1f} ms in the "
+        f"{AFTER_KILL:g} s after; {k['others_closed']} of them closed",
+        f"killed worker's tabs: drawn again {k['back_max']:.0f} ms after the kill at most (p95 "
+        f"{k['back_p95']:.0f}), first change answered after {k['answered_max']:.0f} ms at most; "
+        f"{k['never_back']} never back",
+        f"worker processes: {k['workers_before']} before, {k['workers_after']} after"
+        + (f"; new: {new}" if new else "; none started again")
+        + f"; tabs per worker after: {'+'.join(map(str, k['spread_after']))}",
+        f"after SIGTERM: {len(left[0])} of its processes running when it exited"
+        + (f" ({', '.join(role(p) for p in left[0])})" if left[0] else "")
+        + f", {len(left[1])} 5 s later"
+        + "".join(f"; {p}" for p in left[1]),
+    ]
+
+
+def role(process: str) -> str:
+    """A process of the server's tree (``pid command line``) in a word or two."""
+    pid = process.split()[0]
+    if "resource_tracker" in process:
+        return f"{pid} multiprocessing's resource tracker"
+    return f"{pid} {'a spawned worker' if 'spawn_main' in process else process}"
 
 
 def timeline(when: np.ndarray, samples: np.ndarray, seconds: float) -> str:
@@ -330,6 +562,20 @@ def main() -> int:
     )
     parser.add_argument("--server-log", type=Path, default=None, help="append the server's log to this file")
     parser.add_argument(
+        "--memory",
+        action="store_true",
+        help="add the server tree's PSS and RSS [MB]: idle (one tab connected, its symbolic J shown) and "
+        "the highest under load (read every second of the window)",
+    )
+    parser.add_argument(
+        "--kill-worker-at",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="SIGKILL the worker serving the most tabs this far into the window (with --workers); the tabs "
+        "reconnect as viser's page does; then say what the room saw and what is left after SIGTERM",
+    )
+    parser.add_argument(
         "--app-root",
         type=Path,
         default=None,
@@ -338,17 +584,36 @@ def main() -> int:
     args = parser.parse_args()
     if not 1 <= args.seconds <= 120 or not all(1 <= n <= 200 for n in args.tabs):
         parser.error("--seconds must be in [1, 120] and --tabs in [1, 200]")
+    kill_at = args.kill_worker_at
+    if kill_at is not None and (min(args.workers or [1]) < 2 or not 0 < kill_at < args.seconds):
+        parser.error("--kill-worker-at needs --workers 2 or more and a time inside the window (0, --seconds)")
 
     app = args.app_root or "this checkout"
     print(f"app {app}; robot {args.robot}, {args.seconds:g} s per run, {os.cpu_count()} CPUs; slider → scene")
     print(f"load average before: {Path('/proc/loadavg').read_text().split()[:3]}")
-    columns = ("tabs", "hostile", "changes", "unanswered", "p50 ms", "p95 ms", "p99 ms", "max ms")
+    columns: tuple[str, ...] = (
+        "tabs",
+        "hostile",
+        "changes",
+        "unanswered",
+        "p50 ms",
+        "p95 ms",
+        "p99 ms",
+        "max ms",
+    )
     columns += ("CPU %", "ms/change", "switches", "client %")
-    widths = (5, 8, 8, 10, 8, 8, 8, 8, 6, 9, 8, 8)
+    widths: tuple[int, ...] = (5, 8, 8, 10, 8, 8, 8, 8, 6, 9, 8, 8)
+    if args.memory:  # [MB], the whole process tree; procs: how many processes idle → under load
+        columns += ("idle PSS", "idle RSS", "load PSS", "load RSS", "procs")
+        widths += (8, 8, 8, 8, 5)
     header = " ".join(f"{c:>{w}}" for c, w in zip(columns, widths, strict=True))
     print("workers " + header + ("   flood (sent, closed)" if args.hostile else ""))
     for n, workers in [(n, w) for n in args.tabs for w in (args.workers or [None])]:
-        proc, port = start_server(args.robot, args.limits, args.port, args.app_root, args.server_log, workers)
+        log = args.server_log
+        if args.kill_worker_at is not None and log is None:  # to see the restarted worker serve
+            log = Path(tempfile.mkstemp(prefix="bench-app-load-", suffix=".log")[1])
+        proc, port = start_server(args.robot, args.limits, args.port, args.app_root, log, workers)
+        kill = WorkerKill(proc.pid, port, kill_at, workers) if kill_at is not None and workers else None
         try:
             r = asyncio.run(
                 run(
@@ -361,14 +626,15 @@ def main() -> int:
                     args.warmup,
                     args.profile,
                     args.together,
+                    kill,
+                    MemoryWatch(proc.pid) if args.memory else None,
+                    log,
                 )
             )
         finally:
-            proc.terminate()
-            try:
-                proc.wait(15)
-            except subprocess.TimeoutExpired:
-                proc.kill()
+            left = stop_server(proc)
+            if log is not None and log != args.server_log:
+                log.unlink()
         s = r["samples"]
         p50, p95, p99 = np.percentile(s, [50, 95, 99]) if len(s) else (np.nan,) * 3
         mx = s.max() if len(s) else np.nan
@@ -379,12 +645,20 @@ def main() -> int:
             f"{r['switches_per_change']:>8.1f} "
             f"{r['client_cpu']:>8.0f}"
         )
+        if args.memory:
+            (ipss, irss, iprocs), (lpss, lrss, lprocs) = r["memory"]
+            line += f" {ipss:>8.0f} {irss:>8.0f} {lpss:>8.0f} {lrss:>8.0f} {f'{iprocs}→{lprocs}':>5}"
         print(
             line
             + (f"   {r['flood_sent']}, {'closed' if r['flood_closed'] else 'open'}" if args.hostile else "")
         )
         for note in r["silent"][:5]:
             print(f"      {note}")
+        if kill is not None:
+            for note in kill_lines(r["kill"], kill.at, left):
+                print(f"      {note}")
+        elif left[1]:
+            print(f"      after SIGTERM, left 5 s after the server exited: {'; '.join(left[1])}")
         if args.timeline and len(s):
             print(f"      p95 per second: {timeline(r['when'], s, args.seconds)}")
             got = r["symbolic"]

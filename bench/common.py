@@ -1,5 +1,6 @@
-"""What the benches share: the CPU time and thread hand-offs of a server and all its processes, from
-/proc (Linux), and viser's frames decoded and messages encoded."""
+"""What the benches share: the CPU time, thread hand-offs and memory of a server and all its processes,
+its worker processes and their connections, from /proc (Linux), and viser's frames decoded and messages
+encoded."""
 
 from __future__ import annotations
 
@@ -10,7 +11,19 @@ from pathlib import Path
 import msgspec.msgpack
 import zstandard
 
-__all__ = ["tree", "cpu_seconds", "switches", "decode", "encode"]
+__all__ = [
+    "tree",
+    "cpu_seconds",
+    "switches",
+    "memory",
+    "rollup_kb",
+    "worker_pids",
+    "peer_ports",
+    "identities",
+    "still_running",
+    "decode",
+    "encode",
+]
 
 CLK_TCK = os.sysconf("SC_CLK_TCK")
 
@@ -22,12 +35,18 @@ def _stat(pid: int) -> list[str] | None:
         return None
 
 
-def tree(pid: int) -> list[int]:
-    """``pid`` and every live descendant (the workers of ``serve --workers``, symbolic workers)."""
+def _parents() -> dict[int, int]:
+    """Every live process: its parent's pid."""
     parents: dict[int, int] = {}
     for entry in Path("/proc").iterdir():
         if entry.name.isdigit() and (fields := _stat(int(entry.name))) is not None:
             parents[int(entry.name)] = int(fields[1])
+    return parents
+
+
+def tree(pid: int) -> list[int]:
+    """``pid`` and every live descendant (the workers of ``serve --workers``, symbolic workers)."""
+    parents = _parents()
     found, frontier = [pid], [pid]
     while frontier:
         frontier = [p for p, parent in parents.items() if parent in frontier]
@@ -36,12 +55,14 @@ def tree(pid: int) -> list[int]:
 
 
 def cpu_seconds(pid: int) -> float:
-    """User + system CPU time so far of process ``pid`` and its live descendants [s] (a descendant that
-    ended during the run leaves its time in its parent's children counters, not counted here)."""
+    """User + system CPU time so far of process ``pid`` and its live descendants, with that of the
+    children they have waited for [s]: a worker that ends during a run (killed, then joined by the
+    server) still counts in a difference of two readings. (A process whose parent ended before it is
+    waited for by another process: its time is lost.)"""
     total = 0
     for p in tree(pid):
         if (fields := _stat(p)) is not None:
-            total += int(fields[11]) + int(fields[12])
+            total += sum(int(f) for f in fields[11:15])  # utime stime cutime cstime
     return total / CLK_TCK
 
 
@@ -55,6 +76,98 @@ def switches(pid: int) -> int:
             continue
         total += int(re.search(r"^voluntary_ctxt_switches:\s*(\d+)", text, re.M).group(1))
     return total
+
+
+def rollup_kb(text: str) -> dict[str, int]:
+    """The ``Name: N kB`` lines of a /proc/PID/smaps_rollup text, by name [kB] (its first line, the
+    address range, is not one of them)."""
+    found: dict[str, int] = {}
+    for line in text.splitlines():
+        match = re.fullmatch(r"(\w+):\s+(\d+) kB", line.strip())
+        if match:
+            found[match.group(1)] = int(match.group(2))
+    return found
+
+
+def memory(pid: int) -> tuple[float, float, int]:
+    """(PSS, RSS) [MB] summed over process ``pid`` and its live descendants, and how many processes.
+
+    PSS (proportional set size) shares each page among the processes mapping it, so the sum is what the
+    tree costs the machine; the RSS sum counts the pages the processes share (the interpreter, libraries,
+    what a spawned worker inherits) once per process."""
+    pss = rss = count = 0
+    for p in tree(pid):
+        try:
+            fields = rollup_kb(Path(f"/proc/{p}/smaps_rollup").read_text())
+        except OSError:  # the process just ended
+            continue
+        pss, rss, count = pss + fields.get("Pss", 0), rss + fields.get("Rss", 0), count + 1
+    return pss / 1024, rss / 1024, count
+
+
+def worker_pids(pid: int) -> list[int]:
+    """The worker processes of ``jacobian-lab serve --workers N`` (N ≥ 2) running as ``pid``: its children
+    that multiprocessing spawned (``spawn_main`` in their command line). Its other child, multiprocessing's
+    resource tracker, runs ``resource_tracker``; the symbolic workers are the workers' children. (With
+    ``--workers 1`` the server serves from its own process and its spawned child is its symbolic worker.)"""
+    found = []
+    for child in (p for p, parent in _parents().items() if parent == pid):
+        try:
+            if b"spawn_main" in Path(f"/proc/{child}/cmdline").read_bytes():
+                found.append(child)
+        except OSError:
+            continue
+    return sorted(found)
+
+
+def peer_ports(pid: int, port: int) -> set[int]:
+    """The remote ports of the TCP connections that process ``pid`` holds on its local ``port`` (the
+    tabs it serves: each tab's own port, ``local_address`` on the client side)."""
+    try:
+        fds = list(Path(f"/proc/{pid}/fd").iterdir())
+    except OSError:
+        return set()
+    inodes = set()
+    for fd in fds:
+        try:
+            link = os.readlink(fd)
+        except OSError:
+            continue
+        if link.startswith("socket:["):
+            inodes.add(link[8:-1])
+    found = set()
+    for table in ("tcp", "tcp6"):
+        try:
+            rows = Path(f"/proc/{pid}/net/{table}").read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for row in rows:  # sl local_address rem_address st tx:rx tr:tm retrnsmt uid timeout inode
+            cells = row.split()
+            local, remote = int(cells[1].rsplit(":", 1)[1], 16), int(cells[2].rsplit(":", 1)[1], 16)
+            if local == port and remote and cells[9] in inodes:
+                found.add(remote)
+    return found
+
+
+def identities(pids: list[int]) -> dict[int, str]:
+    """Each live process of ``pids``: its start time (clock ticks after boot), which tells it from a later
+    process given the same pid."""
+    return {p: fields[19] for p in pids if (fields := _stat(p)) is not None}
+
+
+def still_running(known: dict[int, str]) -> list[str]:
+    """The processes of ``known`` (from :func:`identities`) still running (a zombie is not), each as
+    ``pid command line``."""
+    left = []
+    for p, start in known.items():
+        fields = _stat(p)
+        if fields is not None and fields[19] == start and fields[0] != "Z":
+            try:
+                command = Path(f"/proc/{p}/cmdline").read_bytes().replace(b"\0", b" ").decode()
+            except OSError:
+                continue
+            left.append(f"{p} {command.strip()}")
+    return left
 
 
 def decode(frame: bytes) -> list[dict]:
