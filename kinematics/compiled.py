@@ -335,7 +335,8 @@ class Compiled:
 
     ``single(q, parts)`` for one configuration (n,) → the arrays named in ``parts`` ("T": (4, 4),
     "W": joint frames (m, 4, 4), "L": link frames (m + 2, 4, 4), "J": (6, n)), in that order;
-    ``batch(Q, jacobian)`` for one chunk Q (N, n) → (T (N, 4, 4), J (N, 6, n) or None).
+    ``batch(Q, jacobian)`` for one chunk Q (N, n) → (T (N, 4, 4), J (N, 6, n) or None);
+    ``single_rates(q, u)`` and ``batch_rates(Q, U)`` → T, J and J̇ at joint rates u.
     """
 
     def __init__(self, chain: Chain) -> None:
@@ -372,6 +373,13 @@ class Compiled:
         if "J" in parts:
             out.append(a[at:].reshape(6, self.chain.dof))
         return out
+
+    def single_rates(self, q: FloatArray, u: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """T (4, 4), J (6, n) and J̇ (6, n) of one configuration q (n,) at joint rates u (n,)."""
+        function, pack, _ = self._function("TJD", True)
+        a = np.frombuffer(bytearray(pack(*function(q.tolist(), u.tolist()))))
+        n = self.chain.dof
+        return a[:16].reshape(4, 4), a[16 : 16 + 6 * n].reshape(6, n), a[16 + 6 * n :].reshape(6, n)
 
     def batch_rates(self, Q: FloatArray, U: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """T (N, 4, 4), J (N, 6, n) and J̇ (N, 6, n) of one chunk Q (N, n) at joint rates U (N, n)."""

@@ -293,6 +293,14 @@ def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame
             f"jacobian_dot takes q (n,) and qd (n,), or a batch q (N, n) and qd (N, n) or (n,); "
             f"got q {q.shape} and qd {qd.shape}"
         )
+    if c.compiled is not None:
+        return c.compiled.single_rates(q, qd)[2]
+    return _jacobian_dot_scan(c, q, qd)
+
+
+def _jacobian_dot_scan(c: Kernel, q: FloatArray, qd: FloatArray) -> FloatArray:
+    """J̇ (6, n) of one configuration by NumPy operations over the axes (the path of chains without
+    generated code; an independent derivation: ṗ_tool − ṗ_k from the joint-frame velocities)."""
     W, T = chain_single(c, q)
     A = axis_jacobian(c, W, T)  # (6, m)
     z, p = W[:, :3, 2], W[:, :3, 3]
@@ -310,7 +318,8 @@ def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame
     Jd = np.empty((6, len(z)))
     Jd[:3] = (rev * (np.cross(zd, T[:3, 3] - p) + np.cross(z, v_tool - vel)) + c.prismatic[:, None] * zd).T
     Jd[3:] = (rev * zd).T
-    return Jd if c.simple else Jd @ c.selection
+    out: FloatArray = Jd if c.simple else Jd @ c.selection
+    return out
 
 
 def _batched_jacobian_dot(c: Kernel, q: FloatArray, qd: FloatArray) -> FloatArray:

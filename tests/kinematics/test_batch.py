@@ -5,6 +5,9 @@ and the errors of bad input."""
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
+
 import numpy as np
 import pytest
 from fakes import random_q
@@ -77,8 +80,9 @@ def test_batch_equals_the_single_configuration_functions(name):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_jdot_is_the_derivative_of_j_along_the_rates(name):
-    """J̇(q, q̇) against the central difference (J(q + h q̇) − J(q − h q̇)) / 2h of the batched J,
-    and the generated code against the NumPy scan's J̇ (an independent vectorised derivation)."""
+    """J̇(q, q̇) against the central difference (J(q + h q̇) − J(q − h q̇)) / 2h of the batched J; the
+    generated code (batched and single) against the NumPy scan's J̇ (vectorised over the axes) and
+    jacobian_dot's NumPy path (from the joint frames' velocities), also at |q| ~ 1e16."""
     robot = ROBOTS[name]
     rng = np.random.default_rng(4)
     Q, U = random_q(robot, rng, size=12), rng.normal(size=(12, robot.dof))
@@ -89,6 +93,23 @@ def test_jdot_is_the_derivative_of_j_along_the_rates(name):
     np.testing.assert_allclose(found, fd, atol=1e-7 * scale)
     _, J, Jd = batch_scan_rates(kernel(robot), Q, U)
     np.testing.assert_allclose(found, Jd, atol=1e-12 * scale)
+    Q[:3] *= np.where([k == "revolute" for k in robot.joint_types], 1e16, 1.0)
+    with generated_code_set_aside(robot):  # jacobian_dot's NumPy path: a third derivation
+        scan = [jacobian_dot(robot, Q[i], U[i]) for i in range(12)]
+    for i in range(12):
+        np.testing.assert_allclose(jacobian_dot(robot, Q[i], U[i]), scan[i], atol=1e-12 * scale)
+
+
+@contextlib.contextmanager
+def generated_code_set_aside(robot: Robot) -> Iterator[None]:
+    """Every kernel function of ``robot`` takes its NumPy path (as for chains over MAX_AXES)."""
+    c = kernel(robot)
+    saved = c.compiled
+    object.__setattr__(c, "compiled", None)
+    try:
+        yield
+    finally:
+        object.__setattr__(c, "compiled", saved)
 
 
 def test_measures_against_numpy_svd_of_the_rows():
