@@ -12,7 +12,11 @@ Times, for Puma 560 and Panda:
   (``robot.ets().jacob0``);
 * Pinocchio: ``computeFrameJacobian(..., LOCAL_WORLD_ALIGNED)`` on a model built from the URDF
   our robot exports (so it is the very same chain);
-* the app's ``compute(state)`` for one slider change (what a tab's redraw evaluates).
+* the app's ``compute(state)`` for one slider change (what a tab's redraw evaluates);
+* J̇: ours (``kinematics.jacobian_dot``, one configuration and batched) against Pinocchio's
+  ``computeJointJacobiansTimeVariation`` + ``getFrameJacobianTimeVariation`` per configuration;
+* the one pass ``kinematics.batch`` (T, J, J̇, σ, w, κ of a batch) against Pinocchio's per-configuration
+  loop giving the same: ``computeJointJacobiansTimeVariation``, the frame's J and J̇, NumPy's SVD of J.
 
 checks that everybody computes the same Jacobian, and prints ratios. Run with::
 
@@ -27,11 +31,12 @@ import os
 import time
 import timeit
 from collections.abc import Callable, Iterator
+from typing import Any
 
 import numpy as np
 
 import robots
-from kinematics import Robot, jacobian, maps, to_urdf
+from kinematics import Robot, batch, jacobian, jacobian_dot, maps, to_urdf
 from kinematics.kernel import kernel
 
 ROUNDS = 4
@@ -80,15 +85,36 @@ def app_compute(name: str) -> Callable[[], object]:
     return one
 
 
-def bench_robot(name: str, rtb_name: str, batch: int) -> dict[str, float]:
+def pinocchio_jdot(pin: Any, model: Any, data: Any, q: Any, qd: Any, fid: int) -> Any:
+    """Pinocchio's J̇ of the tool frame (LOCAL_WORLD_ALIGNED: base axes, v of the frame's origin)."""
+    pin.computeJointJacobiansTimeVariation(model, data, q, qd)
+    return pin.getFrameJacobianTimeVariation(model, data, fid, pin.LOCAL_WORLD_ALIGNED)
+
+
+def pinocchio_pass(pin: Any, model: Any, data: Any, q: Any, qd: Any, fid: int) -> object:
+    """What one row of ``kinematics.batch`` gives, by Pinocchio for one configuration: the tool pose,
+    J, J̇ (one ``computeJointJacobiansTimeVariation``) and the singular values of J (NumPy)."""
+    pin.computeJointJacobiansTimeVariation(model, data, q, qd)
+    T = pin.updateFramePlacement(model, data, fid)
+    J = pin.getFrameJacobian(model, data, fid, pin.LOCAL_WORLD_ALIGNED)
+    Jd = pin.getFrameJacobianTimeVariation(model, data, fid, pin.LOCAL_WORLD_ALIGNED)
+    return T, Jd, np.linalg.svd(J, compute_uv=False)
+
+
+def bench_robot(name: str, rtb_name: str, size: int) -> dict[str, float]:
     robot = robots.load(name)
     rng = np.random.default_rng(0)
     q = rng.uniform(-1, 1, robot.dof)
-    Q = rng.uniform(-1, 1, (batch, robot.dof))
+    Q = rng.uniform(-1, 1, (size, robot.dof))
+    qd = rng.normal(size=robot.dof)
+    Qd = rng.normal(size=(size, robot.dof))
     ours: dict[str, Callable[[], object]] = {
         "ours, single": lambda: jacobian(robot, q),
         "ours, batched (per configuration)": lambda: jacobian(robot, Q),
         "ours, batch measures (per configuration)": lambda: maps.measures(robot, Q),
+        "ours, J̇ single": lambda: jacobian_dot(robot, q, qd),
+        "ours, J̇ batched (per configuration)": lambda: jacobian_dot(robot, Q, Qd),
+        "ours, batch() T J J̇ σ w κ (per configuration)": lambda: batch(robot, Q, Qd),
         "app compute(state) per change": app_compute(name),
     }
     import pinocchio as pin
@@ -105,13 +131,15 @@ def bench_robot(name: str, rtb_name: str, batch: int) -> dict[str, float]:
         "Pinocchio computeFrameJacobian": lambda: pin.computeFrameJacobian(
             model, data, q, fid, pin.LOCAL_WORLD_ALIGNED
         ),
+        "Pinocchio J̇ (TimeVariation)": lambda: pinocchio_jdot(pin, model, data, q, qd, fid),
+        "Pinocchio T J J̇ + NumPy SVD": lambda: pinocchio_pass(pin, model, data, q, qd, fid),
     }
     for fn in ours.values():
         fn()  # generated code compiled outside the timing
     t = dict.fromkeys([*ours, *(k + " --" for k in ours), *peers], float("inf"))
     for _ in range(ROUNDS):  # every row once a round, best of the rounds: the load hits all alike
         for label, fn in ours.items():
-            scale = batch if "per configuration" in label else 1
+            scale = size if "per configuration" in label else 1
             spend = 0.5 if scale > 1 else 0.1
             t[label] = min(t[label], per_call(fn, spend) / scale)
             with numpy_scan(robot):
@@ -125,9 +153,15 @@ def bench_robot(name: str, rtb_name: str, batch: int) -> dict[str, float]:
     # that it is the same arm.
     angular_gap = np.abs(dh.jacob0(q)[3:] - J_ours[3:]).max()
     J_pin = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)
+    one = batch(robot, Q[:50], Qd[:50])
+    assert one.Jdot is not None
+    Jdot_gap = max(
+        np.abs(one.Jdot[i] - pinocchio_jdot(pin, model, data, Q[i], Qd[i], fid)).max() for i in range(50)
+    )
     print(
         f"\n{name}: {robot.dof} joints.  max |J_ours − J_pinocchio| = {np.abs(J_pin - J_ours).max():.1e}; "
-        f"generated − NumPy scan = {scan_gap:.1e}; max |ω rows ours − RTB {rtb_name}| = {angular_gap:.1e}"
+        f"generated − NumPy scan = {scan_gap:.1e}; max |ω rows ours − RTB {rtb_name}| = {angular_gap:.1e}; "
+        f"max |J̇ of batch() − Pinocchio's| over 50 = {Jdot_gap:.1e}"
     )
     return t
 
@@ -160,6 +194,20 @@ def main() -> None:
         print(
             f"  ours batched / floor estimate ({floor * 1e9:.0f} ns)       {batched / floor:6.1f}"
             "   (target ≤ 10)"
+        )
+        jd, jd_batched = t["ours, J̇ single"], t["ours, J̇ batched (per configuration)"]
+        pin_jd, one_pass = (
+            t["Pinocchio J̇ (TimeVariation)"],
+            t["ours, batch() T J J̇ σ w κ (per configuration)"],
+        )
+        print(f"  Pinocchio J̇ single / ours J̇ single         {pin_jd / jd:6.2f}")
+        print(f"  Pinocchio J̇ single / ours J̇ batched        {pin_jd / jd_batched:6.2f}")
+        print(
+            f"  Pinocchio T J J̇ + SVD / ours batch()       {t['Pinocchio T J J̇ + NumPy SVD'] / one_pass:6.2f}"
+        )
+        print(
+            f"  ns per configuration: batched J {batched * 1e9:.0f} (floor {floor * 1e9:.0f}), "
+            f"batched J̇ {jd_batched * 1e9:.0f}, batch() {one_pass * 1e9:.0f}"
         )
         app, app_before = t["app compute(state) per change"], t["app compute(state) per change --"]
         print(f"  app compute per change: {app * 1e3:.2f} ms (NumPy scan {app_before * 1e3:.2f} ms)")

@@ -50,6 +50,7 @@ from .analysis import (
     velocity_ellipsoid,
 )
 from .analytic_jacobian import analytic_jacobian, euler_angles, euler_rate_matrix
+from .batched import Batch, batch
 from .errors import (
     ArrayError,
     ConfigurationError,
@@ -75,6 +76,8 @@ __all__ = [
     "fk",
     "jacobian",
     "jacobian_dot",
+    "batch",
+    "Batch",
     "joint_frames",
     "link_frames",
     "chain_frames",

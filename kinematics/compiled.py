@@ -143,13 +143,17 @@ def _frame(cs: list[Vector], pos: Vector) -> list[Value]:
     return [v for r in range(3) for v in (cs[0][r], cs[1][r], cs[2][r], pos[r])] + [0.0, 0.0, 0.0, 1.0]
 
 
-def generate(chain: Chain, frames: bool, links: bool, jacobian: bool, batch: bool = False) -> tuple[str, int]:
+def generate(
+    chain: Chain, frames: bool, links: bool, jacobian: bool, batch: bool = False, rates: bool = False
+) -> tuple[str, int]:
     """The source of ``chain(q)`` → a flat tuple: T (16 values, row-major), then the joint frames
     if ``frames`` (16 each, before each axis moves), the link frames if ``links`` (m + 2 of them:
-    the base, the link of every axis, the tool), then J if ``jacobian`` (6·dof, row-major).
-    Also returns the tuple's length. ``q`` is a sequence of the ``dof`` joint values (Python
-    floats, or the rows of a batch).
+    the base, the link of every axis, the tool), then J if ``jacobian`` (6·dof, row-major), then
+    J̇ if ``rates`` (6·dof, row-major; the function is then ``chain(q, u)``, ``u`` the joint rates).
+    Also returns the tuple's length. ``q`` (and ``u``) are sequences of the ``dof`` joint values
+    (Python floats, or the rows of a batch).
     """
+    jacobian = jacobian or rates
     w = _Writer()
     fixed, index, multiplier, offset, revolute, dof = (
         chain.fixed,
@@ -161,6 +165,8 @@ def generate(chain: Chain, frames: bool, links: bool, jacobian: bool, batch: boo
     )
     m = len(index)
     w.line(f"{''.join(f'q{i}, ' for i in range(dof))}= q" if dof else "pass")
+    if rates and dof:
+        w.line(f"{''.join(f'u{i}, ' for i in range(dof))}= u")
     F0 = fixed[0]
     cols: list[Vector] = [[_clean(F0[r, j]) for r in range(3)] for j in range(3)]
     p: Vector = [float(F0[r, 3]) for r in range(3)]
@@ -202,14 +208,19 @@ def generate(chain: Chain, frames: bool, links: bool, jacobian: bool, batch: boo
     if links:
         out += link_frames + out[:16]
     if jacobian:
-        out += _jacobian(w, chain, [z for (_, _, z), _ in saved], [pk for _, pk in saved], p)
+        zs, ps = [z for (_, _, z), _ in saved], [pk for _, pk in saved]
+        columns = _axis_columns(w, chain, zs, ps, p)
+        out += _per_joint(w, chain, columns)
+        if rates:
+            out += _per_joint(w, chain, _axis_columns_dot(w, chain, zs, ps, p, columns))
+    args = "q, u" if rates else "q"
     if not batch:
         body = "\n".join(w.lines)
-        return f"def chain(q):\n{body}\n    return ({''.join(_text(v) + ', ' for v in out)})\n", len(out)
+        return f"def chain({args}):\n{body}\n    return ({''.join(_text(v) + ', ' for v in out)})\n", len(out)
     # A batch writes each value into its row of ``out`` (size, N): no temporary for a sign or a scale.
     stores = "\n".join(f"    {_store(i, v)}" for i, v in enumerate(out))
     body = "\n".join(_released(w.lines, stores))
-    return f"def chain(q, out):\n{body}\n{stores}\n", len(out)
+    return f"def chain({args}, out):\n{body}\n{stores}\n", len(out)
 
 
 def _store(i: int, v: Value) -> str:
@@ -223,7 +234,7 @@ def _store(i: int, v: Value) -> str:
     return f"multiply({n}, {_literal(c)}, out=out[{i}])"
 
 
-_NAME = re.compile(r"\b[qcstdvhg]\d+\b")
+_NAME = re.compile(r"\b[qucstdvhg]\d+\b")
 
 
 def _released(lines: list[str], result: str) -> list[str]:
@@ -243,22 +254,74 @@ def _released(lines: list[str], result: str) -> list[str]:
     return out
 
 
-def _jacobian(w: _Writer, chain: Chain, zs: list[Vector], ps: list[Vector], tool: Vector) -> list[Value]:
-    """J (6·dof values, row-major): Whitney's column of every axis, summed per joint (mimic axes)."""
-    columns: list[list[Value]] = []
+def _cross(w: _Writer, a: Vector, b: Vector) -> Vector:
+    """a × b, component by component."""
+    return [w.sum((a[(i + 1) % 3], b[(i + 2) % 3]), (-1.0, a[(i + 2) % 3], b[(i + 1) % 3])) for i in range(3)]
+
+
+def _axis_columns(w: _Writer, chain: Chain, zs: list[Vector], ps: list[Vector], tool: Vector) -> list[Vector]:
+    """Whitney's column [z × (p_tool − p_k); z] (revolute) or [z; 0] (prismatic) of every axis."""
+    columns: list[Vector] = []
     for k, z in enumerate(zs):
         if chain.revolute[k]:
             r = [w.sum((tool[i],), (-1.0, ps[k][i])) for i in range(3)]
-            v = [
-                w.sum((z[(i + 1) % 3], r[(i + 2) % 3]), (-1.0, z[(i + 2) % 3], r[(i + 1) % 3]))
-                for i in range(3)
-            ]
-            columns.append(v + list(z))
+            columns.append(_cross(w, z, r) + list(z))
         else:
             columns.append(list(z) + [0.0, 0.0, 0.0])
+    return columns
+
+
+def _axis_columns_dot(
+    w: _Writer, chain: Chain, zs: list[Vector], ps: list[Vector], tool: Vector, columns: list[Vector]
+) -> list[Vector]:
+    """The time derivative of every axis column at joint rates ``u``: with ω_k = Σ_{j<k} ṙ_j z_j
+    (revolute j; ṙ_j the rate of axis j) the angular velocity of joint frame k, ż_k = ω_k × z_k,
+    and ṗ_tool − ṗ_k = ω_k × (p_tool − p_k) + Σ_{j≥k} ṙ_j (column j's v) (the axes from k on move
+    the tool, not the origin of frame k, which lies on axis k), a revolute column's derivative is
+    [ż_k × r_k + z_k × (ṗ_tool − ṗ_k); ż_k] and a prismatic one's [ż_k; 0]."""
+    m = len(zs)
+    rate: list[Value] = [(chain.multiplier[k], f"u{chain.index[k]}") for k in range(m)]
+    after: list[Vector] = [[0.0, 0.0, 0.0]] * m  # Σ_{j≥k} ṙ_j v_j
+    total: Vector = [0.0, 0.0, 0.0]
+    for k in reversed(range(m)):
+        total = [w.sum((total[i],), (rate[k], columns[k][i])) for i in range(3)]
+        after[k] = total
+    omega: Vector = [0.0, 0.0, 0.0]
+    out: list[Vector] = []
+    for k, z in enumerate(zs):
+        zd = _cross(w, omega, z)
+        if chain.revolute[k]:
+            r = [w.sum((tool[i],), (-1.0, ps[k][i])) for i in range(3)]
+            rel = [
+                w.sum(
+                    (omega[(i + 1) % 3], r[(i + 2) % 3]),
+                    (-1.0, omega[(i + 2) % 3], r[(i + 1) % 3]),
+                    (after[k][i],),
+                )
+                for i in range(3)
+            ]
+            v = [
+                w.sum(
+                    (zd[(i + 1) % 3], r[(i + 2) % 3]),
+                    (-1.0, zd[(i + 2) % 3], r[(i + 1) % 3]),
+                    (z[(i + 1) % 3], rel[(i + 2) % 3]),
+                    (-1.0, z[(i + 2) % 3], rel[(i + 1) % 3]),
+                )
+                for i in range(3)
+            ]
+            out.append(v + zd)
+            omega = [w.sum((omega[i],), (rate[k], z[i])) for i in range(3)]
+        else:
+            out.append(zd + [0.0, 0.0, 0.0])
+    return out
+
+
+def _per_joint(w: _Writer, chain: Chain, columns: list[Vector]) -> list[Value]:
+    """(6·dof values, row-major): the axis columns summed per joint, times their multipliers
+    (mimic axes)."""
     J: list[list[Value]] = [[0.0] * chain.dof for _ in range(6)]
     for j in range(chain.dof):
-        axes = [k for k in range(len(zs)) if chain.index[k] == j]
+        axes = [k for k in range(len(columns)) if chain.index[k] == j]
         for row in range(6):
             J[row][j] = w.sum(*((_scaled(columns[k][row], chain.multiplier[k]),) for k in axes))
     return [v for row in J for v in row]
@@ -272,7 +335,8 @@ class Compiled:
 
     ``single(q, parts)`` for one configuration (n,) → the arrays named in ``parts`` ("T": (4, 4),
     "W": joint frames (m, 4, 4), "L": link frames (m + 2, 4, 4), "J": (6, n)), in that order;
-    ``batch(Q, jacobian)`` for one chunk Q (N, n) → (T (N, 4, 4), J (N, 6, n) or None).
+    ``batch(Q, jacobian)`` for one chunk Q (N, n) → (T (N, 4, 4), J (N, 6, n) or None);
+    ``single_rates(q, u)`` and ``batch_rates(Q, U)`` → T, J and J̇ at joint rates u.
     """
 
     def __init__(self, chain: Chain) -> None:
@@ -284,7 +348,9 @@ class Compiled:
         key = (parts, scalar)
         found = self._cache.get(key)
         if found is None:
-            text, size = generate(self.chain, "W" in parts, "L" in parts, "J" in parts, batch=not scalar)
+            text, size = generate(
+                self.chain, "W" in parts, "L" in parts, "J" in parts, batch=not scalar, rates="D" in parts
+            )
             lib: Any = math if scalar else np
             namespace: dict[str, Any] = {"cos": lib.cos, "sin": lib.sin, "tan": lib.tan, "__builtins__": {}}
             namespace.update(negative=np.negative, multiply=np.multiply)
@@ -307,6 +373,22 @@ class Compiled:
         if "J" in parts:
             out.append(a[at:].reshape(6, self.chain.dof))
         return out
+
+    def single_rates(self, q: FloatArray, u: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """T (4, 4), J (6, n) and J̇ (6, n) of one configuration q (n,) at joint rates u (n,)."""
+        function, pack, _ = self._function("TJD", True)
+        a = np.frombuffer(bytearray(pack(*function(q.tolist(), u.tolist()))))
+        n = self.chain.dof
+        return a[:16].reshape(4, 4), a[16 : 16 + 6 * n].reshape(6, n), a[16 + 6 * n :].reshape(6, n)
+
+    def batch_rates(self, Q: FloatArray, U: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """T (N, 4, 4), J (N, 6, n) and J̇ (N, 6, n) of one chunk Q (N, n) at joint rates U (N, n)."""
+        function, _, size = self._function("TJD", False)
+        N, n = len(Q), self.chain.dof
+        out = np.empty((size, N))
+        function(list(np.ascontiguousarray(Q.T)), list(np.ascontiguousarray(U.T)), out)
+        T = out[:16].T.reshape(N, 4, 4)
+        return T, out[16 : 16 + 6 * n].T.reshape(N, 6, n), out[16 + 6 * n :].T.reshape(N, 6, n)
 
     def batch(self, Q: FloatArray, jacobian: bool) -> tuple[FloatArray, FloatArray | None]:
         function, _, size = self._function("TJ" if jacobian else "T", False)

@@ -36,6 +36,8 @@ __all__ = [
     "batched_fk",
     "chain_batch",
     "batch_scan",
+    "batch_scan_rates",
+    "chain_batch_rates",
     "batched_jacobian",
 ]
 
@@ -277,9 +279,47 @@ def chain_batch(c: Kernel, q: FloatArray, want_jacobian: bool) -> tuple[FloatArr
     return c.compiled.batch(q, want_jacobian)
 
 
+def chain_batch_rates(c: Kernel, q: FloatArray, u: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """T (N, 4, 4), J (N, 6, n) and J̇ (N, 6, n) of one chunk q (N, n) at joint rates u (N, n), by the
+    generated code (the NumPy scan for a chain without it)."""
+    if c.compiled is None:
+        return batch_scan_rates(c, q, u)
+    return c.compiled.batch_rates(q, u)
+
+
 def batch_scan(c: Kernel, q: FloatArray, want_jacobian: bool) -> tuple[FloatArray, FloatArray | None]:
     """Component-wise chain over a chunk (the path of chains over MAX_AXES axes, and the reference
     the generated code is tested against). Returns T (N,4,4) and, if asked, J (N,6,n)."""
+    T, Z, P, p = _scan_axes(c, q)
+    if not want_jacobian:
+        return T, None
+    return T, _per_joint(c, _columns(c, Z, p[None] - P))
+
+
+def batch_scan_rates(c: Kernel, q: FloatArray, u: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """T (N,4,4), J (N,6,n) and J̇ (N,6,n) of a chunk q (N, n) at joint rates u (N, n) by NumPy
+    operations over all axes at once (the path of chains over MAX_AXES axes, and the reference the
+    generated J̇ is tested against); the derivation is that of ``compiled._axis_columns_dot``."""
+    T, Z, P, p = _scan_axes(c, q)
+    R = p[None] - P  # (m, 3, N)
+    A = _columns(c, Z, R)  # (6, m, N)
+    rate = (u if c.simple else u[:, c.index] * c.multiplier).T  # (m, N)
+    rz = (rate * c.revolute[:, None])[:, None] * Z  # (m, 3, N)
+    omega = np.cumsum(rz, axis=0) - rz
+    moved = (rate[None] * A[:3]).transpose(1, 0, 2)  # (m, 3, N): ṙ_j v_j
+    after = np.cumsum(moved[::-1], axis=0)[::-1]  # Σ_{j≥k}
+    zd = np.cross(omega, Z, axis=1)
+    rel = np.cross(omega, R, axis=1) + after
+    dv = np.cross(zd, R, axis=1) + np.cross(Z, rel, axis=1)
+    rev, pri = c.revolute[:, None, None], c.prismatic[:, None, None]
+    D = np.empty_like(A)
+    D[:3] = (dv * rev + zd * pri).transpose(1, 0, 2)
+    D[3:] = (zd * rev).transpose(1, 0, 2)
+    return T, _per_joint(c, A), _per_joint(c, D)
+
+
+def _scan_axes(c: Kernel, q: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """T (N,4,4), the axes z_k (m,3,N), the joint-frame origins p_k (m,3,N) and the tool's p (3,N)."""
     N = q.shape[0]
     m = len(c.offset)
     qa = (q if c.simple else q[:, c.index] * c.multiplier) + c.offset  # (N, m)
@@ -309,22 +349,26 @@ def batch_scan(c: Kernel, q: FloatArray, want_jacobian: bool) -> tuple[FloatArra
     T[:, :3, 2] = cols[2].T
     T[:, :3, 3] = p.T
     T[:, 3, 3] = 1.0
-    if not want_jacobian:
-        return T, None
-    Z = np.stack(zs)  # (m, 3, N)
-    R = p[None] - np.stack(ps)  # (m, 3, N)
-    Jc = np.empty((6, m, N))
+    empty = np.empty((0, 3, N))
+    return T, np.stack(zs) if zs else empty, np.stack(ps) if ps else empty, p
+
+
+def _columns(c: Kernel, Z: FloatArray, R: FloatArray) -> FloatArray:
+    """Whitney's columns (6, m, N) of every axis from the axes Z and r = p_tool − p_k, (m, 3, N)."""
+    Jc: FloatArray = np.empty((6, Z.shape[0], Z.shape[2]))
     rev = c.revolute[:, None]
     pri = c.prismatic[:, None]
     Jc[0] = (Z[:, 1] * R[:, 2] - Z[:, 2] * R[:, 1]) * rev + Z[:, 0] * pri
     Jc[1] = (Z[:, 2] * R[:, 0] - Z[:, 0] * R[:, 2]) * rev + Z[:, 1] * pri
     Jc[2] = (Z[:, 0] * R[:, 1] - Z[:, 1] * R[:, 0]) * rev + Z[:, 2] * pri
     Jc[3:] = Z.transpose(1, 0, 2) * rev
-    if c.simple:
-        J = Jc.transpose(2, 0, 1)
-    else:
-        J = np.einsum("imN,mn->Nin", Jc, c.selection)
-    return T, J
+    return Jc
+
+
+def _per_joint(c: Kernel, Jc: FloatArray) -> FloatArray:
+    """(N, 6, n) from axis columns (6, m, N): mimic axes summed per joint, times their multipliers."""
+    out: FloatArray = Jc.transpose(2, 0, 1) if c.simple else np.einsum("imN,mn->Nin", Jc, c.selection)
+    return out
 
 
 def batched_fk(c: Kernel, q: FloatArray) -> FloatArray:

@@ -20,6 +20,7 @@ from .kernel import (
     axis_jacobian,
     batched_fk,
     batched_jacobian,
+    chain_batch_rates,
     chain_single,
     frames_jacobian,
     jacobian_from_frames,
@@ -47,6 +48,7 @@ __all__ = [
 _FAST_BOUND = min(MAX_ANGLE, MAX_LENGTH)
 _MAX_ABS = np.maximum.reduce
 _FLOAT = np.dtype(np.float64)
+_CHUNK = 4096  # configurations per chunk of a batched J̇
 
 
 def check_frame(frame: object) -> Frame:
@@ -266,7 +268,7 @@ def jacobian(robot: Robot, q: npt.ArrayLike, frame: Frame = "base") -> FloatArra
 
 
 def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame = "base") -> FloatArray:
-    """Time derivative J̇(q, q̇) of the base-frame geometric Jacobian, shape (6, n).
+    """Time derivative J̇(q, q̇) of the base-frame geometric Jacobian, shape (6, n) or (N, 6, n).
 
     Used in the acceleration mapping  [a; α] = J q̈ + J̇ q̇  (a = acceleration of
     the tool-frame origin). Computed analytically from the joint axes:
@@ -274,8 +276,8 @@ def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame
 
     Args:
         robot: The robot.
-        q: Configuration (n,).
-        qd: Joint rates (n,) [rad/s | m/s].
+        q: Configuration (n,), or a batch (N, n) (evaluated in chunks by the generated chain code).
+        qd: Joint rates [rad/s | m/s]: (n,) for one configuration; (N, n), or (n,) for all, for a batch.
         frame: Only ``"base"`` is supported (the derivative of a rotated
             Jacobian mixes in Ṙ; use the base frame and rotate results).
     """
@@ -284,8 +286,21 @@ def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame
     c = kernel(robot)
     q = _configuration(robot, c, q)
     qd = _configuration(robot, c, qd, "qd")
+    if q.ndim == 2 and (qd.ndim == 1 or qd.shape == q.shape):
+        return _batched_jacobian_dot(c, q, np.broadcast_to(qd, q.shape))
     if q.ndim != 1 or qd.ndim != 1:
-        raise ConfigurationError("jacobian_dot takes one configuration q (n,) and rates qd (n,)")
+        raise ConfigurationError(
+            f"jacobian_dot takes q (n,) and qd (n,), or a batch q (N, n) and qd (N, n) or (n,); "
+            f"got q {q.shape} and qd {qd.shape}"
+        )
+    if c.compiled is not None:
+        return c.compiled.single_rates(q, qd)[2]
+    return _jacobian_dot_scan(c, q, qd)
+
+
+def _jacobian_dot_scan(c: Kernel, q: FloatArray, qd: FloatArray) -> FloatArray:
+    """J̇ (6, n) of one configuration by NumPy operations over the axes (the path of chains without
+    generated code; an independent derivation: ṗ_tool − ṗ_k from the joint-frame velocities)."""
     W, T = chain_single(c, q)
     A = axis_jacobian(c, W, T)  # (6, m)
     z, p = W[:, :3, 2], W[:, :3, 3]
@@ -303,4 +318,13 @@ def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame
     Jd = np.empty((6, len(z)))
     Jd[:3] = (rev * (np.cross(zd, T[:3, 3] - p) + np.cross(z, v_tool - vel)) + c.prismatic[:, None] * zd).T
     Jd[3:] = (rev * zd).T
-    return Jd if c.simple else Jd @ c.selection
+    out: FloatArray = Jd if c.simple else Jd @ c.selection
+    return out
+
+
+def _batched_jacobian_dot(c: Kernel, q: FloatArray, qd: FloatArray) -> FloatArray:
+    """J̇ (N, 6, n) of a batch, chunk by chunk."""
+    Jd = np.empty((q.shape[0], 6, q.shape[1]))
+    for s in range(0, q.shape[0], _CHUNK):
+        Jd[s : s + _CHUNK] = chain_batch_rates(c, q[s : s + _CHUNK], qd[s : s + _CHUNK])[2]
+    return Jd

@@ -7,13 +7,12 @@ from __future__ import annotations
 import io
 import re
 import tokenize
-from pathlib import Path
 
 import numpy as np
 import pytest
 from fakes import random_q
+from kinematics_helpers import MIMIC_URDF, chains_under_test
 
-import robots
 from kinematics import ConfigurationError, Robot, fk, jacobian, joint_frames, link_frames
 from kinematics.compiled import MAX_AXES, Chain, Compiled, generate
 from kinematics.kernel import (
@@ -24,54 +23,10 @@ from kinematics.kernel import (
     kernel,
 )
 from kinematics.numeric import chain_frames, frames_and_jacobian
-from kinematics.transforms import rot_x, rot_z, trans
-from kinematics.urdf import robot_from_urdf, robot_from_urdf_string
+from kinematics.transforms import rot_z, trans
+from kinematics.urdf import robot_from_urdf_string
 
-DATA = Path(__file__).parents[1] / "data"
-
-MIMIC_URDF = """<robot name="m">
-  <link name="a"/><link name="b"/><link name="c"/><link name="d"/><link name="e"/>
-  <joint name="j1" type="revolute"><parent link="a"/><child link="b"/>
-    <origin xyz="0.1 0.2 0.3" rpy="0.3 -0.2 0.1"/><axis xyz="0 1 0"/>
-    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="b"/><child link="c"/>
-    <origin xyz="1 0 0" rpy="1.0 0 0.5"/><axis xyz="0.6 0 0.8"/>
-    <limit lower="-1" upper="1" effort="1" velocity="1"/>
-    <mimic joint="j1" multiplier="-2.5" offset="0.1"/></joint>
-  <joint name="slide" type="prismatic"><parent link="c"/><child link="d"/>
-    <origin xyz="0 0.4 0" rpy="0 0.7 0"/><axis xyz="1 0 0"/>
-    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-  <joint name="follow" type="prismatic"><parent link="d"/><child link="e"/>
-    <origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="1" velocity="1"/>
-    <mimic joint="slide" multiplier="0.5" offset="0.05"/></joint>
-</robot>"""
-
-
-def _urdf_robots() -> dict[str, Robot]:
-    found = {}
-    for path in sorted([*DATA.glob("*.urdf"), *DATA.glob("urdf/*.urdf"), *DATA.glob("urdf/*/urdf/*.urdf")]):
-        try:
-            found[path.name] = robot_from_urdf(path)
-        except Exception:  # noqa: BLE001 - the hostile test files are refused on purpose
-            continue
-    return found
-
-
-ROBOTS: dict[str, Robot] = {name: robots.load(name) for name in robots.names()}
-ROBOTS.update(_urdf_robots())
-ROBOTS["mimic+prismatic"] = robot_from_urdf_string(MIMIC_URDF, tip_link="e")
-ROBOTS["dh with base and tool"] = Robot.from_dh(
-    [
-        dict(joint="revolute", a=0.3, alpha=np.pi / 2, d=0.1, theta=0.2),
-        dict(joint="prismatic", a=0.0, alpha=-np.pi / 2, d=0.2, theta=0.4),
-        dict(joint="revolute", a=0.2, alpha=0.7, d=0.0, theta=0.0),
-    ],
-    convention="modified",
-    base=trans(0.1, -0.2, 0.5) @ rot_x(0.4),
-    tool=trans(0.0, 0.0, 0.12) @ rot_z(-np.pi / 4),
-    name="based",
-)
+ROBOTS: dict[str, Robot] = chains_under_test()
 NAMES = list(ROBOTS)
 
 
@@ -196,9 +151,12 @@ def test_generated_text_holds_only_fixed_identifiers_and_numbers():
     assert "import" in robot.joints[0].name and "import" in robot.name
     compiled = kernel(robot).compiled
     assert compiled is not None
-    allowed = re.compile(r"(chain|cos|sin|tan|negative|multiply|out|return|def|pass|del|q|[qcstdvhg]\d+)\Z")
-    for parts, batch in (("T", False), ("TJ", False), ("TW", False), ("TWLJ", False), ("TJ", True)):
-        text, _ = generate(compiled.chain, "W" in parts, "L" in parts, "J" in parts, batch)
+    allowed = re.compile(
+        r"(chain|cos|sin|tan|negative|multiply|out|return|def|pass|del|q|u|[qucstdvhg]\d+)\Z"
+    )
+    cases = (("T", False), ("TJ", False), ("TW", False), ("TWLJ", False), ("TJ", True), ("TJD", True))
+    for parts, batch in cases:
+        text, _ = generate(compiled.chain, "W" in parts, "L" in parts, "J" in parts, batch, "D" in parts)
         for token in tokenize.generate_tokens(io.StringIO(text).readline):
             assert token.type != tokenize.STRING, token
             if token.type == tokenize.NAME:
