@@ -160,14 +160,20 @@ class FakeWorkerPool(_ss.WorkerPool):
         self._closed = True
 
 
+def _fake_pools(on_restart: Callable[[str], None]) -> _ss.LocalPools:
+    pools = _ss.LocalPools(on_restart)
+    pools.panel, pools.downloads = FakeWorkerPool(on_restart), FakeWorkerPool(on_restart)
+    return pools
+
+
 class FakeSymbolicService(_ss.SymbolicService):
     """The real service's bookkeeping (one request per key, release, cancel) over
     :class:`FakeWorkerPool` workers: deterministic, immediate, in process."""
 
     def __init__(self, timeout: float = 60.0) -> None:
-        super().__init__(timeout)
-        self._panel_worker = FakeWorkerPool(self._restarted)
-        self._export_worker = FakeWorkerPool(self._restarted)
+        super().__init__(timeout, pools=_fake_pools)
+        self._panel_worker = self._pools.panel  # type: ignore[attr-defined]
+        self._export_worker = self._pools.downloads  # type: ignore[attr-defined]
 
     @property
     def calls(self) -> list[tuple[str, tuple]]:

@@ -50,6 +50,7 @@ from app.services.lifecycle import (
 )
 from app.services.room import RoomHub
 from app.services.state_codec import dumps, loads
+from app.services.symbolic_relay import SymbolicHub, remote_pools
 
 __all__ = ["WORKER_CAP", "default_workers", "listening_socket", "serve_workers", "WorkerPool"]
 
@@ -143,15 +144,19 @@ def _worker_main(
     ready: Connection,
     parent_pid: int,
     room: Connection | None = None,
+    symbolic: Connection | None = None,
 ) -> None:
-    """One worker: a whole Lab accepting on the shared socket, until SIGTERM or its parent is gone."""
+    """One worker: a whole Lab accepting on the shared socket, until SIGTERM or its parent is gone; its
+    symbolic computations go to the parent's pool over ``symbolic`` (without it, it has its own)."""
     watch_parent(parent_pid)  # ends this worker if the parent is killed outright; ignores Ctrl-C
     logging.basicConfig(level=logging.INFO, format=f"%(levelname)s worker {index} %(name)s: %(message)s")
     logging.getLogger("websockets").setLevel(logging.WARNING)
     sys.setswitchinterval(0.001)
     from app.server import Lab  # the worker's own import: the parent never builds a Lab
+    from app.services.symbolic_service import SymbolicService
 
-    lab = Lab(listen_socket=sock, room_pipe=room, **lab_options)
+    service = SymbolicService(pools=remote_pools(symbolic)) if symbolic is not None else None
+    lab = Lab(listen_socket=sock, room_pipe=room, symbolic=service, **lab_options)
     stop = threading.Event()
     signals = install_stop_signals(stop.set)
     ready.send(("ready", os.getpid(), lab.port))
@@ -190,6 +195,7 @@ class WorkerPool:
         self.workers: dict[int, _Worker] = {}
         self.restarts = 0
         self.hub = RoomHub(presenter_token) if presenter_token else None
+        self.symbolic = SymbolicHub()  # one symbolic pool for every worker
 
     @property
     def port(self) -> int:
@@ -211,13 +217,16 @@ class WorkerPool:
     def _spawn(self, index: int) -> _Worker:
         mine, theirs = self.context.Pipe(duplex=False)
         room, their_room = self.context.Pipe(duplex=True) if self.hub is not None else (None, None)
+        symbolic, their_symbolic = self.context.Pipe(duplex=True)
         process = self.context.Process(
             target=_worker_main,
-            args=(index, self.sock, self.lab_options, theirs, os.getpid(), their_room),
+            args=(index, self.sock, self.lab_options, theirs, os.getpid(), their_room, their_symbolic),
             name=f"jacobian-lab-worker-{index}",
         )
         process.start()
         theirs.close()
+        their_symbolic.close()
+        self.symbolic.attach(index, symbolic)
         if their_room is not None:
             their_room.close()
         worker = _Worker(index, process, mine, time.monotonic(), room=room)
@@ -318,6 +327,7 @@ class WorkerPool:
                 worker.process.join(0)
                 worker.ready.close()
                 self._close_room(worker)
+                self.symbolic.detach(index)
                 # A worker that dies at once, again and again, must not spin the parent.
                 if now - worker.started < 1.0:
                     time.sleep(1.0)
@@ -351,6 +361,7 @@ class WorkerPool:
             if worker.outbox is not None:
                 worker.outbox.close()
         self.workers.clear()
+        self.symbolic.close()
         self.sock.close()
 
 

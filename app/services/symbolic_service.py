@@ -18,6 +18,7 @@ plain note.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import logging
 import multiprocessing
 import os
@@ -25,7 +26,7 @@ import threading
 from collections.abc import Callable
 from concurrent.futures import Future, InvalidStateError, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from typing import Any
+from typing import Any, Protocol
 
 from kinematics import Robot
 
@@ -38,6 +39,10 @@ __all__ = [
     "SymbolicFuture",
     "WorkerPool",
     "WORKER_RESTARTED",
+    "LocalPools",
+    "Pools",
+    "REQUESTS",
+    "Request",
 ]
 
 log = logging.getLogger(__name__)
@@ -196,27 +201,79 @@ def _end_pool(pool: ProcessPoolExecutor) -> None:
             process.kill()
 
 
+class Pools(Protocol):
+    """Where :class:`SymbolicService` sends its computations: :class:`LocalPools` (its own worker
+    processes) or, in a worker of ``serve --workers N``, :class:`~app.services.symbolic_relay.RemotePools`
+    (the one pool of the whole server, in the parent)."""
+
+    @property
+    def restarts(self) -> int: ...
+
+    def want(self, key: tuple, kind: str, args: tuple) -> SymbolicFuture:
+        """A future of the request ``kind`` (a name of :data:`REQUESTS`) for ``key``."""
+        ...
+
+    def export(self, args: tuple) -> SymbolicFuture: ...
+
+    def pids(self) -> list[int]: ...
+
+    def close(self) -> None: ...
+
+
+class LocalPools:
+    """This process's own worker processes: one for the panel's MathML, one for downloads.
+
+    Args:
+        on_restart: Called with :data:`WORKER_RESTARTED` after a worker was restarted.
+    """
+
+    def __init__(self, on_restart: Callable[[str], None]) -> None:
+        self.panel = WorkerPool(on_restart)
+        self.downloads = WorkerPool(on_restart)
+
+    @property
+    def restarts(self) -> int:
+        return self.panel.restarts + self.downloads.restarts
+
+    def want(self, key: tuple, kind: str, args: tuple) -> SymbolicFuture:
+        return self.panel.submit(REQUESTS[kind].fn, *args)
+
+    def export(self, args: tuple) -> SymbolicFuture:
+        return self.downloads.submit(_export, *args)
+
+    def pids(self) -> list[int]:
+        return self.panel.pids() + self.downloads.pids()
+
+    def close(self) -> None:
+        self.panel.close()
+        self.downloads.close()
+
+
 class SymbolicService:
     """MathML of J(q) and text exports, computed in worker processes.
 
     Args:
         timeout: Time limit passed to the symbolic module [s].
+        pools: Builds where the computations go from the restart listener (default: :class:`LocalPools`,
+            worker processes of this process; a worker of ``serve --workers N`` passes
+            :func:`app.services.symbolic_relay.remote_pools`, the parent's one pool).
     """
 
-    def __init__(self, timeout: float = 60.0) -> None:
+    def __init__(
+        self, timeout: float = 60.0, pools: Callable[[Callable[[str], None]], Pools] | None = None
+    ) -> None:
         self.timeout = timeout
         self._lock = threading.Lock()
         self._mathml: dict[tuple, SymbolicFuture] = {}
         self._interest: dict[tuple, int] = {}
         self._listeners: list[Callable[[str], None]] = []
         self.last_notice: str | None = None
-        self._panel_worker = WorkerPool(self._restarted)
-        self._export_worker = WorkerPool(self._restarted)
+        self._pools: Pools = (pools or LocalPools)(self._restarted)
 
     @property
     def restarts(self) -> int:
         """How many times a worker process died and was restarted."""
-        return self._panel_worker.restarts + self._export_worker.restarts
+        return self._pools.restarts
 
     def on_restart(self, callback: Callable[[str], None]) -> None:
         """Call ``callback(WORKER_RESTARTED)`` (in a background thread) whenever a worker is restarted."""
@@ -232,7 +289,7 @@ class SymbolicService:
 
     def worker_pids(self) -> list[int]:
         """Process ids of the running worker processes (for diagnostics and tests)."""
-        return self._panel_worker.pids() + self._export_worker.pids()
+        return self._pools.pids()
 
     def mathml(self, robot: Robot, frame: str, letters: bool = False) -> SymbolicFuture:
         """A future of the ``<math>`` element of J(q) for ``robot`` in ``frame`` ("base" or "tool").
@@ -246,16 +303,15 @@ class SymbolicService:
         before it started. If the worker dies, the computation is run once more on a new
         worker (``future.restarted`` is then True).
         """
-        return self._want(
-            (robot.fingerprint(), frame, bool(letters)), _mathml, robot, frame, self.timeout, letters
-        )
+        key = (robot.fingerprint(), frame, bool(letters))
+        return self._want(key, "mathml", robot, frame, float(self.timeout), bool(letters))
 
     def inverse(self, robot: Robot, letters: bool = False) -> SymbolicFuture:
         """A future of the MathML of J⁻¹ = adj(J) / det J of ``robot``'s square task J (base axes);
         release with :meth:`release_inverse`. Fails with the symbolic module's error for a J that is
         not square or too large."""
         key = (robot.fingerprint(), "inverse", bool(letters))
-        return self._want(key, _inverse_mathml, robot, bool(letters), self.timeout)
+        return self._want(key, "inverse", robot, bool(letters), float(self.timeout))
 
     def steps(self, robot: Robot, method: str, letters: bool = False) -> SymbolicFuture:
         """A future of the steps of one derivation of J (``method``: "whitney", "differentiation",
@@ -263,18 +319,18 @@ class SymbolicService:
         (``letters``: the DH lengths and offsets as the course's letters, every step, ⁰Tᵢ and the
         tool's included); release with :meth:`release_steps`."""
         key = (robot.fingerprint(), "steps", method, bool(letters))
-        return self._want(key, _steps_mathml, robot, method, self.timeout, bool(letters))
+        return self._want(key, "steps", robot, method, float(self.timeout), bool(letters))
 
     def release_steps(self, robot: Robot, method: str, letters: bool = False) -> None:
         """One client no longer waits for the steps of ``method`` for ``robot``."""
         self._release((robot.fingerprint(), "steps", method, bool(letters)))
 
-    def _want(self, key: tuple, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
+    def _want(self, key: tuple, kind: str, *args: Any) -> SymbolicFuture:
         with self._lock:
             self._interest[key] = self._interest.get(key, 0) + 1
             future = self._mathml.get(key)
             if future is None or future.cancelled() or (future.done() and future.exception() is not None):
-                future = self._panel_worker.submit(fn, *args)
+                future = self._pools.want(key, kind, args)
                 self._mathml[key] = future
             return future
 
@@ -301,12 +357,11 @@ class SymbolicService:
         """A future of (file name, content) of J(q) exported as ``label`` ("LaTeX", "Python" or "JSON")."""
         fmt, ext = EXPORT_FORMATS[label]
         name = f"{robot.name or 'robot'}_J_{frame}.{ext}"
-        return self._export_worker.submit(_export, robot, fmt, frame, self.timeout, name)
+        return self._pools.export((robot, fmt, frame, float(self.timeout), name))
 
     def close(self) -> None:
         """Stop the worker processes (pending computations are abandoned)."""
-        self._panel_worker.close()
-        self._export_worker.close()
+        self._pools.close()
 
 
 def _mathml(robot: Robot, frame: str, timeout: float, letters: bool = False) -> str:
@@ -358,3 +413,39 @@ def _export(robot: Robot, fmt: str, frame: str, timeout: float, name: str) -> tu
             "export not available (kinematics.symbolic.typeset.export is missing)"
         ) from exc
     return name, export(robot, fmt, frame=frame, timeout=timeout).encode("utf-8")
+
+
+@dataclasses.dataclass(frozen=True)
+class Request:
+    """One kind of computation a :class:`SymbolicService` asks for.
+
+    Attributes:
+        fn: The function run in the worker process (module-level, imported there by name).
+        types: The type of each argument (``bool`` and ``float`` exactly: a bool is no time limit).
+        timeout_at: Which argument is the time limit [s] (it is not part of the request's key).
+    """
+
+    fn: Callable[..., Any]
+    types: tuple[type, ...]
+    timeout_at: int
+
+    def check(self, args: tuple) -> None:
+        """Raise ``TypeError`` unless ``args`` are of :attr:`types` (what the relay lets a worker send)."""
+        if len(args) != len(self.types):
+            raise TypeError(f"{self.fn.__name__} takes {len(self.types)} arguments, got {len(args)}")
+        for value, kind in zip(args, self.types, strict=True):
+            ok = type(value) is kind if kind in (bool, float, str) else isinstance(value, kind)
+            if not ok:
+                raise TypeError(
+                    f"{self.fn.__name__}: {type(value).__name__} given where {kind.__name__} belongs"
+                )
+
+
+REQUESTS: dict[str, Request] = {
+    "mathml": Request(_mathml, (Robot, str, float, bool), 2),
+    "inverse": Request(_inverse_mathml, (Robot, bool, float), 2),
+    "steps": Request(_steps_mathml, (Robot, str, float, bool), 2),
+    "export": Request(_export, (Robot, str, str, float, str), 3),
+}
+"""Every computation a service asks for, by name: the only functions a worker of ``serve --workers N``
+can have the parent's symbolic pool run (it sends a name and arguments, never a function)."""
