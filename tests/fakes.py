@@ -19,6 +19,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from app.services import symbolic_requests as _sr
 from app.services import symbolic_service as _ss
 
 __all__ = [
@@ -127,10 +128,10 @@ def _fake_export(robot, fmt: str, frame: str, timeout: float, name: str) -> tupl
 
 
 _ANSWERS: dict[Callable[..., Any], Callable[..., Any]] = {
-    _ss._mathml: _fake_mathml,
-    _ss._inverse_mathml: _fake_inverse,
-    _ss._steps_mathml: _fake_steps,
-    _ss._export: _fake_export,
+    _sr._mathml: _fake_mathml,
+    _sr._inverse_mathml: _fake_inverse,
+    _sr._steps_mathml: _fake_steps,
+    _sr._export: _fake_export,
 }
 
 

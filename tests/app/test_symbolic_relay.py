@@ -25,7 +25,8 @@ import pytest
 from fakes import poll
 
 import robots
-from app.services.symbolic_relay import RemotePools, SymbolicHub, remote_pools
+from app.services.symbolic_hub import SymbolicHub
+from app.services.symbolic_relay import RemotePools, remote_pools
 from app.services.symbolic_service import (
     REQUESTS,
     WORKER_RESTARTED,
