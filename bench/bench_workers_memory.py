@@ -10,12 +10,15 @@ process). Printed per process and in total, with each process's command line sho
 
 The disk cache of symbolic results (``$XDG_CACHE_HOME/jacobian-lab``) is a fresh folder warmed by a first
 run of the same command, so every measured run reads the J from disk and none spends CPU on SymPy's
-simplification (the memory of a J read from the cache is what a class sees once anyone computed it).
+simplification (the memory of a J read from the cache is what a class sees once anyone computed it);
+with ``--cold`` each run starts from an empty folder, so the J is computed (SymPy's working memory
+stays in the process that computed it).
 
 Usage::
 
     python bench/bench_workers_memory.py                    # --workers 2 and 4
     python bench/bench_workers_memory.py --workers 2 --cache /tmp/jl-cache
+    python bench/bench_workers_memory.py --workers 2 --cold   # every run computes the J (no disk cache)
 """
 
 from __future__ import annotations
@@ -131,13 +134,16 @@ def main() -> None:
     parser.add_argument("--workers", type=int, nargs="+", default=[2, 4])
     parser.add_argument("--port", type=int, default=18150)
     parser.add_argument("--cache", type=Path, default=None, help="disk cache folder (default: a fresh one)")
+    parser.add_argument("--cold", action="store_true", help="an empty disk cache for every run: J computed")
     args = parser.parse_args()
     cache = args.cache or Path(tempfile.mkdtemp(prefix="jl-mem-"))
     log = Path(tempfile.mkdtemp(prefix="jl-mem-log-")) / "serve.log"
-    if not (cache / "jacobian-lab" / "symbolic").exists():
+    if not args.cold and not (cache / "jacobian-lab" / "symbolic").exists():
         print(f"warming the disk cache in {cache} (one worker computes the Panda's J once)", flush=True)
         measure(1, args.port, cache, log)
     for n in args.workers:
+        if args.cold:
+            cache = Path(tempfile.mkdtemp(prefix="jl-mem-cold-"))
         found = measure(n, args.port, cache, log)
         pss = sum(v[0] for v in found.values())
         rss = sum(v[1] for v in found.values())
