@@ -19,6 +19,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from app.services import symbolic_requests as _sr
 from app.services import symbolic_service as _ss
 
 __all__ = [
@@ -127,10 +128,10 @@ def _fake_export(robot, fmt: str, frame: str, timeout: float, name: str) -> tupl
 
 
 _ANSWERS: dict[Callable[..., Any], Callable[..., Any]] = {
-    _ss._mathml: _fake_mathml,
-    _ss._inverse_mathml: _fake_inverse,
-    _ss._steps_mathml: _fake_steps,
-    _ss._export: _fake_export,
+    _sr._mathml: _fake_mathml,
+    _sr._inverse_mathml: _fake_inverse,
+    _sr._steps_mathml: _fake_steps,
+    _sr._export: _fake_export,
 }
 
 
@@ -160,14 +161,20 @@ class FakeWorkerPool(_ss.WorkerPool):
         self._closed = True
 
 
+def _fake_pools(on_restart: Callable[[str], None]) -> _ss.LocalPools:
+    pools = _ss.LocalPools(on_restart)
+    pools.panel, pools.downloads = FakeWorkerPool(on_restart), FakeWorkerPool(on_restart)
+    return pools
+
+
 class FakeSymbolicService(_ss.SymbolicService):
     """The real service's bookkeeping (one request per key, release, cancel) over
     :class:`FakeWorkerPool` workers: deterministic, immediate, in process."""
 
     def __init__(self, timeout: float = 60.0) -> None:
-        super().__init__(timeout)
-        self._panel_worker = FakeWorkerPool(self._restarted)
-        self._export_worker = FakeWorkerPool(self._restarted)
+        super().__init__(timeout, pools=_fake_pools)
+        self._panel_worker = self._pools.panel  # type: ignore[attr-defined]
+        self._export_worker = self._pools.downloads  # type: ignore[attr-defined]
 
     @property
     def calls(self) -> list[tuple[str, tuple]]:

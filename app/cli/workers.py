@@ -15,9 +15,9 @@ The parent:
 * prints the address once every worker is ready, and which worker is which process;
 * restarts a worker that dies (its tabs lose their connection; viser's page reconnects by itself and
   lands on a live worker, as a new tab);
-* on Ctrl-C, SIGTERM or SIGHUP asks every worker to stop (SIGTERM: each stops its tabs and its symbolic
-  worker), waits a few seconds, then kills what is left;
-* is watched by every worker: a worker whose parent is gone (``kill -9``) exits by itself.
+* keeps the symbolic pool of every worker (:class:`~app.services.symbolic_hub.SymbolicHub`);
+* on Ctrl-C, SIGTERM or SIGHUP stops every worker (SIGTERM, then a kill after a few seconds), then
+  the symbolic processes; a worker or symbolic process whose parent is gone (``kill -9``) exits by itself.
 
 Classroom mode (a presenter token) spans every worker: the parent keeps the room
 (:class:`~app.services.room.RoomHub`: the token and its tries, who presents, the follower counts) and
@@ -50,13 +50,15 @@ from app.services.lifecycle import (
 )
 from app.services.room import RoomHub
 from app.services.state_codec import dumps, loads
+from app.services.symbolic_hub import SymbolicHub
+from app.services.symbolic_relay import remote_service
 
 __all__ = ["WORKER_CAP", "default_workers", "listening_socket", "serve_workers", "WorkerPool"]
 
 log = logging.getLogger(__name__)
 
 WORKER_CAP = 16
-"""Most worker processes ``--workers`` starts (each holds the app, viser and a symbolic worker)."""
+"""Most worker processes ``--workers`` starts (each holds the app and viser; the symbolic pool is shared)."""
 
 READY_TIMEOUT = 60.0
 """Seconds a worker may take to import the app and start serving before the start is given up."""
@@ -142,6 +144,7 @@ def _worker_main(
     lab_options: dict[str, Any],
     ready: Connection,
     parent_pid: int,
+    symbolic: Connection,
     room: Connection | None = None,
 ) -> None:
     """One worker: a whole Lab accepting on the shared socket, until SIGTERM or its parent is gone."""
@@ -151,7 +154,7 @@ def _worker_main(
     sys.setswitchinterval(0.001)
     from app.server import Lab  # the worker's own import: the parent never builds a Lab
 
-    lab = Lab(listen_socket=sock, room_pipe=room, **lab_options)
+    lab = Lab(listen_socket=sock, room_pipe=room, symbolic=remote_service(symbolic), **lab_options)
     stop = threading.Event()
     signals = install_stop_signals(stop.set)
     ready.send(("ready", os.getpid(), lab.port))
@@ -190,6 +193,7 @@ class WorkerPool:
         self.workers: dict[int, _Worker] = {}
         self.restarts = 0
         self.hub = RoomHub(presenter_token) if presenter_token else None
+        self.symbolic = SymbolicHub()  # one symbolic pool for every worker
 
     @property
     def port(self) -> int:
@@ -211,15 +215,16 @@ class WorkerPool:
     def _spawn(self, index: int) -> _Worker:
         mine, theirs = self.context.Pipe(duplex=False)
         room, their_room = self.context.Pipe(duplex=True) if self.hub is not None else (None, None)
+        symbolic, their_symbolic = self.context.Pipe(duplex=True)
         process = self.context.Process(
             target=_worker_main,
-            args=(index, self.sock, self.lab_options, theirs, os.getpid(), their_room),
+            args=(index, self.sock, self.lab_options, theirs, os.getpid(), their_symbolic, their_room),
             name=f"jacobian-lab-worker-{index}",
         )
         process.start()
-        theirs.close()
-        if their_room is not None:
-            their_room.close()
+        for end in filter(None, (theirs, their_symbolic, their_room)):
+            end.close()
+        self.symbolic.attach(index, symbolic)
         worker = _Worker(index, process, mine, time.monotonic(), room=room)
         if room is not None:
             worker.outbox = _Outbox(room)
@@ -318,6 +323,7 @@ class WorkerPool:
                 worker.process.join(0)
                 worker.ready.close()
                 self._close_room(worker)
+                self.symbolic.detach(index)
                 # A worker that dies at once, again and again, must not spin the parent.
                 if now - worker.started < 1.0:
                     time.sleep(1.0)
@@ -351,6 +357,7 @@ class WorkerPool:
             if worker.outbox is not None:
                 worker.outbox.close()
         self.workers.clear()
+        self.symbolic.close()
         self.sock.close()
 
 

@@ -13,6 +13,11 @@ Puma's J triggers one computation — and a request nobody waits for any more (e
 on to another robot) is cancelled before it starts. The symbolic modules are
 imported lazily in the workers and may be missing; then the panel shows a
 plain note.
+
+Where the computations run is the service's :class:`Pools`: :class:`LocalPools`, its own worker
+processes (one server process), or, in a worker of ``jacobian-lab serve --workers N``,
+:class:`~app.services.symbolic_relay.RemotePools`, the parent's one pool for every worker. Either way a
+computation is named by its kind in :data:`REQUESTS`, never by a function the caller passes.
 """
 
 from __future__ import annotations
@@ -25,12 +30,13 @@ import threading
 from collections.abc import Callable
 from concurrent.futures import Future, InvalidStateError, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from typing import Any
+from typing import Any, Protocol
 
 from kinematics import Robot
 
 from ..core.downloads import EXPORT_FORMATS
 from .lifecycle import watch_parent
+from .symbolic_requests import REQUESTS, Request, SymbolicUnavailable, _export
 
 __all__ = [
     "SymbolicService",
@@ -38,17 +44,14 @@ __all__ = [
     "SymbolicFuture",
     "WorkerPool",
     "WORKER_RESTARTED",
+    "LocalPools",
+    "Pools",
+    "REQUESTS",
+    "Request",
 ]
 
 log = logging.getLogger(__name__)
 
-
-class SymbolicUnavailable(RuntimeError):
-    """The symbolic module (or the export module) is not installed in this build."""
-
-
-STEP_WIDTH_PX = 370
-"""Width [px] the Derive tab's formulas are typeset for (the docked panel, less its padding)."""
 
 WORKER_RESTARTED = "the symbolic worker stopped and was restarted"
 """The notice given to :meth:`SymbolicService.on_restart` listeners when a worker was restarted."""
@@ -196,27 +199,79 @@ def _end_pool(pool: ProcessPoolExecutor) -> None:
             process.kill()
 
 
+class Pools(Protocol):
+    """Where :class:`SymbolicService` sends its computations: :class:`LocalPools` (its own worker
+    processes) or, in a worker of ``serve --workers N``, :class:`~app.services.symbolic_relay.RemotePools`
+    (the one pool of the whole server, in the parent)."""
+
+    @property
+    def restarts(self) -> int: ...
+
+    def want(self, key: tuple, kind: str, args: tuple) -> SymbolicFuture:
+        """A future of the request ``kind`` (a name of :data:`REQUESTS`) for ``key``."""
+        ...
+
+    def export(self, args: tuple) -> SymbolicFuture: ...
+
+    def pids(self) -> list[int]: ...
+
+    def close(self) -> None: ...
+
+
+class LocalPools:
+    """This process's own worker processes: one for the panel's MathML, one for downloads.
+
+    Args:
+        on_restart: Called with :data:`WORKER_RESTARTED` after a worker was restarted.
+    """
+
+    def __init__(self, on_restart: Callable[[str], None]) -> None:
+        self.panel = WorkerPool(on_restart)
+        self.downloads = WorkerPool(on_restart)
+
+    @property
+    def restarts(self) -> int:
+        return self.panel.restarts + self.downloads.restarts
+
+    def want(self, key: tuple, kind: str, args: tuple) -> SymbolicFuture:
+        return self.panel.submit(REQUESTS[kind].fn, *args)
+
+    def export(self, args: tuple) -> SymbolicFuture:
+        return self.downloads.submit(_export, *args)
+
+    def pids(self) -> list[int]:
+        return self.panel.pids() + self.downloads.pids()
+
+    def close(self) -> None:
+        self.panel.close()
+        self.downloads.close()
+
+
 class SymbolicService:
     """MathML of J(q) and text exports, computed in worker processes.
 
     Args:
         timeout: Time limit passed to the symbolic module [s].
+        pools: Builds where the computations go from the restart listener (default: :class:`LocalPools`,
+            worker processes of this process; a worker of ``serve --workers N`` passes
+            :func:`app.services.symbolic_relay.remote_pools`, the parent's one pool).
     """
 
-    def __init__(self, timeout: float = 60.0) -> None:
+    def __init__(
+        self, timeout: float = 60.0, pools: Callable[[Callable[[str], None]], Pools] | None = None
+    ) -> None:
         self.timeout = timeout
         self._lock = threading.Lock()
         self._mathml: dict[tuple, SymbolicFuture] = {}
         self._interest: dict[tuple, int] = {}
         self._listeners: list[Callable[[str], None]] = []
         self.last_notice: str | None = None
-        self._panel_worker = WorkerPool(self._restarted)
-        self._export_worker = WorkerPool(self._restarted)
+        self._pools: Pools = (pools or LocalPools)(self._restarted)
 
     @property
     def restarts(self) -> int:
         """How many times a worker process died and was restarted."""
-        return self._panel_worker.restarts + self._export_worker.restarts
+        return self._pools.restarts
 
     def on_restart(self, callback: Callable[[str], None]) -> None:
         """Call ``callback(WORKER_RESTARTED)`` (in a background thread) whenever a worker is restarted."""
@@ -232,7 +287,7 @@ class SymbolicService:
 
     def worker_pids(self) -> list[int]:
         """Process ids of the running worker processes (for diagnostics and tests)."""
-        return self._panel_worker.pids() + self._export_worker.pids()
+        return self._pools.pids()
 
     def mathml(self, robot: Robot, frame: str, letters: bool = False) -> SymbolicFuture:
         """A future of the ``<math>`` element of J(q) for ``robot`` in ``frame`` ("base" or "tool").
@@ -246,16 +301,15 @@ class SymbolicService:
         before it started. If the worker dies, the computation is run once more on a new
         worker (``future.restarted`` is then True).
         """
-        return self._want(
-            (robot.fingerprint(), frame, bool(letters)), _mathml, robot, frame, self.timeout, letters
-        )
+        key = (robot.fingerprint(), frame, bool(letters))
+        return self._want(key, "mathml", robot, frame, float(self.timeout), bool(letters))
 
     def inverse(self, robot: Robot, letters: bool = False) -> SymbolicFuture:
         """A future of the MathML of J⁻¹ = adj(J) / det J of ``robot``'s square task J (base axes);
         release with :meth:`release_inverse`. Fails with the symbolic module's error for a J that is
         not square or too large."""
         key = (robot.fingerprint(), "inverse", bool(letters))
-        return self._want(key, _inverse_mathml, robot, bool(letters), self.timeout)
+        return self._want(key, "inverse", robot, bool(letters), float(self.timeout))
 
     def steps(self, robot: Robot, method: str, letters: bool = False) -> SymbolicFuture:
         """A future of the steps of one derivation of J (``method``: "whitney", "differentiation",
@@ -263,18 +317,18 @@ class SymbolicService:
         (``letters``: the DH lengths and offsets as the course's letters, every step, ⁰Tᵢ and the
         tool's included); release with :meth:`release_steps`."""
         key = (robot.fingerprint(), "steps", method, bool(letters))
-        return self._want(key, _steps_mathml, robot, method, self.timeout, bool(letters))
+        return self._want(key, "steps", robot, method, float(self.timeout), bool(letters))
 
     def release_steps(self, robot: Robot, method: str, letters: bool = False) -> None:
         """One client no longer waits for the steps of ``method`` for ``robot``."""
         self._release((robot.fingerprint(), "steps", method, bool(letters)))
 
-    def _want(self, key: tuple, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
+    def _want(self, key: tuple, kind: str, *args: Any) -> SymbolicFuture:
         with self._lock:
             self._interest[key] = self._interest.get(key, 0) + 1
             future = self._mathml.get(key)
             if future is None or future.cancelled() or (future.done() and future.exception() is not None):
-                future = self._panel_worker.submit(fn, *args)
+                future = self._pools.want(key, kind, args)
                 self._mathml[key] = future
             return future
 
@@ -301,60 +355,8 @@ class SymbolicService:
         """A future of (file name, content) of J(q) exported as ``label`` ("LaTeX", "Python" or "JSON")."""
         fmt, ext = EXPORT_FORMATS[label]
         name = f"{robot.name or 'robot'}_J_{frame}.{ext}"
-        return self._export_worker.submit(_export, robot, fmt, frame, self.timeout, name)
+        return self._pools.export((robot, fmt, frame, float(self.timeout), name))
 
     def close(self) -> None:
         """Stop the worker processes (pending computations are abandoned)."""
-        self._panel_worker.close()
-        self._export_worker.close()
-
-
-def _mathml(robot: Robot, frame: str, timeout: float, letters: bool = False) -> str:
-    """In the worker process: the MathML of J(q) (with letters: and det J, its factors, singular sets)."""
-    try:
-        from kinematics.symbolic import jacobian_mathml, mathml_parts
-        from kinematics.symbolic.typeset.render import MATH_STYLE
-    except ImportError as exc:
-        raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
-    if not letters:
-        return jacobian_mathml(robot, frame=frame, timeout=timeout)
-    out = jacobian_mathml(robot, frame=frame, timeout=timeout, symbolic_params=True)
-    parts = mathml_parts(robot, frame, symbolic_params=True, with_det=True, timeout=timeout, wrap=True)
-    blocks = ([parts.det] if parts.det else []) + list(parts.singular)
-    extra = "".join(f'\n<math display="block" style="{MATH_STYLE}"><mrow>{b}</mrow></math>' for b in blocks)
-    at = out.find('\n<p class="jl-legend">')  # det J under J, before the legend of both
-    return out + extra if at < 0 else out[:at] + extra + out[at:]
-
-
-def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:
-    """In the worker process: the MathML of J⁻¹ = adj(J) / det J."""
-    try:
-        from kinematics.symbolic.inverse import inverse_mathml
-    except ImportError as exc:
-        raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
-    return inverse_mathml(robot, symbolic_params=letters, timeout=timeout)
-
-
-def _steps_mathml(
-    robot: Robot, method: str, timeout: float, letters: bool = False
-) -> tuple[tuple[int | None, str, str, str], ...]:
-    """In the worker process: every step of one derivation, its caption and its MathML (panel width)."""
-    try:
-        from kinematics.symbolic import derivation_steps
-    except ImportError as exc:
-        raise SymbolicUnavailable("symbolic steps not available (kinematics.symbolic is missing)") from exc
-    return tuple(
-        (s.joint, s.key, s.title_html(), s.mathml(STEP_WIDTH_PX))
-        for s in derivation_steps(robot, method, symbolic_params=letters, timeout=timeout)
-    )
-
-
-def _export(robot: Robot, fmt: str, frame: str, timeout: float, name: str) -> tuple[str, bytes]:
-    """In the worker process: J(q) exported by kinematics.symbolic.typeset.export."""
-    try:
-        from kinematics.symbolic.typeset.export import export
-    except ImportError as exc:
-        raise SymbolicUnavailable(
-            "export not available (kinematics.symbolic.typeset.export is missing)"
-        ) from exc
-    return name, export(robot, fmt, frame=frame, timeout=timeout).encode("utf-8")
+        self._pools.close()

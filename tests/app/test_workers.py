@@ -21,12 +21,14 @@ from pathlib import Path
 import pytest
 from fakes import POLL_TIMEOUT, poll
 from hostile_helpers import slider
-from server_process import ROOT, alive, session_processes
+from server_process import ROOT, alive, children, cmdline, session_processes
 from wsclient import ViserWsClient
 
+import robots
 from app.cli.main import main
 from app.cli.workers import WORKER_CAP, WorkerPool, default_workers, listening_socket
 from app.viser_adapter import message_class
+from kinematics.symbolic import jacobian_mathml
 
 pytestmark = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc (Linux)")
 
@@ -353,3 +355,103 @@ def test_the_presenter_s_worker_killed_the_presenter_comes_back_with_its_key_and
     finally:
         for ws in doomed + survivors + ([back] if back is not None else []):
             ws.close()
+
+
+# --------------------------------------------------------------------------- one symbolic pool for every worker
+def _content(m: dict) -> str:
+    content = m.get("updates", m.get("props", {})).get("content")
+    return content if isinstance(content, str) else ""
+
+
+def _symbolic_processes(pool: Pool) -> list[int]:
+    """The parent's children that are neither workers nor multiprocessing's resource tracker."""
+    return [
+        p for p in children(pool.proc.pid) if p not in pool.workers and "resource_tracker" not in cmdline(p)
+    ]
+
+
+def _computations(pool: Pool, kind: str) -> int:
+    """How many computations of ``kind`` the parent's symbolic pool started (from its log lines)."""
+    return len(re.findall(rf"symbolic: computing {kind} of planar2 for worker \d", pool.log.read_text()))
+
+
+def _one_tab_each(pool: Pool) -> list[ViserWsClient]:
+    """A tab in each worker, each showing the symbolic J of the first robot; the other tabs closed."""
+    tabs = pool.spread_tabs(1)
+    expected = jacobian_mathml(robots.load("planar2"), frame="base", timeout=60.0)
+    for ws in (t[0] for t in tabs.values()):
+        ws.wait_for(lambda m: expected in _content(m), timeout=120)
+    for ws in (w for t in tabs.values() for w in t[1:]):
+        ws.__exit__(None, None, None)
+    return [t[0] for t in tabs.values()]
+
+
+@pytest.mark.slow
+def test_one_symbolic_process_serves_every_worker_and_computes_a_key_once(pool2):
+    tabs = _one_tab_each(pool2)  # each tab asked for the J of planar2 in base axes as it opened
+    try:
+        assert _computations(pool2, "mathml") == 1, pool2.log.read_text()[-3000:]
+        (symbolic,) = _symbolic_processes(pool2)
+        assert "spawn_main" in cmdline(symbolic)
+        assert not [p for w in pool2.workers for p in children(w)]  # no worker has a symbolic process
+        # A key asked later by a tab of each worker: one computation, the single-process result in both.
+        expected = jacobian_mathml(robots.load("planar2"), frame="tool", timeout=60.0)
+        marks = [ws.mark() for ws in tabs]
+        for ws in tabs:
+            _, frame = ws.wait_for(
+                lambda m: m["type"] == "GuiDropdownMessage" and m["props"]["label"] == "Frame of J"
+            )
+            ws.set_value(frame["uuid"], "tool")
+        for ws, mark in zip(tabs, marks, strict=True):
+            ws.wait_for(lambda m: expected in _content(m), after=mark, timeout=120)
+        assert _computations(pool2, "mathml") == 2
+        assert _symbolic_processes(pool2) == [symbolic]
+    finally:
+        for ws in tabs:
+            ws.__exit__(None, None, None)
+
+
+@pytest.mark.slow
+def test_a_killed_symbolic_process_is_restarted_and_the_tabs_of_every_worker_are_told(pool2):
+    tabs = _one_tab_each(pool2)
+    try:
+        (symbolic,) = _symbolic_processes(pool2)
+        os.kill(symbolic, signal.SIGKILL)
+        poll(lambda: not alive(symbolic), what="the symbolic process gone")
+        marks = [ws.mark() for ws in tabs]
+        asker = tabs[0]
+        _, frame = asker.wait_for(
+            lambda m: m["type"] == "GuiDropdownMessage" and m["props"]["label"] == "Frame of J"
+        )
+        asker.set_value(frame["uuid"], "tool")  # a new key: only a new symbolic process computes it
+        expected = jacobian_mathml(robots.load("planar2"), frame="tool", timeout=60.0)
+        asker.wait_for(lambda m: expected in _content(m), after=marks[0], timeout=120)
+        for ws, mark in zip(tabs, marks, strict=True):  # every worker's tabs are told
+            ws.wait_for(
+                lambda m: (
+                    m["type"] == "NotificationShowMessage"
+                    and m["props"]["title"] == "Symbolic worker restarted"
+                ),
+                after=mark,
+            )
+        (new,) = _symbolic_processes(pool2)
+        assert new != symbolic
+        assert "the symbolic worker stopped and was restarted" in pool2.log.read_text()
+    finally:
+        for ws in tabs:
+            ws.__exit__(None, None, None)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_stopping_or_killing_the_parent_ends_the_shared_symbolic_process_too(pool2, sig):
+    tabs = _one_tab_each(pool2)
+    try:
+        (symbolic,) = _symbolic_processes(pool2)
+        os.kill(pool2.proc.pid, sig)
+        pool2.proc.wait(POLL_TIMEOUT)
+        poll(lambda: not session_processes(pool2.proc.pid), what="no process of the pool's session left")
+        assert not alive(symbolic)
+    finally:
+        for ws in tabs:
+            ws.__exit__(None, None, None)
