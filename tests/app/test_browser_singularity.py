@@ -23,7 +23,7 @@ pytestmark = pytest.mark.browser
 
 VISITS = (
     ("puma560", "wrist_singular", "Wrist singular", "wrist: lost rotation axis"),
-    ("puma560", "shoulder_singular", "Arm singular", "arm: lost translation of the wrist centre"),
+    ("puma560", "shoulder_singular", "Arm singular", "arm: lost translation (wrist centre)"),
     ("iiwa14", "candle", "Arm singular", "wrist: lost rotation axis"),
     ("planar2", "stretched", "Lost</b>: translation", "lost translation"),
 )

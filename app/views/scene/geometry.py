@@ -32,9 +32,9 @@ __all__ = [
 LABEL_SCALE = 1.6
 """Screen scale of the 3-D view's text labels (viser's 1.0 draws them about 11 px high: too small for the
 back row of a lecture hall; 1.6 gives about 17 px)."""
-LOST_LABEL_SCALE = 2.0
-"""Screen scale of the words at a lost direction ("lost rotation (wrist)"): what the room reads at a
-singularity, about 22 px high (its capitals 37 mm on a 3 m wide image of 1280 px: 16 arcmin at 8 m)."""
+LOST_LABEL_SCALE = 1.8
+"""Screen scale of the words at a lost direction ("wrist: lost rotation axis"): what the room reads at a
+singularity, about 20 px high (its capitals 34 mm on a 3 m wide image of 1280 px: 14 arcmin at 8 m)."""
 TINY = 1e-4
 """Smallest drawn extent [m]: degenerate shapes are drawn this thin instead of vanishing."""
 _LIMIT = 1e3

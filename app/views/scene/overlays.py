@@ -56,7 +56,7 @@ GAP = 0.3
 FLAT_FLOOR = 0.03
 """At a singularity a flat ellipsoid axis is drawn this many robot sizes thick, so it can be seen."""
 _LABELS = {
-    ("arm", "v"): "arm: lost translation of the wrist centre",
+    ("arm", "v"): "arm: lost translation (wrist centre)",
     ("wrist", "w"): "wrist: lost rotation axis",
     ("tool", "v"): "lost translation",
     ("tool", "w"): "lost rotation axis",
