@@ -132,8 +132,10 @@ def facing(points: np.ndarray) -> np.ndarray:
     return d
 
 
-ACROSS_DEGREES = 60.0
-"""At a singularity the view makes at least this angle with every lost direction (when it can)."""
+ACROSS_DEGREES = 75.0
+"""At a singularity the view makes at least this angle with every lost direction (when it can): a
+flattened ellipsoid then shows at most cos 75° ≈ 0.26 of its width as thickness, so it looks flat
+(at 60° it still showed half its width: a healthy-looking ellipse seen from above)."""
 
 
 def lost_axes(losses) -> np.ndarray:

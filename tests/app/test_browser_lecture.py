@@ -154,8 +154,10 @@ def test_the_enlarged_j_leaves_the_sliders_free(tmp_path):
     lab = Lab(port=0)
     with app_page(lab) as (page, session, errors):
         wait(lambda: page.locator(".jl-matrix").count() > 0, timeout=120)
+        assert page.locator(".jl-hint").first.is_visible()  # a fresh tab's first hint …
         page.get_by_role("button", name="Enlarge J (Esc closes)").click(timeout=120_000)
         wait(lambda: page.locator(".mantine-Modal-content .jl-big").count() > 0)
+        wait(lambda: not page.locator(".jl-hint").first.is_visible())  # … is not drawn over the enlarged J
         modal = page.locator(".mantine-Modal-content").first.bounding_box()
         panel = page.locator('[data-dock-region="right"]').first.bounding_box()
         assert modal["x"] + modal["width"] <= panel["x"] + 1
@@ -193,6 +195,20 @@ def test_every_visible_text_reaches_4_5_to_1_and_12_px_on_screen(tmp_path, tab):
         assert len(texts) > 30 and not low, low
         small = [(t["t"], t["px"], t["cls"]) for t in texts if t["px"] < MIN_TEXT_PX]
         assert not small, small
+        # Below the fold too (the charts' legends, the Maps figure): each view scrolled to its end.
+        page.evaluate(
+            "() => document.querySelectorAll('[data-dock-region] .mantine-ScrollArea-viewport')"
+            ".forEach((v) => { v.scrollTop = v.scrollHeight; })"
+        )
+        page.wait_for_function("() => !document.querySelector('.jl-views .jl-more')")
+        below = text_contrasts(page)
+        page.screenshot(path=str(out / f"contrast_{re.sub(r'[^A-Za-z]', '', tab) or 'J'}_end.png"))
+        bad = [
+            (t["t"], t["px"], t["ratio"], t["cls"])
+            for t in below
+            if t["px"] < MIN_TEXT_PX or t["ratio"] < 4.5
+        ]
+        assert not bad, bad
         status = page.evaluate(
             "() => parseFloat(getComputedStyle(document.querySelector('.jl-status')).fontSize)"
         )

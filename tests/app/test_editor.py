@@ -4,6 +4,7 @@ the robot drawn from the table, rows added, removed and moved, bad values named,
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -174,6 +175,13 @@ def test_a_bad_value_is_named_and_the_last_good_robot_stays(session, field, valu
     session.settle()
     assert named in editor.error
     assert "⚠" in editor.summary.content and named.split(":")[0] in editor.summary.content
+    # The value the error names is marked in the table; what is not a finite number shows as typed
+    # (1e400 showed "inf" while the arm kept its last good d).
+    cell = re.search(r'<td class="bad" title="[^"]*">([^<]*) ⚠</td>', editor.summary.content)
+    assert cell is not None, editor.summary.content
+    if isinstance(value, str) and value in ("nan", "ninety", "1e400", "0,3", "1e-"):
+        assert cell.group(1) == value[:8]
+    assert "inf" not in editor.summary.content.lower()
     assert session.state.robot is good and session.errors == 0
     assert_all_finite(session)
     editor.theta.value = "5.0"  # changing another field does not hide the bad one

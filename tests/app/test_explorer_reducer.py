@@ -7,6 +7,7 @@ the tool pose held, w computed afresh from J."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -220,3 +221,25 @@ def test_after_a_climb_the_self_motion_reads_where_the_climb_went():
     back = reduce(end, SelfMove(0.0))
     np.testing.assert_allclose(back.q, start.q, atol=2e-3)
     assert "w of the held rows (vx, vy)" in end.stopped
+
+
+@pytest.mark.parametrize(("name", "named"), [("planar3", True), ("panda", False)])
+def test_the_readout_says_which_rows_the_climb_measures(name, named):
+    """Issue 21, item 5: the 3R planar arm climbs w of the rows it holds (vx, vy) while the banner's κ
+    is of all its task rows (vx, vy, ωz); the readout's κ is the climb's, labelled with its rows. The
+    Panda holds all its task rows: nothing to say."""
+    from app.views.panel.live import live_html
+    from kinematics.analysis import condition_number
+
+    start = reduce(fresh(name), SelfMove(0.8))
+    end = run(reduce(start, Play(True, "climb")), 400)[-1]
+    html = live_html(end)
+    rows = tuple(redundancy_rows(end.robot))
+    assert (rows != task_rows(end.robot)) == named
+    label = "κ<small>(v<sub>x</sub>, v<sub>y</sub>)</small>"
+    assert (label in html) == named, html
+    shown = re.search(r"κ(?:<small>.*?</small>)? <b>([0-9.]+)</b>", html)
+    assert shown is not None, html
+    assert float(shown.group(1)) == pytest.approx(
+        condition_number(jacobian(end.robot, end.q), rows), rel=5e-3
+    )

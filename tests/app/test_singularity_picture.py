@@ -91,10 +91,14 @@ def test_lost_directions_are_drawn_outside_the_arm_and_said_in_the_same_words(se
     axis_node = scene_node(session, f"{ROOT}/lost_rotation")
     assert axis_node.visible == bool(turned)
 
-    # One label per drawn direction, none on a joint's label.
+    # A label per drawn direction, the same words once (the iiwa candle's two arm arrows: one
+    # "arm: lost translation"), none on a joint's label.
     labels = [scene_node(session, f"{ROOT}/lost_label_{i}") for i in range(MAX_LOSSES)]
     shown = [label for label in labels if label.visible]
-    assert len(shown) == len(moved) + len(turned)
+    assert bool(shown) == bool(moved or turned) and len(shown) <= len(moved) + len(turned)
+    assert len({label.text for label in shown}) == len(shown)
+    kinds = {"v" for _ in moved} | {"w" for _ in turned}
+    assert {"v" if "translation" in label.text else "w" for label in shown} == kinds
     joint_labels = np.array(
         [scene_node(session, f"/lab/arm/label_{j}").position for j in range(len(robot.joint_names))]
     )
@@ -123,18 +127,21 @@ def test_lost_directions_are_drawn_outside_the_arm_and_said_in_the_same_words(se
 @pytest.mark.parametrize(("robot_name", "conf_name"), singular_configurations())
 def test_the_camera_policy_puts_every_lost_direction_across_the_view(session, robot_name, conf_name):
     """From the views the app starts with (three-quarter, facing the arm, from above) and from looking
-    straight down a lost direction, the framing at a singularity leaves ≥ 45° to every lost direction."""
+    straight down a lost direction, the framing at a singularity leaves ≥ 45° to every lost direction,
+    and ≥ 75° to a single one (its flattened ellipsoid then shows at most a quarter of its width: it
+    looks flat, not like a healthy ellipse seen from above)."""
     snap = _go(session, robot_name, conf_name)
     axes = lost_axes(snap.losses)
     assert len(axes)
+    least = 75.0 if len(axes) == 1 else 45.0
     starts = [THREE_QUARTER, FROM_ABOVE, facing(session.scene.extent), *axes, *(-axes)]
     for start in starts:
         d = across(start, axes)
         assert np.linalg.norm(d) == pytest.approx(1.0)
         angles = np.degrees(np.arccos(np.clip(np.abs(axes @ d), 0.0, 1.0)))
-        assert angles.min() >= 45.0, (start, angles)
-    # ... and the tab's camera ends there after the jump.
-    poll(lambda: _camera_angles(session, axes).min() >= 45.0)
+        assert angles.min() >= least - 1e-6, (start, angles)
+    # ... and the tab's camera ends there after the jump (its aim point is the arm's, not the loss's).
+    poll(lambda: _camera_angles(session, axes).min() >= least - 5.0)
 
 
 def test_puma_wrist_singularity_says_wrist_not_translation(session):

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 import threading
 from collections.abc import Callable, Sequence
 from typing import Any, cast
@@ -49,6 +50,7 @@ _CSS = """<style>
 .jl-dh th{font-weight:600;color:#495057;text-align:right;padding:0 4px;border-bottom:1px solid #ced4da}
 .jl-dh td{text-align:right;padding:0 4px;white-space:nowrap}
 .jl-dh tr.sel td{background:#e7ecfb;font-weight:600}
+.jl-dh td.bad{color:#96001a;background:#fff4f4;font-weight:700}
 .jl-dh-msg{font:12px/1.35 system-ui,sans-serif;margin:3px 8px 0 8px}
 .jl-dh-msg.bad{color:#b3261e}.jl-dh-msg.ok{color:#495057}
 </style>"""
@@ -74,6 +76,7 @@ class EditorPanel:
         self.table = dt.empty()
         self.selected = 0
         self.error = ""
+        self._bad: tuple[int, str] = (0, "")  # (row from 1, field) of the value the error names
         self.built: Robot | None = None
         self._pending: tuple[int | None, ...] = (None,)  # table row → joint of the robot last dispatched
         self._lock = threading.RLock()
@@ -241,9 +244,9 @@ class EditorPanel:
         try:
             robot = dt.build(self.table)
         except dt.TableError as exc:
-            self.error = str(exc)
+            self.error, self._bad = str(exc), (exc.row, exc.field)
         else:
-            self.error, self.built = "", robot
+            self.error, self.built, self._bad = "", robot, (0, "")
             self.dispatch(EditRobot(dt.BUILT_NAME, robot, self._pending))
             self._pending = tuple(range(len(self.table.rows)))
         self._show_summary()
@@ -278,8 +281,20 @@ class EditorPanel:
             cells = [str(i + 1), "R" if r.joint == "revolute" else "P"]
             cells += [_cell(r.a), _cell(r.alpha), _cell(r.d), _cell(r.theta)]
             cells.append(f"{_cell(r.lo)}…{_cell(r.hi)}{unit}")
+            # The value the error names is shown as typed, marked (the arm keeps its last good table).
+            bad = {"a": 2, "alpha": 3, "d": 4, "theta": 5, "lo": 6, "hi": 6}.get(self._bad[1], -1)
+            bad = bad if self.error and self._bad[0] == i + 1 else -1
             cls = ' class="sel"' if i == self.selected else ""
-            body.append(f"<tr{cls}>" + "".join(f"<td>{fmt.escape(c)}</td>" for c in cells) + "</tr>")
+            body.append(
+                f"<tr{cls}>"
+                + "".join(
+                    f'<td class="bad" title="{fmt.escape(self.error)}">{fmt.escape(c)} ⚠</td>'
+                    if k == bad
+                    else f"<td>{fmt.escape(c)}</td>"
+                    for k, c in enumerate(cells)
+                )
+                + "</tr>"
+            )
         if self.error:
             msg = f'<div class="jl-dh-msg bad" role="alert">⚠ {fmt.escape(self.error)}</div>'
         else:
@@ -311,8 +326,9 @@ def _typed(value: object) -> str:
 
 
 def _cell(value: object) -> str:
+    """A table cell: a number in 4 significant figures, anything else (1e400, NaN, 0,3) as typed."""
     try:
         x = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):
-        return str(value)[:8]
-    return f"{x:.4g}" if x == x else "NaN"
+        return str(value).strip()[:8]
+    return f"{x:.4g}" if math.isfinite(x) else str(value).strip()[:8]

@@ -59,6 +59,8 @@ TEXT_COLOURS = {
     "folder title": ("#1f2328", "#ffffff"),
     "readout head": ("#1f2328", "#f1f3f5"),
     "outlined button": ("#1c3c9c", "#ffffff"),
+    "filled button": ("#ffffff", "#3451b2"),
+    "chart legend": ("#343a40", "#ffffff"),
     "slowed": ("#8a3b00", "#f1f3f5"),
 }
 """(text, background) of what the page shows: field labels (joint sliders' labels have their joint's
@@ -90,6 +92,18 @@ label, .mantine-InputWrapper-label {{ color: {_C["label"]}; }}
   height: 20.8px !important; padding-top: 0 !important; padding-bottom: 0 !important;
   line-height: 20px !important; }}
 .mantine-Select-option {{ font-size: max(1em, {MIN_TEXT_PX:g}px) !important; }}
+.u-legend {{ font-size: {MIN_TEXT_PX:g}px !important; color: {_C["chart legend"]} !important; }}
+.u-legend .u-value {{ color: {_C["chart legend"]} !important; }}  /* uPlot's 10.4 px, grey values 3.3:1 */
+.u-legend.u-inline {{ white-space: normal !important; }}  /* the legend wraps: q̇₆ was cut at the right */
+.u-legend.u-inline tr {{ white-space: nowrap; }}
+/* Lines of text keep clear of the scroll bar at the column's right edge (they ran under it). */
+.jl-sub, .jl-warn, .jl-note {{ padding-right: 10px; }}
+/* The first hint goes while J is enlarged (it sat on the enlarged J's lower edge). */
+body:has(.mantine-Modal-root .jl-big) .jl-hint {{ display: none; }}
+/* Filled buttons (Enlarge J, Record a demo, Upload): white on Mantine's #617be2 was 3.86:1. */
+.mantine-Button-root:not([data-variant]):not(:disabled) {{
+  background: {TEXT_COLOURS["filled button"][1]} !important; color: {_C["filled button"]} !important; }}
+.mantine-Button-root:not([data-variant]):not(:disabled):hover {{ background: #2a4396 !important; }}
 [data-dock-tab][role="tab"] {{ color: {_C["tab"]} !important; padding: 0 0.5em !important;
   height: 2.2em !important; opacity: 1 !important; }}  /* viser fades unselected tabs to 0.65: 4.04:1 */
 [data-dock-tab][role="tab"][aria-selected="true"] {{ color: {_C["selected tab"]} !important; font-weight: 700;

@@ -11,6 +11,10 @@ import math
 
 import numpy as np
 
+from kinematics.analysis import task_rows
+from kinematics.conventions import ROW_HTML
+
+from ...core.motion_rules import redundancy_rows
 from ...core.state import LabState
 from .. import fmt
 from ..palette import joint_text_hex
@@ -49,8 +53,15 @@ def live_html(state: LabState) -> str:
         if state.playing and m.kind == "resolved_rate" and m.pace < 0.95
         else ""
     )
+    # The climb measures the rows it holds (the 3R planar arm: vx, vy), not the banner's task rows: say so.
+    held = redundancy_rows(state.robot) if m.kind == "climb" else None
+    rows = (
+        f"<small>({', '.join(ROW_HTML[r] for r in held)})</small>"
+        if held is not None and held != task_rows(state.robot)
+        else ""
+    )
     head = (
-        f'<div class="jl-live-head"><span>κ <b>{fmt.number(kappa)}</b></span>'
+        f'<div class="jl-live-head"><span>κ{rows} <b>{fmt.number(kappa)}</b></span>'
         f"<span>σ<sub>min</sub> <b>{fmt.number(float(trace.sigma_min[-1]))}</b></span>"
         f"<span>t <b>{fmt.fixed(state.time, 2)}</b> s</span></div>"
     )

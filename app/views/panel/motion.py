@@ -97,7 +97,15 @@ class MotionPanel:
                 colors = [joint_hex(i) for i in range(robot.dof)]
                 kinds = {j.kind for j in robot.joints}
                 unit = "°/s" if kinds == {"revolute"} else "m/s" if "revolute" not in kinds else "°/s | m/s"
-                self.rates = _chart(gui, "joint rates q̇", names, colors, f"q̇ [{unit}]")
+                # A mixed unit goes in the title: "q̇ [°/s | m/s]" did not fit the 150 px axis.
+                mixed = "|" in unit
+                self.rates = _chart(
+                    gui,
+                    f"joint rates q̇ [{unit}]" if mixed else "joint rates q̇",
+                    names,
+                    colors,
+                    "q̇" if mixed else f"q̇ [{unit}]",
+                )
                 self.kappa = _chart(
                     gui, "condition number κ", ("κ",), ("#c2410c",), "κ (log scale, no unit)", log=True
                 )

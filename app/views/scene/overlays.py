@@ -374,7 +374,7 @@ class Overlays:
         if segments:
             update_props(self.lost_w, points=finite(np.concatenate(segments)))
         for i, label in enumerate(self.lost_labels):
-            shown = i < len(texts)
+            shown = i < len(texts) and texts[i] not in texts[:i]  # two arm arrows (iiwa candle): one label
             set_if_changed(label, "visible", shown)
             if shown:
                 if texts[i] != self._label_texts[i]:
