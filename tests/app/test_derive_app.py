@@ -209,3 +209,36 @@ def test_each_step_is_shown_in_symbols_too(symbolic_session):
     poll(lambda: "ω" in formula.content and "<math" in formula.content)
     walk(session, "dh", 1)
     poll(lambda: "A₂" in formula.content and "⁰T₂" in formula.content)
+
+
+@pytest.mark.parametrize(
+    ("robot", "method"), [("trr", "propagation"), ("puma560", "whitney"), ("stanford", "dh")]
+)
+def test_step_labels_keep_clear_of_the_joint_labels_and_of_each_other(session, robot, method):
+    """Issue 21, item 12: on the TRR, frames 2 and 3 share their origin, so v₂'s label sat on q3's.
+    Every step label is at least CLEARANCE robot sizes from every joint label and every other step label."""
+    from app.views.scene.derive import CLEARANCE
+
+    choose(session, robot)
+    size = session.scene.size
+    for step in range(session.state.robot.dof):
+        walk(session, method, step)
+        joints = [scene_node(session, f"/lab/arm/label_{j}") for j in range(session.state.robot.dof)]
+        at = [np.asarray(n.position) for n in joints if n.visible]
+        shown = [
+            np.asarray(n.position)
+            for k in range(6)
+            if (n := scene_node(session, f"/lab/derive/label_{k}")).visible
+        ]
+        assert shown, (robot, method, step)
+        for i, p in enumerate(shown):
+            others = at + shown[:i]
+            if others:
+                gaps = np.linalg.norm(np.array(others) - p, axis=1)
+                assert gaps.min() >= CLEARANCE * size * (1 - 1e-6), (
+                    robot,
+                    method,
+                    step,
+                    i,
+                    gaps.min() / size,
+                )

@@ -45,6 +45,8 @@ class SceneContext:
         robot: The robot drawn; geometry: the arm's drawn geometry (``geometry.size``: its length [m]).
         dispatch: Where a glyph that takes input (the drag handle) sends actions.
         root: The scene path under which the glyph puts its nodes.
+        joint_labels: Where the arm's joint labels are at the last update (k, 3) [m]: a glyph's own
+            labels keep clear of them.
     """
 
     scene: viser.SceneApi
@@ -52,6 +54,7 @@ class SceneContext:
     geometry: ArmGeometry
     dispatch: Dispatch
     root: str
+    joint_labels: Callable[[], np.ndarray] = lambda: np.zeros((0, 3))
 
 
 class GlyphView(Protocol):
@@ -85,7 +88,7 @@ GLYPHS: tuple[Glyph, ...] = (
         "drive", lambda c: DriveView(c.scene, c.dispatch, c.geometry.size, c.robot.planar, f"{c.root}/drive")
     ),
     Glyph("path", lambda c: ToolPath(c.scene, f"{c.root}/motion")),
-    Glyph("derive", lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive")),
+    Glyph("derive", lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels)),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
 J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step."""
@@ -108,7 +111,10 @@ class SceneView:
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
         ignore: Dispatch = lambda action: None  # noqa: E731  (a recorded scene takes no input)
-        context = SceneContext(client.scene, robot, self.arm.geometry, dispatch or ignore, root)
+        arm = self.arm
+        context = SceneContext(
+            client.scene, robot, arm.geometry, dispatch or ignore, root, lambda: arm.label_points
+        )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
 
     def __getattr__(self, name: str) -> Any:

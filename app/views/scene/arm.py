@@ -159,6 +159,8 @@ class ArmView:
         self._radii = np.concatenate([np.full(self._n_links, 0.026 * s), self._axis_radius[self._rev]])
         # A joint's label sits just beyond the end of its first axis' cylinder.
         self._label_offset = (self._axis_length / 2 + 0.02 * s)[g.first_axis, None]
+        self.label_points: np.ndarray = np.zeros((0, 3))
+        """Where the joints' labels are drawn (k, 3) [m] at the last update (none when hidden)."""
         cyl_colors = np.array(
             [LINK_RGB] * self._n_links + [joint_color(int(g.axis_joint[k])) for k in self._rev],
             dtype=np.uint8,
@@ -254,6 +256,9 @@ class ArmView:
             at = finite(o[k] + z[k] * self._label_offset).tolist()  # plain floats: viser's setter is cheaper
             for label, position in zip(self.labels, at, strict=True):
                 set_pose(label, position)
+            self.label_points = np.asarray(at, dtype=float).reshape(-1, 3)
+        else:
+            self.label_points = np.zeros((0, 3))
 
     def remove(self) -> None:
         """Remove every node of this arm."""

@@ -10,6 +10,8 @@ few labels, so a step costs a handful of messages.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import viser
 
@@ -25,18 +27,49 @@ from .arm import ArmGeometry
 from .geometry import LABEL_SCALE, finite, set_if_changed
 from .overlays import LINEAR_SECONDS, Arrows
 
-__all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB"]
+__all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB", "CLEARANCE", "clear_of"]
 
 _LABELS = 6
 _SEGMENTS = PATH_POINTS - 1
+CLEARANCE = 0.06
+"""Least distance of a step's label from a joint's label or an earlier step label, in robot sizes (on the
+TRR, v₂'s label sat on q3's: frames 2 and 3 share their origin)."""
+
+
+def clear_of(point: np.ndarray, taken: np.ndarray, gap: float) -> np.ndarray:
+    """``point`` moved, if it is within ``gap`` of one of ``taken`` (k, 3), to ``gap`` away from the
+    nearest one (straight up when they coincide); moved again (up) while another is still that close."""
+    p = np.asarray(point, float)
+    if not len(taken):
+        return p
+    d = p - taken
+    dist = np.linalg.norm(d, axis=1)
+    i = int(np.argmin(dist))
+    if dist[i] >= gap:
+        return p
+    away = d[i] / dist[i] if dist[i] > 1e-9 * max(gap, 1e-12) else np.array([0.0, 0.0, 1.0])
+    p = taken[i] + away * gap
+    for _ in range(len(taken)):
+        if np.linalg.norm(p - taken, axis=1).min() >= gap * (1 - 1e-9):
+            break
+        p = p + np.array([0.0, 0.0, gap])
+    return p
 
 
 class DeriveScene:
     """Scene nodes of the Derive tab's step for one tab and robot."""
 
-    def __init__(self, scene: viser.SceneApi, robot: Robot, geometry: ArmGeometry, root: str) -> None:
+    def __init__(
+        self,
+        scene: viser.SceneApi,
+        robot: Robot,
+        geometry: ArmGeometry,
+        root: str,
+        joint_labels: Callable[[], np.ndarray] | None = None,
+    ) -> None:
         self.robot = robot
         self.geometry = geometry
+        self._joint_labels = joint_labels or (lambda: np.zeros((0, 3)))
         s = geometry.size
         self.arrows = Arrows(scene, f"{root}/arrows", 0.008 * s)
         self.thin = Arrows(scene, f"{root}/thin_arrows", 0.004 * s)
@@ -76,11 +109,14 @@ class DeriveScene:
             rgb = np.array([c for _, _, c in lines] + [lines[0][2]] * pad, np.uint8)
             update_props(self.lines, points=finite(pts), colors=np.repeat(rgb[:, None], 2, axis=1))
         set_if_changed(self.lines, "visible", bool(lines))
+        taken = self._joint_labels()
         for k, label in enumerate(self.labels):
             show = k < len(labels)
             set_if_changed(label, "visible", show)
             if show:
                 text, where = labels[k]
+                where = clear_of(np.asarray(where, float), taken, CLEARANCE * self.geometry.size)
+                taken = np.vstack([taken, where])
                 set_if_changed(label, "text", text)
                 label.position = finite(where).astype(float)
         tips = [self.arrows.tips, self.thin.tips] + [np.array([a, b]) for a, b, _ in lines]
