@@ -20,7 +20,8 @@ Wrapped:
   an upload's parts (512 KiB, the browser's) may exceed the message limit, and an upload
   declared over :data:`MAX_UPLOAD_BYTES` is never buffered (:func:`upload_too_large`).
 * :func:`install_input_checks` — every value a tab sends, checked where it enters (:mod:`.gate`):
-  replaces ``GuiApi._handle_gui_updates`` and its upload handlers; :func:`check_message` is called
+  replaces ``GuiApi._handle_gui_updates`` and its upload handlers (a tab's own widget, ``client.gui``,
+  no longer relays its value to its own connection: viser's ``sync_cb``); :func:`check_message` is called
   by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on).
 * :func:`allow_origins` and :func:`handshake_refusal` — the Host and Origin of every HTTP request and
   websocket handshake checked (:mod:`.handshake`, through the ``process_request`` viser passes to

@@ -246,7 +246,24 @@ async def _gui_updates(self: Any, client_id: int, message: Any) -> None:
     if why:
         refuse(self, client_id, f"“{_label(handle)}”", why)
         return
+    state = handle._impl
+    if state.sync_cb is not None and _client_owned(self):
+        state.sync_cb = None  # see _client_owned
     await _original["_handle_gui_updates"](self, client_id, message)
+
+
+def _client_owned(api: Any) -> bool:
+    """Whether the viser GUI ``api`` belongs to one tab (``client.gui``), not to the whole server.
+
+    viser relays every value a tab sends to "the other clients" of the widget's connection
+    (``sync_cb``, a ``GuiUpdateMessage`` with ``excluded_self_client``): for a tab's own widget that
+    connection is the tab's alone, so the message is queued, wakes the event loop, and is dropped
+    unsent (one more buffered message and one more empty window per change). Such widgets get no
+    relay; a widget of the whole server keeps it.
+    """
+    from viser import ClientHandle
+
+    return isinstance(getattr(api, "_owner", None), ClientHandle)
 
 
 def _transfer_start(self: Any, client_id: int, message: Any) -> None:

@@ -329,3 +329,56 @@ def test_install_loop_safe_events_gives_every_buffer_one_and_messages_still_arri
             ws.wait_for(lambda m: "from another thread" in json.dumps(m, default=str), after=mark)
     finally:
         srv.stop()
+
+
+@pytest.fixture
+def checked():
+    """A server created with the input checks installed (as a Lab's), which relay a tab's values."""
+    from app.viser_adapter import gate
+
+    installed = bool(gate._original)
+    va.install_input_checks()
+    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    try:
+        yield srv
+    finally:
+        srv.stop()
+        if not installed:
+            va.uninstall_input_checks()
+
+
+def _queued(client: viser.ClientHandle) -> int:
+    """How many messages were ever queued on ``client``'s own connection."""
+    return client._websock_connection.get_message_buffer().message_counter
+
+
+def test_a_tabs_own_widget_is_not_echoed_to_its_own_connection(checked):
+    """viser relays a value a tab sends to the widget's other clients; a tab's own widget has none, so
+    nothing is queued (viser queued a message that its only client then skipped)."""
+    with ViserWsClient(f"ws://127.0.0.1:{checked.get_port()}") as ws:
+        poll(lambda: len(checked.get_clients()) == 1)
+        (client,) = checked.get_clients().values()
+        slider = client.gui.add_slider("q1", min=-1.0, max=1.0, step=0.01, initial_value=0.0)
+        seen: list[float] = []
+        slider.on_update(lambda _: seen.append(slider.value))
+        poll(lambda: _queued(client) > 0 and ws.mark() > 0)
+        for value in (0.25, 0.5):
+            before = _queued(client)
+            ws.set_value(va.handle_uuid(slider), value)
+            poll(lambda v=value: seen[-1:] == [v])
+            assert _queued(client) == before
+        assert slider.value == 0.5
+
+
+def test_a_shared_widget_still_relays_a_tabs_value_to_the_other_tabs(checked):
+    slider = checked.gui.add_slider("shared", min=-1.0, max=1.0, step=0.01, initial_value=0.0)
+    url = f"ws://127.0.0.1:{checked.get_port()}"
+    with ViserWsClient(url) as ws, ViserWsClient(url) as other:
+        poll(lambda: len(checked.get_clients()) == 2)
+        mark = other.mark()
+        ws.set_value(va.handle_uuid(slider), 0.75)
+        _, msg = other.wait_for(
+            lambda m: m["type"] == "GuiUpdateMessage" and m["uuid"] == va.handle_uuid(slider), after=mark
+        )
+        assert msg["updates"] == {"value": 0.75}
+        poll(lambda: slider.value == 0.75)

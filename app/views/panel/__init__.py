@@ -88,6 +88,7 @@ class PanelView:
         run_javascript(client, page_state_js(handle_uuid(self.report)))
         set_page_title(client, PAGE_TITLE)
         self.menu = robot_menu(robot_names)
+        self._menu_names = tuple(robot_names)
         self.robot = gui.add_dropdown(
             "Robot", self.menu.labels, initial_value=self.menu.label_of(state.robot_name), order=1
         )
@@ -185,8 +186,10 @@ class PanelView:
 
     def set_robot_names(self, names: Sequence[str]) -> None:
         """List ``names`` in the tab's robot dropdown (its own robots first, see app.tab.robots), each
-        by its label (a library robot's title and name)."""
-        self.menu = robot_menu(names)
+        by its label (a library robot's title and name). The menu is worked out again only when the
+        names changed (every redraw passes them; a label asks the library whether the name is its)."""
+        if tuple(names) != self._menu_names:
+            self.menu, self._menu_names = robot_menu(names), tuple(names)
         if tuple(self.robot.options) != self.menu.labels:
             self.robot.options = self.menu.labels
 
