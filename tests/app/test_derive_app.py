@@ -217,7 +217,7 @@ def test_each_step_is_shown_in_symbols_too(symbolic_session):
 def test_step_labels_keep_clear_of_the_joint_labels_and_of_each_other(session, robot, method):
     """Issue 21, item 12: on the TRR, frames 2 and 3 share their origin, so v₂'s label sat on q3's.
     Every step label is at least CLEARANCE robot sizes from every joint label and every other step label."""
-    from app.views.scene.derive import CLEARANCE
+    from app.views.scene.geometry import LABEL_CLEARANCE as CLEARANCE
 
     choose(session, robot)
     size = session.scene.size

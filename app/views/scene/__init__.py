@@ -81,7 +81,9 @@ class Glyph:
 GLYPHS: tuple[Glyph, ...] = (
     Glyph(
         "overlays",
-        lambda c: Overlays(c.scene, c.geometry, c.robot.dof, c.robot.planar, f"{c.root}/jacobian"),
+        lambda c: Overlays(
+            c.scene, c.geometry, c.robot.dof, c.robot.planar, f"{c.root}/jacobian", c.joint_labels
+        ),
     ),
     Glyph("accel", lambda c: AccelArrow(c.scene, c.geometry.size, f"{c.root}/jacobian")),
     Glyph(

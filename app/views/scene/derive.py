@@ -24,36 +24,13 @@ from ...viser_adapter import update_props
 from ..methods import METHODS
 from ..methods.common import AXIS_RGB, LEVER_RGB
 from .arm import ArmGeometry
-from .geometry import LABEL_SCALE, finite, set_if_changed
+from .geometry import LABEL_CLEARANCE, LABEL_SCALE, clear_of, finite, set_if_changed
 from .overlays import LINEAR_SECONDS, Arrows
 
-__all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB", "CLEARANCE", "clear_of"]
+__all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB"]
 
 _LABELS = 6
 _SEGMENTS = PATH_POINTS - 1
-CLEARANCE = 0.06
-"""Least distance of a step's label from a joint's label or an earlier step label, in robot sizes (on the
-TRR, v₂'s label sat on q3's: frames 2 and 3 share their origin)."""
-
-
-def clear_of(point: np.ndarray, taken: np.ndarray, gap: float) -> np.ndarray:
-    """``point`` moved, if it is within ``gap`` of one of ``taken`` (k, 3), to ``gap`` away from the
-    nearest one (straight up when they coincide); moved again (up) while another is still that close."""
-    p = np.asarray(point, float)
-    if not len(taken):
-        return p
-    d = p - taken
-    dist = np.linalg.norm(d, axis=1)
-    i = int(np.argmin(dist))
-    if dist[i] >= gap:
-        return p
-    away = d[i] / dist[i] if dist[i] > 1e-9 * max(gap, 1e-12) else np.array([0.0, 0.0, 1.0])
-    p = taken[i] + away * gap
-    for _ in range(len(taken)):
-        if np.linalg.norm(p - taken, axis=1).min() >= gap * (1 - 1e-9):
-            break
-        p = p + np.array([0.0, 0.0, gap])
-    return p
 
 
 class DeriveScene:
@@ -115,7 +92,8 @@ class DeriveScene:
             set_if_changed(label, "visible", show)
             if show:
                 text, where = labels[k]
-                where = clear_of(np.asarray(where, float), taken, CLEARANCE * self.geometry.size)
+                gap = LABEL_CLEARANCE * self.geometry.size
+                where = clear_of(np.asarray(where, float), taken, gap, self.robot.planar)
                 taken = np.vstack([taken, where])
                 set_if_changed(label, "text", text)
                 label.position = finite(where).astype(float)

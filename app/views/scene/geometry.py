@@ -27,6 +27,10 @@ __all__ = [
     "TINY",
     "LABEL_SCALE",
     "LOST_LABEL_SCALE",
+    "LABEL_CLEARANCE",
+    "clear_of",
+    "clear_start",
+    "ring",
 ]
 
 LABEL_SCALE = 1.6
@@ -35,6 +39,67 @@ back row of a lecture hall; 1.6 gives about 17 px)."""
 LOST_LABEL_SCALE = 1.8
 """Screen scale of the words at a lost direction ("wrist: lost rotation axis"): what the room reads at a
 singularity, about 20 px high (its capitals 34 mm on a 3 m wide image of 1280 px: 14 arcmin at 8 m)."""
+LABEL_CLEARANCE = 0.08
+"""Least distance of a glyph's label from a joint's label (and from the glyph's other labels), in robot
+sizes: about 30 px at the default framing, more than a label's height."""
+
+
+def clear_of(point: np.ndarray, taken: np.ndarray, gap: float, planar: bool = False) -> np.ndarray:
+    """``point``, or, if it is within ``gap`` of one of ``taken`` (k, 3), moved to ``gap`` from it.
+
+    The move is upward (+z: up on screen from every view the camera takes, so the two texts no longer
+    overlap in the image, which a move along the line of sight would leave them doing); for a planar arm,
+    seen from above, it is away from the nearer label in the plane. Moved again while another is close.
+    """
+    p = np.asarray(point, float).copy()
+    taken = np.asarray(taken, float).reshape(-1, 3)
+    for _ in range(len(taken) + 1):
+        if not len(taken):
+            return p
+        d = p - taken
+        dist = np.linalg.norm(d, axis=1)
+        i = int(np.argmin(dist))
+        if dist[i] >= gap * (1 - 1e-9):
+            return p
+        if planar:
+            flat = d[i] * np.array([1.0, 1.0, 0.0])
+            n = float(np.linalg.norm(flat))
+            away = flat / n if n > 1e-12 * gap else np.array([0.0, 1.0, 0.0])
+            p = taken[i] + away * gap + np.array([0.0, 0.0, d[i][2]])
+        else:
+            flat = d[i] * np.array([1.0, 1.0, 0.0])
+            rise = np.sqrt(max(gap * gap - float(flat @ flat), 0.0))
+            p = taken[i] + flat + np.array([0.0, 0.0, max(rise, d[i][2])])
+            if np.linalg.norm(p - taken[i]) < gap * (1 - 1e-9):
+                p = p + np.array([0.0, 0.0, gap])
+    return p
+
+
+def ring(center: np.ndarray, axis: np.ndarray, radius: float, segments: int = 28) -> np.ndarray:
+    """Line segments (segments, 2, 3) of a circle about ``axis`` through ``center``."""
+    helper = np.array([1.0, 0, 0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1, 0])
+    e1 = np.cross(axis, helper)
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    t = np.linspace(0.0, 2 * np.pi * 0.85, segments + 1)  # an open ring: it reads as a turn
+    pts = center + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
+    return np.stack([pts[:-1], pts[1:]], axis=1)
+
+
+def clear_start(point: np.ndarray, u: np.ndarray, links: np.ndarray, gap: float, width: float) -> np.ndarray:
+    """Where an arrow from ``point`` along ``u`` starts so that it is outside the arm: ``gap`` beyond
+    ``point``, or beyond the last piece of the links (polyline ``links``) within ``width`` of its line."""
+    t = np.linspace(0.0, 1.0, 9)
+    samples = (links[:-1, None, :] * (1 - t)[None, :, None] + links[1:, None, :] * t[None, :, None]).reshape(
+        -1, 3
+    )
+    d = samples - point
+    along = d @ u
+    lateral = np.linalg.norm(d - along[:, None] * u, axis=1)
+    near = along[(lateral < width) & (along > 0)]
+    return point + u * ((float(near.max()) if near.size else 0.0) + gap)
+
+
 TINY = 1e-4
 """Smallest drawn extent [m]: degenerate shapes are drawn this thin instead of vanishing."""
 _LIMIT = 1e3

@@ -19,6 +19,8 @@ hidden glyphs cost nothing.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import viser
 
@@ -37,7 +39,18 @@ from ..palette import (
     joint_color,
 )
 from .arm import ArmGeometry
-from .geometry import LOST_LABEL_SCALE, TINY, finite, finite_tuple, set_if_changed, wxyz_one
+from .geometry import (
+    LABEL_CLEARANCE,
+    LOST_LABEL_SCALE,
+    TINY,
+    clear_of,
+    clear_start,
+    finite,
+    finite_tuple,
+    ring,
+    set_if_changed,
+    wxyz_one,
+)
 
 __all__ = ["Overlays", "Arrows", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE", "MAX_LOSSES", "GAP"]
 
@@ -166,38 +179,20 @@ class _Ellipsoid:
         self._drawn = (np.asarray(center, float), np.asarray(axes, float), np.array(r))
 
 
-def _ring(center: np.ndarray, axis: np.ndarray, radius: float, segments: int = 28) -> np.ndarray:
-    """Line segments (segments, 2, 3) of a circle about ``axis`` through ``center``."""
-    helper = np.array([1.0, 0, 0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1, 0])
-    e1 = np.cross(axis, helper)
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(axis, e1)
-    t = np.linspace(0.0, 2 * np.pi * 0.85, segments + 1)  # an open ring: it reads as a turn
-    pts = center + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
-    return np.stack([pts[:-1], pts[1:]], axis=1)
-
-
-def _clear_start(point: np.ndarray, u: np.ndarray, links: np.ndarray, gap: float, width: float) -> np.ndarray:
-    """Where an arrow from ``point`` along ``u`` starts so that it is outside the arm: ``gap`` beyond
-    ``point``, or beyond the last piece of the links (polyline ``links``) within ``width`` of its line."""
-    t = np.linspace(0.0, 1.0, 9)
-    samples = (links[:-1, None, :] * (1 - t)[None, :, None] + links[1:, None, :] * t[None, :, None]).reshape(
-        -1, 3
-    )
-    d = samples - point
-    along = d @ u
-    lateral = np.linalg.norm(d - along[:, None] * u, axis=1)
-    near = along[(lateral < width) & (along > 0)]
-    return point + u * ((float(near.max()) if near.size else 0.0) + gap)
-
-
 class Overlays:
     """The Jacobian's glyphs around the tool for one tab."""
 
     def __init__(
-        self, scene: viser.SceneApi, geometry: ArmGeometry, dof: int, planar: bool, root: str
+        self,
+        scene: viser.SceneApi,
+        geometry: ArmGeometry,
+        dof: int,
+        planar: bool,
+        root: str,
+        joint_labels: Callable[[], np.ndarray] | None = None,
     ) -> None:
         self.geometry = geometry
+        self._joint_labels = joint_labels or (lambda: np.zeros((0, 3)))
         self.planar = planar
         s = geometry.size
         self._status = ""
@@ -353,7 +348,7 @@ class Overlays:
             if show_v:
                 u = loss.translation
                 size = length * (np.sqrt(loss.translation_share) if loss.part == "tool" else 1.0)
-                start = _clear_start(
+                start = clear_start(
                     point, u, snap.link_frames[:, :3, 3], GAP * unit, 0.06 * self.geometry.size
                 )
                 starts.append(start)
@@ -363,7 +358,7 @@ class Overlays:
             if show_w:
                 half = length * (np.sqrt(loss.rotation_share) if loss.part == "tool" else 0.75)
                 segments.append(np.array([[point - a * half, point + a * half]]))
-                segments.append(_ring(point + a * 0.6 * half, a, 0.25 * half))
+                segments.append(ring(point + a * 0.6 * half, a, 0.25 * half))
                 tips.append(point + a * (half + 0.1 * unit))
                 texts.append(_LABELS[loss.part, "w"])
         if starts:
@@ -373,6 +368,8 @@ class Overlays:
         set_if_changed(self.lost_w, "visible", bool(segments))
         if segments:
             update_props(self.lost_w, points=finite(np.concatenate(segments)))
+        taken = self._joint_labels()
+        gap = LABEL_CLEARANCE * self.geometry.size
         for i, label in enumerate(self.lost_labels):
             shown = i < len(texts) and texts[i] not in texts[:i]  # two arm arrows (iiwa candle): one label
             set_if_changed(label, "visible", shown)
@@ -380,6 +377,8 @@ class Overlays:
                 if texts[i] != self._label_texts[i]:
                     label.text = texts[i]
                     self._label_texts[i] = texts[i]
+                tips[i] = clear_of(tips[i], taken, gap, self.planar)  # not on a joint's label (q6's)
+                taken = np.vstack([taken, tips[i]])
                 set_pose(label, finite_tuple(tips[i]))
         self.lost_tips = np.array(tips) if tips else _NO_POINTS
 
