@@ -296,7 +296,7 @@ class WorkerKill:
 
     async def fire(self, clients: list[Tab], t0: float) -> None:
         await asyncio.sleep(max(0.0, t0 + self.at - time.perf_counter()))
-        self.before = await asyncio.to_thread(worker_pids, self.pid)
+        self.before = await asyncio.to_thread(worker_pids, self.pid, self.port)
         if len(self.before) != self.workers:
             raise RuntimeError(f"{len(self.before)} worker processes found, {self.workers} expected")
         served = {w: await asyncio.to_thread(peer_ports, w, self.port) for w in self.before}
@@ -321,7 +321,7 @@ class WorkerKill:
         dead = [clients[i] for i in self.dead]
         back = np.array([t.back_at - k for t in dead if t.back_at]) * 1e3
         answered = np.array([t.answered_at - k for t in dead if t.answered_at]) * 1e3
-        after = worker_pids(self.pid)
+        after = worker_pids(self.pid, self.port)
         serving = set(map(int, re.findall(r"\(pid (\d+)\) serving", log.read_text()))) if log else set()
         return {
             "spread": self.spread,

@@ -105,36 +105,56 @@ def memory(pid: int) -> tuple[float, float, int]:
     return pss / 1024, rss / 1024, count
 
 
-def worker_pids(pid: int) -> list[int]:
-    """The worker processes of ``jacobian-lab serve --workers N`` (N ≥ 2) running as ``pid``: its children
-    that multiprocessing spawned (``spawn_main`` in their command line). Its other child, multiprocessing's
-    resource tracker, runs ``resource_tracker``; the symbolic workers are the workers' children. (With
-    ``--workers 1`` the server serves from its own process and its spawned child is its symbolic worker.)"""
+def worker_pids(pid: int, port: int) -> list[int]:
+    """The worker processes of ``jacobian-lab serve --workers N`` (N ≥ 2) running as ``pid`` on ``port``:
+    its children that multiprocessing spawned (``spawn_main`` in their command line) and that hold the
+    listening socket of ``port``. Its other children: multiprocessing's resource tracker
+    (``resource_tracker``) and the one symbolic process it runs for all workers (spawned too, but it holds
+    no listening socket). (With ``--workers 1`` the server serves from its own process.)"""
     found = []
     for child in (p for p, parent in _parents().items() if parent == pid):
         try:
-            if b"spawn_main" in Path(f"/proc/{child}/cmdline").read_bytes():
+            if b"spawn_main" in Path(f"/proc/{child}/cmdline").read_bytes() and _listens(child, port):
                 found.append(child)
         except OSError:
             continue
     return sorted(found)
 
 
-def peer_ports(pid: int, port: int) -> set[int]:
-    """The remote ports of the TCP connections that process ``pid`` holds on its local ``port`` (the
-    tabs it serves: each tab's own port, ``local_address`` on the client side)."""
-    try:
-        fds = list(Path(f"/proc/{pid}/fd").iterdir())
-    except OSError:
-        return set()
+def _socket_inodes(pid: int) -> set[str]:
     inodes = set()
-    for fd in fds:
+    for fd in Path(f"/proc/{pid}/fd").iterdir():
         try:
             link = os.readlink(fd)
         except OSError:
             continue
         if link.startswith("socket:["):
             inodes.add(link[8:-1])
+    return inodes
+
+
+def _listens(pid: int, port: int) -> bool:
+    """Whether process ``pid`` holds a socket listening on TCP ``port`` (state 0A in /proc/net/tcp)."""
+    inodes = _socket_inodes(pid)
+    for table in ("tcp", "tcp6"):
+        try:
+            rows = Path(f"/proc/{pid}/net/{table}").read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for row in rows:
+            cells = row.split()
+            if int(cells[1].rsplit(":", 1)[1], 16) == port and cells[3] == "0A" and cells[9] in inodes:
+                return True
+    return False
+
+
+def peer_ports(pid: int, port: int) -> set[int]:
+    """The remote ports of the TCP connections that process ``pid`` holds on its local ``port`` (the
+    tabs it serves: each tab's own port, ``local_address`` on the client side)."""
+    try:
+        inodes = _socket_inodes(pid)
+    except OSError:
+        return set()
     found = set()
     for table in ("tcp", "tcp6"):
         try:
