@@ -163,7 +163,11 @@ LAYOUT_JS = """
     const cells = [...column.querySelectorAll("div")].filter(
       (d) => d.style && d.style.minHeight === "50px" && d.style.flex);
     const top = cells.find((c) => c.querySelector(".jl-status"));
-    for (const c of cells) c.classList.add(c === top ? "jl-top" : "jl-views");
+    if (!top) return;  // not drawn yet: tagging now would mark the joints' cell as a view for good
+    for (const c of cells) {
+      c.classList.toggle("jl-top", c === top);
+      c.classList.toggle("jl-views", c !== top);
+    }
     // The joints' panel as tall as its content (its header plus what it scrolls), at most TOP_MAX.
     const viewport = top && top.querySelector(".mantine-ScrollArea-viewport");
     if (viewport) {
