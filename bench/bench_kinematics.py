@@ -26,18 +26,21 @@ checks that everybody computes the same Jacobian, and prints ratios. Run with::
 from __future__ import annotations
 
 import argparse
-import contextlib
 import os
+import sys
 import time
 import timeit
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 import robots
-from kinematics import Robot, batch, jacobian, jacobian_dot, maps, to_urdf
-from kinematics.kernel import kernel
+from kinematics import batch, jacobian, jacobian_dot, maps, to_urdf
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from kinematics_helpers import generated_code_set_aside  # noqa: E402  (the tests' helper: one copy)
 
 ROUNDS = 4
 """Alternated rounds of the generated code and of the NumPy scan."""
@@ -53,19 +56,6 @@ def per_call(fn: Callable[[], object], min_time: float = 0.3) -> float:
     while timer.timeit(number=number) < min_time / 7:
         number *= 2
     return min(timer.repeat(number=number, repeat=7)) / number
-
-
-@contextlib.contextmanager
-def numpy_scan(robot: Robot) -> Iterator[None]:
-    """The robot's generated code set aside: every kernel function takes the NumPy scan (the path
-    of every robot before the generated code)."""
-    c = kernel(robot)
-    saved = c.compiled
-    object.__setattr__(c, "compiled", None)
-    try:
-        yield
-    finally:
-        object.__setattr__(c, "compiled", saved)
 
 
 def app_compute(name: str) -> Callable[[], object]:
@@ -142,12 +132,12 @@ def bench_robot(name: str, rtb_name: str, size: int) -> dict[str, float]:
             scale = size if "per configuration" in label else 1
             spend = 0.5 if scale > 1 else 0.1
             t[label] = min(t[label], per_call(fn, spend) / scale)
-            with numpy_scan(robot):
+            with generated_code_set_aside(robot):
                 t[label + " --"] = min(t[label + " --"], per_call(fn, spend) / scale)
         for label, fn in peers.items():
             t[label] = min(t[label], per_call(fn, 0.1))
     J_ours = jacobian(robot, q)
-    with numpy_scan(robot):
+    with generated_code_set_aside(robot):
         scan_gap = np.abs(jacobian(robot, q) - J_ours).max()
     # RTB's models carry their own base/tool: the angular rows (independent of tool offsets) check
     # that it is the same arm.

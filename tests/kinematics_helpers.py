@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import importlib.util
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -10,6 +12,7 @@ from fakes import random_q  # its home is tests/fakes.py; here for tests written
 
 import robots
 from kinematics import Robot
+from kinematics.kernel import kernel
 from kinematics.transforms import rot_x, rot_z, trans
 from kinematics.urdf import robot_from_urdf, robot_from_urdf_string
 
@@ -73,3 +76,16 @@ def chains_under_test() -> dict[str, Robot]:
         name="based",
     )
     return found
+
+
+@contextlib.contextmanager
+def generated_code_set_aside(robot: Robot) -> Iterator[None]:
+    """Every kernel function of ``robot`` takes its NumPy scan (as for chains over MAX_AXES, and as every
+    robot did before the generated code): the reference the tests and the bench compare against."""
+    c = kernel(robot)
+    saved = c.compiled
+    object.__setattr__(c, "compiled", None)
+    try:
+        yield
+    finally:
+        object.__setattr__(c, "compiled", saved)

@@ -5,13 +5,10 @@ and the errors of bad input."""
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Iterator
-
 import numpy as np
 import pytest
 from fakes import random_q
-from kinematics_helpers import chains_under_test
+from kinematics_helpers import chains_under_test, generated_code_set_aside
 
 import robots
 from kinematics import (
@@ -99,18 +96,6 @@ def test_jdot_is_the_derivative_of_j_along_the_rates(name):
         scan = [jacobian_dot(robot, Q[i], U[i]) for i in range(12)]
     for i in range(12):
         np.testing.assert_allclose(jacobian_dot(robot, Q[i], U[i]), scan[i], atol=1e-12 * scale)
-
-
-@contextlib.contextmanager
-def generated_code_set_aside(robot: Robot) -> Iterator[None]:
-    """Every kernel function of ``robot`` takes its NumPy path (as for chains over MAX_AXES)."""
-    c = kernel(robot)
-    saved = c.compiled
-    object.__setattr__(c, "compiled", None)
-    try:
-        yield
-    finally:
-        object.__setattr__(c, "compiled", saved)
 
 
 def test_measures_against_numpy_svd_of_the_rows():

@@ -53,25 +53,20 @@ def clear_of(point: np.ndarray, taken: np.ndarray, gap: float, planar: bool = Fa
     """
     p = np.asarray(point, float).copy()
     taken = np.asarray(taken, float).reshape(-1, 3)
-    for _ in range(len(taken) + 1):
-        if not len(taken):
-            return p
+    for _ in range(len(taken)):
         d = p - taken
         dist = np.linalg.norm(d, axis=1)
         i = int(np.argmin(dist))
         if dist[i] >= gap * (1 - 1e-9):
-            return p
+            break
+        flat = d[i] * np.array([1.0, 1.0, 0.0])
         if planar:
-            flat = d[i] * np.array([1.0, 1.0, 0.0])
             n = float(np.linalg.norm(flat))
             away = flat / n if n > 1e-12 * gap else np.array([0.0, 1.0, 0.0])
             p = taken[i] + away * gap + np.array([0.0, 0.0, d[i][2]])
-        else:
-            flat = d[i] * np.array([1.0, 1.0, 0.0])
+        else:  # straight above: the rise makes the distance exactly gap (more if p was higher already)
             rise = np.sqrt(max(gap * gap - float(flat @ flat), 0.0))
             p = taken[i] + flat + np.array([0.0, 0.0, max(rise, d[i][2])])
-            if np.linalg.norm(p - taken[i]) < gap * (1 - 1e-9):
-                p = p + np.array([0.0, 0.0, gap])
     return p
 
 
