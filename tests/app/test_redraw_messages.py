@@ -16,23 +16,34 @@ from app.core.actions import SetJoint, SetOption
 from app.core.commands import Redraw
 from app.viser_adapter import handle_uuid
 
+SENTINEL = "/jl_test_sentinel"
+"""A hidden frame this test moves after each redraw: messages reach the browser in the order they were
+queued, so once its move arrives every message of the redraw has (the cylinders' own message does not
+tell: the panel's messages are queued after the scene's and may go in the next frame)."""
+
+
+_SENTINELS: dict[int, object] = {}
+
 
 def _after(ws, mark: int) -> list[dict]:
-    return [m for _, m in ws.messages[mark:]]
+    return [m for _, m in ws.messages[mark:] if m.get("name") != SENTINEL]
 
 
 def _wait_drawn(ws, session, mark: int) -> list[dict]:
-    """Everything sent from ``mark`` until the browser got the scene the session last drew (frames
-    arrive in order, so every earlier message is in)."""
+    """Everything sent from ``mark`` until the browser got everything the session last drew."""
     session.settle()
-    shown = np.asarray(scene_node(session, "/lab/arm/cylinders").batched_positions)
+    node = _SENTINELS.get(id(session))
+    if node is None:
+        node = _SENTINELS[id(session)] = session.client.scene.add_frame(
+            SENTINEL, visible=False, show_axes=False
+        )
+    x = float(node.position[0]) + 1.0
+    node.position = (x, 0.0, 0.0)
 
-    def current(m: dict) -> bool:
-        if m.get("name") != "/lab/arm/cylinders" or "batched_positions" not in m.get("updates", {}):
-            return False
-        return np.allclose(np.asarray(m["updates"]["batched_positions"]).reshape(-1, 3), shown)
+    def arrived(m: dict) -> bool:
+        return m.get("name") == SENTINEL and tuple(m.get("position", ()))[:1] == (x,)
 
-    ws.wait_for(current, after=mark)
+    ws.wait_for(arrived, after=mark)
     return _after(ws, mark)
 
 
