@@ -11,15 +11,18 @@ import collections
 
 import numpy as np
 from app_helpers import scene_node
+from fakes import poll
 
 from app.core.actions import SetJoint, SetOption
 from app.core.commands import Redraw
 from app.viser_adapter import handle_uuid
 
 SENTINEL = "/jl_test_sentinel"
-"""A hidden frame this test moves after each redraw: messages reach the browser in the order they were
-queued, so once its move arrives every message of the redraw has (the cylinders' own message does not
-tell: the panel's messages are queued after the scene's and may go in the next frame)."""
+"""A hidden frame this test moves once the session has drawn: messages reach the browser in the order
+they were queued, so once its move arrives every message drawn before it has. (Waiting for a cylinders
+message with the arm's current positions does not tell: an older frame can have the same positions,
+and a change still on its way into the session is not drawn yet, so two changes could fall in one
+window and be coalesced into one redraw — the CI failure at 0736d1d.)"""
 
 
 _SENTINELS: dict[int, object] = {}
@@ -47,12 +50,17 @@ def _wait_drawn(ws, session, mark: int) -> list[dict]:
     return _after(ws, mark)
 
 
+def _move(ws, session, q2: float) -> None:
+    """Move q2 to ``q2`` degrees as the browser does, and wait until the session has taken it."""
+    ws.set_value(handle_uuid(session.panel.joints.sliders[1]), q2)
+    poll(lambda: np.isclose(session.state.q[1], np.radians(q2)), what=f"q2 = {q2}° taken")
+
+
 def _redraw_of(ws, session, q2: float) -> list[dict]:
     """The messages of one slider change of q2 (to ``q2`` degrees), sent as the browser does."""
     _wait_drawn(ws, session, 0)  # whatever came before is in
     mark = ws.mark()
-    ws.set_value(handle_uuid(session.panel.joints.sliders[1]), q2)
-    ws.wait_for(lambda m: m.get("name") == "/lab/arm/cylinders", after=mark)
+    _move(ws, session, q2)
     return _wait_drawn(ws, session, mark)
 
 
@@ -64,8 +72,7 @@ def test_a_redraw_of_an_unchanged_state_sends_nothing(lab_client, session):
     session.dispatch(Redraw())  # the same state drawn again: every value is the one already shown
     session.settle()
     assert session.redraws == redraws + 1
-    ws.set_value(handle_uuid(session.panel.joints.sliders[1]), 25.0)  # a later change ends the list
-    ws.wait_for(lambda m: m.get("name") == "/lab/arm/cylinders", after=mark)
+    _move(ws, session, 25.0)  # a later change ends the list
     sent = _wait_drawn(ws, session, mark)
     # Only the later change's redraw arrived: one message per node and kind, as in the first change.
     kinds = collections.Counter((m["type"], m.get("name") or m.get("uuid")) for m in sent)
