@@ -44,7 +44,7 @@ from ...model import Robot
 from ..chain import frames_within, multiply
 from ..core import DEFAULT_TIMEOUT, check_timeout
 from ..model import SymbolicError, build_model, check_frame
-from ..singular import SingularSet, determinant
+from ..singular import determinant
 from ..trig import Deadline
 from ..typeset.render import det_label
 from .methods import METHOD_STEPS, Context, rotate_rows
@@ -179,9 +179,11 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
         return None
     names: dict[tuple[int, ...], str] = {(0, 1, 2): "the position rows", (3, 4, 5): "the orientation rows"}
     rows = "all six rows" if len(det.rows) == 6 else names.get(det.rows, "the task rows")
-    words = "; ".join(_set_words(s) for s in det.singular_sets) or "none: J never loses rank"
     kind = "det(J Jᵀ)" if det.gram else "det J"
-    title = f"{kind} of {rows}, factored. Singular where a factor vanishes: {words}"
+    # The sets themselves are typeset under the formula (Step.singular: the handouts and the Derive tab
+    # show "s₂ = 0 ⇒ θ₂ ∈ {0, π}" in the joints' notation), not repeated here as SymPy text.
+    tail = "J is singular where a factor vanishes" if det.singular_sets else "never zero: J never loses rank"
+    title = f"{kind} of {rows}, factored: {tail}"
     return Step(
         "detJ",
         title,
@@ -193,14 +195,6 @@ def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
         notes=tuple(det.notes),
         singular=det.singular_sets,
     )
-
-
-def _set_words(s: SingularSet) -> str:
-    name = {"wrist": "wrist singularity", "elbow": "elbow singularity", "shoulder": "shoulder singularity"}
-    text = f"{sp.sstr(s.factor)} = 0"
-    if s.solutions is not None and len(s.joints) == 1:
-        text += f" (at {s.joints[0]} ∈ {{{', '.join(sp.sstr(v) for v in s.solutions)}}})"
-    return text + (f", {name[s.kind]}" if s.kind else "")
 
 
 @functools.lru_cache(maxsize=32)
