@@ -11,9 +11,12 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from kinematics import Robot
+
+if TYPE_CHECKING:
+    from kinematics.symbolic.steps.step import Step
 
 __all__ = ["REQUESTS", "Request", "SymbolicUnavailable", "STEP_WIDTH_PX"]
 
@@ -58,10 +61,19 @@ def _steps_mathml(
     """In the worker process: every step of one derivation, its caption and its MathML (panel width)."""
     try:
         from kinematics.symbolic import derivation_steps
+        from kinematics.symbolic.handout.parts import singular_texts
+        from kinematics.symbolic.typeset.render import MATH_STYLE
     except ImportError as exc:
         raise SymbolicUnavailable("symbolic steps not available (kinematics.symbolic is missing)") from exc
+
+    def body(s: Step) -> str:  # det J's step: its singular sets under it, as in the handout
+        sets = singular_texts(s.notation(), s, latex=False)
+        return s.mathml(STEP_WIDTH_PX) + "".join(
+            f'\n<math display="block" style="{MATH_STYLE}"><mrow>{t}</mrow></math>' for t in sets
+        )
+
     return tuple(
-        (s.joint, s.key, s.title_html(), s.mathml(STEP_WIDTH_PX))
+        (s.joint, s.key, s.title_html(), body(s))
         for s in derivation_steps(robot, method, symbolic_params=letters, timeout=timeout)
     )
 

@@ -242,3 +242,19 @@ def test_step_labels_keep_clear_of_the_joint_labels_and_of_each_other(session, r
                     i,
                     gaps.min() / size,
                 )
+
+
+@pytest.mark.slow
+def test_det_j_s_step_shows_its_singular_sets_typeset_under_it_in_the_joints_notation():
+    """The Derive tab's det J step (what the symbolic worker sends): its caption leads to the sets, and
+    the sets follow the formula as MathML (θ₂ ∈ {0, π}, the elbow singularity), not as SymPy text."""
+    from app.services.symbolic_requests import _steps_mathml
+    from robots import load
+
+    steps = {key: (title, body) for _, key, title, body in _steps_mathml(load("planar2"), "whitney", 120.0)}
+    title, body = steps["detJ"]
+    assert title.endswith("J is singular where a factor vanishes")
+    assert "sin(" not in title and "pi" not in title
+    sets = body.split("</math>")[-2]  # the last block: the set, after the formula of det J
+    assert "<mo>⇒</mo>" in sets and "&#952;" in sets and "&#960;" in sets  # ⇒ θ₂ ∈ {0, π}
+    assert "(elbow singularity)" in sets
