@@ -41,6 +41,7 @@ from .viser_adapter import (
     install_loop_safe_events,
     install_message_limits,
     listen_on,
+    quiet_banner,
 )
 
 __all__ = ["serve", "Lab"]
@@ -114,7 +115,8 @@ class Lab:
             port = listen_socket.getsockname()[1]
             listen_on(listen_socket)
         try:
-            self.server = viser.ViserServer(host=host, port=port, verbose=False)
+            with quiet_banner():  # the address is printed once by serve() (or the supervisor)
+                self.server = viser.ViserServer(host=host, port=port, verbose=False)
         finally:
             listen_on(None)
         self.server.scene.set_up_direction("+z")
@@ -237,7 +239,8 @@ class Lab:
         for session in sessions:
             session.close()
         self.renderer.close()
-        self.server.stop()
+        with quiet_banner():
+            self.server.stop()
         self.symbolic.close()
 
 

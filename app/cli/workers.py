@@ -67,6 +67,13 @@ STOP_GRACE = 5.0
 """Seconds the workers get to stop after SIGTERM before they are killed."""
 
 
+def _robot_shown(lab_options: dict[str, Any]) -> str:
+    """The robot a new tab opens on, as the one-process server names it."""
+    from app.services.catalog import DEFAULT_ROBOT
+
+    return str(lab_options.get("robot") or lab_options.get("urdf") or DEFAULT_ROBOT)
+
+
 def default_workers() -> int:
     """One worker per core this process may use, at most :data:`WORKER_CAP`."""
     try:
@@ -381,7 +388,7 @@ def serve_workers(
         shown = f"[{shown}]" if ":" in shown else shown
         print(
             f"Jacobian Lab: open http://{shown}:{pool.port} in a browser "
-            f"(robot: {lab_options.get('robot') or 'default'}; {workers} worker processes: "
+            f"(robot: {_robot_shown(lab_options)}; {workers} worker processes: "
             f"{' '.join(str(p) for p in pool.pids())})",
             flush=True,
         )

@@ -39,6 +39,8 @@ Wrapped:
 * :func:`install_loop_safe_events` — every ``AsyncMessageBuffer``'s ``message_event`` a
   :class:`~.events.LoopSafeEvent`, which the renderer thread may set without touching the event
   loop's waiters (viser's ``push`` sets an ``asyncio.Event`` from the calling thread).
+* :func:`quiet_banner` — viser's console lines (``rich.print``, printed whatever ``verbose`` says) left
+  out while a server starts and stops: the app prints its address once, not once per worker.
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
@@ -56,6 +58,7 @@ from .core import (
     is_removed,
     message_class,
     node_props,
+    quiet_banner,
     run_javascript,
     scene_handles,
     set_page_title,
@@ -110,4 +113,5 @@ __all__ = [
     "set_pose",
     "clip",
     "client_address",
+    "quiet_banner",
 ]

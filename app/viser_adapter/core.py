@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import logging
-from collections.abc import Callable
+import threading
+from collections.abc import Callable, Iterator
 from typing import Any, TypeVar
 
 import viser
@@ -21,6 +23,7 @@ __all__ = [
     "node_props",
     "clip",
     "client_address",
+    "quiet_banner",
 ]
 
 log = logging.getLogger(__name__)
@@ -162,3 +165,25 @@ def client_address(server: viser.ViserServer, client_id: int) -> str:
     connection = connections.get(client_id)
     address = getattr(connection, "remote_address", None)
     return str(address[0]) if isinstance(address, tuple) and address else ""
+
+
+_QUIET = threading.Lock()
+
+
+@contextlib.contextmanager
+def quiet_banner() -> Iterator[None]:
+    """viser's own console lines (its address box on start, "Server stopped" on stop) left out.
+
+    viser prints them with ``rich.print`` whatever ``verbose`` says; the app prints one line of its own
+    with the address (once for the whole server, not once per worker process). ``rich.print`` is
+    swapped for the duration only (one block at a time).
+    """
+    import rich
+
+    with _QUIET:
+        original = rich.print
+        rich.print = lambda *args, **kwargs: None
+        try:
+            yield
+        finally:
+            rich.print = original

@@ -65,6 +65,19 @@ def test_message_class_returns_protocol_messages_and_names_itself_when_missing()
     assert f"viser {viser.__version__}" in str(info.value)
 
 
+def test_quiet_banner_leaves_out_viser_s_console_lines_and_only_while_it_lasts(capsys):
+    """viser prints its address box on start and "Server stopped" on stop whatever ``verbose`` says:
+    with N workers that was N boxes before the app's one line."""
+    with va.quiet_banner():
+        quiet = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+        quiet.stop()
+    assert capsys.readouterr().out == ""
+    loud = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)  # the swap is undone
+    loud.stop()
+    out = capsys.readouterr().out
+    assert f"127.0.0.1:{loud.get_port()}" in out and "Server stopped" in out
+
+
 def test_errors_name_the_function_and_the_viser_version():
     for fn in (va.handle_uuid, va.is_removed, va.node_props, va.scene_handles):
         with pytest.raises(va.ViserApiChanged) as info:

@@ -120,6 +120,8 @@ def _tab_served(url: str) -> None:
 @pytest.mark.slow
 def test_every_tab_is_served_and_both_workers_serve(pool2):
     assert len(pool2.workers) == 2 and all(alive(p) for p in pool2.workers)
+    # One line with the address and the robot a tab opens on; no viser address box per worker.
+    assert len(pool2.out) == 1 and "(robot: planar2; 2 worker processes" in pool2.out[0], pool2.out
     clients = [ViserWsClient(pool2.url()).__enter__() for _ in range(8)]
     try:
         for ws in clients:
