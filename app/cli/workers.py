@@ -41,6 +41,7 @@ from multiprocessing.connection import Connection
 from multiprocessing.connection import wait as wait_for_handles
 from typing import Any
 
+from app.services.catalog import DEFAULT_ROBOT
 from app.services.lifecycle import (
     check_listen_address,
     dump_stacks_on_sigusr1,
@@ -65,13 +66,6 @@ READY_TIMEOUT = 60.0
 
 STOP_GRACE = 5.0
 """Seconds the workers get to stop after SIGTERM before they are killed."""
-
-
-def _robot_shown(lab_options: dict[str, Any]) -> str:
-    """The robot a new tab opens on, as the one-process server names it."""
-    from app.services.catalog import DEFAULT_ROBOT
-
-    return str(lab_options.get("robot") or lab_options.get("urdf") or DEFAULT_ROBOT)
 
 
 def default_workers() -> int:
@@ -386,12 +380,10 @@ def serve_workers(
         pool.start()
         shown = host if host not in ("0.0.0.0", "::", "") else socket.gethostname()
         shown = f"[{shown}]" if ":" in shown else shown
-        print(
-            f"Jacobian Lab: open http://{shown}:{pool.port} in a browser "
-            f"(robot: {_robot_shown(lab_options)}; {workers} worker processes: "
-            f"{' '.join(str(p) for p in pool.pids())})",
-            flush=True,
-        )
+        robot = lab_options.get("robot") or lab_options.get("urdf") or DEFAULT_ROBOT
+        pids = " ".join(str(p) for p in pool.pids())
+        print(f"Jacobian Lab: open http://{shown}:{pool.port} in a browser (robot: {robot}; {workers} worker "
+              f"processes: {pids})", flush=True)  # fmt: skip
         if presenter_token:
             link = f"http://{shown}:{pool.port}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
             print(
