@@ -36,6 +36,7 @@ __all__ = [
     "Redraw",
     "ResetView",
     "PageReport",
+    "OpenTab",
     "SymbolicResult",
 ]
 
@@ -120,6 +121,16 @@ class PageReport:
 
 
 @dataclass(frozen=True)
+class OpenTab:
+    """Open the panel tab ``label`` in this tab's page (a follower: the tab the presenter opened).
+
+    The session draws the tab's readouts first and opens it in the same frame, so the page never
+    shows what that tab held the last time it was open."""
+
+    label: str
+
+
+@dataclass(frozen=True)
 class ToggleRecording:
     """Start recording what this tab shows, or stop and download it as a demo that needs no server
     ."""
@@ -174,6 +185,7 @@ Command = (
     | Redraw
     | ResetView
     | PageReport
+    | OpenTab
     | SymbolicResult
 )
 """Everything the session carries out itself (a union, told apart by type)."""

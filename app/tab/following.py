@@ -25,6 +25,7 @@ from ..core.commands import (
     FollowPresenter,
     Message,
     Mirror,
+    OpenTab,
     PageReport,
     Redraw,
     RequestDownload,
@@ -129,9 +130,9 @@ class Following:
             self._camera.look(position, look_at, up)
 
     def mirror_tab(self, label: str) -> None:
-        """Open the tab the presenter has open."""
-        if not self._closed and self.role.following and self.page is not None:
-            self.page.show_tab(label)
+        """Open the tab the presenter has open (queued: the session fills it, then opens it)."""
+        if not self._closed and self.role.following:
+            self._dispatch(OpenTab(label))
 
     # ------------------------------------------------------------------ the page (app.tab.page)
     def resume(self, key: str) -> bool:

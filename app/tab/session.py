@@ -26,7 +26,7 @@ import viser
 
 from ..core.actions import Action, Step
 from ..core.build_table import BUILT_NAME
-from ..core.commands import Message, Mirror, PageReport, Redraw, ResetView, SymbolicResult
+from ..core.commands import Message, Mirror, OpenTab, PageReport, Redraw, ResetView, SymbolicResult
 from ..core.role import Role
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
@@ -34,7 +34,7 @@ from ..services.catalog import RobotCatalog
 from ..services.classroom import Classroom
 from ..services.renderer import Renderer
 from ..services.symbolic_service import SymbolicService
-from ..views.panel import PanelView
+from ..views.panel import TAB_LABELS, PanelView
 from ..views.scene import SceneView
 from .batch import MAX_REDRAWS_PER_SECOND, Batch, VisitPace, coalesced
 from .camera import TabCamera
@@ -78,6 +78,7 @@ class ClientSession:
         self._own_renderer = renderer is None
         self.renderer = renderer if renderer is not None else Renderer()
         self._drawing = threading.local()
+        self._tab_to_open = ""  # a panel tab to open in the page once drawn (OpenTab)
         self.pace = VisitPace()
         self.subscribers = Subscribers(self.key)
         self.notices = Notices(client, lambda: self._closed)
@@ -195,6 +196,10 @@ class ClientSession:
             batch.force = True
         elif isinstance(message, SymbolicResult):
             batch.symbolic = self.symbols.take(message) or batch.symbolic
+        elif isinstance(message, OpenTab):
+            if message.label in TAB_LABELS and message.label != self.page.tab:
+                self.page.tab = self._tab_to_open = message.label  # filled by this draw, opened in its frame
+                batch.force = True
         elif self.following.refuses(message):
             batch.force = batch.force or not isinstance(message, Step)  # undo what the input shows
         elif isinstance(message, Action):
@@ -233,6 +238,9 @@ class ClientSession:
                 self.screen.draw(state, snap, rebuild, scene, self.role, recording, self.symbols)
             finally:
                 self._drawing.active = False
+            if self._tab_to_open:  # after its readouts, in the same frame: never shown stale
+                self.page.show_tab(self._tab_to_open)
+                self._tab_to_open = ""
             self.page.update(state)  # a reload or a server restart comes back to this robot and q
         self.state, self.snapshot = state, snap
         self.redraws += 1

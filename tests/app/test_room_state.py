@@ -147,18 +147,34 @@ def test_reports_are_checked():
     assert r.tab == "" and r.resume == ""  # an edited tab or key is dropped, not an error
 
 
-def test_followers_open_the_presenters_tab():
+def test_followers_open_the_presenters_tab_already_filled():
+    """A follower's page opens the presenter's tab only once the tab's readouts are drawn for the state
+    on screen (in the same frame): it never shows what the tab held when it was last open."""
     with running_lab(presenter_token=TOKEN) as (lab, presenter, _ws):
-        sent: list[str] = []
+        sent: list[tuple[str, str, str]] = []
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}"):
             follower = newest(lab, {presenter})
-            follower.page.show_tab = lambda label: sent.append(label)
+            report(follower, kind="load", address="")  # its page is on the first tab
+            inverse = follower.panel.inverse.inverse  # a readout of the q̇ = J⁺v tab
+            follower.page.show_tab = lambda label: sent.append(
+                (label, follower.panel.open_tab, inverse.content)
+            )
             presenter.panel.classroom.token.value = TOKEN
             wait_until(lambda: follower.role.following)
             report(presenter, kind="tab", tab="Motion")
-            wait_until(lambda: sent == ["Motion"])
-            report(presenter, kind="tab", tab="Maps")
-            wait_until(lambda: sent == ["Motion", "Maps"])
+            wait_until(lambda: [s[0] for s in sent] == ["Motion"])
+            assert sent[0][1] == "Motion"  # drawn as the open tab before the page was told
+            stale = inverse.content
+            presenter.dispatch(SetJoint(1, 1.1))  # the follower's J⁺ tab is closed: its readout waits
+            presenter.settle()
+            wait_until(lambda: abs(follower.state.q[1] - 1.1) < 1e-12)
+            follower.settle()
+            assert inverse.content == stale
+            label = next(t for t in TAB_LABELS if "J⁺" in t)
+            report(presenter, kind="tab", tab=label)
+            wait_until(lambda: len(sent) == 2)
+            assert sent[1][:2] == (label, label)
+            assert sent[1][2] != stale and sent[1][2] == presenter.panel.inverse.inverse.content  # q2 = 1.1
 
 
 def test_a_redraw_fills_the_open_tab_and_a_tab_opened_is_drawn_with_the_state_on_screen():
