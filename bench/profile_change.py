@@ -49,6 +49,7 @@ def main() -> int:
     parser.add_argument(
         "--loop", action="store_true", help="profile viser's event loop (serializing, sending) instead"
     )
+    parser.add_argument("--tottime", action="store_true", help="order the visit's functions by own time")
     args = parser.parse_args()
     profile = cProfile.Profile()
     visit = ClientSession.visit
@@ -105,7 +106,7 @@ def main() -> int:
         print(f"  {name:<40} {seconds / args.changes * 1e3:7.3f} ms per change")
     print(f"  {'server threads':<40} {sum(spent.values()) / args.changes * 1e3:7.3f} ms per change")
     if args.top:
-        pstats.Stats(profile).sort_stats("tottime" if args.loop else "cumulative").print_stats(args.top)
+        pstats.Stats(profile).sort_stats("tottime" if args.loop or args.tottime else "cumulative").print_stats(args.top)
     return 0
 
 
