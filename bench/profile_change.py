@@ -106,7 +106,9 @@ def main() -> int:
         print(f"  {name:<40} {seconds / args.changes * 1e3:7.3f} ms per change")
     print(f"  {'server threads':<40} {sum(spent.values()) / args.changes * 1e3:7.3f} ms per change")
     if args.top:
-        pstats.Stats(profile).sort_stats("tottime" if args.loop or args.tottime else "cumulative").print_stats(args.top)
+        pstats.Stats(profile).sort_stats(
+            "tottime" if args.loop or args.tottime else "cumulative"
+        ).print_stats(args.top)
     return 0
 
 
