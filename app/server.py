@@ -42,6 +42,7 @@ from .viser_adapter import (
     install_message_limits,
     listen_on,
     quiet_banner,
+    welcome_tabs,
 )
 
 __all__ = ["serve", "Lab"]
@@ -138,6 +139,8 @@ class Lab:
         self._session_hooks: list[Callable[[ClientSession], None]] = []
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
+        if listen_socket is not None:
+            welcome_tabs()  # built: the shared socket's tabs are served from now on
 
     @property
     def port(self) -> int:

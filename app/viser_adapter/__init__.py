@@ -27,7 +27,8 @@ Wrapped:
   websocket handshake checked (:mod:`.handshake`, through the ``process_request`` viser passes to
   ``serve``, replaced by :func:`install_message_limits`).
 * :func:`listen_on` — the same ``serve`` wrapper accepting on a listening socket shared by several
-  worker processes (``jacobian-lab serve --workers N``) instead of binding host and port.
+  worker processes (``jacobian-lab serve --workers N``) instead of binding host and port; a tab
+  that connects before :func:`welcome_tabs` (the worker's Lab not built yet) is told to try again.
 * :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
   ``queue_message`` and the messages' ``owner``), for a presenter's followers.
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
@@ -75,6 +76,7 @@ from .limits import (
     listen_on,
     uninstall_message_limits,
     upload_too_large,
+    welcome_tabs,
 )
 from .mirror import capture_scene, replay_scene
 from .props import install_fast_prop_casts, set_pose, update_props
@@ -99,6 +101,7 @@ __all__ = [
     "MessageLimits",
     "install_message_limits",
     "listen_on",
+    "welcome_tabs",
     "uninstall_message_limits",
     "upload_too_large",
     "MAX_UPLOAD_BYTES",

@@ -24,6 +24,7 @@ __all__ = [
     "UPLOAD_PART_BYTES",
     "MAX_UPLOAD_BYTES",
     "upload_too_large",
+    "welcome_tabs",
 ]
 
 UPLOAD_PART_BYTES = 512 * 1024
@@ -79,6 +80,7 @@ class MessageLimits:
 
 _limits: MessageLimits | None = None
 _listen_socket: socket.socket | None = None
+_welcome = threading.Event()  # a server on a shared socket serves tabs (its Lab is built)
 _original: dict[str, Any] = {}
 
 
@@ -187,19 +189,43 @@ def _serve_with_limit(*args: Any, **kwargs: Any) -> Any:
         kwargs.pop("host", None)
         kwargs.pop("port", None)
         kwargs["sock"] = _listen_socket
+        args = (_until_welcome(args[0]),)
     return _original["websockets"].asyncio.server.serve(*args, **kwargs)
+
+
+def _until_welcome(handler: Callable[[Any], Any]) -> Callable[[Any], Any]:
+    """viser's connection handler, closing a tab's connection (1013, "try again later") until
+    :func:`welcome_tabs`: a worker accepts on the shared socket as soon as its websocket server runs,
+    before the viser server and the Lab around it are built (viser then fails on the half-built server
+    and the tab stays connected to nothing). viser's page tries again at once, then every second."""
+
+    async def until_welcome(connection: Any) -> Any:
+        if not _welcome.is_set():
+            await connection.close(1013, "Jacobian Lab is starting: try again")
+            return None
+        return await handler(connection)
+
+    return until_welcome
+
+
+def welcome_tabs() -> None:
+    """The server on the shared socket (:func:`listen_on`) is built: serve the tabs that connect."""
+    _welcome.set()
 
 
 def listen_on(sock: socket.socket | None) -> None:
     """Make the next viser server of this process accept on ``sock`` (a listening socket shared by
     several worker processes) instead of binding its own host and port; ``None`` undoes it.
 
-    Needs :func:`install_message_limits` first (its ``serve`` wrapper passes the socket on).
+    Needs :func:`install_message_limits` first (its ``serve`` wrapper passes the socket on). Tabs that
+    connect before :func:`welcome_tabs` are told to try again.
     """
     global _listen_socket
     if sock is not None and not _original:
         raise RuntimeError("listen_on: call install_message_limits() first")
     _listen_socket = sock
+    if sock is not None:
+        _welcome.clear()
 
 
 class _Overlay:

@@ -159,3 +159,33 @@ def test_only_an_upload_part_may_exceed_the_message_limit(limited):
                 tab.recv(timeout=POLL_TIMEOUT)
         assert info.value.rcvd is not None and info.value.rcvd.code == 1009
     poll(lambda: limits.closed == 1)
+
+
+def test_a_worker_s_server_on_the_shared_socket_tells_tabs_to_try_again_until_its_lab_is_built():
+    """A worker accepts on the shared socket as soon as its websocket server runs, before viser's server
+    and the Lab around it are built: a tab then was connected to nothing for good (viser failed on the
+    half-built server). Now it is closed with 1013 ("try again later": the page retries at once)."""
+    from app.cli.workers import listening_socket
+
+    va.install_message_limits()
+    sock = listening_socket("127.0.0.1", 0)
+    va.listen_on(sock)
+    try:
+        with va.quiet_banner():
+            server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    finally:
+        va.listen_on(None)
+    try:
+        with _raw_client(sock.getsockname()[1]) as early:
+            with pytest.raises(websockets.exceptions.ConnectionClosed) as info:
+                early.recv(timeout=POLL_TIMEOUT)
+        assert info.value.rcvd is not None and info.value.rcvd.code == 1013
+        assert "try again" in info.value.rcvd.reason
+        assert not server.get_clients()
+        va.welcome_tabs()  # what the Lab calls once built
+        with _raw_client(sock.getsockname()[1]) as tab:
+            assert tab.recv(timeout=POLL_TIMEOUT)  # served: viser's first messages arrive
+    finally:
+        server.stop()
+        sock.close()
+        va.uninstall_message_limits()
