@@ -83,9 +83,21 @@ class ViserWsClient:
         self.close()
 
     def start(self, timeout: float = POLL_TIMEOUT) -> None:
-        """Connect and announce a camera (the server then builds this client's session)."""
+        """Connect and announce a camera (the server then builds this client's session).
+
+        A worker of ``serve --workers N`` that is still starting closes a new tab with 1013 ("try again
+        later"); like viser's page, this client then connects again (at once, then every second).
+        """
         self._thread.start()
-        asyncio.run_coroutine_threadsafe(self._connect(), self._loop).result(timeout)
+        end = time.monotonic() + timeout
+        while True:
+            asyncio.run_coroutine_threadsafe(self._connect(), self._loop).result(timeout)
+            with self._cond:  # the first message, or the close of a worker not yet serving
+                while not self.messages and self._ws.close_code is None and time.monotonic() < end:
+                    self._cond.wait(0.05)
+            if self.messages or self._ws.close_code != 1013 or time.monotonic() > end:
+                return
+            time.sleep(1.0)  # viser's page: "retry immediately, then every second"
 
     async def _connect(self) -> None:
         self._ws = await websockets.connect(
