@@ -202,7 +202,10 @@ def test_each_step_is_shown_in_symbols_too(symbolic_session):
     poll(lambda: "<math" in formula.content)
     assert "Column 2 = z₁ × (pₙ − p₁)" in formula.content
     assert "Column 1" not in formula.content  # only this joint's steps
-    assert "det J" in formula.content and "sin(q2) = 0" in formula.content  # the last step
+    # The last step: det J, and its singular set typeset under it (θ₂ ∈ {0, π}), not as SymPy text.
+    assert "det J of the task rows, factored: J is singular where a factor vanishes" in formula.content
+    assert "(elbow singularity)" in formula.content and "<mo>⇒</mo>" in formula.content
+    assert "sin(q2)" not in formula.content
     walk(session, "whitney", 0)
     assert "Column 1 = z₀ × (pₙ − p₀)" in formula.content and "det J" not in formula.content
     walk(session, "propagation", 0)
