@@ -29,19 +29,24 @@ STEP_WIDTH_PX = 370
 """Width [px] the Derive tab's formulas are typeset for (the docked panel, less its padding)."""
 
 
+def _math_blocks(rows: list[str]) -> str:
+    """Each MathML row as a display formula of its own (det J, singular sets), one per line."""
+    from kinematics.symbolic.typeset.render import MATH_STYLE
+
+    return "".join(f'\n<math display="block" style="{MATH_STYLE}"><mrow>{r}</mrow></math>' for r in rows)
+
+
 def _mathml(robot: Robot, frame: str, timeout: float, letters: bool = False) -> str:
     """In the worker process: the MathML of J(q) (with letters: and det J, its factors, singular sets)."""
     try:
         from kinematics.symbolic import jacobian_mathml, mathml_parts
-        from kinematics.symbolic.typeset.render import MATH_STYLE
     except ImportError as exc:
         raise SymbolicUnavailable("symbolic form not available (kinematics.symbolic is missing)") from exc
     if not letters:
         return jacobian_mathml(robot, frame=frame, timeout=timeout)
     out = jacobian_mathml(robot, frame=frame, timeout=timeout, symbolic_params=True)
     parts = mathml_parts(robot, frame, symbolic_params=True, with_det=True, timeout=timeout, wrap=True)
-    blocks = ([parts.det] if parts.det else []) + list(parts.singular)
-    extra = "".join(f'\n<math display="block" style="{MATH_STYLE}"><mrow>{b}</mrow></math>' for b in blocks)
+    extra = _math_blocks(([parts.det] if parts.det else []) + list(parts.singular))
     at = out.find('\n<p class="jl-legend">')  # det J under J, before the legend of both
     return out + extra if at < 0 else out[:at] + extra + out[at:]
 
@@ -62,15 +67,12 @@ def _steps_mathml(
     try:
         from kinematics.symbolic import derivation_steps
         from kinematics.symbolic.handout.parts import singular_texts
-        from kinematics.symbolic.typeset.render import MATH_STYLE
     except ImportError as exc:
         raise SymbolicUnavailable("symbolic steps not available (kinematics.symbolic is missing)") from exc
 
     def body(s: Step) -> str:  # det J's step: its singular sets under it, as in the handout
-        sets = singular_texts(s.notation(), s, latex=False)
-        return s.mathml(STEP_WIDTH_PX) + "".join(
-            f'\n<math display="block" style="{MATH_STYLE}"><mrow>{t}</mrow></math>' for t in sets
-        )
+        ml = s.mathml(STEP_WIDTH_PX)
+        return ml + _math_blocks(singular_texts(s.notation(), s, latex=False)) if s.singular else ml
 
     return tuple(
         (s.joint, s.key, s.title_html(), body(s))
