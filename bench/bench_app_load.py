@@ -82,12 +82,14 @@ def start_server(
     root: Path | None = None,
     log: Path | None = None,
     workers: int | None = None,
+    floor: int = 0,
 ) -> tuple[subprocess.Popen, int]:
     """The app (from the checkout ``root``, default this one) in its own process on ``port``; its port.
 
     ``workers``: None serves from one process with ``app.server.serve`` (as every version can); a number
-    runs ``jacobian-lab serve --workers N``. The server's log (stderr) goes to ``log`` (appended) when
-    given, else nowhere."""
+    runs ``jacobian-lab serve --workers N``; ``floor`` (a number of messages per change): the bare viser
+    server of ``bench/viser_floor.py`` instead of the app. The server's log (stderr) goes to ``log``
+    (appended) when given, else nowhere."""
     pre = "from app.viser_adapter import install_message_limits; install_message_limits(); " if limits else ""
     code = (
         pre
@@ -98,6 +100,14 @@ def start_server(
         command = ["-m", "app.cli.main", "serve", "--robot", robot, "--port", str(port)]
         command += ["--workers", str(workers)]
     root = root or Path(__file__).resolve().parents[1]
+    if floor:  # viser alone, sending what the app sends per change (bench/viser_floor.py)
+        command = [
+            str(Path(__file__).with_name("viser_floor.py")),
+            "--port",
+            str(port),
+            "--messages",
+            str(floor),
+        ]
     env = dict(os.environ, PYTHONUNBUFFERED="1", PYTHONPATH=str(root))
     proc = subprocess.Popen(
         [sys.executable, "-u", *command],
@@ -576,12 +586,23 @@ def main() -> int:
         "reconnect as viser's page does; then say what the room saw and what is left after SIGTERM",
     )
     parser.add_argument(
+        "--floor",
+        type=int,
+        nargs="*",
+        default=None,
+        metavar="MESSAGES",
+        help="add runs against bench/viser_floor.py (viser alone, computing nothing, sending the first "
+        "MESSAGES of the app's 14 messages per change; default 14) for each --tabs: what viser itself costs",
+    )
+    parser.add_argument(
         "--app-root",
         type=Path,
         default=None,
         help="serve the app of this checkout (e.g. to compare a baseline)",
     )
     args = parser.parse_args()
+    if not all(1 <= k <= 14 for k in args.floor or []):
+        parser.error("--floor takes message counts in [1, 14]")
     if not 1 <= args.seconds <= 120 or not all(1 <= n <= 200 for n in args.tabs):
         parser.error("--seconds must be in [1, 120] and --tabs in [1, 200]")
     kill_at = args.kill_worker_at
@@ -608,12 +629,18 @@ def main() -> int:
         widths += (8, 8, 8, 8, 5)
     header = " ".join(f"{c:>{w}}" for c, w in zip(columns, widths, strict=True))
     print("workers " + header + ("   flood (sent, closed)" if args.hostile else ""))
-    for n, workers in [(n, w) for n in args.tabs for w in (args.workers or [None])]:
+    runs: list[tuple[int, int | str | None]] = [(n, w) for n in args.tabs for w in (args.workers or [None])]
+    if args.floor is not None:
+        floors = [f"floor{k}" for k in args.floor or [14]]
+        runs = [run for n in args.tabs for run in [r for r in runs if r[0] == n] + [(n, f) for f in floors]]
+    for n, workers in runs:
         log = args.server_log
         if args.kill_worker_at is not None and log is None:  # to see the restarted worker serve
             log = Path(tempfile.mkstemp(prefix="bench-app-load-", suffix=".log")[1])
-        proc, port = start_server(args.robot, args.limits, args.port, args.app_root, log, workers)
-        kill = WorkerKill(proc.pid, port, kill_at, workers) if kill_at is not None and workers else None
+        floor = int(workers[5:]) if isinstance(workers, str) else 0
+        count = None if floor or workers is None else int(workers)
+        proc, port = start_server(args.robot, args.limits, args.port, args.app_root, log, count, floor)
+        kill = WorkerKill(proc.pid, port, kill_at, count) if kill_at is not None and count else None
         try:
             r = asyncio.run(
                 run(
