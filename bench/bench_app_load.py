@@ -115,6 +115,7 @@ def start_server(
         stderr=log.open("a") if log is not None else subprocess.DEVNULL,
         text=True,
         env=env,
+        cwd=root,  # `python -c` and `-m` put the working folder first on sys.path: the app of `root`
     )
     assert proc.stdout is not None
     for line in proc.stdout:

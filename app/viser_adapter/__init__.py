@@ -40,13 +40,15 @@ Wrapped:
 * :func:`install_loop_safe_events` — every ``AsyncMessageBuffer``'s ``message_event`` a
   :class:`~.events.LoopSafeEvent`, which the renderer thread may set without touching the event
   loop's waiters (viser's ``push`` sets an ``asyncio.Event`` from the calling thread).
+* :func:`on_event_loop` — a widget callback that only queues an action, called on viser's event loop
+  where the value arrives instead of in its thread pool (``GuiApi._thread_executor``, :mod:`.inline`).
 * :func:`quiet_banner` — viser's console lines (``rich.print``, printed whatever ``verbose`` says) left
   out while a server starts and stops: the app prints its address once, not once per worker.
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of eight modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
-:mod:`.mirror`, :mod:`.icons`, :mod:`.events`), so each stays short;
+A package of nine modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
+:mod:`.mirror`, :mod:`.icons`, :mod:`.events`, :mod:`.inline`), so each stays short;
  nothing outside this package touches viser's private API.
 """
 
@@ -68,6 +70,7 @@ from .events import LoopSafeEvent, install_loop_safe_events
 from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
 from .handshake import allow_origins, handshake_refusal
 from .icons import install_icon_cache
+from .inline import on_event_loop
 from .limits import (
     MAX_UPLOAD_BYTES,
     UPLOAD_PART_BYTES,
@@ -113,6 +116,7 @@ __all__ = [
     "capture_scene",
     "replay_scene",
     "update_props",
+    "on_event_loop",
     "set_pose",
     "clip",
     "client_address",

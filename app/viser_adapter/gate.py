@@ -28,6 +28,7 @@ from typing import Any
 
 from ..services.ratelimit import RoomLimits
 from .core import ViserApiChanged, _private, clip
+from .inline import run_marked_inline
 
 __all__ = ["install_input_checks", "check_message", "check_gui_value", "room_limits", "MAX_TEXT"]
 
@@ -247,6 +248,7 @@ async def _gui_updates(self: Any, client_id: int, message: Any) -> None:
         refuse(self, client_id, f"“{_label(handle)}”", why)
         return
     state = handle._impl
+    run_marked_inline(self)  # a callback that only queues an action runs here, not in the pool
     if state.sync_cb is not None and _client_owned(self):
         state.sync_cb = None  # see _client_owned
     await _original["_handle_gui_updates"](self, client_id, message)

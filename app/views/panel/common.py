@@ -18,7 +18,7 @@ from ...core.commands import Message
 from ...core.options import OPTION
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
-from ...viser_adapter import is_removed
+from ...viser_adapter import is_removed, on_event_loop
 
 __all__ = [
     "sync_value",
@@ -44,7 +44,7 @@ def bind(handle: viser.GuiInputHandle, dispatch: Dispatch, make: Callable[[Any],
             if action is not None:
                 dispatch(action)
 
-    handle.on_update(callback)
+    handle.on_update(on_event_loop(callback))  # it only queues: no thread hand-over per change
 
 
 def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable[[], Message]) -> None:
@@ -54,7 +54,7 @@ def bind_click(button: viser.GuiButtonHandle, dispatch: Dispatch, make: Callable
         if not is_removed(event.target):
             dispatch(make())
 
-    button.on_click(callback)
+    button.on_click(on_event_loop(callback))
 
 
 def sync_value(handle: Any, value: float | str | bool) -> None:
