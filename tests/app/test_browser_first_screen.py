@@ -113,3 +113,23 @@ def test_the_joint_map_and_the_cloud_say_what_their_axes_and_colours_are(tmp_pat
         page.evaluate("document.querySelector('.jl-mapfig').scrollIntoView({block: 'start'})")
         page.screenshot(path=str(out / "maps_axes_and_colour_bar.png"))
         assert not errors, errors
+
+
+@pytest.mark.slow
+def test_leaving_a_named_configuration_does_not_move_the_sliders_under_the_pointer(tmp_path):
+    """The first touch of a slider leaves the named configuration and its description goes: the lines
+    under the status keep their height, so the slider being dragged stays under the pointer."""
+    out = _out(tmp_path)
+    with app_page(Lab(port=0)) as (page, session, errors):
+        page.locator(".jl-desc").wait_for(state="visible")  # the first screen: a configuration described
+        assert session.state.configuration
+        q1 = page.get_by_role("slider").nth(0)
+        before = q1.bounding_box()["y"]
+        page.get_by_role("slider").nth(1).focus()
+        page.keyboard.press("ArrowRight")  # as a drag's first step, from the keyboard
+        poll(lambda: not session.state.configuration, what="the named configuration left")
+        poll(lambda: page.locator(".jl-desc").count() == 0, what="its description gone from the page")
+        after = q1.bounding_box()["y"]
+        page.screenshot(path=str(out / "first_move_sliders_stay.png"))
+        assert abs(after - before) < 1.0, (before, after)  # was 29 px up
+        assert not errors, errors

@@ -157,13 +157,15 @@ def _status_html(snap: Snapshot, state: LabState) -> str:
     )
     # Every line wraps; a configuration's description (up to 376 characters) keeps at most two lines,
     # ending in "…" when cut, so the sliders stay in sight on a projector; a click on it shows all of it
-    # (a checkbox and its label: no script), until the next change redraws the status.
+    # (a checkbox and its label: no script), until the next change redraws the status. The lines keep
+    # the height of such a description when fewer are shown, so the sliders below do not jump up under
+    # the pointer as a drag leaves a named configuration (or down as a "lost" line comes and goes).
     lines = "".join(
         _description(x) if x is sub and not state.stopped else f'<div class="jl-sub">{x}</div>'
         for x in (representation, sub, lost)
         if x
     )
-    return f'<div class="jl">{banner}{lines}</div>'
+    return f'<div class="jl">{banner}<div class="jl-lines">{lines}</div></div>'
 
 
 def _description(html: str) -> str:
