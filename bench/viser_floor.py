@@ -16,7 +16,6 @@ import argparse
 import json
 import sys
 import threading
-import time
 from pathlib import Path
 
 import numpy as np
@@ -34,9 +33,6 @@ from app.viser_adapter import (
 
 LINKS = 8
 LABELS = 5
-MESSAGES = 14
-"""How many of the 14 updates each change sends (``--messages``: fewer, to split the cost per change
-from the cost per message)."""
 HTML_SIZES = (1600, 780, 1120)
 """Characters of the three readouts' HTML (the J matrix, the measures, the open tab's readout)."""
 
@@ -54,8 +50,9 @@ def address(value: float) -> str:
     return f"?robot=panda&q=0,{value:.1f},0,-90,0,90,45"
 
 
-def tab(client: viser.ClientHandle) -> None:
-    """The nodes and elements of one tab, and its slider's redraw."""
+def tab(client: viser.ClientHandle, messages: int = 14) -> None:
+    """The nodes and elements of one tab, and its slider's redraw: the first ``messages`` of the 14
+    updates per change (fewer, to split the cost per change from the cost per message)."""
     cylinder = trimesh.creation.cylinder(radius=0.04, height=1.0, sections=16)
     arm = client.scene.add_batched_meshes_simple(
         "/lab/arm/cylinders",
@@ -98,7 +95,7 @@ def tab(client: viser.ClientHandle) -> None:
     @slider.on_update
     def _(_: object) -> None:
         with client.atomic():
-            for send in sends(float(slider.value))[:MESSAGES]:
+            for send in sends(float(slider.value))[:messages]:
                 send()
 
 
@@ -107,24 +104,19 @@ def main() -> int:
     parser.add_argument("--port", type=int, default=0)
     parser.add_argument("--messages", type=int, default=14, choices=range(1, 15), metavar="1..14")
     args = parser.parse_args()
-    global MESSAGES
-    MESSAGES = args.messages
     install_fast_prop_casts()  # viser as the app runs it (its speed-ups, not its checks)
     install_loop_safe_events()
     with quiet_banner():
         server = viser.ViserServer(host="127.0.0.1", port=args.port, verbose=False)
-    server.on_client_connect(tab)
+    server.on_client_connect(lambda client: tab(client, args.messages))
     print(f"viser floor: open http://127.0.0.1:{server.get_port()}", flush=True)
-    stop = threading.Event()
     try:
-        while not stop.wait(3600):
-            pass
+        threading.Event().wait()  # until Ctrl-C (the bench ends it with SIGTERM)
     except KeyboardInterrupt:
         pass
     finally:
         with quiet_banner():
             server.stop()
-    time.sleep(0)
     return 0
 
 

@@ -4,9 +4,10 @@ viser runs a widget's plain (not ``async``) update callback in its thread pool: 
 wakes a pool thread only for the app's callback to append an action to the tab's queue and wake the
 renderer, one more thread hand-over (and its share of the interpreter lock) per change. A callback
 marked with :func:`on_event_loop` is called where viser's event loop takes the value instead (through
-the ``submit`` of ``GuiApi._thread_executor``, wrapped by :func:`run_marked_inline` for a tab's GUI):
-only for callbacks that return at once and never block (``app.views.panel.common.bind``). A value
-the server itself assigns still calls the callback on the assigning thread, as viser does.
+the ``submit`` of ``GuiApi._thread_executor``, wrapped by :func:`run_marked_inline` when a GUI takes
+its first value): only for callbacks that return at once and never block
+(``app.views.panel.common.bind``). A value the server itself assigns still calls the callback on the
+assigning thread, as viser does.
 
 An exception in such a callback is logged; it never reaches the event loop.
 """
