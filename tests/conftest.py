@@ -91,3 +91,23 @@ def session(lab_client):
 def symbolic_session(symbolic_lab_client):
     """:func:`session` of the lab with the real symbolic service."""
     return _fresh(symbolic_lab_client)
+
+
+@pytest.fixture
+def checked():
+    """A viser server created with the app's input checks installed (as a Lab's: they check every value
+    a tab sends, relay none to its own connection and run callbacks marked ``on_event_loop`` inline)."""
+    import viser
+
+    from app import viser_adapter as va
+    from app.viser_adapter import gate
+
+    installed = bool(gate._original)
+    va.install_input_checks()
+    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+    try:
+        yield srv
+    finally:
+        srv.stop()
+        if not installed:
+            va.uninstall_input_checks()

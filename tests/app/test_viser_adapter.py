@@ -344,22 +344,6 @@ def test_install_loop_safe_events_gives_every_buffer_one_and_messages_still_arri
         srv.stop()
 
 
-@pytest.fixture
-def checked():
-    """A server created with the input checks installed (as a Lab's), which relay a tab's values."""
-    from app.viser_adapter import gate
-
-    installed = bool(gate._original)
-    va.install_input_checks()
-    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
-    try:
-        yield srv
-    finally:
-        srv.stop()
-        if not installed:
-            va.uninstall_input_checks()
-
-
 def _queued(client: viser.ClientHandle) -> int:
     """How many messages were ever queued on ``client``'s own connection."""
     return client._websock_connection.get_message_buffer().message_counter

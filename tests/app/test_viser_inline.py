@@ -6,29 +6,12 @@ from __future__ import annotations
 import logging
 import threading
 
-import pytest
 import viser
 from fakes import poll
 from wsclient import ViserWsClient
 
 from app import viser_adapter as va
 from app.server import Lab
-
-
-@pytest.fixture
-def checked():
-    """A server with the input checks installed (as a Lab's: they run marked callbacks inline)."""
-    from app.viser_adapter import gate
-
-    installed = bool(gate._original)
-    va.install_input_checks()
-    srv = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
-    try:
-        yield srv
-    finally:
-        srv.stop()
-        if not installed:
-            va.uninstall_input_checks()
 
 
 def loop_thread(server: viser.ViserServer) -> int:
