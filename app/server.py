@@ -24,6 +24,7 @@ from pathlib import Path
 
 import viser
 
+from .core.i18n import CODES, is_language
 from .services.catalog import RobotCatalog
 from .services.classroom import Classroom
 from .services.classroom_relay import RelayedClassroom, RoomChannel
@@ -35,6 +36,7 @@ from .tab.session import ClientSession
 from .viser_adapter import (
     allow_origins,
     client_address,
+    client_header,
     install_fast_prop_casts,
     install_icon_cache,
     install_input_checks,
@@ -73,6 +75,8 @@ class Lab:
         room_pipe: A worker's end of its pipe to the parent of ``serve --workers N --presenter``: classroom
             mode whose token, presenter and follower count the parent keeps for every worker
             (:mod:`app.services.classroom_relay`); ``presenter_token`` is then not given.
+        language: The room's language (``en``, ``pt``, ``es``, ``pl``): every tab speaks it unless it
+            chose its own (``?lang=``, the Language menu); "" (default): each tab its browser's.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -93,6 +97,7 @@ class Lab:
         listen_socket: socket.socket | None = None,
         xacro_args: Mapping[str, str] | None = None,
         room_pipe: object = None,
+        language: str = "",
     ) -> None:
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
@@ -112,6 +117,9 @@ class Lab:
         self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
+        if language and not is_language(language):
+            raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
+        self.language = language
         if listen_socket is not None:  # one of several worker processes accepting on one socket
             port = listen_socket.getsockname()[1]
             listen_on(listen_socket)
@@ -166,6 +174,8 @@ class Lab:
                 self.default_robot,
                 renderer=self.renderer,
                 classroom=self.classroom,
+                language=self.language,
+                accept_language=client_header(self.server, client.client_id, "Accept-Language"),
             )
         except Exception as exc:  # this client sees the error; the server and other clients carry on
             log.error("client %s: cannot start a session", client.client_id, exc_info=exc)
@@ -262,6 +272,7 @@ def serve(
     presenter_token: str | None = None,
     allow_origin: Sequence[str] = (),
     xacro_args: Mapping[str, str] | None = None,
+    language: str = "",
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -274,6 +285,7 @@ def serve(
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: Classroom mode with this presenter token (see :class:`Lab`).
         allow_origin: Origins of pages that may embed the lab (see :class:`Lab`).
+        language: The room's language (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -299,6 +311,7 @@ def serve(
         presenter_token=presenter_token,
         allow_origin=allow_origin,
         xacro_args=xacro_args,
+        language=language,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:

@@ -125,7 +125,8 @@ def negotiate(wanted: str | list[str] | tuple[str, ...], default: str = DEFAULT)
     """The app's language code nearest to ``wanted`` (an Accept-Language header, or tags in order).
 
     The first wanted tag whose language the app has wins: its code ("pt-PT" and "pt-BR" → "pt",
-    "es-MX" → "es", "pl-PL" → "pl", "en-GB" → "en"); ``default`` when none is ("fr", "", "*").
+    "es-MX" → "es", "pl-PL" → "pl", "en-GB" → "en"); ``default`` when none is ("fr", "", "*"):
+    English unless given ("" says "none": the caller decides).
 
     >>> negotiate("fr-FR, es-MX;q=0.9"), negotiate(["pt-PT"]), negotiate("fr"), negotiate("de", "pl")
     ('es', 'pt', 'en', 'pl')
@@ -135,7 +136,7 @@ def negotiate(wanted: str | list[str] | tuple[str, ...], default: str = DEFAULT)
         language, _ = _tag_language(tag)
         if language in _BY_CODE:
             return language
-    return default if default in _BY_CODE else DEFAULT
+    return default if default in _BY_CODE or default == "" else DEFAULT
 
 
 class Translator:

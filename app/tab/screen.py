@@ -16,6 +16,7 @@ import viser
 
 from kinematics.analysis import task_rows
 
+from ..core.i18n import Translator, translations
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
@@ -40,6 +41,7 @@ class Screen:
         catalog: The tab's robots (names, chains, meshes, presets of the robot shown).
         state: The first state (the panel's initial values).
         classroom: Whether the server has a presenter mode (the classroom controls are shown).
+        tr: The tab's language.
 
     Attributes:
         panel: The GUI (:class:`~app.views.panel.PanelView`).
@@ -54,9 +56,11 @@ class Screen:
         catalog: TabCatalog,
         state: LabState,
         classroom: bool,
+        tr: Translator | None = None,
     ) -> None:
         self.client, self.dispatch, self.catalog = client, dispatch, catalog
-        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom)
+        self.classroom, self.tr = classroom, tr or translations()
+        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene: SceneView | None = None
         self.scene_messages: tuple = ()
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
@@ -98,6 +102,19 @@ class Screen:
             self.panel.show_recording(recording)
             symbols.draw(self.panel, everything=rebuild)
         self.scene_messages = tuple(captured)
+
+    def relanguage(self, tr: Translator, state: LabState) -> None:
+        """Speak ``tr``'s language: the whole panel is built again in it (its widgets' labels are set
+        once), and the scene with the next draw (which must rebuild)."""
+        self.tr = tr
+        with self.client.atomic():
+            self.client.gui.reset()
+            if self.scene is not None:
+                self.scene.remove()
+                self.scene = None
+            self.panel = PanelView(
+                self.client, self.dispatch, self.catalog.names(), state, self.classroom, tr, report=False
+            )
 
     def draw_symbols(self, symbols: TabSymbols) -> None:
         """Put the symbolic results that arrived on the panel (nothing else changed)."""

@@ -11,7 +11,8 @@ Wrapped:
 * :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
   to one client through ``client._websock_connection``.
 * :func:`client_address` — the IP a tab connected from (the server's connection table), by which
-  wrong presenter tokens are counted.
+  wrong presenter tokens are counted; :func:`client_header` — a header of its websocket handshake
+  (its ``Accept-Language``: the tab's first language).
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
@@ -56,6 +57,7 @@ from .core import (
     TESTED_VISER,
     ViserApiChanged,
     client_address,
+    client_header,
     clip,
     handle_uuid,
     is_removed,
@@ -120,5 +122,6 @@ __all__ = [
     "set_pose",
     "clip",
     "client_address",
+    "client_header",
     "quiet_banner",
 ]

@@ -20,6 +20,14 @@ GLOSSARY = tomllib.loads((LOCALE_DIR / "glossary.toml").read_text(encoding="utf-
 TRANSLATED = [lang for lang in LANGUAGES if lang.code != "en"]
 
 
+_PLACEHOLDER = re.compile(r"\{\w*\}|%\(\w+\)[sd]")
+
+
+def _words(text: str) -> str:
+    """A message without its placeholders (``{joints}`` is a value, not the word "joints")."""
+    return _PLACEHOLDER.sub(" ", text)
+
+
 def _pairs(locale: str) -> list[tuple[str, str]]:
     """(English, translation) of every entry of a catalog, each plural form with its English plural."""
     with (LOCALE_DIR / locale / "LC_MESSAGES" / "messages.po").open("rb") as f:
@@ -29,9 +37,9 @@ def _pairs(locale: str) -> list[tuple[str, str]]:
         if not m.id:
             continue
         if m.pluralizable:
-            out += [(m.id[min(i, 1)], s) for i, s in enumerate(m.string)]
+            out += [(_words(m.id[min(i, 1)]), _words(s)) for i, s in enumerate(m.string)]
         else:
-            out.append((m.id, m.string))
+            out.append((_words(m.id), _words(m.string)))
     return out
 
 
