@@ -309,7 +309,7 @@ TABS: tuple[Tab, ...] = (
         "motion",
         N_("Motion"),
         viser.Icon.PLAYER_PLAY,
-        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100),
+        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100, c.tr),
     ),
     Tab(
         "maps",
