@@ -28,6 +28,7 @@ from kinematics.errors import RobotDefinitionError
 from kinematics.parts import CONVENTIONS, JOINT_TYPES
 from kinematics.urdf import to_urdf
 
+from .i18n import N_, Translator, translations
 from .numbers import NumberError, parse_number
 from .ranges import joint_ranges
 from .state import LabState, default_options, frozen
@@ -55,23 +56,32 @@ ROBOT_FILE_FORMATS = ("Robot file (TOML)", "URDF")
 """Download labels answered from the robot itself (the symbolic J ones go to the symbolic worker)."""
 
 FIELDS = {
-    "joint": "joint type",
+    "joint": N_("joint type"),
     "a": "a [m]",
     "alpha": "α [°]",
     "d": "d [m]",
-    "theta": "θ offset [°]",
-    "lo": "lower limit",
-    "hi": "upper limit",
+    "theta": N_("θ offset [°]"),
+    "lo": N_("lower limit"),
+    "hi": N_("upper limit"),
+    "rows": N_("rows"),
+    "convention": N_("convention"),
+    "table": N_("table"),
 }
-"""Field of a row → its name on screen (the message of a bad value names it)."""
+"""Field of a row → its name on screen, in English (the message of a bad value names it, translated)."""
 
 
 class TableError(ValueError):
-    """A value of the table that cannot make a robot: ``row`` (from 1; 0: the whole table), ``field``."""
+    """A value of the table that cannot make a robot: ``row`` (from 1; 0: the whole table), ``field``;
+    its message in ``tr``'s language."""
 
-    def __init__(self, row: int, field: str, message: str) -> None:
-        where = f"Row {row}, {FIELDS.get(field, field)}" if row else FIELDS.get(field, field)
-        super().__init__(f"{where}: {message}")
+    def __init__(self, row: int, field: str, message: str, tr: Translator | None = None) -> None:
+        _ = (tr or translations()).gettext
+        name = _(FIELDS[field]) if field in FIELDS else field
+        if row:
+            text = _("Row {row}, {field}: {message}").format(row=row, field=name, message=message)
+        else:
+            text = _("{field}: {message}").format(field=name, message=message)
+        super().__init__(text)
         self.row, self.field = row, field
 
 
@@ -145,29 +155,35 @@ MAX_ANGLE = 3600.0
 """Largest |α|, |θ| or revolute limit the editor takes [°]."""
 
 
-def _number(value: object, row: int, field: str, unit: str) -> float:
+def _number(value: object, row: int, field: str, unit: str, tr: Translator) -> float:
     bound = MAX_ANGLE if unit == "°" else MAX_LENGTH
     try:
-        return parse_number(value, bound, unit)
+        return parse_number(value, bound, unit, tr)
     except NumberError as exc:
-        raise TableError(row, field, str(exc)) from None
+        raise TableError(row, field, str(exc), tr) from None
 
 
-def rows_si(table: Table) -> list[dict[str, object]]:
-    """The rows as :meth:`Robot.from_dh` takes them (radians), every field checked.
+def rows_si(table: Table, tr: Translator | None = None) -> list[dict[str, object]]:
+    """The rows as :meth:`Robot.from_dh` takes them (radians), every field checked; numbers read and
+    refusals said in ``tr``'s language (a decimal comma in pt, es and pl).
 
     Raises:
         TableError: the first bad field (row and field named).
     """
+    tr = tr or translations()
+    _ = tr.gettext
     out: list[dict[str, object]] = []
     for i, r in enumerate(table.rows, start=1):
         if r.joint not in JOINT_TYPES:
-            raise TableError(i, "joint", f"expected revolute or prismatic, got {str(r.joint)[:30]!r}")
+            got = repr(str(r.joint)[:30])
+            raise TableError(i, "joint", _("expected revolute or prismatic, got {got}").format(got=got), tr)
         limit_unit = "°" if r.joint == "revolute" else "m"
         units = {"a": "m", "alpha": "°", "d": "m", "theta": "°", "lo": limit_unit, "hi": limit_unit}
-        v = {k: _number(getattr(r, k), i, k, u) for k, u in units.items()}
+        v = {k: _number(getattr(r, k), i, k, u, tr) for k, u in units.items()}
         if v["lo"] > v["hi"]:
-            raise TableError(i, "lo", f"the lower limit {v['lo']:g} is above the upper limit {v['hi']:g}")
+            lo, hi = (tr.decimal(format(v[k], "g")) for k in ("lo", "hi"))
+            text = _("the lower limit {lo} is above the upper limit {hi}").format(lo=lo, hi=hi)
+            raise TableError(i, "lo", text, tr)
         rev = r.joint == "revolute"
         qlim = (math.radians(v["lo"]), math.radians(v["hi"])) if rev else (v["lo"], v["hi"])
         row: dict[str, object] = {
@@ -189,18 +205,26 @@ MAX_ROWS = 24
 for every redraw; real arms have at most a dozen joints)."""
 
 
-def build(table: Table) -> Robot:
-    """The robot of ``table`` (named :data:`FILE_STEM`).
+def build(table: Table, tr: Translator | None = None) -> Robot:
+    """The robot of ``table`` (named :data:`FILE_STEM`); a refusal in ``tr``'s language.
 
     Raises:
         TableError: a bad field, more than :data:`MAX_ROWS` rows, or a table :meth:`Robot.from_dh`
             rejects (its message kept).
     """
+    tr = tr or translations()
+    _ = tr.gettext
     if len(table.rows) > MAX_ROWS:
-        raise TableError(0, "rows", f"a table has at most {MAX_ROWS} rows, this one has {len(table.rows)}")
+        text = tr.ngettext(
+            "a table has at most {most} rows, this one has {n}",
+            "a table has at most {most} rows, this one has {n}",
+            len(table.rows),
+        ).format(most=MAX_ROWS, n=len(table.rows))
+        raise TableError(0, "rows", text, tr)
     if table.convention not in CONVENTIONS:
-        raise TableError(0, "convention", f"expected standard or modified, got {table.convention!r}")
-    rows = rows_si(table)
+        got = repr(table.convention)
+        raise TableError(0, "convention", _("expected standard or modified, got {got}").format(got=got), tr)
+    rows = rows_si(table, tr)
     same_joints = tuple(r.joint for r in table.rows) == table.kinds
     try:
         robot = Robot.from_dh(
@@ -222,7 +246,7 @@ def build(table: Table) -> Robot:
         text = str(exc)
         row = next((i + 1 for i in range(len(rows)) if f"DH row {i + 1}," in text), 0)
         field = next((k for k in ("alpha", "theta", "qlim", "a", "d") if f"key '{k}'" in text), "table")
-        raise TableError(row, "lo" if field == "qlim" else field, text) from None
+        raise TableError(row, "lo" if field == "qlim" else field, text, tr) from None
 
 
 # ---------------------------------------------------------------------- robot files
