@@ -315,7 +315,7 @@ TABS: tuple[Tab, ...] = (
         "maps",
         N_("Maps"),
         viser.Icon.MAP,
-        lambda c: MapsPanel(c.gui, c.dispatch, c.robot, c.joint_sliders, 100),
+        lambda c: MapsPanel(c.gui, c.dispatch, c.robot, c.joint_sliders, 100, c.tr),
     ),
     Tab(
         "derive",

@@ -20,6 +20,7 @@ import viser
 from kinematics import Robot
 
 from ...core.actions import SetOption
+from ...core.i18n import Translator, translations
 from ...core.ranges import joint_ranges
 from ...core.snapshot import Snapshot
 from ...core.snapshot.maps import CLOUD_POINTS, Cloud, JointMap, colormap
@@ -59,8 +60,8 @@ def _gradient(direction: str) -> str:
     return f"linear-gradient(to {direction}, {', '.join(COLOUR_STOPS)})"
 
 
-def _tick(x: float) -> str:
-    return fmt.number(float(x), 3) if abs(x) >= 1e-9 else "0"
+def _tick(x: float, tr: Translator) -> str:
+    return fmt.number(float(x), 3, tr) if abs(x) >= 1e-9 else "0"
 
 
 def _axis(robot: Robot, k: int) -> str:
@@ -68,8 +69,13 @@ def _axis(robot: Robot, k: int) -> str:
     return f"{fmt.escape(robot.joints[k].name)} [{joint_ranges(robot)[k].unit}]"
 
 
-def map_html(jm: JointMap, robot: Robot, q: np.ndarray, ids: Sequence[str]) -> str:
-    """The joint map with its axes, ticks, colour bar and the arm's q as a ring."""
+def map_html(
+    jm: JointMap, robot: Robot, q: np.ndarray, ids: Sequence[str], tr: Translator | None = None
+) -> str:
+    """The joint map with its axes, ticks (written as ``tr``'s language writes numbers), colour bar and
+    the arm's q as a ring."""
+    tr = tr or translations()
+    _ = tr.gettext
     ranges = joint_ranges(robot)
     ri, rj = ranges[jm.i], ranges[jm.j]
     xi = math.degrees(q[jm.i]) if ri.degrees else float(q[jm.i])
@@ -80,10 +86,16 @@ def map_html(jm: JointMap, robot: Robot, q: np.ndarray, ids: Sequence[str]) -> s
         f'data-{k}="{v:.6g}"' for k, v in zip(("ilo", "jlo", "ihi", "jhi"), (*jm.lo, *jm.hi), strict=True)
     )
     mid_i, mid_j = (jm.lo[0] + jm.hi[0]) / 2, (jm.lo[1] + jm.hi[1]) / 2
-    x_ticks = "".join(f"<span>{_tick(v)}</span>" for v in (jm.lo[0], mid_i, jm.hi[0]))
-    y_ticks = "".join(f"<span>{_tick(v)}</span>" for v in (jm.hi[1], mid_j, jm.lo[1]))
-    w_ticks = "".join(f"<span>{_tick(v)}</span>" for v in (jm.w_max, jm.w_max / 2, 0.0))
-    names = f"w over {fmt.escape(robot.joints[jm.i].name)} and {fmt.escape(robot.joints[jm.j].name)}"
+    x_ticks = "".join(f"<span>{_tick(v, tr)}</span>" for v in (jm.lo[0], mid_i, jm.hi[0]))
+    y_ticks = "".join(f"<span>{_tick(v, tr)}</span>" for v in (jm.hi[1], mid_j, jm.lo[1]))
+    w_ticks = "".join(f"<span>{_tick(v, tr)}</span>" for v in (jm.w_max, jm.w_max / 2, 0.0))
+    names = _("w over {first} and {second}").format(
+        first=fmt.escape(robot.joints[jm.i].name), second=fmt.escape(robot.joints[jm.j].name)
+    )
+    note = _(
+        "Colour: manipulability w of the task rows (bar on the right); white ring: the arm now. "
+        "Click the map to go there."
+    )
     return (
         f'<div class="jl">{MAP_CSS}<div class="jl-mapfig">'
         f'<div class="ylabel">{_axis(robot, jm.j)}</div><div class="yticks">{y_ticks}</div>'
@@ -92,44 +104,52 @@ def map_html(jm: JointMap, robot: Robot, q: np.ndarray, ids: Sequence[str]) -> s
         f'<div class="bar" style="background:{_gradient("top")}"></div><div class="wticks">{w_ticks}</div>'
         f'<div class="wlabel">w</div><div class="xticks">{x_ticks}</div>'
         f'<div class="xlabel">{_axis(robot, jm.i)}</div></div>'
-        '<div class="jl-note">Colour: manipulability w of the task rows (bar on the right); white ring: '
-        "the arm now. Click the map to go there.</div></div>"
+        f'<div class="jl-note">{note}</div></div>'
     )
 
 
-def cloud_legend_html(cloud: Cloud | None) -> str:
+def cloud_legend_html(cloud: Cloud | None, tr: Translator | None = None) -> str:
     """The key of the workspace cloud's colours ("" when the cloud is not shown)."""
     if cloud is None:
         return ""
+    tr = tr or translations()
+    points = f"{CLOUD_POINTS:,}".replace(",", "\u2009")
+    what = tr.gettext(
+        "Cloud: the tool point of {points} random configurations within the sliders, coloured by w:"
+    ).format(points=points)
     return (
-        f'<div class="jl">{MAP_CSS}<div class="jl-note">Cloud: the tool point of {_POINTS} '
-        "random configurations within the sliders, coloured by w:</div>"
+        f'<div class="jl">{MAP_CSS}<div class="jl-note">{what}</div>'
         f'<div class="jl-cloudkey"><span>w = 0</span><div class="bar" style="background:'
-        f'{_gradient("right")}"></div><span>{_tick(cloud.w_max)}</span></div></div>'
+        f'{_gradient("right")}"></div><span>{_tick(cloud.w_max, tr)}</span></div></div>'
     )
-
-
-_POINTS = f"{CLOUD_POINTS:,}".replace(",", "\u2009")
 
 
 class MapsPanel:
     """The Maps tab: w over two joints (click to go there) and the workspace cloud."""
 
     def __init__(
-        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, slider_ids: Sequence[str], order: float
+        self,
+        gui: viser.GuiApi,
+        dispatch: Dispatch,
+        robot: Robot,
+        slider_ids: Sequence[str],
+        order: float,
+        tr: Translator | None = None,
     ):
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.robot = robot
         self.slider_ids = list(slider_ids)
         self.root = gui.add_folder(None, order=order)
         names = [f"q{i + 1}" for i in range(robot.dof)]
         with self.root:
-            self.cloud = option_widget(gui, dispatch, "workspace")
+            self.cloud = option_widget(gui, dispatch, "workspace", tr=tr)
             self.cloud_key = gui.add_html("")
-            self.show_map = option_widget(gui, dispatch, "joint_map", disabled=robot.dof < 2)
-            self.i = gui.add_dropdown("x axis", names, initial_value=names[1 if robot.dof >= 3 else 0])
+            self.show_map = option_widget(gui, dispatch, "joint_map", tr=tr, disabled=robot.dof < 2)
+            self.i = gui.add_dropdown(_("x axis"), names, initial_value=names[1 if robot.dof >= 3 else 0])
             bind(self.i, dispatch, functools.partial(_map_joint, "map_i", names))
             self.j = gui.add_dropdown(
-                "y axis", names, initial_value=names[2 if robot.dof >= 3 else min(1, robot.dof - 1)]
+                _("y axis"), names, initial_value=names[2 if robot.dof >= 3 else min(1, robot.dof - 1)]
             )
             bind(self.j, dispatch, functools.partial(_map_joint, "map_j", names))
             self.map = gui.add_html("")
@@ -138,21 +158,22 @@ class MapsPanel:
     def draw(self, state: LabState, snap: Snapshot) -> None:
         o = state.options
         names = [f"q{i + 1}" for i in range(self.robot.dof)]
-        show_option(self.cloud, "workspace", o.workspace)
-        show_option(self.show_map, "joint_map", o.joint_map)
+        show_option(self.cloud, "workspace", o.workspace, self.tr)
+        show_option(self.show_map, "joint_map", o.joint_map, self.tr)
         sync_value(self.i, names[o.map_i])
         sync_value(self.j, names[o.map_j])
-        key = cloud_legend_html(snap.cloud)
+        key = cloud_legend_html(snap.cloud, self.tr)
         if self.cloud_key.content != key:
             self.cloud_key.content = key
         jm = snap.joint_map
         if jm is None:
-            note = "Tick the box to compute w over two joints (the others held where they are)."
+            _ = self.tr.gettext
+            note = _("Tick the box to compute w over two joints (the others held where they are).")
             if o.joint_map and o.map_i == o.map_j:
-                note = "Choose two different joints."
+                note = _("Choose two different joints.")
             html = f'<div class="jl-note">{note}</div>'
         else:
-            html = map_html(jm, self.robot, np.asarray(state.q), self.slider_ids)
+            html = map_html(jm, self.robot, np.asarray(state.q), self.slider_ids, self.tr)
         if html != self._shown:
             self._shown = html
             self.map.content = html
