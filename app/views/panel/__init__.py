@@ -296,15 +296,15 @@ TABS: tuple[Tab, ...] = (
         "forward",
         "v = J q̇",
         viser.Icon.ARROW_UP_RIGHT,
-        lambda c: ForwardPanel(c.gui, c.dispatch, c.robot, 100),
+        lambda c: ForwardPanel(c.gui, c.dispatch, c.robot, 100, c.tr),
     ),
     Tab(
         "inverse",
         "q̇ = J⁺v",
         viser.Icon.ARROW_BACK_UP,
-        lambda c: InversePanel(c.gui, c.dispatch, c.robot, c.rows, order=100, presets=c.presets),
+        lambda c: InversePanel(c.gui, c.dispatch, c.robot, c.rows, order=100, presets=c.presets, tr=c.tr),
     ),
-    Tab("force", "τ = JᵀF", viser.Icon.WEIGHT, lambda c: ForcePanel(c.gui, c.dispatch, c.robot, order=100)),
+    Tab("force", "τ = JᵀF", viser.Icon.WEIGHT, lambda c: ForcePanel(c.gui, c.dispatch, c.robot, 100, c.tr)),
     Tab(
         "motion",
         N_("Motion"),

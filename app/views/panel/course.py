@@ -15,6 +15,7 @@ import numpy as np
 
 from kinematics import Robot
 
+from ...core.i18n import N_, Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.snapshot.course import REPRESENTATIONS, AnalyticView, InverseView
 from ...core.state import LabState
@@ -27,17 +28,29 @@ __all__ = ["inverse_html", "example_html", "analytic_html", "grid_html", "J_INV"
 
 J_INV = "J<sup>−1</sup>"
 J_PLUS = "J<sup>+</sup>"
-_ANGLE_NAMES = {"zyx": ("yaw α", "pitch β", "roll γ"), "zyz": ("φ", "θ", "ψ")}
+_ANGLE_NAMES = {"zyx": (N_("yaw α"), N_("pitch β"), N_("roll γ")), "zyz": ("φ", "θ", "ψ")}
 
 
-def grid_html(M: np.ndarray, row_heads: Sequence[str], col_heads: Sequence[str], digits: int = 4) -> str:
-    """A small numeric matrix as a ``jl-matrix`` table (``digits`` significant digits, ×10ⁿ when large)."""
+def _sep(tr: Translator) -> str:
+    """What separates numbers in a list: "; " where a comma is the decimal mark."""
+    return "; " if tr.decimal_symbol == "," else ", "
+
+
+def grid_html(
+    M: np.ndarray,
+    row_heads: Sequence[str],
+    col_heads: Sequence[str],
+    digits: int = 4,
+    tr: Translator | None = None,
+) -> str:
+    """A small numeric matrix as a ``jl-matrix`` table (``digits`` significant digits, ×10ⁿ when large,
+    written as ``tr``'s language writes numbers)."""
     values = fmt.cleaned(np.asarray(M, float).ravel().tolist(), rel=1e-12)
     cols = len(col_heads)
     head = "".join(f'<th class="col" style="border-color:#bbb">{h}</th>' for h in col_heads)
     body = "".join(
         f'<tr><th class="row">{h}</th>'
-        + "".join(f"<td>{fmt.number(x, digits)}</td>" for x in values[i * cols : (i + 1) * cols])
+        + "".join(f"<td>{fmt.number(x, digits, tr)}</td>" for x in values[i * cols : (i + 1) * cols])
         + "</tr>"
         for i, h in enumerate(row_heads)
     )
@@ -54,49 +67,75 @@ def _joint_heads(robot: Robot) -> tuple[str, ...]:
 
 
 def inverse_html(
-    view: InverseView | None, robot: Robot, rows: tuple[int, ...], state: LabState, status: str
+    view: InverseView | None,
+    robot: Robot,
+    rows: tuple[int, ...],
+    state: LabState,
+    status: str,
+    tr: Translator | None = None,
 ) -> str:
     """J⁻¹ at q with det J beside it (a square task J), or J⁺ labelled as such; words where none exists."""
     if view is None:
         return ""
-    axes = "tool" if state.options.twist_frame == "tool" else "base"
+    tr = tr or translations()
+    _ = tr.gettext
+    tool = state.options.twist_frame == "tool"
     cols = [ROW_NAMES[r] for r in rows]
     if view.kind == "none":
-        return (
-            f'<div class="jl"><div class="jl-warn">{J_INV} does not exist (det J = 0): '
-            "the arm is singular and no joint rates produce the lost direction.</div></div>"
-        )
+        text = _(
+            "{inverse} does not exist (det J = 0): the arm is singular and no joint rates produce the "
+            "lost direction."
+        ).format(inverse=J_INV)
+        return f'<div class="jl"><div class="jl-warn">{text}</div></div>'
     name = J_INV if view.kind == "inverse" else J_PLUS
     assert view.matrix is not None
-    table = grid_html(view.matrix, _joint_heads(robot), cols)
+    table = grid_html(view.matrix, _joint_heads(robot), cols, tr=tr)
     if view.kind == "inverse":
-        det = view.det or 0.0
-        head = f"<b>{name}</b> at q ({axes} axes) &nbsp; det J = <b>{fmt.number(det, 4)}</b>"
-        note = f"q̇ = {J_INV} v; {J_INV} = adj J / det J grows as 1/det J."
+        det = fmt.number(view.det or 0.0, 4, tr)
+        if tool:
+            head = _("<b>{name}</b> at q (tool axes) &nbsp; det J = <b>{det}</b>")
+        else:
+            head = _("<b>{name}</b> at q (base axes) &nbsp; det J = <b>{det}</b>")
+        head = head.format(name=name, det=det)
+        note = _("q̇ = {inverse} v; {inverse} = adj J / det J grows as 1/det J.").format(inverse=J_INV)
         if status != "regular":
-            note += ' <span class="jl-warn">det J is near 0: J⁻¹ is blowing up.</span>'
+            note += ' <span class="jl-warn">{}</span>'.format(_("det J is near 0: J⁻¹ is blowing up."))
     else:
-        k, n = len(rows), robot.dof
-        head = f"<b>{name}</b> at q ({axes} axes): J is {k}×{n}, not square, so it has no {J_INV}"
-        note = f"{J_PLUS} = Jᵀ(J Jᵀ)⁻¹ (Moore–Penrose pseudo-inverse): q̇ = {J_PLUS} v is the least-norm rate."
+        if tool:
+            head = _("<b>{name}</b> at q (tool axes): J is {k}×{n}, not square, so it has no {inverse}")
+        else:
+            head = _("<b>{name}</b> at q (base axes): J is {k}×{n}, not square, so it has no {inverse}")
+        head = head.format(name=name, k=len(rows), n=robot.dof, inverse=J_INV)
+        note = _(
+            "{plus} = Jᵀ(J Jᵀ)⁻¹ (Moore–Penrose pseudo-inverse): q̇ = {plus} v is the least-norm rate."
+        ).format(plus=J_PLUS)
     if state.options.damping > 0:
-        lam = fmt.number(state.options.damping)
-        note += f" The rates above use damped least squares (λ = {lam}), not {name}."
+        lam = fmt.number(state.options.damping, tr=tr)
+        note += " " + _("The rates above use damped least squares (λ = {lam}), not {name}.").format(
+            lam=lam, name=name
+        )
     return f'<div class="jl"><div>{head}</div>{table}<div class="jl-note">{note}</div></div>'
 
 
-def _vector(values: np.ndarray, units: list[str], digits: int = 4) -> str:
-    parts = [fmt.quantity(x, u, digits) for x, u in zip(fmt.cleaned(values), units, strict=True)]
-    return "(" + ", ".join(parts) + ")"
+def _vector(values: np.ndarray, units: list[str], tr: Translator, digits: int = 4) -> str:
+    parts = [fmt.quantity(x, u, digits, tr) for x, u in zip(fmt.cleaned(values), units, strict=True)]
+    return "(" + _sep(tr).join(parts) + ")"
 
 
 def example_html(
-    snap: Snapshot, state: LabState, rates: np.ndarray | None, start_name: str, question: bool
+    snap: Snapshot,
+    state: LabState,
+    rates: np.ndarray | None,
+    start_name: str,
+    question: bool,
+    tr: Translator | None = None,
 ) -> str:
     """The course's worked example at this q: its q̇ mapped by J (v = J q̇), and at the course's question
     configuration the question answered (J, det J and v; J⁻¹ is shown above)."""
     if rates is None or len(rates) != state.robot.dof:
         return ""
+    tr = tr or translations()
+    _ = tr.gettext
     robot, rows = state.robot, list(snap.rows)
     kinds = [j.kind for j in robot.joints]
     shown = np.array([math.degrees(x) if k == "revolute" else x for x, k in zip(rates, kinds, strict=True)])
@@ -105,76 +144,94 @@ def example_html(
     v_shown = np.array([x if r < 3 else math.degrees(x) for x, r in zip(v, rows, strict=True)])
     v_units = ["m/s" if r < 3 else "°/s" for r in rows]
     q_shown = [math.degrees(x) if k == "revolute" else x for x, k in zip(snap.q, kinds, strict=True)]
-    q_text = _vector(np.array(q_shown), ["°" if k == "revolute" else "m" for k in kinds])
+    q_text = _vector(np.array(q_shown), ["°" if k == "revolute" else "m" for k in kinds], tr)
     parts = []
     if question:
-        parts.append(f"<b>The course's question, q = {q_text}, answered:</b>")
+        parts.append(_("<b>The course's question, q = {q}, answered:</b>").format(q=q_text))
         J_task = snap.J_base[rows]
-        parts.append(grid_html(J_task, [ROW_NAMES[r] for r in rows], [f"q{i + 1}" for i in range(robot.dof)]))
+        heads = [f"q{i + 1}" for i in range(robot.dof)]
+        parts.append(grid_html(J_task, [ROW_NAMES[r] for r in rows], heads, tr=tr))
         if snap.det is not None:
-            parts.append(f"det J = <b>{fmt.number(snap.det, 4)}</b>; {J_INV} is above.")
+            det = fmt.number(snap.det, 4, tr)
+            parts.append(_("det J = <b>{det}</b>; {inverse} is above.").format(det=det, inverse=J_INV))
+    elif start_name == state.configuration:
+        parts.append(
+            _("<b>The course's worked example</b> at the course's example configuration, q = {q}:").format(
+                q=q_text
+            )
+        )
     else:
-        where = "the course's example configuration" if start_name == state.configuration else "this q"
-        parts.append(f"<b>The course's worked example</b> at {where}, q = {q_text}:")
+        parts.append(_("<b>The course's worked example</b> at this q, q = {q}:").format(q=q_text))
     parts.append(
-        f"its q̇ = {_vector(shown, rate_units)} gives v = J q̇ = <b>{_vector(v_shown, v_units, 5)}</b>."
+        _("its q̇ = {rates} gives v = J q̇ = <b>{v}</b>.").format(
+            rates=_vector(shown, rate_units, tr), v=_vector(v_shown, v_units, tr, 5)
+        )
     )
     return '<div class="jl jl-example">' + "<br>".join(parts) + "</div>"
 
 
-def analytic_html(view: AnalyticView | None, robot: Robot, rank: int, rows: tuple[int, ...]) -> str:
+def analytic_html(
+    view: AnalyticView | None, robot: Robot, rank: int, rows: tuple[int, ...], tr: Translator | None = None
+) -> str:
     """φ, M(φ) (ω = M(φ) φ̇) and J_A = diag(I, M(φ)⁻¹) J, or why J_A does not exist at this orientation."""
     if view is None:
         return ""
-    names = _ANGLE_NAMES[view.convention]
-    phi = ", ".join(
-        f"{n} = {fmt.quantity(math.degrees(x), '°', 4)}" for n, x in zip(names, view.phi, strict=True)
+    tr = tr or translations()
+    _ = tr.gettext
+    names = [_(n) for n in _ANGLE_NAMES[view.convention]]
+    phi = _sep(tr).join(
+        f"{n} = {fmt.quantity(math.degrees(x), '°', 4, tr)}" for n, x in zip(names, view.phi, strict=True)
     )
-    label = REPRESENTATIONS[view.convention]
+    label = _(REPRESENTATIONS[view.convention])
     parts = [f"<div><b>{fmt.escape(label)}</b>: φ = ({phi})</div>"]
     m_heads = ["ω<sub>x</sub>", "ω<sub>y</sub>", "ω<sub>z</sub>"]
     rate_heads = [f"{n.split()[-1]}̇" for n in names]
+    m_note = _("M(φ), with ω = M(φ) φ̇ (kinematics.analytic_jacobian calls it B(φ)); det M = {det}")
     parts.append(
-        f'<div class="jl-note">M(φ), with ω = M(φ) φ̇ (kinematics.analytic_jacobian calls it B(φ)); '
-        f"det M = {fmt.number(view.det_M, 4)}</div>" + grid_html(view.M, m_heads, rate_heads, 3)
+        f'<div class="jl-note">{m_note.format(det=fmt.number(view.det_M, 4, tr))}</div>'
+        + grid_html(view.M, m_heads, rate_heads, 3, tr)
     )
-    parts.append(erratum_html("M"))
+    parts.append(erratum_html("M", tr))
     if view.singular:
-        which = "pitch β = ±90°" if view.convention == "zyx" else "θ = 0 or 180°"
-        parts.append(
-            f'<div class="jl-warn">Representation singular ({which}): M(φ) has no inverse, so '
-            f"J<sub>A</sub> does not exist here — while the geometric J is fine (rank {rank} of "
-            f"{min(len(rows), robot.dof)}). A singularity of the angles chosen, not of the arm.</div>"
-        )
+        which = _("pitch β = ±90°") if view.convention == "zyx" else _("θ = 0 or 180°")
+        text = _(
+            "Representation singular ({which}): M(φ) has no inverse, so J<sub>A</sub> does not exist "
+            "here — while the geometric J is fine (rank {rank} of {most}). A singularity of the angles "
+            "chosen, not of the arm."
+        ).format(which=which, rank=rank, most=min(len(rows), robot.dof))
+        parts.append(f'<div class="jl-warn">{text}</div>')
         if view.regular_instead:
-            other = REPRESENTATIONS[view.regular_instead]
-            parts.append(
-                f'<div class="jl-note">{fmt.escape(other)} is regular at this orientation: the button '
-                "below shows J<sub>A</sub> with it.</div>"
-            )
+            other = fmt.escape(_(REPRESENTATIONS[view.regular_instead]))
+            text = _(
+                "{representation} is regular at this orientation: the button below shows J<sub>A</sub> "
+                "with it."
+            ).format(representation=other)
+            parts.append(f'<div class="jl-note">{text}</div>')
     else:
         assert view.J_A is not None
         row_heads = [*ROW_NAMES[:3], *rate_heads]
         cols = [f"q{i + 1}" for i in range(robot.dof)]
-        parts.append(
-            '<div class="jl-note">J<sub>A</sub> = diag(I, M(φ)<sup>−1</sup>) J, rows [v; φ̇] '
-            "(base axes):</div>" + grid_html(view.J_A, row_heads, cols, 3)
-        )
+        text = _("J<sub>A</sub> = diag(I, M(φ)<sup>−1</sup>) J, rows [v; φ̇] (base axes):")
+        parts.append(f'<div class="jl-note">{text}</div>' + grid_html(view.J_A, row_heads, cols, 3, tr))
     return f'<div class="jl jl-analytic">{"".join(parts)}</div>'
 
 
-def accel_html(jdot_qd: np.ndarray | None) -> str:
+def accel_html(jdot_qd: np.ndarray | None, tr: Translator | None = None) -> str:
     """J̇ q̇ (6,) as the tool's acceleration at constant joint rates: the course's ẍ = J q̈ + J̇ q̇, q̈ = 0."""
     if jdot_qd is None:
         return ""
+    tr = tr or translations()
     head = "".join(f"<th>{n}̇<sub>{a}</sub></th>" for n in ("v", "ω") for a in "xyz")
     shown = fmt.cleaned([jdot_qd[r] if r < 3 else math.degrees(jdot_qd[r]) for r in range(6)])
-    cells = "".join(f"<td>{fmt.number(x)}</td>" for x in shown)
+    cells = "".join(f"<td>{fmt.number(x, tr=tr)}</td>" for x in shown)
+    note = tr.gettext(
+        "ẍ = J q̈ + J̇ q̇; here q̈ = 0 (constant rates), so ẍ = J̇ q̇: the tool accelerates although every "
+        "joint turns steadily. v̇ in m/s², ω̇ in °/s², base axes; violet arrow at the tool (drawn {scale} "
+        "per m/s²)."
+    ).format(scale=fmt.quantity(0.5, "m", tr=tr))
     return (
         f'<div class="jl"><table class="jl-vec"><tr><th></th>{head}</tr>'
         f'<tr class="accel"><th class="rowname">J̇ q̇</th>{cells}</tr></table>'
-        '<div class="jl-note">ẍ = J q̈ + J̇ q̇; here q̈ = 0 (constant rates), so ẍ = J̇ q̇: the tool '
-        "accelerates although every joint turns steadily. v̇ in m/s², ω̇ in °/s², base axes; "
-        "violet arrow at the tool (drawn 0.5 m per m/s²).</div>"
-        f"{erratum_html('jdot')}</div>"
+        f'<div class="jl-note">{note}</div>'
+        f"{erratum_html('jdot', tr)}</div>"
     )

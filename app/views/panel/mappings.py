@@ -13,7 +13,6 @@
 from __future__ import annotations
 
 import functools
-import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -33,87 +32,35 @@ from ...core.actions import (
     SetWrench,
     StopRates,
 )
+from ...core.i18n import Translator, translations
 from ...core.ranges import Range, from_display, rate_ranges, to_display, twist_ranges, wrench_ranges
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ...viser_adapter import handle_uuid
 from .. import fmt
-from ..palette import joint_hex, joint_text_hex
 from .common import Dispatch, bind, bind_click, option_widget, show_option, sync_value
 from .course import accel_html, example_html, inverse_html
 from .errata import erratum_html
-from .readouts import ROW_NAMES
 from .style import slider_css
+from .vectors import _display, _slider, bars_html, vector_table_html
 
-__all__ = ["ForwardPanel", "InversePanel", "ForcePanel", "bars_html", "vector_table_html"]
-
-
-def _display(kind: str, value: float) -> tuple[float, str]:
-    return (math.degrees(value), "°/s") if kind == "revolute" else (float(value), "m/s")
-
-
-def bars_html(values: list[tuple[float, str]], robot: Robot, full_scale: list[float], caption: str) -> str:
-    """One centred bar per joint, coloured like the joint; a bar beyond ``full_scale`` is hatched.
-
-    Args:
-        values: (value, unit) per joint, in display units (float noise already cleaned).
-        robot: The robot (joint count).
-        full_scale: Value at which each bar reaches the edge.
-        caption: Text under the bars (HTML).
-    """
-    rows = []
-    for i, ((v, unit), full) in enumerate(zip(values, full_scale, strict=True)):
-        v = float(v) if math.isfinite(v) else 0.0
-        frac = min(abs(v) / full, 1.0) if full > 0 else 0.0
-        left = 50.0 if v >= 0 else 50.0 - 50.0 * frac
-        bar_class = "jl-bar over" if abs(v) > full else "jl-bar"
-        bar_style = f"left:{left:.2f}%;width:{50.0 * frac:.2f}%;background-color:{joint_hex(i)}"
-        title = fmt.escape(robot.joints[i].name)
-        rows.append(
-            f'<tr><td class="name" style="color:{joint_text_hex(i)}" title="{title}">q{i + 1}</td>'
-            f'<td class="track"><div class="jl-bar-bg"><div class="jl-bar-mid"></div>'
-            f'<div class="{bar_class}" style="{bar_style}"></div></div></td>'
-            f'<td class="val">{fmt.quantity(v, unit)}</td></tr>'
-        )
-    table = f'<table class="jl-bars">{"".join(rows)}</table>'
-    return f'<div class="jl">{table}<div class="jl-note">{caption}</div></div>'
-
-
-def vector_table_html(rows: tuple[int, ...], columns: list[tuple[str, np.ndarray, str]]) -> str:
-    """A table of twists: one line per (label, twist (6,), css class), one column per row of ``rows``.
-
-    v rows are in m/s, ω rows in °/s (like the sliders).
-    """
-    head = "".join(f"<th>{ROW_NAMES[r]}</th>" for r in rows)
-    body = []
-    for label, twist, css in columns:
-        shown = fmt.cleaned([twist[r] if r < 3 else math.degrees(twist[r]) for r in rows])
-        cells = "".join(f"<td>{fmt.number(x, 5)}</td>" for x in shown)  # the course's 17.256
-        body.append(f'<tr class="{css}"><th class="rowname">{label}</th>{cells}</tr>')
-    units = "v in m/s, ω in °/s" if any(r >= 3 for r in rows) else "m/s"
-    return (
-        f'<div class="jl"><table class="jl-vec"><tr><th></th>{head}</tr>{"".join(body)}</table>'
-        f'<div class="jl-note">{units}, base axes</div></div>'
-    )
-
-
-TYPED_DIGITS = 4
-"""Decimals a slider's box keeps when a value is typed (the course's v = 17.256 m/s, 89.98 °/s); the
-slider's step only sets how far one drag or arrow key moves."""
-
-
-def _slider(gui: viser.GuiApi, label: str, r: Range, hint: str) -> viser.GuiSliderHandle:
-    slider = gui.add_slider(
-        f"{label} [{r.unit}]", min=r.lo, max=r.hi, step=r.step, initial_value=0.0, hint=hint
-    )
-    slider.precision = max(int(slider.precision), TYPED_DIGITS)
-    return slider
+__all__ = [
+    "ForwardPanel",
+    "InversePanel",
+    "ForcePanel",
+    "bars_html",
+    "vector_table_html",
+]  # the last two: .vectors
 
 
 class ForwardPanel:
     """Joint rates → tool twist; Play moves the joints at those rates."""
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+    def __init__(
+        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float, tr: Translator | None = None
+    ) -> None:
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.robot = robot
         self.ranges = rate_ranges(robot)
         self.root = gui.add_folder(None, order=order)
@@ -123,18 +70,18 @@ class ForwardPanel:
             self.accel = gui.add_html("")  # J̇ q̇: the tool's acceleration at constant rates
             self.sliders = []
             for i, (joint, r) in enumerate(zip(robot.joints, self.ranges, strict=True)):
-                slider = _slider(gui, f"q̇{i + 1}", r, f"rate of {joint.name}")
+                slider = _slider(gui, f"q̇{i + 1}", r, _("rate of {joint}").format(joint=joint.name))
                 bind(slider, dispatch, functools.partial(_set_rate, i, r))
                 css.append(slider_css(handle_uuid(slider), i))
                 self.sliders.append(slider)
             gui.add_html(f"<style>{''.join(css)}</style>")
             self._shown: tuple | None = None
-            self.play = gui.add_button("Play: move at these rates", icon=viser.Icon.PLAYER_PLAY)
+            self.play = gui.add_button(_("Play: move at these rates"), icon=viser.Icon.PLAYER_PLAY)
             self._playing = False
             bind_click(self.play, dispatch, lambda: Play(not self._playing))
-            stop = gui.add_button("Stop (q̇ = 0)", icon=viser.Icon.PLAYER_STOP)
+            stop = gui.add_button(_("Stop (q̇ = 0)"), icon=viser.Icon.PLAYER_STOP)
             bind_click(stop, dispatch, StopRates)
-            self.jdot = option_widget(gui, dispatch, "jdot_arrow")
+            self.jdot = option_widget(gui, dispatch, "jdot_arrow", tr=tr)
 
     @property
     def stepped(self) -> list[Any]:
@@ -148,10 +95,11 @@ class ForwardPanel:
     def show(self, state: LabState) -> None:
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(to_display(r, state.qd[i]), 6))
-        show_option(self.jdot, "jdot_arrow", state.options.jdot_arrow)
+        show_option(self.jdot, "jdot_arrow", state.options.jdot_arrow, self.tr)
         if self._playing != state.playing:
             self._playing = state.playing
-            self.play.label = "Pause" if state.playing else "Play: move at these rates"
+            _ = self.tr.gettext
+            self.play.label = _("Pause") if state.playing else _("Play: move at these rates")
             self.play.icon = viser.Icon.PLAYER_PAUSE if state.playing else viser.Icon.PLAYER_PLAY
 
     def update(self, snap: Snapshot, state: LabState) -> None:
@@ -159,12 +107,13 @@ class ForwardPanel:
         if idle is not None and idle == self._shown:
             return
         self._shown = idle
-        self.accel.content = accel_html(snap.jdot_qd) if idle is None else ""
+        self.accel.content = accel_html(snap.jdot_qd, self.tr) if idle is None else ""
         note = f'<div class="jl-warn">{fmt.escape(state.stopped)}</div>' if state.stopped else ""
+        arrows = self.tr.gettext("Black arrow at the tool: v; umber arrow: ω.")
         self.twist.content = (
-            vector_table_html(tuple(range(6)), [("J q̇", snap.twist, "")])
+            vector_table_html(tuple(range(6)), [("J q̇", snap.twist, "")], self.tr)
             + note
-            + '<div class="jl-note">Black arrow at the tool: v; umber arrow: ω.</div>'
+            + f'<div class="jl-note">{arrows}</div>'
         )
 
     def remove(self) -> None:
@@ -182,7 +131,10 @@ class InversePanel:
         rows: tuple[int, ...],
         order: float,
         presets: Sequence[Any] = (),
+        tr: Translator | None = None,
     ):
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.robot = robot
         self.rows = rows
         self._rows = list(rows)
@@ -203,7 +155,11 @@ class InversePanel:
             if self.example is not None:
                 p = self.example
                 # The course's worked example carries its joint rates; another robot's preset is an example.
-                label = "Course example" if p.rates is not None else f"Example: {p.name}"[:60]
+                label = (
+                    _("Course example")
+                    if p.rates is not None
+                    else _("Example: {name}").format(name=p.name)[:60]
+                )
                 self.example_button = gui.add_button(label, icon=viser.Icon.SCHOOL)
                 bind_click(
                     self.example_button,
@@ -218,15 +174,15 @@ class InversePanel:
             self.course = gui.add_html("")
             self.sliders = {}
             for r in rows:
-                slider = _slider(gui, ROW_TEXT[r], self.ranges[r], "desired tool velocity, base axes")
+                slider = _slider(gui, ROW_TEXT[r], self.ranges[r], _("desired tool velocity, base axes"))
                 bind(slider, dispatch, functools.partial(_set_desired, r, self.ranges[r]))
                 self.sliders[r] = slider
-            self.damping = option_widget(gui, dispatch, "damping")
+            self.damping = option_widget(gui, dispatch, "damping", tr=tr)
             self._shown: tuple | None = None
             self.symbolic_button: viser.GuiButtonHandle | None = None
             self.symbolic = gui.add_html("")
             if len(rows) == robot.dof:  # a square task J: its inverse, symbolically, on demand
-                self.symbolic_button = gui.add_button("Symbolic J⁻¹ = adj J / det J", icon=viser.Icon.MATH)
+                self.symbolic_button = gui.add_button(_("Symbolic J⁻¹ = adj J / det J"), icon=viser.Icon.MATH)
                 bind_click(
                     self.symbolic_button, dispatch, lambda: SetOption("symbolic_inverse", not self._asked)
                 )
@@ -244,10 +200,13 @@ class InversePanel:
     def show(self, state: LabState) -> None:
         for r, slider in self.sliders.items():
             sync_value(slider, round(to_display(self.ranges[r], state.v_desired[r]), 6))
-        show_option(self.damping, "damping", state.options.damping)
+        show_option(self.damping, "damping", state.options.damping, self.tr)
         asked = state.options.symbolic_inverse
         if asked != self._asked and self.symbolic_button is not None:
-            self.symbolic_button.label = "Hide the symbolic J⁻¹" if asked else "Symbolic J⁻¹ = adj J / det J"
+            _ = self.tr.gettext
+            self.symbolic_button.label = (
+                _("Hide the symbolic J⁻¹") if asked else _("Symbolic J⁻¹ = adj J / det J")
+            )
             if not asked:
                 self.symbolic.content = ""
         self._asked = asked
@@ -260,11 +219,15 @@ class InversePanel:
         self.symbolic.content = f'<div class="jl">{body}<div class="jl-note">{fmt.escape(note)}</div></div>'
 
     def update(self, snap: Snapshot, state: LabState) -> None:
-        self.inverse.content = inverse_html(snap.inverse, self.robot, snap.rows, state, snap.report.status)
+        tr = self.tr
+        _ = tr.gettext
+        self.inverse.content = inverse_html(
+            snap.inverse, self.robot, snap.rows, state, snap.report.status, tr
+        )
         p = self.example
         if p is not None:
             question = state.configuration == "course_question"
-            self.course.content = example_html(snap, state, p.rates, self._example_start, question)
+            self.course.content = example_html(snap, state, p.rates, self._example_start, question, tr)
         idle = ("idle", state.options.damping) if not state.v_desired[self._rows].any() else None
         if idle is not None and idle == self._shown:
             return
@@ -274,10 +237,14 @@ class InversePanel:
         values = [(x, _display(k, 0.0)[1]) for x, k in zip(shown, kinds, strict=True)]
         full = [180.0 if k == "revolute" else 0.5 for k in kinds]
         lam = state.options.damping
-        method = f"damped least squares, λ = {fmt.number(lam)}" if lam > 0 else "pseudo-inverse J⁺"
-        self.rates.content = bars_html(
-            values, self.robot, full, f"q̇ = J⁺ v ({method}); hatched: beyond 180 °/s (0.5 m/s)."
+        if lam > 0:
+            caption = _("q̇ = J⁺ v (damped least squares, λ = {lam}); hatched: beyond {deg} ({m}).")
+        else:
+            caption = _("q̇ = J⁺ v (pseudo-inverse J⁺); hatched: beyond {deg} ({m}).")
+        caption = caption.format(
+            lam=fmt.number(lam, tr=tr), deg=fmt.quantity(180, "°/s", tr=tr), m=fmt.quantity(0.5, "m/s", tr=tr)
         )
+        self.rates.content = bars_html(values, self.robot, full, caption, tr)
         desired = np.zeros(6)
         desired[list(snap.rows)] = state.v_desired[list(snap.rows)]
         wanted = float(np.linalg.norm(desired))
@@ -285,22 +252,23 @@ class InversePanel:
         table = vector_table_html(
             snap.rows,
             [
-                ("v wanted", desired, ""),
-                ("J q̇ made", snap.produced, ""),
-                ("v − J q̇ lost", snap.shortfall, "lost"),
+                (_("v wanted"), desired, ""),
+                (_("J q̇ made"), snap.produced, ""),
+                (_("v − J q̇ lost"), snap.shortfall, "lost"),
             ],
+            tr,
         )
         if wanted > 0 and lost > 1e-6 * max(wanted, 1.0):
-            why = (
-                "the arm is singular: J⁺ drops the direction it has lost"
-                if snap.report.status == "singular" and lam == 0
-                else "damping trades accuracy for bounded joint rates"
-                if lam > 0
-                else "this twist is outside what the joints can produce"
-            )
-            table += (
-                f'<div class="jl-warn">{fmt.number(100 * lost / wanted)} % of v is not produced: {why}.</div>'
-            )
+            share = fmt.number(100 * lost / wanted, tr=tr)
+            if snap.report.status == "singular" and lam == 0:
+                why = _(
+                    "{share} % of v is not produced: the arm is singular: J⁺ drops the direction it has lost."
+                )
+            elif lam > 0:
+                why = _("{share} % of v is not produced: damping trades accuracy for bounded joint rates.")
+            else:
+                why = _("{share} % of v is not produced: this twist is outside what the joints can produce.")
+            table += f'<div class="jl-warn">{why.format(share=share)}</div>'
         self.result.content = table
 
     def remove(self) -> None:
@@ -310,7 +278,11 @@ class InversePanel:
 class ForcePanel:
     """Force and moment at the tool → joint torques τ = Jᵀ F."""
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float):
+    def __init__(
+        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float, tr: Translator | None = None
+    ):
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.robot = robot
         self.ranges = wrench_ranges(robot)
         self.root = gui.add_folder(None, order=order)
@@ -320,11 +292,13 @@ class ForcePanel:
             self.sliders = {}
             self._bounds: dict[int, tuple[float, float]] = {}
             for r in rows:
-                slider = _slider(gui, WRENCH_TEXT[r], self.ranges[r], "applied at the tool point, base axes")
+                slider = _slider(
+                    gui, WRENCH_TEXT[r], self.ranges[r], _("applied at the tool point, base axes")
+                )
                 bind(slider, dispatch, functools.partial(_set_wrench, r))
                 self.sliders[r] = slider
                 self._bounds[r] = (float(slider.min), float(slider.max))
-            zero = gui.add_button("Remove the force (F = 0)")
+            zero = gui.add_button(_("Remove the force (F = 0)"))
             bind_click(zero, dispatch, ClearWrench)
             self._idle = False
 
@@ -350,13 +324,12 @@ class ForcePanel:
         units = ["N·m" if j.kind == "revolute" else "N" for j in self.robot.joints]
         values = list(zip(fmt.cleaned(snap.torques), units, strict=True))
         full = max(abs(self.ranges[0].hi), 1.0)
+        caption = self.tr.gettext(
+            "Joint torques τ = Jᵀ F that hold the wrench (full bar: {full} N·m or N). At a singularity a "
+            "force along the lost direction needs no torque at all."
+        ).format(full=fmt.number(full, tr=self.tr))
         self.torques.content = bars_html(
-            values,
-            self.robot,
-            [full] * self.robot.dof,
-            f"Joint torques τ = Jᵀ F that hold the wrench (full bar: {fmt.number(full)} N·m or N). "
-            "At a singularity a force along the lost direction needs no torque at all."
-            + erratum_html("forces"),
+            values, self.robot, [full] * self.robot.dof, caption + erratum_html("forces", self.tr), self.tr
         )
 
     def remove(self) -> None:

@@ -156,7 +156,7 @@ class MatrixPanel:
             self._convention = o.representation
         if self.letters is not None:
             show_option(self.letters, "course_letters", o.course_letters, self.tr)
-        self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows)
+        self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows, self.tr)
         instead = snap.analytic.regular_instead if snap.analytic is not None else ""
         if instead:
             self._instead = instead
