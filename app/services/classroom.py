@@ -23,6 +23,7 @@ import time
 from collections.abc import Callable
 from typing import Protocol
 
+from ..core.i18n import N_
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
@@ -44,12 +45,12 @@ TOKEN_TRIES = 5
 TOKEN_WINDOW = 60.0
 STRONG_BITS = 64
 """A token given by hand with less estimated randomness than this [bits] is warned about."""
-TAKEN_OVER = "Another tab took over as presenter: this tab now follows it."
+TAKEN_OVER = N_("Another tab took over as presenter: this tab now follows it.")
 MAX_TOKEN_LENGTH = 200
 RESUME_GRACE = 120.0
 """A presenter whose tab closed (a reload, a lost connection) may come back this long [s] with its
 reconnect key, and keeps its role and its state; the followers follow it again."""
-PRESENTER_AWAY = (
+PRESENTER_AWAY = N_(
     "The presenter's connection dropped: you keep what was shown, and follow again when it is back."
 )
 
@@ -183,7 +184,7 @@ class Classroom:
             return why
         with self._lock:
             if key not in self._members:
-                return "this tab is not connected"
+                return N_("this tab is not connected")
             self._resume_key, self._resume_until, self._last = secrets.token_urlsafe(24), None, None
         self._present(key, None)
         return ""
@@ -258,7 +259,7 @@ class Classroom:
             self._resume_key, self._resume_until, self._last, self._tab = "", None, None, ""
         if unsubscribe is not None:
             unsubscribe()
-        self._tell_all("The presenter stopped presenting: explore on your own.")
+        self._tell_all(N_("The presenter stopped presenting: explore on your own."))
 
     def _stop_relay(self) -> Callable[[], None] | None:
         """No presenter any more (under our lock); returns the unsubscribe to call after releasing it."""

@@ -12,6 +12,8 @@ from collections import OrderedDict, deque
 from collections.abc import Callable, Hashable
 from typing import Any
 
+from ..core.i18n import N_
+
 __all__ = ["TokenBucket", "LeakyCounter", "LatestFirstQueue", "TabLimiter", "RoomLimits"]
 
 
@@ -289,7 +291,7 @@ class RoomLimits:
             if right:
                 return ""
             tries.append((now, address))
-            return "that is not the presenter token"
+            return N_("that is not the presenter token")
 
     def wrong_tokens(self, address: Hashable | None = None) -> int:
         """Wrong tokens within the window, from ``address`` or from anywhere."""

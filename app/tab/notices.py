@@ -11,6 +11,8 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
+from ..core.i18n import Translator, translations
+
 __all__ = ["Notices"]
 
 log = logging.getLogger(__name__)
@@ -25,15 +27,24 @@ class Notices:
     Args:
         client: The tab's viser client (``add_notification``).
         closed: Whether the tab has gone (nothing is shown then).
+        language: The tab's language now (the words of a notice; English when not given).
 
     Attributes:
         errors: Number of failures shown to this tab.
     """
 
-    def __init__(self, client: Any, closed: Callable[[], bool]) -> None:
+    def __init__(
+        self, client: Any, closed: Callable[[], bool], language: Callable[[], Translator] | None = None
+    ) -> None:
         self.client = client
         self._closed = closed
+        self._language = language or translations
         self.errors = 0
+
+    @property
+    def tr(self) -> Translator:
+        """The tab's language now: callers say a notice with ``notices.tr.gettext``."""
+        return self._language()
 
     def notify(self, title: str, body: str, seconds: float = 8.0) -> None:
         """Show this tab a short notice (e.g. the symbolic worker was restarted)."""
@@ -48,7 +59,7 @@ class Notices:
         log.error("client %s: %s", self.client.client_id, str(exc)[:_LONGEST])
         with contextlib.suppress(Exception):
             self.client.add_notification(
-                "That did not work",
+                self.tr.gettext("That did not work"),
                 f"{type(exc).__name__}: {str(exc)[:_LONGEST]}",
                 color="red",
                 auto_close_seconds=10.0,

@@ -93,7 +93,7 @@ class ClientSession:
         self._tab_to_open = ""  # a panel tab to open in the page once drawn (OpenTab)
         self.pace = VisitPace()
         self.subscribers = Subscribers(self.key)
-        self.notices = Notices(client, lambda: self._closed)
+        self.notices = Notices(client, lambda: self._closed, lambda: self.page.tr)
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.camera = TabCamera(client)
         self.following = Following(

@@ -113,7 +113,7 @@ class PanelView:
         self.status = gui.add_html("", order=2)
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.hint = gui.add_html("", order=2.6, visible=False)  # what to do first, over the 3-D view
-        self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
+        self.classroom = ClassroomPanel(gui, dispatch, order=0.5, tr=tr) if classroom else None
         if self.classroom is not None:  # masked, and filled from the presenter link
             run_javascript(client, token_js(handle_uuid(self.classroom.token)))
         # The views of J live in a second panel docked under the joints: both stay in sight.

@@ -187,13 +187,13 @@ LAYOUT_JS = """
       root.classList.toggle("jl-more", more);
     }
   };
-  // The classroom box folds to its title line once the tab presents or follows (title "Classroom · …"),
-  // once per role: a teacher or student who opens it again keeps it open.
+  // The classroom box folds to its title line once the tab presents or follows (title "Classroom · …",
+  // in the tab's language: "Zajęcia · …"), once per role: one who opens it again keeps it open.
   const fold = () => {
     for (const head of document.querySelectorAll('[data-dock-region] div[style*="cursor: pointer"]')) {
       const title = head.textContent.trim();
       const role = title.split(":")[0];  // "Classroom · presenting", not the number of followers
-      if (!title.startsWith("Classroom ·") || head.dataset.jlFolded === role) continue;
+      if (!title.includes(" · ") || head.dataset.jlFolded === role) continue;
       head.dataset.jlFolded = role;
       const body = head.nextElementSibling;
       if (body && body.getAttribute("aria-hidden") === "false") head.click();
