@@ -194,7 +194,7 @@ class PanelView:
             bind(self.chain, self.dispatch, lambda v: ChooseChain(labels[str(v)]) if v in labels else None)
         self.source.content = source_html(robot, shown, meshes)
         self.source.visible = bool(robot.urdf_path)
-        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3)
+        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3, tr=self.tr)
         context = TabContext(
             self.gui, self.dispatch, robot, rows, presets, slider_ids(self.joints.sliders), self.tr
         )
@@ -240,7 +240,7 @@ class PanelView:
         for name, part in self.parts.items():
             if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)
-        live = live_html(state)
+        live = live_html(state, self.tr)
         if live != self.live.content:
             self.live.content = live
         if self.live.visible != bool(live):
@@ -272,7 +272,7 @@ class About:
     """The View tab's list of the robot's named configurations."""
 
     def __init__(self, c: TabContext) -> None:
-        self.html = c.gui.add_html(configurations_html(c.robot), order=200)
+        self.html = c.gui.add_html(configurations_html(c.robot, c.tr), order=200)
 
     @property
     def content(self) -> str:

@@ -14,6 +14,7 @@ import numpy as np
 from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_HTML
 
+from ...core.i18n import N_, Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.state import LabState
 from .. import fmt
@@ -22,15 +23,19 @@ from ..palette import joint_text_hex
 __all__ = ["live_html"]
 
 _DOING = {
-    "resolved_rate": "holding v",
-    "climb": "climbing w",
-    "path": "to the nearest singularity",
-    "joints": "moving at q̇",
+    "resolved_rate": N_("playing: holding v"),
+    "climb": N_("playing: climbing w"),
+    "path": N_("playing: to the nearest singularity"),
+    "joints": N_("playing: moving at q̇"),
 }
+"""What a playing motion does, in the foot line (English; shown in the tab's language)."""
 
 
-def live_html(state: LabState) -> str:
-    """Rates [°/s | m/s], κ, σmin, the motion's time and its pace; "" when nothing is traced."""
+def live_html(state: LabState, tr: Translator | None = None) -> str:
+    """Rates [°/s | m/s], κ, σmin, the motion's time and its pace, in ``tr``'s words and numbers; ""
+    when nothing is traced."""
+    tr = tr or translations()
+    _ = tr.gettext
     m = state.motion
     trace = m.trace
     if trace is None or len(trace) < 2:
@@ -43,16 +48,18 @@ def live_html(state: LabState) -> str:
         unit = "°/s" if revolute else "m/s"
         cells.append(
             f'<div class="jl-live-rate" style="color:{joint_text_hex(i)}"><span>q̇{_sub(i + 1)}</span>'
-            f"<b>{fmt.fixed(value, 1 if revolute else 3)}</b><small>{unit}</small></div>"
+            f"<b>{fmt.fixed(value, 1 if revolute else 3, tr)}</b><small>{unit}</small></div>"
         )
     kappa = float(trace.kappa[-1])
-    doing = _DOING.get(m.kind, "")
-    state_word = "playing" if state.playing else "paused" if not state.stopped else "stopped"
-    pace = (
-        f' · <span class="jl-live-slow">slowed ×{fmt.number(m.pace, 2)} near the singularity</span>'
-        if state.playing and m.kind == "resolved_rate" and m.pace < 0.95
-        else ""
-    )
+    if state.playing:
+        state_word = _(_DOING[m.kind]) if m.kind in _DOING else _("playing")
+    else:
+        state_word = _("paused") if not state.stopped else _("stopped")
+    pace = ""
+    if state.playing and m.kind == "resolved_rate" and m.pace < 0.95:
+        slowed = _("slowed ×{pace} near the singularity").format(pace=fmt.number(m.pace, 2, tr))
+        pace = f' · <span class="jl-live-slow">{slowed}</span>'
+
     # The climb measures the rows it holds (the 3R planar arm: vx, vy), not the banner's task rows: say so.
     held = redundancy_rows(state.robot) if m.kind == "climb" else None
     rows = (
@@ -61,11 +68,11 @@ def live_html(state: LabState) -> str:
         else ""
     )
     head = (
-        f'<div class="jl-live-head"><span>κ{rows} <b>{fmt.number(kappa)}</b></span>'
-        f"<span>σ<sub>min</sub> <b>{fmt.number(float(trace.sigma_min[-1]))}</b></span>"
-        f"<span>t <b>{fmt.fixed(state.time, 2)}</b> s</span></div>"
+        f'<div class="jl-live-head"><span>κ{rows} <b>{fmt.number(kappa, tr=tr)}</b></span>'
+        f"<span>σ<sub>min</sub> <b>{fmt.number(float(trace.sigma_min[-1]), tr=tr)}</b></span>"
+        f"<span>t <b>{fmt.fixed(state.time, 2, tr)}</b> s</span></div>"
     )
-    foot = f'<div class="jl-live-foot">{state_word}{": " + doing if doing else ""}{pace}</div>'
+    foot = f'<div class="jl-live-foot">{state_word}{pace}</div>'
     return f'<div class="jl jl-live">{head}<div class="jl-live-rates">{"".join(cells)}</div>{foot}</div>'
 
 
