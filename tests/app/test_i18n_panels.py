@@ -9,15 +9,17 @@ from __future__ import annotations
 import re
 from typing import Any
 
+import numpy as np
 import pytest
 from app_helpers import running_lab, wait_until
 from babel.messages.pofile import read_po
 from test_i18n_app import numbers_of, report
 
 import robots
-from app.core.actions import GoTo, SetDesired, SetOption
+from app.core.actions import GoTo, Play, SetDesired, SetOption
 from app.core.commands import ToggleRecording
-from app.core.i18n import LOCALE_DIR, language_of
+from app.core.i18n import LOCALE_DIR, language_of, translations
+from app.core.refusals import say
 from app.views.panel import TABS
 
 MY_TABS = ("motion", "maps", "forward", "inverse", "force", "build")
@@ -219,3 +221,49 @@ def test_a_notice_speaks_the_tabs_language(code, title, body):
         _, notice = ws.wait_for(lambda m: m["type"] == "NotificationShowMessage", after=mark)
         assert notice["props"]["title"] == title
         assert notice["props"]["body"].startswith(body)
+
+
+@pytest.mark.parametrize(
+    ("code", "why"),
+    [
+        ("pl", "najpierw ustaw prędkość efektora v (albo wybierz przykład)"),
+        ("pt", "defina antes uma velocidade da garra v (ou escolha um exemplo)"),
+        ("es", "primero fijá una velocidad del extremo v (o elegí un ejemplo)"),
+    ],
+)
+def test_a_refused_motion_says_why_in_the_tabs_language(code, why):
+    with running_lab() as (_lab, session, _ws):
+        report(session, address=f"?lang={code}")
+        session.panel.motion.preset.value = session.panel.motion.own_twist  # "your own v", in its words
+        session.settle()
+        session.dispatch(Play(True, "resolved_rate"))  # no v set: refused, in English in the state
+        session.settle()
+        assert session.state.stopped == "set a tool velocity v first (or choose a preset)"
+        assert why in session.panel.motion.readout.content
+        assert why in session.panel.status.content
+
+
+def test_a_stop_written_by_the_kinematics_is_said_with_its_values_and_decimal_commas():
+    """The resolved-rate step's message (kinematics, English) reaches the tab in its language, the joint's
+    name kept and its numbers written with a decimal comma."""
+    from kinematics.motion.resolved_rate import resolved_rate_step
+
+    robot = robots.load("puma560")
+    q = robot.qlim[0] + 1e-3  # every joint just above its lower limit
+    stop = next(
+        (
+            step[2]
+            for k in range(6)
+            for sign in (1.0, -1.0)
+            if (step := resolved_rate_step(robot, q, sign * 0.05 * np.eye(6)[k], dt=1.0))[2] is not None
+            and "would pass its" in step[2].message
+        ),
+        None,
+    )
+    assert stop is not None
+    text = say(f"stopped: {stop.message}", translations("pl"))
+    assert text.startswith("zatrzymano: przegub ") and "granic" in text, text
+    assert "would" not in text
+    assert say(
+        "w of the held rows (vx, vy) reached a maximum with the tool held: w = 0.4321", translations("es")
+    ) == ("w de las filas sostenidas (vx, vy) llegó a un máximo con el extremo fijo: w = 0,4321")

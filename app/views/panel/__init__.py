@@ -45,7 +45,7 @@ from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, sho
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
-from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
+from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH, more_css
 from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .maps import MapsPanel, slider_ids
@@ -92,7 +92,7 @@ class PanelView:
         gui.set_panel_label("Jacobian Lab")
         gui.main_panel.dock_right()
         gui.main_panel.set_width(PANEL_WIDTH)
-        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}</style>", order=0)
+        gui.add_html(BASE_CSS + LAYOUT_CSS + more_css(tr) + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
         run_javascript(client, LAYOUT_JS)
         run_javascript(client, NUMBER_GUARD_JS)

@@ -19,8 +19,11 @@ Colours here are chosen for at least 4.5:1 on their background (checked by the t
 
 from __future__ import annotations
 
+from ...core.i18n import N_, Translator
+
 __all__ = [
     "LAYOUT_CSS",
+    "more_css",
     "LAYOUT_JS",
     "PANEL_WIDTH",
     "COLUMN",
@@ -227,3 +230,15 @@ LAYOUT_JS = """
 """
 for _key, _value in (("__ZOOM_MAX__", ZOOM_MAX), ("__TOP_MAX__", TOP_MAX), ("__COLUMN__", COLUMN)):
     LAYOUT_JS = LAYOUT_JS.replace(_key, str(_value))
+
+
+MORE = N_("▾ more below: scroll")
+"""The band's words (:data:`LAYOUT_CSS` says them in English; :func:`more_css` in the tab's language)."""
+
+
+def more_css(tr: Translator) -> str:
+    """A style block giving the "more below" band ``tr``'s words (a CSS string: quotes, backslashes and
+    "<" escaped, so no translation can end the string or the style block)."""
+    text = tr.gettext(MORE)
+    quoted = "".join(f"\\{ord(c):x} " if c in '"\\<>' or ord(c) < 32 else c for c in text)
+    return f'<style>.jl-more::after {{ content: "{quoted}"; }}</style>'

@@ -34,6 +34,7 @@ from ...core.actions import (
 )
 from ...core.i18n import Translator, translations
 from ...core.ranges import Range, from_display, rate_ranges, to_display, twist_ranges, wrench_ranges
+from ...core.refusals import say
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ...viser_adapter import handle_uuid
@@ -108,7 +109,9 @@ class ForwardPanel:
             return
         self._shown = idle
         self.accel.content = accel_html(snap.jdot_qd, self.tr) if idle is None else ""
-        note = f'<div class="jl-warn">{fmt.escape(state.stopped)}</div>' if state.stopped else ""
+        note = (
+            f'<div class="jl-warn">{fmt.escape(say(state.stopped, self.tr))}</div>' if state.stopped else ""
+        )
         arrows = self.tr.gettext("Black arrow at the tool: v; umber arrow: ω.")
         self.twist.content = (
             vector_table_html(tuple(range(6)), [("J q̇", snap.twist, "")], self.tr)

@@ -26,6 +26,7 @@ from ...core.commands import FindSingularity
 from ...core.i18n import N_, Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
+from ...core.refusals import say
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
@@ -335,7 +336,7 @@ def _readout(state: LabState, snap: Snapshot, pending: bool = False, tr: Transla
         doing = _(_DOING[state.motion.kind]) if state.motion.kind in _DOING else ""
         line += '<div class="jl-note">{}</div>'.format(_("<b>Playing</b>: {doing}.").format(doing=doing))
     elif state.stopped:
-        line += f'<div class="jl-warn">{fmt.escape(state.stopped)}</div>'
+        line += f'<div class="jl-warn">{fmt.escape(say(state.stopped, tr))}</div>'
     return f'<div class="jl">{line}</div>'
 
 

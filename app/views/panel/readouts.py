@@ -11,6 +11,7 @@ from kinematics import Robot
 from kinematics.conventions import ROW_HTML
 
 from ...core.i18n import N_, Translator, translations
+from ...core.refusals import say
 from ...core.snapshot import Loss, Snapshot
 from ...core.state import LabState
 from ...core.words import status_word, status_words
@@ -187,7 +188,7 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
     robot = state.robot
     sub = ""
     if state.stopped:
-        sub = fmt.escape(_(state.stopped))
+        sub = fmt.escape(say(state.stopped, tr))
     elif state.configuration:
         conf = next((c for c in robot.configurations if c.name == state.configuration), None)
         text = conf.description if conf is not None and conf.description else ""
