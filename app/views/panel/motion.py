@@ -127,10 +127,11 @@ class MotionPanel:
                 )
                 self.kappa = _chart(
                     gui,
-                    _("condition number κ"),
+                    # the scale in the title: a y-axis title is drawn along the 70 px plot, and cut beyond
+                    _("condition number κ (log scale, no unit)"),
                     ("κ",),
                     ("#c2410c",),
-                    _("κ (log scale, no unit)"),
+                    "κ",
                     time,
                     log=True,
                 )
