@@ -6,6 +6,7 @@ area's."""
 
 from __future__ import annotations
 
+import json
 import re
 from typing import Any
 
@@ -267,3 +268,16 @@ def test_a_stop_written_by_the_kinematics_is_said_with_its_values_and_decimal_co
     assert say(
         "w of the held rows (vx, vy) reached a maximum with the tool held: w = 0.4321", translations("es")
     ) == ("w de las filas sostenidas (vx, vy) llegó a un máximo con el extremo fijo: w = 0,4321")
+
+
+def test_the_number_boxes_guard_speaks_the_tabs_language():
+    """The page script that stops a comma in a slider's number box (a Mantine box takes a point) says so
+    in the tab's words; a translation is data in the script (JSON), never its code."""
+    from app.views.panel.typed import SAID, number_guard_js
+
+    polish = number_guard_js(translations("pl"))
+    assert "To pole przyjmuje kropkę dziesiętną: 0.3, nie 0,3." in polish
+    assert not [text for text in SAID.values() if text in polish and "{" not in text]
+    words = re.search(r"const SAID = (\{.*?\});\n", polish).group(1)
+    assert json.loads(words)["dropped"] == "Wykładnik porzucony."
+    assert "Use a point for decimals: 0.3, not 0,3." in number_guard_js(translations("en"))

@@ -55,7 +55,7 @@ from .page import LOST_WORDS
 from .page import page_js as page_state_js
 from .readouts import hint_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
-from .typed import NUMBER_GUARD_JS
+from .typed import number_guard_js
 
 __all__ = ["PanelView", "PANEL_WIDTH", "TAB_LABELS"]
 
@@ -95,7 +95,7 @@ class PanelView:
         gui.add_html(BASE_CSS + LAYOUT_CSS + more_css(tr) + f"<style>{status_css()}</style>", order=0)
         run_javascript(client, page_js())
         run_javascript(client, LAYOUT_JS)
-        run_javascript(client, NUMBER_GUARD_JS)
+        run_javascript(client, number_guard_js(tr))
         # The page's channel back (its address, a presenter's reconnect key, the open tab): a text
         # input the page script hides and fills (app.views.panel.page).
         self.report = gui.add_text("page", "", order=10_000)

@@ -9,10 +9,34 @@ read by :mod:`app.core.numbers`, which refuses in words on the server.
 
 from __future__ import annotations
 
-__all__ = ["NUMBER_GUARD_JS"]
+import json
+
+from ...core.i18n import N_, Translator, translations
+
+__all__ = ["NUMBER_GUARD_JS", "number_guard_js", "SAID"]
+
+SAID = {
+    "written": N_("{text} written as {number}."),
+    "not_number": N_("“{text}” is not a number: nothing was changed."),
+    "exponent": N_("“{text}”: keep typing the exponent; Enter (or a pause) writes it as a plain decimal."),
+    "dropped": N_("Exponent dropped."),
+    "not_exponent": N_("“{key}” is not part of an exponent."),
+    "point": N_("Use a point for decimals: 0.3, not 0,3."),
+    "first": N_("Type the number before its exponent (1e-3)."),
+    "sign": N_("A sign goes first: −0.5, not 0.5−."),
+    "not_part": N_("“{key}” is not part of a number."),
+    "paste_point": N_("“{text}”: use a point for decimals ({fixed})"),
+    "too_large": N_("“{text}” is too large to be a number here."),
+    "not_a_number": N_("“{text}” is not a number."),
+}
+"""What the guard says, in English; :func:`number_guard_js` gives the page the tab's language's words."""
 
 NUMBER_GUARD_JS = r"""
 (() => {
+  const SAID = __SAID__;
+  const said = (key, fields) =>
+    window.__jacobianLabSaid[key].replace(/\{(\w+)\}/g, (m, k) => (k in fields ? fields[k] : m));
+  window.__jacobianLabSaid = SAID;  // a rebuilt panel (another language) gives the guard its new words
   if (window.__jacobianLabNumberGuard) return;
   window.__jacobianLabNumberGuard = true;
   const PLAIN = /^\s*[+\-]?(\d+\.?\d*|\.\d+)\s*$/;
@@ -61,15 +85,15 @@ NUMBER_GUARD_JS = r"""
     const x = Number(text.replace("\u2212", "-"));
     if (NUMBER.test(text) && Number.isFinite(x) && Math.abs(x) < 1e12) {
       put(el, written(x));
-      say(el, `${text} written as ${written(x)}.`);
+      say(el, said("written", {text, number: written(x)}));
     } else {
-      say(el, `“${text}” is not a number: nothing was changed.`);
+      say(el, said("not_number", {text}));
     }
   };
   const hold = (el, text) => {
     pending = text;
     pendingBox = el;
-    say(el, `“${text}”: keep typing the exponent; Enter (or a pause) writes it as a plain decimal.`);
+    say(el, said("exponent", {text}));
     clearTimeout(pendingTimer);
     pendingTimer = setTimeout(commit, 1500);
   };
@@ -83,35 +107,35 @@ NUMBER_GUARD_JS = r"""
         if (ev.key === "Enter") ev.preventDefault();
         return;
       }
-      if (ev.key === "Escape") { pending = null; ev.preventDefault(); say(el, "Exponent dropped."); return; }
+      if (ev.key === "Escape") { pending = null; ev.preventDefault(); say(el, said("dropped", {})); return; }
       if (ev.key === "Backspace") {
         ev.preventDefault();
         const shorter = pending.slice(0, -1);
-        if (/[eE]/.test(shorter)) hold(el, shorter); else { pending = null; say(el, "Exponent dropped."); }
+        if (/[eE]/.test(shorter)) hold(el, shorter); else { pending = null; say(el, said("dropped", {})); }
         return;
       }
       if (ev.key.length === 1) {
         ev.preventDefault();
         ev.stopPropagation();
         if (/[0-9+\-]/.test(ev.key)) hold(el, pending + ev.key);
-        else say(el, `“${ev.key}” is not part of an exponent.`);
+        else say(el, said("not_exponent", {key: ev.key}));
       }
       return;
     }
     if (ev.key.length !== 1) return;
     if (ev.key === ",") {
       ev.preventDefault();
-      say(el, "Use a point for decimals: 0.3, not 0,3.");
+      say(el, said("point", {}));
     } else if (ev.key === "e" || ev.key === "E") {
       ev.preventDefault();
       if (PLAIN.test(el.value) && el.value.trim() !== "") hold(el, el.value.trim() + "e");
-      else say(el, "Type the number before its exponent (1e-3).");
+      else say(el, said("first", {}));
     } else if ((ev.key === "-" || ev.key === "+") && (el.selectionStart || 0) > 0) {
       ev.preventDefault();
-      say(el, "A sign goes first: −0.5, not 0.5−.");
+      say(el, said("sign", {}));
     } else if (!/[0-9.\-+]/.test(ev.key)) {
       ev.preventDefault();
-      say(el, `“${ev.key}” is not part of a number.`);
+      say(el, said("not_part", {key: ev.key}));
     }
   }, true);
   document.addEventListener("paste", (ev) => {
@@ -123,14 +147,22 @@ NUMBER_GUARD_JS = r"""
     ev.stopPropagation();  // the box's own paste handler would insert a mangled copy
     const shown = text.trim().slice(0, 30);
     if (COMMA.test(text)) {
-      say(el, `“${shown}”: use a point for decimals (${shown.replace(",", ".")}).`);
+      say(el, said("paste_point", {text: shown, fixed: shown.replace(",", ".")}));
     } else if (NUMBER.test(text)) {
       const x = Number(text.trim().replace("\u2212", "-"));
       if (Number.isFinite(x) && Math.abs(x) < 1e12) put(el, written(x));
-      else say(el, `“${shown}” is too large to be a number here.`);
+      else say(el, said("too_large", {text: shown}));
     } else {
-      say(el, `“${shown}” is not a number.`);
+      say(el, said("not_a_number", {text: shown}));
     }
   }, true);
 })();
 """
+
+
+def number_guard_js(tr: Translator | None = None) -> str:
+    """The guard's script, saying its words in ``tr``'s language (a JSON object: no translation can end
+    a string of the script)."""
+    _ = (tr or translations()).gettext
+    words = json.dumps({key: _(text) for key, text in SAID.items()}, ensure_ascii=False)
+    return NUMBER_GUARD_JS.replace("__SAID__", words.replace("</", "<\\/"))
