@@ -1,9 +1,11 @@
 """``jacobian-lab serve --workers N``: one address served by N processes under a supervising parent.
 
 Each test starts the command line in its own process session and checks, through websocket clients
-and /proc: every tab is served and each worker serves tabs; a worker killed with SIGKILL is started
-again and new tabs are served meanwhile; SIGTERM stops every process of the tree; a parent killed
-outright leaves nothing behind. Linux only (it reads /proc).
+and /proc: each worker listens on a socket of its own and the tabs spread evenly over the workers; a
+worker killed with SIGKILL is started again, new tabs are served meanwhile and reach it again once it
+serves, though the other worker is busy; SIGTERM stops every process of the tree, within 3 s with 60
+tabs and a symbolic computation running; a parent killed outright leaves nothing behind. Linux only
+(it reads /proc).
 """
 
 from __future__ import annotations
