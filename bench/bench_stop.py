@@ -168,7 +168,7 @@ async def one_run(robot: str, workers: int | None, tabs: int, log: Path) -> dict
             "workers": last("worker"),
             "symbolic": last("symbolic"),
             "tracker": last("tracker"),
-            "parent": exited,
+            "parent": min(exited, last("parent")) if np.isfinite(exited) else last("parent"),
             "all": max(gone.get(p, np.inf) for p in known),
             "processes": float(len(known)),
         }

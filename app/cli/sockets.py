@@ -47,6 +47,12 @@ def listening_socket(host: str, port: int, reuse_port: bool = False) -> socket.s
     for attempt in range(port, port + 100) if port else [0]:
         sock = socket.socket(family, kind, proto)
         try:
+            if reuse_port:  # first as any server binds: a port where another server listens is skipped
+                # (else a second server of this user would join the first one's group)
+                with socket.socket(family, kind, proto) as probe:
+                    _reuse(probe, False)
+                    probe.bind((address[0], attempt, *address[2:]))
+                    attempt = probe.getsockname()[1]
             _reuse(sock, reuse_port)
             sock.bind((address[0], attempt, *address[2:]))
             if not reuse_port:
@@ -86,6 +92,8 @@ def worker_socket(held: socket.socket) -> socket.socket:
 
 
 def _reuse(sock: socket.socket, reuse_port: bool) -> None:
+    """``SO_REUSEADDR`` (a restarted server takes its port back from the last run's closing
+    connections), and ``SO_REUSEPORT`` for the sockets of one server's group."""
     if os.name != "nt":
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     if reuse_port:

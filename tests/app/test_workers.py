@@ -30,6 +30,7 @@ from wsclient import ViserWsClient
 
 import robots
 from app.cli.main import main
+from app.cli.sockets import BALANCED, port_socket, worker_socket
 from app.cli.workers import WORKER_CAP, WorkerPool, default_workers, listening_socket
 from app.viser_adapter import message_class
 from kinematics.symbolic import jacobian_mathml
@@ -288,6 +289,24 @@ def test_listening_socket_takes_the_next_free_port():
         busy.close()
     with pytest.raises(ValueError, match="does not resolve"):
         listening_socket("no-such-host.invalid", 0)
+
+
+@pytest.mark.skipif(not BALANCED, reason="a socket per worker (SO_REUSEPORT) on Linux only")
+def test_a_second_server_on_the_port_of_a_running_one_takes_the_next_port():
+    held = port_socket("127.0.0.1", 0)  # a running server: the parent's socket and a worker's
+    port = held.getsockname()[1]
+    worker = worker_socket(held)
+    worker.listen(8)
+    try:
+        assert worker is not held and worker.getsockname()[1] == port
+        second = port_socket("127.0.0.1", port)  # would join the first one's group if it bound there
+        try:
+            assert second.getsockname()[1] > port
+        finally:
+            second.close()
+    finally:
+        worker.close()
+        held.close()
 
 
 def test_worker_counts_are_checked(capsys):
