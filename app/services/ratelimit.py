@@ -108,6 +108,10 @@ class LatestFirstQueue:
             return self._waiting.popitem(last=False)[1]
         return None
 
+    def clear(self) -> None:
+        """Forget every waiting message."""
+        self._waiting.clear()
+
 
 def state_key(message: Any) -> tuple | None:
     """What a viser client message sets, by its class name: messages with the same key are states
@@ -165,6 +169,11 @@ class TabLimiter:
     def pop_ready(self) -> list[Any]:
         """The waiting messages the rates allow now (at most one per queue)."""
         return [m for m in (self.other.pop_ready(), self.gui.pop_ready()) if m is not None]
+
+    def clear(self) -> None:
+        """Forget every waiting message (the tab left)."""
+        self.gui.clear()
+        self.other.clear()
 
 
 class RoomLimits:
