@@ -103,3 +103,16 @@ def rss_bytes(pid: int, field: str = "VmRSS") -> int:
         if line.startswith(field + ":"):
             return int(line.split()[1]) * 1024
     raise ValueError(f"no {field} for process {pid}")
+
+
+def tree_pss_bytes(pid: int) -> int:
+    """PSS of process ``pid``'s session (a :class:`Server` and every process it started) [bytes]: a
+    page shared by k processes counts 1/k in each, so the sum is what the server costs the machine."""
+    total = 0
+    for p in session_processes(os.getsid(pid)):
+        try:
+            text = Path(f"/proc/{p}/smaps_rollup").read_text()
+        except OSError:  # the process just ended
+            continue
+        total += sum(int(line.split()[1]) for line in text.splitlines() if line.startswith("Pss:"))
+    return total * 1024

@@ -22,7 +22,9 @@ Wrapped:
 * :func:`install_input_checks` — every value a tab sends, checked where it enters (:mod:`.gate`):
   replaces ``GuiApi._handle_gui_updates`` and its upload handlers (a tab's own widget, ``client.gui``,
   no longer relays its value to its own connection: viser's ``sync_cb``); :func:`check_message` is called
-  by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on).
+  by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on). An upload
+  with no part for ``RoomLimits.upload_stall_seconds`` is dropped, and when a tab leaves the memory it
+  held is given back to the system (glibc's ``malloc_trim``: :mod:`.uploads`).
 * :func:`allow_origins` and :func:`handshake_refusal` — the Host and Origin of every HTTP request and
   websocket handshake checked (:mod:`.handshake`, through the ``process_request`` viser passes to
   ``serve``, replaced by :func:`install_message_limits`).
@@ -47,8 +49,8 @@ Wrapped:
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of nine modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
-:mod:`.mirror`, :mod:`.icons`, :mod:`.events`, :mod:`.inline`), so each stays short;
+A package of ten modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.uploads`, :mod:`.handshake`,
+:mod:`.props`, :mod:`.mirror`, :mod:`.icons`, :mod:`.events`, :mod:`.inline`), so each stays short;
  nothing outside this package touches viser's private API.
 """
 
