@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from app_helpers import running_lab, wait_until
+from browser_helpers import app_page
 from fakes import FakeClock, FakeSymbolicService, poll
 from hostile_helpers import widget
 from server_process import Server, tree_pss_bytes
@@ -151,3 +152,27 @@ def test_memory_is_given_back_once_for_calls_close_together():
     assert give_back_memory(0.05) and give_back_memory(0.05)  # glibc (Linux): a trim is coming
     poll(lambda: trims() > before, timeout=30, what="a trim")
     assert trims() == before + 1
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+def test_a_urdf_of_two_parts_uploaded_from_chromium_loads_and_leaves_nothing_in_flight(tmp_path):
+    """What a real browser sends still goes through (the upload watched, then ended by its last part):
+    a 700 kB URDF (two parts of 512 KiB) chosen in the Build tab's file input becomes the tab's robot."""
+    urdf = tmp_path / "padded.urdf"
+    joint = (
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+    )
+    padding = "<!--" + "x" * 700_000 + "-->"
+    urdf.write_text(
+        f'<?xml version="1.0"?><robot name="padded"><link name="a"/><link name="b"/>{joint}</robot>{padding}'
+    )
+    lab = Lab(port=0, robot="planar2", symbolic=FakeSymbolicService())
+    with app_page(lab) as (page, session, errors):
+        (client,) = lab.server.get_clients().values()
+        page.get_by_role("tab", name="Build").click()  # its panel holds the upload button's file input
+        page.locator("input[type=file]").set_input_files(str(urdf))
+        poll(lambda: session.state.robot_name.startswith("padded"), what="the uploaded robot shown")
+        assert lab.room.uploads_in_flight() == (0, 0) and not client.gui._current_file_upload_states
+        assert not errors
