@@ -18,14 +18,13 @@ import socket
 import sys
 import threading
 import time
-import urllib.parse
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 import viser
 
 from .services.catalog import RobotCatalog
-from .services.classroom import Classroom
+from .services.classroom import Classroom, presenter_link
 from .services.classroom_relay import RelayedClassroom, RoomChannel
 from .services.lifecycle import check_listen_address, wait_for_stop
 from .services.ratelimit import RoomLimits
@@ -302,7 +301,7 @@ def serve(
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:
-        link = f"{lab.url}/?presenter={urllib.parse.quote(presenter_token, safe='')}"
+        link = presenter_link(lab.url, presenter_token)
         print(
             f"Classroom mode: open {link} in the tab you present from (keep the link off the "
             "projector; it fills in the presenter token, masked, and drops it from the address bar). "

@@ -20,6 +20,7 @@ import math
 import secrets
 import threading
 import time
+import urllib.parse
 from collections.abc import Callable
 from typing import Protocol
 
@@ -31,6 +32,7 @@ from .ratelimit import RoomLimits
 __all__ = [
     "Classroom",
     "Member",
+    "presenter_link",
     "random_token",
     "token_weakness",
     "TOKEN_TRIES",
@@ -58,6 +60,14 @@ def random_token() -> str:
     """A fresh presenter token: 96 random bits in 16 URL-safe characters (never typed on the projector:
     ``serve`` prints a presenter link that fills it in)."""
     return secrets.token_urlsafe(12)
+
+
+def presenter_link(url: str, token: str) -> str:
+    """The presenter link ``serve`` prints, for the lab at ``url`` (``http://host:port``), by every path
+    (one process or workers): ``url/?presenter=TOKEN``. In the query, never the fragment: viser's page
+    opens its websocket at its own address minus the query, and a WebSocket address with a fragment is
+    refused (the page would never connect). The page's script drops it from the address bar."""
+    return f"{url.rstrip('/')}/?presenter={urllib.parse.quote(token, safe='')}"
 
 
 def token_weakness(token: str) -> str:

@@ -10,7 +10,7 @@ from hostile_helpers import RoundTrips, slider, widgets
 from wsclient import ViserWsClient
 
 from app.cli.main import main
-from app.services.classroom import TAKEN_OVER, Classroom, random_token, token_weakness
+from app.services.classroom import TAKEN_OVER, Classroom, presenter_link, random_token, token_weakness
 from app.services.ratelimit import RoomLimits
 from app.viser_adapter import message_class
 
@@ -97,6 +97,14 @@ def test_the_token_box_is_masked_and_filled_from_the_presenter_link():
         )
         assert 'input.type = "password"' in script["source"] and 'fields.get("presenter")' in script["source"]
         assert "history.replaceState" in script["source"]  # the token leaves the address bar
+
+
+def test_one_presenter_link_in_the_query_never_the_fragment():
+    """Issue 26, point 2: every path prints the link this one function builds (a fragment would keep
+    viser's websocket from connecting); the token is quoted, so any token survives the address."""
+    assert presenter_link("http://lab:8080", "a b/c#d") == "http://lab:8080/?presenter=a%20b%2Fc%23d"
+    assert presenter_link("http://lab:8080/", TOKEN) == f"http://lab:8080/?presenter={TOKEN}"
+    assert "#" not in presenter_link("http://lab:8080", TOKEN)
 
 
 def test_serve_prints_a_presenter_link_not_a_token_to_type(capsys):
