@@ -57,9 +57,11 @@ def cmdline(pid: int) -> str:
 class Server:
     """The app in a subprocess of its own session, with its log in a file: ``code`` run by ``python -c``,
     or ``argv``, the command line's arguments as a user types them after ``jacobian-lab`` (run as
-    ``python -m app.cli.main``, the console script's entry point)."""
+    ``python -m app.cli.main``, the console script's entry point), in the folder ``cwd``."""
 
-    def __init__(self, tmp_path: Path, code: str = "", argv: list[str] | None = None) -> None:
+    def __init__(
+        self, tmp_path: Path, code: str = "", argv: list[str] | None = None, cwd: Path = ROOT
+    ) -> None:
         self.log = tmp_path / "server.log"
         command = ["-m", "app.cli.main", *argv] if argv is not None else ["-c", code]
         with open(self.log, "wb") as log:
@@ -68,7 +70,7 @@ class Server:
                 stdout=subprocess.PIPE,
                 stderr=log,
                 text=True,
-                cwd=ROOT,
+                cwd=cwd,
                 env=dict(os.environ, PYTHONPATH=str(ROOT)),
                 start_new_session=True,
             )
