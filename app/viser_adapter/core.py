@@ -181,6 +181,8 @@ def _in(address: str, networks: Sequence[Network]) -> bool:
         ip = ipaddress.ip_address(address)
     except ValueError:
         return False
+    if isinstance(ip, ipaddress.IPv6Address) and ip.ipv4_mapped is not None:
+        ip = ip.ipv4_mapped  # a dual-stack socket's IPv4 peer, ::ffff:10.0.0.1
     return any(ip in network for network in networks)
 
 

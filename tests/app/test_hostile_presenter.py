@@ -209,6 +209,7 @@ def test_x_forwarded_for_is_read_only_from_a_trusted_proxy():
     assert forwarded_client("127.0.0.1", ["6.6.6.6, 203.0.113.7"], proxy) == "203.0.113.7"
     assert forwarded_client("127.0.0.1", ["203.0.113.7, 10.1.2.3"], proxy) == "203.0.113.7"  # two proxies
     assert forwarded_client("127.0.0.1", [], proxy) == "127.0.0.1"
+    assert forwarded_client("::ffff:127.0.0.1", ["203.0.113.7"], proxy) == "203.0.113.7"  # dual stack
     # A peer that is no declared proxy: its header is its own say, never read.
     assert forwarded_client("198.51.100.4", ["10.9.9.9"], proxy) == "198.51.100.4"
     assert forwarded_client("127.0.0.1", ["10.9.9.9"], ()) == "127.0.0.1"
