@@ -8,6 +8,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 from pathlib import Path
 
 from fakes import POLL_TIMEOUT
@@ -103,3 +104,43 @@ def rss_bytes(pid: int, field: str = "VmRSS") -> int:
         if line.startswith(field + ":"):
             return int(line.split()[1]) * 1024
     raise ValueError(f"no {field} for process {pid}")
+
+
+def tree_pss_bytes(pid: int) -> int:
+    """Proportional set size summed over the session of process ``pid`` (the server and every process it
+    started) [bytes]: what the whole tree costs the machine (shared pages counted once)."""
+    total = 0
+    for p in session_processes(os.getsid(pid)):
+        try:
+            text = Path(f"/proc/{p}/smaps_rollup").read_text()
+        except (FileNotFoundError, ProcessLookupError, PermissionError):
+            continue  # ended meanwhile
+        match = re.search(r"^Pss:\s+(\d+) kB", text, re.M)
+        total += int(match.group(1)) * 1024 if match else 0
+    return total
+
+
+class TreeMemory:
+    """The whole tree's PSS sampled in a thread every ``every`` seconds while a test runs."""
+
+    def __init__(self, pid: int, every: float = 0.2) -> None:
+        self.pid, self.every = pid, every
+        self.samples: list[tuple[float, int]] = []
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True, name="tree-memory")
+
+    def __enter__(self) -> TreeMemory:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join(10)
+
+    def _run(self) -> None:
+        start = time.monotonic()
+        while not self._stop.wait(self.every):
+            self.samples.append((time.monotonic() - start, tree_pss_bytes(self.pid)))
+
+    def peak(self) -> int:
+        return max((b for _, b in self.samples), default=0)
