@@ -27,7 +27,7 @@ from ..services.symbolic_service import (
     SymbolicUnavailable,
 )
 from ..views.panel import PanelView
-from .symbolic_words import told
+from .symbolic_words import TITLES, told
 
 __all__ = ["Wanted", "TabSymbols"]
 
@@ -84,22 +84,24 @@ class Wanted:
         self.shown = (None, waiting)
 
         def ready(f: Future) -> None:  # in the worker's callback thread: only a message (and a notice)
-            content, note = self._limited(f, joints) or result(f)
+            content, note = self._limited(f, joints, wanted=self.key == key) or result(f)
             self._dispatch(SymbolicResult(self.part, key, content, note))
 
         future.add_done_callback(ready)
         return True
 
-    def _limited(self, future: Future, joints: int) -> Shown | None:
+    def _limited(self, future: Future, joints: int, wanted: bool = True) -> Shown | None:
         """What the part shows when the server stopped the computation or did not start it (the tab is
-        told in a notice too, once per arm for "not attempted": the matrix's); None otherwise."""
+        told in a notice too if it still ``wanted`` it; "not attempted" by the matrix's slot
+        only); None otherwise."""
         if future.cancelled() or future.exception() is None:
             return None
         exc = future.exception()
         words = told(self.part, exc, joints)  # type: ignore[arg-type]
         if words is None:
             return None
-        if self._notify is not None and (self.part == "matrix" or not isinstance(exc, SymbolicNotAttempted)):
+        once = self.part == "matrix" or not isinstance(exc, SymbolicNotAttempted)
+        if wanted and once and self._notify is not None:
             self._notify(*words)
         return None, words[1]
 
@@ -123,16 +125,31 @@ class TabSymbols:
     Args:
         service: The shared symbolic service.
         dispatch: The session's way in.
-        notify: Shows the tab a notice (a computation stopped at a limit, or not attempted).
+        notify: Shows the tab a notice (a computation stopped at a limit; once per tab, an arm too large
+            to be attempted: a Build table grown row by row past the rule is told once, its panel at
+            every row).
     """
 
     def __init__(
         self, service: SymbolicService, dispatch: Callable[[Message], None], notify: Notify | None = None
     ) -> None:
+        self._told: set[str] = set()
+        if notify is not None:
+            notify = self._once_not_attempted(notify)
         self.jacobian = Wanted("matrix", service.mathml, service.release, dispatch, notify)
         self.inverse = Wanted("inverse", service.inverse, service.release_inverse, dispatch, notify)
         self.steps = Wanted("derive", service.steps, service.release_steps, dispatch, notify)
         self._changed: set[str] = set()
+
+    def _once_not_attempted(self, notify: Notify) -> Notify:
+        def told(title: str, body: str) -> None:
+            if title == TITLES["not attempted"]:
+                if title in self._told:
+                    return
+                self._told.add(title)
+            notify(title, body)
+
+        return told
 
     def take(self, message: SymbolicResult) -> bool:
         """A result arrived (in the session's loop): keep it if still wanted; returns whether it was."""
