@@ -165,3 +165,5 @@ def test_a_24_joint_upload_to_the_default_serve_keeps_the_whole_tree_bounded(tmp
                 pass
         proc.wait(30)
         log.close()
+        if proc.stdout is not None:
+            proc.stdout.close()
