@@ -56,7 +56,7 @@ def test_a_computation_that_eats_memory_is_stopped_at_the_limit_and_the_next_one
         (pid,) = pool.pids()
         ready = resident_bytes(pid)
         assert ready is not None
-        hog = pool.submit(_hog, 5)
+        hog = pool.submit(_hog, 2)  # 100 MB/s: a poll every 0.1 s overshoots by about 10 MB
         after = pool.submit(os.getpid)
         peak = 0
         while not hog.done() and not _gone(pid):  # the process's memory over time
