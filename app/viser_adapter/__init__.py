@@ -10,8 +10,9 @@ Wrapped:
 * :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
 * :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
   to one client through ``client._websock_connection``.
-* :func:`client_address` — the IP a tab connected from (the server's connection table), by which
-  wrong presenter tokens are counted.
+* :func:`client_address` — the IP a tab connected from (the server's connection table), or behind a
+  reverse proxy declared with ``--trusted-proxy`` (:func:`trusted_proxies`), from its
+  ``X-Forwarded-For`` (:func:`forwarded_client`); the log of wrong presenter tokens names it.
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
@@ -57,6 +58,7 @@ from .core import (
     ViserApiChanged,
     client_address,
     clip,
+    forwarded_client,
     handle_uuid,
     is_removed,
     message_class,
@@ -65,6 +67,7 @@ from .core import (
     run_javascript,
     scene_handles,
     set_page_title,
+    trusted_proxies,
 )
 from .events import LoopSafeEvent, install_loop_safe_events
 from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
@@ -120,5 +123,7 @@ __all__ = [
     "set_pose",
     "clip",
     "client_address",
+    "forwarded_client",
+    "trusted_proxies",
     "quiet_banner",
 ]
