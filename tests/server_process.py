@@ -8,6 +8,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 from pathlib import Path
 
 from fakes import POLL_TIMEOUT
@@ -121,3 +122,29 @@ def tree_pss_bytes(pid: int) -> int:
             continue
         total += sum(int(line.split()[1]) for line in text.splitlines() if line.startswith("Pss:"))
     return total * 1024
+
+
+class TreeMemory:
+    """The whole tree's PSS sampled in a thread every ``every`` seconds while a test runs."""
+
+    def __init__(self, pid: int, every: float = 0.2) -> None:
+        self.pid, self.every = pid, every
+        self.samples: list[tuple[float, int]] = []
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True, name="tree-memory")
+
+    def __enter__(self) -> TreeMemory:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join(10)
+
+    def _run(self) -> None:
+        start = time.monotonic()
+        while not self._stop.wait(self.every):
+            self.samples.append((time.monotonic() - start, tree_pss_bytes(self.pid)))
+
+    def peak(self) -> int:
+        return max((b for _, b in self.samples), default=0)
