@@ -18,14 +18,13 @@ import socket
 import sys
 import threading
 import time
-import urllib.parse
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 import viser
 
 from .services.catalog import RobotCatalog
-from .services.classroom import Classroom
+from .services.classroom import Classroom, presenter_link
 from .services.classroom_relay import RelayedClassroom, RoomChannel
 from .services.lifecycle import check_listen_address, wait_for_stop
 from .services.ratelimit import RoomLimits
@@ -42,6 +41,7 @@ from .viser_adapter import (
     install_message_limits,
     listen_on,
     quiet_banner,
+    trusted_proxies,
     welcome_tabs,
 )
 
@@ -73,6 +73,8 @@ class Lab:
         room_pipe: A worker's end of its pipe to the parent of ``serve --workers N --presenter``: classroom
             mode whose token, presenter and follower count the parent keeps for every worker
             (:mod:`app.services.classroom_relay`); ``presenter_token`` is then not given.
+        trusted_proxy: Addresses or networks of reverse proxies whose ``X-Forwarded-For`` names the
+            client (``--trusted-proxy``); any other peer's header is ignored.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -93,7 +95,9 @@ class Lab:
         listen_socket: socket.socket | None = None,
         xacro_args: Mapping[str, str] | None = None,
         room_pipe: object = None,
+        trusted_proxy: Sequence[str] = (),
     ) -> None:
+        self.trusted_proxies = trusted_proxies(trusted_proxy)
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
             files.append(robot)
@@ -128,12 +132,10 @@ class Lab:
         self.classroom: Classroom | None = None
         if room_pipe is not None:
             channel = RoomChannel(room_pipe)
-            self.classroom = RelayedClassroom(
-                channel, self.catalog, limits=self.room, address_of=self._address
-            )
+            self.classroom = RelayedClassroom(channel, self.catalog, address_of=self._address)
             channel.start()
         elif presenter_token:
-            self.classroom = Classroom(presenter_token, limits=self.room, address_of=self._address)
+            self.classroom = Classroom(presenter_token, address_of=self._address)
         self._gone: set[int] = set()
         self._lock = threading.Lock()
         self._session_hooks: list[Callable[[ClientSession], None]] = []
@@ -215,7 +217,7 @@ class Lab:
             session.close()
 
     def _address(self, client_id: int) -> str:
-        return client_address(self.server, client_id)
+        return client_address(self.server, client_id, self.trusted_proxies)
 
     def _symbolic_restarted(self, notice: str) -> None:
         """Tell every tab that the symbolic worker stopped and was restarted (its request is retried)."""
@@ -262,6 +264,7 @@ def serve(
     presenter_token: str | None = None,
     allow_origin: Sequence[str] = (),
     xacro_args: Mapping[str, str] | None = None,
+    trusted_proxy: Sequence[str] = (),
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -274,6 +277,7 @@ def serve(
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: Classroom mode with this presenter token (see :class:`Lab`).
         allow_origin: Origins of pages that may embed the lab (see :class:`Lab`).
+        trusted_proxy: Reverse proxies whose ``X-Forwarded-For`` is read (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -299,10 +303,11 @@ def serve(
         presenter_token=presenter_token,
         allow_origin=allow_origin,
         xacro_args=xacro_args,
+        trusted_proxy=trusted_proxy,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:
-        link = f"{lab.url}/?presenter={urllib.parse.quote(presenter_token, safe='')}"
+        link = presenter_link(lab.url, presenter_token)
         print(
             f"Classroom mode: open {link} in the tab you present from (keep the link off the "
             "projector; it fills in the presenter token, masked, and drops it from the address bar). "

@@ -66,8 +66,11 @@ class ViserWsClient:
         messages: Every message received, as (perf_counter time, message dict), in order.
     """
 
-    def __init__(self, url: str, width: int = 800, height: int = 600) -> None:
+    def __init__(
+        self, url: str, width: int = 800, height: int = 600, headers: dict[str, str] | None = None
+    ) -> None:
         self.url = url
+        self.headers = dict(headers or {})  # extra handshake headers (e.g. a proxy's X-Forwarded-For)
         self.size = (width, height)
         self.messages: list[tuple[float, dict[str, Any]]] = []
         self._cond = threading.Condition()
@@ -109,7 +112,11 @@ class ViserWsClient:
 
     async def _connect(self) -> None:
         self._ws = await websockets.connect(
-            self.url, subprotocols=[f"viser-v{viser.__version__}"], max_size=None, compression=None
+            self.url,
+            subprotocols=[f"viser-v{viser.__version__}"],
+            max_size=None,
+            compression=None,
+            additional_headers=self.headers or None,
         )
         self._loop.create_task(self._receive())
         w, h = self.size

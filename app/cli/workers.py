@@ -33,10 +33,10 @@ import logging
 import os
 import socket
 import sys
-import urllib.parse
 from typing import Any
 
 from app.services.catalog import DEFAULT_ROBOT
+from app.services.classroom import presenter_link
 from app.services.lifecycle import install_stop_signals
 
 from .sockets import listening_socket, port_socket
@@ -87,7 +87,7 @@ def serve_workers(
         print(f"Jacobian Lab: open http://{shown}:{pool.port} in a browser (robot: {robot}; {workers} worker "
               f"processes: {pids})", flush=True)  # fmt: skip
         if presenter_token:
-            link = f"http://{shown}:{pool.port}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
+            link = presenter_link(f"http://{shown}:{pool.port}", presenter_token)
             print(
                 f"Classroom mode: open {link} in the tab you present from (keep the link off the "
                 "projector; it fills in the presenter token, masked, and drops it from the address bar). "

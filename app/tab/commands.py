@@ -44,6 +44,7 @@ from .following import Following
 from .notices import Notices
 from .recorder import TabRecorder, demo_zip
 from .robots import TabCatalog, display_name
+from .symbolic_words import told
 
 __all__ = ["CommandRunner", "LOOKING", "MAX_QUEUED_DOWNLOADS"]
 
@@ -252,7 +253,11 @@ class CommandRunner:
             except SymbolicUnavailable as exc:
                 self.notices.notify("Download not available", str(exc))
             except Exception as exc:
-                self.notices.error(exc)
+                words = told("download", exc, robot.dof, label)
+                if words is not None:  # stopped at a limit of the server's, or not attempted
+                    self.notices.notify(*words)
+                else:
+                    self.notices.error(exc)
             else:
                 self.client.send_file_download(filename, content, save_immediately=True)
             self._next_download(state)

@@ -93,7 +93,7 @@ class ClientSession:
             lambda title, body: self.notices.notify(title, body), lambda: self._closed,
         )  # fmt: skip
         self.page.following, self.following.page = self.following, self.page
-        self.symbols = TabSymbols(symbolic, self.dispatch)
+        self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
             client, self.catalog, symbolic, self.recorder, self.following, self.notices,

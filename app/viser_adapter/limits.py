@@ -326,6 +326,11 @@ async def _guarded_consumer(
                     await websocket.close(1008, "too many messages")
     finally:
         drain.cancel()
+        # The closing exception's traceback holds this frame in a cycle that only the cyclic collector
+        # breaks: drop what the frame holds, the last frame and message read (an upload's part, 1 MiB
+        # with its frame) and the messages waiting, so that they are freed when the tab leaves.
+        limiter.clear()
+        raw = message = None
 
 
 async def _drain(limiter: TabLimiter, wake: asyncio.Event, handle: Callable, limits: MessageLimits) -> None:

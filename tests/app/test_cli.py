@@ -131,6 +131,8 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
                 "8123",
                 "--workers",
                 "1",
+                "--trusted-proxy",
+                "127.0.0.1",
             ]
         )
         == 0
@@ -147,6 +149,7 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "presenter_token": None,
             "allow_origin": [],
             "xacro_args": None,
+            "trusted_proxy": ["127.0.0.1"],
         }
     ]
 
