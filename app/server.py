@@ -232,7 +232,7 @@ class Lab:
         with self._lock:
             sessions = list(self.sessions.values())
         for session in sessions:
-            session.notices.notify("Symbolic worker restarted", notice)
+            session.notices.notify(session.notices.tr.gettext("Symbolic worker restarted"), notice)
 
     def session(self, timeout: float = 10.0) -> ClientSession:
         """The most recent client's session, waiting up to ``timeout`` seconds for one (for tests)."""

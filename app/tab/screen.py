@@ -93,7 +93,7 @@ class Screen:
                 if rebuild or self.scene is None or self._foreign:
                     if self.scene is not None:
                         self.scene.remove()
-                    self.scene = SceneView(self.client, state.robot, self.dispatch)
+                    self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
                     self._foreign = False
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())

@@ -109,7 +109,7 @@ class ClientSession:
         self.room_language = language if is_language(language) else ""
         self.browser_language = negotiate(accept_language, default="") if accept_language else ""
         self.language = self._wanted_language = self._decide_language()
-        self.page.tr = translations(self.language)
+        self.page.tr = self.notices.tr = translations(self.language)
         self.page.following, self.following.page = self.following, self.page
         self.symbols = TabSymbols(symbolic, self.dispatch)
         self.recorder = TabRecorder(self.subscribe)
@@ -256,7 +256,7 @@ class ClientSession:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
         if self._wanted_language != self.language:  # the whole page again, in the tab's new language
             self.language = self._wanted_language
-            self.page.tr = translations(self.language)
+            self.page.tr = self.notices.tr = translations(self.language)
             self.screen.relanguage(self.page.tr, state)
             self._tab_to_open = self.page.tab  # the rebuilt panel opens on its first tab
             rebuild = True
