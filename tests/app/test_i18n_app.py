@@ -162,3 +162,27 @@ def test_tab_labels_of_every_language_map_back_to_the_english_key():
     for code in ("en", "pt", "es", "pl"):
         for label in TAB_LABELS:
             assert TAB_KEYS[translations(code).gettext(label)] == label
+
+
+def test_the_build_tab_takes_a_decimal_comma_in_portuguese_and_refuses_a_thousands_point_in_words():
+    with running_lab() as (_lab, session, _ws):
+        report(session, address="?lang=pt")
+        editor = session.panel.editor
+        editor.start.value = "tabela vazia (uma junta)"
+        session.settle()
+        assert editor.kind.value == "rotacional"
+        editor.a.value = "0,3"  # in Portuguese simply 0.3 (English refuses it: "use a point")
+        session.settle()
+        assert editor.error == "" and session.state.robot.dh[0].a == pytest.approx(0.3)
+        assert "0,3" in editor.summary.content and "1 junta, DH padrão" in editor.summary.content
+        good = session.state.robot
+        editor.a.value = "1.234"  # one thousand two hundred and thirty-four, or 1.234? refused
+        session.settle()
+        assert session.state.robot is good
+        assert editor.error == (
+            "Linha 1, a [m]: “1.234”: escreva as casas decimais depois da vírgula (1,234), sem separar os milhares"
+        )
+        editor.a.value = "0,5"
+        editor.kind.value = "prismática"
+        session.settle()
+        assert session.state.robot.dh[0].joint == "prismatic" and session.state.robot.dh[0].a == 0.5

@@ -146,7 +146,7 @@ class PanelView:
             )
             gui.add_html(f'<div class="jl-note">{fmt.escape(note)}</div>')
         with self.tabs["build"]:
-            self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100)
+            self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100, tr=tr)
         self.joints: JointsPanel | None = None
         self.parts: dict[str, TabView] = {}
         """The tabs' views for the current robot, by tab name (also ``panel.<name>``)."""
