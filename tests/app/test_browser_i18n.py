@@ -90,3 +90,23 @@ def test_the_puma_at_its_wrist_singularity_speaks_the_browsers_language(tmp_path
         cut = [t["text"] for t in texts if t["cut"]]
         assert not cut, f"cut off: {cut}"
         assert not errors
+
+
+@pytest.mark.parametrize(("locale", "code"), [("pt-BR", "pt"), ("es-AR", "es"), ("pl-PL", "pl")])
+def test_the_motion_tab_plays_the_preset_in_the_browsers_language(tmp_path, locale, code):
+    out = _out(tmp_path)
+    _ = translations(code).gettext
+    with app_page(Lab(port=0, symbolic=FakeSymbolicService()), locale=locale) as (page, session, errors):
+        poll(lambda: session.language == code, what=f"the tab speaks {code}")
+        page.get_by_role("tab", name=_("Motion")).click()
+        page.get_by_role("button", name=_("Play"), exact=True).click()
+        poll(lambda: session.state.motion.trace is not None and len(session.state.motion.trace) > 20)
+        page.screenshot(path=str(out / f"i18n_{code}_motion_playing_1280x720.png"))
+        texts = page.evaluate(_TEXTS)
+        shown = {t["text"] for t in texts}
+        left = sorted(shown & _english_only(code))
+        assert not left, f"English left on a {code} screen: {left}"
+        assert _("Resolved rate: q̇ = J⁺v held in time") in shown
+        cut = [t["text"] for t in texts if t["cut"]]
+        assert not cut, f"cut off: {cut}"
+        assert not errors

@@ -242,7 +242,7 @@ class PanelView:
         for name, part in self.parts.items():
             if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)
-        live = live_html(state)
+        live = live_html(state, self.tr)
         if live != self.live.content:
             self.live.content = live
         if self.live.visible != bool(live):
@@ -311,7 +311,7 @@ TABS: tuple[Tab, ...] = (
         "motion",
         N_("Motion"),
         viser.Icon.PLAYER_PLAY,
-        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100),
+        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100, c.tr),
     ),
     Tab(
         "maps",
