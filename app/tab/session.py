@@ -209,6 +209,8 @@ class ClientSession:
     def _take(self, batch: Batch, message: Message) -> None:
         """Take one message into ``batch``: reduce an action, run a command, draw a mirror."""
         if isinstance(message, Mirror):
+            if getattr(message.scene, "language", self.language) != self.language:
+                message = Mirror(message.state, message.snapshot)  # its words are not ours: draw our own
             if message.state.robot is not self.state.robot:  # only then may it be unknown here
                 self.catalog.keep_shown(message.state.robot_name, message.state.robot)
             batch.take_mirror(message, self.screen.scene is not None)
