@@ -99,6 +99,8 @@ class Lab:
         room_pipe: object = None,
         language: str = "",
     ) -> None:
+        if language and not is_language(language):  # before anything starts
+            raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
             files.append(robot)
@@ -117,8 +119,6 @@ class Lab:
         self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
-        if language and not is_language(language):
-            raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
         self.language = language
         if listen_socket is not None:  # one of several worker processes accepting on one socket
             port = listen_socket.getsockname()[1]

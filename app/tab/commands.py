@@ -193,7 +193,9 @@ class CommandRunner:
                 _("Nothing recorded"), _("Move something between starting and stopping the recording.")
             )
             return
-        title = f"{state.robot.title or state.robot.name} — recorded in Jacobian Lab"
+        title = self.notices.tr.gettext("{robot} — recorded in Jacobian Lab").format(
+            robot=state.robot.title or state.robot.name
+        )
         tr = self.notices.tr
         frames_text = tr.npgettext("recording", "{n} frame", "{n} frames", len(frames)).format(n=len(frames))
         remove_note = self.notices.preparing(tr.gettext("Preparing the demo…"), frames_text)
@@ -209,7 +211,7 @@ class CommandRunner:
             except Exception as exc:
                 self.notices.error(exc)
 
-        background().submit(demo_zip, frames, title).add_done_callback(done)
+        background().submit(demo_zip, frames, title, self.notices.tr).add_done_callback(done)
 
     # ------------------------------------------------------------------ downloads
     def _download(self, state: LabState, label: str) -> None:

@@ -191,3 +191,19 @@ def test_the_build_tab_takes_a_decimal_comma_in_portuguese_and_refuses_a_thousan
         editor.kind.value = "prismática"
         session.settle()
         assert session.state.robot.dh[0].joint == "prismatic" and session.state.robot.dh[0].a == 0.5
+
+
+def test_record_lang_pl_writes_the_demos_words_in_polish(tmp_path):
+    from test_record import RECORDING, _last, read_viser
+
+    from app.cli.main import main
+
+    out = tmp_path / "demo"
+    assert main(["record", "ur5", "-o", str(out), "--seconds", "1", "--fps", "10", "--lang", "pl"]) == 0
+    f = read_viser((out / RECORDING).read_bytes())
+    assert _last(f["messages"], "/demo/readout", "text").startswith("konfiguracja osobliwa")
+    title = _last(f["messages"], "/demo/title", "text")
+    assert "— home →" in title and "osobliwość" in title  # "UR5 — home → … (osobliwość: …)"
+    lost = [_last(f["messages"], f"/demo/lab/jacobian/lost_label_{i}", "text") for i in range(3)]
+    assert any(t and ("utracon" in t) for t in lost), lost
+    assert main(["record", "ur5", "-o", str(out), "--lang", "fr"]) == 2
