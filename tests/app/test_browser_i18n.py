@@ -18,6 +18,7 @@ from fakes import FakeSymbolicService, poll
 from app.core.actions import GoTo
 from app.core.i18n import LOCALE_DIR, translations
 from app.server import Lab
+from app.views.panel import TAB_LABELS
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -109,4 +110,23 @@ def test_the_motion_tab_plays_the_preset_in_the_browsers_language(tmp_path, loca
         assert _("Resolved rate: q̇ = J⁺v held in time") in shown
         cut = [t["text"] for t in texts if t["cut"]]
         assert not cut, f"cut off: {cut}"
+        assert not errors
+
+
+@pytest.mark.parametrize(("locale", "code"), [("pt-BR", "pt"), ("pl-PL", "pl"), ("en-US", "en")])
+def test_the_longer_phrases_are_whole_at_a_phones_width(tmp_path, locale, code):
+    out = _out(tmp_path)
+    phone = {"width": 390, "height": 844}
+    with app_page(Lab(port=0, symbolic=FakeSymbolicService()), phone, locale=locale) as (page, session, errors):
+        poll(lambda: session.language == code, what=f"the tab speaks {code}")
+        session.dispatch(GoTo("wrist_singular"))
+        session.settle()
+        poll(lambda: page.locator(".jl-status").first.is_visible())
+        page.screenshot(path=str(out / f"i18n_{code}_phone_390x844.png"))
+        texts = page.evaluate(_TEXTS)
+        # viser's one-line summary of the folded tab list ("J(q) · … · Build") ends in "…" at a phone's
+        # width in every language, English too: its tabs open whole.
+        summary = " · ".join(translations(code).gettext(label) for label in TAB_LABELS)
+        cut = [t["text"] for t in texts if t["cut"] and t["text"] != summary]
+        assert not cut, f"cut off at 390 px: {cut}"
         assert not errors
