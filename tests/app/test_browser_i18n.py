@@ -117,7 +117,11 @@ def test_the_motion_tab_plays_the_preset_in_the_browsers_language(tmp_path, loca
 def test_the_longer_phrases_are_whole_at_a_phones_width(tmp_path, locale, code):
     out = _out(tmp_path)
     phone = {"width": 390, "height": 844}
-    with app_page(Lab(port=0, symbolic=FakeSymbolicService()), phone, locale=locale) as (page, session, errors):
+    with app_page(Lab(port=0, symbolic=FakeSymbolicService()), phone, locale=locale) as (
+        page,
+        session,
+        errors,
+    ):
         poll(lambda: session.language == code, what=f"the tab speaks {code}")
         session.dispatch(GoTo("wrist_singular"))
         session.settle()
