@@ -185,11 +185,11 @@ class PanelView:
             (c for c in chains if c.is_default), None
         )
         if len(chains) > 1:
-            labels = {_chain_label(c): c.tip_link for c in chains}
+            labels = {_chain_label(c, self.tr): c.tip_link for c in chains}
             self.chain = self.gui.add_dropdown(
                 self.tr.gettext("Chain"),
                 tuple(labels),
-                initial_value=_chain_label(shown) if shown else next(iter(labels)),
+                initial_value=_chain_label(shown, self.tr) if shown else next(iter(labels)),
                 order=1.2,
                 hint=self.tr.gettext("The serial chain of the URDF shown: from its base link to a tip link."),
             )
@@ -341,5 +341,6 @@ _ALWAYS_DRAWN = frozenset({"motion", "derive"})
 click applies, the step a click moves from)."""
 
 
-def _chain_label(chain: ChainInfo) -> str:
-    return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"
+def _chain_label(chain: ChainInfo, tr: Translator) -> str:
+    joints = tr.ngettext("{n} joint", "{n} joints", chain.dof).format(n=chain.dof)
+    return f"{chain.base_link} → {chain.tip_link} ({joints})"
