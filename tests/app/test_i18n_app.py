@@ -153,9 +153,9 @@ def test_a_follower_in_spanish_follows_a_presenter_in_portuguese_and_reads_spani
             assert follower.language == "es"
             # the 3-D words too: the follower draws its own scene from the presenter's state
             labels = [lab for lab in follower.scene.overlays.lost_labels if lab.visible]
-            assert [lab.text for lab in labels] == ["muñeca: eje de giro perdido"]
+            assert [lab.text for lab in labels] == ["muñeca:\neje de giro perdido"]  # longer: two lines
             shown = [lab.text for lab in presenter.scene.overlays.lost_labels if lab.visible]
-            assert shown == ["punho: eixo de giro perdido"]
+            assert shown == ["punho:\neixo de giro perdido"]
             # the presenter's open tab reaches the follower by its key, shown in the follower's words
             report(presenter, kind="tab", tab="Movimento")
             wait_until(lambda: follower.page.tab == "Motion")

@@ -340,6 +340,13 @@ class Overlays:
             else:
                 node.set(d.centre, e.axes, e.radii * scale, True, cap, floor)
 
+    def _words(self, label: str) -> str:
+        """A lost direction's words in the tab's language; longer than the English (which the camera
+        keeps in view), they break after their colon: "muñeca:\neje de giro perdido" (viser's labels
+        keep line breaks), so they do not run under the panel at 1280×720."""
+        text = self.tr.gettext(label)
+        return text.replace(": ", ":\n", 1) if len(text) > len(label) else text
+
     def _lost(self, snap: Snapshot, unit: float) -> None:
         """Every lost direction at its own point: an arrow for a translation (starting a little beyond
         the point, away from the arm), an axis with a ring for a rotation, each with its label."""
@@ -358,13 +365,13 @@ class Overlays:
                 starts.append(start)
                 vectors.append(u * size)
                 tips.append(start + u * (size + 0.1 * unit))
-                texts.append(self.tr.gettext(_LABELS[loss.part, "v"]))
+                texts.append(self._words(_LABELS[loss.part, "v"]))
             if show_w:
                 half = length * (np.sqrt(loss.rotation_share) if loss.part == "tool" else 0.75)
                 segments.append(np.array([[point - a * half, point + a * half]]))
                 segments.append(ring(point + a * 0.6 * half, a, 0.25 * half))
                 tips.append(point + a * (half + 0.1 * unit))
-                texts.append(self.tr.gettext(_LABELS[loss.part, "w"]))
+                texts.append(self._words(_LABELS[loss.part, "w"]))
         if starts:
             self.lost_v.set(np.array(starts), np.array(vectors), np.repeat(_LOST_COLORS, len(starts), axis=0))
         else:
