@@ -168,6 +168,7 @@ def show(
     base_link: str | None = None,
     tip_link: str | None = None,
     xacro_args: Mapping[str, str] | None = None,
+    lang: str = "",
 ) -> NotebookLab:
     """Start the app for ``robot`` (a library name or robot file) or ``urdf`` in this kernel and show
     it in the cell (the returned :class:`NotebookLab` displays itself as the cell's value).
@@ -179,9 +180,12 @@ def show(
         allow_origin: Origins of pages allowed to connect besides the lab's own (a notebook behind a
             proxy: its own origin), as ``jacobian-lab serve --allow-origin``.
         base_link, tip_link, xacro_args: The chain of a URDF and a xacro file's arguments.
+        lang: The lab's language ("pt", "es", "pl" or "en"; default: the browser's), as
+            ``jacobian-lab serve --lang``.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot cannot be loaded.
+        ValueError: a language the app does not have.
     """
     with quiet():  # viser's banner: the cell shows the lab instead
         lab = Lab(
@@ -193,6 +197,7 @@ def show(
             tip_link=tip_link,
             allow_origin=allow_origin,
             xacro_args=xacro_args,
+            language=lang,
         )
     return NotebookLab(lab, height=height, url=url)
 

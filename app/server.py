@@ -23,6 +23,7 @@ from pathlib import Path
 
 import viser
 
+from .core.i18n import CODES, is_language
 from .services.catalog import RobotCatalog
 from .services.classroom import Classroom, presenter_link
 from .services.classroom_relay import RelayedClassroom, RoomChannel
@@ -34,6 +35,7 @@ from .tab.session import ClientSession
 from .viser_adapter import (
     allow_origins,
     client_address,
+    client_header,
     install_fast_prop_casts,
     install_icon_cache,
     install_input_checks,
@@ -73,6 +75,8 @@ class Lab:
         room_pipe: A worker's end of its pipe to the parent of ``serve --workers N --presenter``: classroom
             mode whose token, presenter and follower count the parent keeps for every worker
             (:mod:`app.services.classroom_relay`); ``presenter_token`` is then not given.
+        language: The room's language (``en``, ``pt``, ``es``, ``pl``): every tab speaks it unless it
+            chose its own (``?lang=``, the Language menu); "" (default): each tab its browser's.
         trusted_proxy: Addresses or networks of reverse proxies whose ``X-Forwarded-For`` names the
             client (``--trusted-proxy``); any other peer's header is ignored.
 
@@ -95,8 +99,11 @@ class Lab:
         listen_socket: socket.socket | None = None,
         xacro_args: Mapping[str, str] | None = None,
         room_pipe: object = None,
+        language: str = "",
         trusted_proxy: Sequence[str] = (),
     ) -> None:
+        if language and not is_language(language):  # before anything starts
+            raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
         self.trusted_proxies = trusted_proxies(trusted_proxy)
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
@@ -116,6 +123,7 @@ class Lab:
         self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
+        self.language = language
         if listen_socket is not None:  # one of several worker processes accepting on one socket
             port = listen_socket.getsockname()[1]
             listen_on(listen_socket)
@@ -168,6 +176,8 @@ class Lab:
                 self.default_robot,
                 renderer=self.renderer,
                 classroom=self.classroom,
+                language=self.language,
+                accept_language=client_header(self.server, client.client_id, "Accept-Language"),
             )
         except Exception as exc:  # this client sees the error; the server and other clients carry on
             log.error("client %s: cannot start a session", client.client_id, exc_info=exc)
@@ -224,7 +234,7 @@ class Lab:
         with self._lock:
             sessions = list(self.sessions.values())
         for session in sessions:
-            session.notices.notify("Symbolic worker restarted", notice)
+            session.notices.notify(session.notices.tr.gettext("Symbolic worker restarted"), notice)
 
     def session(self, timeout: float = 10.0) -> ClientSession:
         """The most recent client's session, waiting up to ``timeout`` seconds for one (for tests)."""
@@ -264,6 +274,7 @@ def serve(
     presenter_token: str | None = None,
     allow_origin: Sequence[str] = (),
     xacro_args: Mapping[str, str] | None = None,
+    language: str = "",
     trusted_proxy: Sequence[str] = (),
 ) -> Lab:
     """Start the browser app and print its URL.
@@ -277,6 +288,7 @@ def serve(
         base_link, tip_link: The chain of a URDF to show (default: chosen by the loader).
         presenter_token: Classroom mode with this presenter token (see :class:`Lab`).
         allow_origin: Origins of pages that may embed the lab (see :class:`Lab`).
+        language: The room's language (see :class:`Lab`).
         trusted_proxy: Reverse proxies whose ``X-Forwarded-For`` is read (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
@@ -303,6 +315,7 @@ def serve(
         presenter_token=presenter_token,
         allow_origin=allow_origin,
         xacro_args=xacro_args,
+        language=language,
         trusted_proxy=trusted_proxy,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)

@@ -74,3 +74,18 @@ def test_the_wheel_installs_in_a_fresh_venv_and_runs_from_it(tmp_path):
     assert doc["robot"] == "planar2" and doc["shape"] == [6, 2]  # read from the wheel's robots/data
     names = _run([str(py), "-c", "import robots; print(robots.names())"], elsewhere, env).stdout
     assert "puma560" in names and "trr" in names
+    # the compiled catalogs ride in the wheel: a Polish tab speaks Polish from the installed package
+    polish = _run(
+        [
+            str(py),
+            "-c",
+            "from app.core.i18n import LOCALE_DIR, translations; print(LOCALE_DIR); "
+            "print(translations('pl').gettext('the box is empty: type a number'))",
+        ],
+        elsewhere,
+        env,
+    ).stdout.splitlines()
+    assert (
+        Path(polish[0]).resolve().is_relative_to(home.resolve())
+        and polish[1] == "pole jest puste: wpisz liczbę"
+    )

@@ -19,6 +19,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from app.core.i18n import CODES
+
 from .export import add_chain_arguments, xacro_arguments
 
 __all__ = ["main"]
@@ -68,6 +70,12 @@ def _build_parser() -> argparse.ArgumentParser:
         metavar="TOKEN",
         help="classroom mode; alone, with a random strong token and a presenter link (printed); a weak "
         "TOKEN given by hand is warned about",
+    )
+    serve.add_argument(
+        "--lang",
+        choices=CODES,
+        default="",
+        help="the room's language (default: each tab speaks its browser's; a tab may still choose its own)",
     )
     serve.add_argument(
         "--allow-origin",
@@ -162,6 +170,7 @@ def _serve(args: argparse.Namespace) -> int:
             options = {"robot": args.robot, "urdf": args.urdf, "base_link": args.base, "tip_link": args.tip}
             options["allow_origin"], options["trusted_proxy"] = args.allow_origin, args.trusted_proxy
             options["xacro_args"] = xacro
+            options["language"] = args.lang
             return serve_workers(workers, options, host=args.host, port=args.port, presenter_token=token)
         from app.server import serve
 
@@ -176,6 +185,7 @@ def _serve(args: argparse.Namespace) -> int:
             presenter_token=token,
             allow_origin=args.allow_origin,
             xacro_args=xacro,
+            language=args.lang,
             trusted_proxy=args.trusted_proxy,
         )
     except (JacobianLabError, ValueError, RuntimeError) as exc:

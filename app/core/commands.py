@@ -33,6 +33,7 @@ __all__ = [
     "ExploreAlone",
     "FollowPresenter",
     "Mirror",
+    "ChooseLanguage",
     "Redraw",
     "ResetView",
     "PageReport",
@@ -131,6 +132,15 @@ class OpenTab:
 
 
 @dataclass(frozen=True)
+class ChooseLanguage:
+    """Speak language ``code`` in this tab (its Language menu): the tab's own choice, never the
+    state's, so a follower keeps its language while it follows the presenter. The session redraws the
+    whole page in that language and keeps it in the page's address (``?lang=``)."""
+
+    code: str
+
+
+@dataclass(frozen=True)
 class ToggleRecording:
     """Start recording what this tab shows, or stop and download it as a demo that needs no server
     ."""
@@ -186,6 +196,7 @@ Command = (
     | ResetView
     | PageReport
     | OpenTab
+    | ChooseLanguage
     | SymbolicResult
 )
 """Everything the session carries out itself (a union, told apart by type)."""

@@ -14,6 +14,8 @@ from typing import Any, Literal
 
 from kinematics.steps import METHODS as STEP_METHODS
 
+from .i18n import N_
+
 __all__ = ["Option", "OPTIONS", "OPTION", "Kind", "Tab", "default", "options_of", "Options", "Frame"]
 
 Kind = Literal["bool", "float", "choice", "joint", "step"]
@@ -74,46 +76,50 @@ OPTIONS: tuple[Option, ...] = (
         "velocity_ellipsoid",
         "bool",
         True,
-        "Velocity ellipsoid",
-        "Translational manipulability ellipsoid at the tool point: "
-        "semi-axes σᵢ along the left singular vectors of the base-frame linear rows of J.",
+        N_("Velocity ellipsoid"),
+        N_(
+            "Translational manipulability ellipsoid at the tool point: "
+            "semi-axes σᵢ along the left singular vectors of the base-frame linear rows of J."
+        ),
     ),
     Option(
         "rotational_ellipsoid",
         "bool",
         False,
-        "Rotational ellipsoid",
-        "Angular-velocity ellipsoid (ω rows of J).",
+        N_("Rotational ellipsoid"),
+        N_("Angular-velocity ellipsoid (ω rows of J)."),
     ),
     Option(
         "force_ellipsoid",
         "bool",
         False,
-        "Force ellipsoid",
-        "Semi-axes 1/σᵢ along the same directions (capped at a singularity).",
+        N_("Force ellipsoid"),
+        N_("Semi-axes 1/σᵢ along the same directions (capped at a singularity)."),
     ),
     Option(
         "columns",
         "bool",
         True,
-        "Columns Jᵢ (linear part)",
-        "Tool-point velocity produced by each joint alone at unit rate.",
+        N_("Columns Jᵢ (linear part)"),
+        N_("Tool-point velocity produced by each joint alone at unit rate."),
     ),
-    Option("angular_columns", "bool", False, "Columns Jᵢ (angular part)", "Drawn on each joint axis."),
+    Option(
+        "angular_columns", "bool", False, N_("Columns Jᵢ (angular part)"), N_("Drawn on each joint axis.")
+    ),
     Option(
         "frames",
         "bool",
         False,
-        "Frames 0…n and tool",
-        "A triad for every DH / link frame and the tool frame.",
+        N_("Frames 0…n and tool"),
+        N_("A triad for every DH / link frame and the tool frame."),
     ),
-    Option("labels", "bool", True, "Joint labels", "Name each joint axis in the 3-D view."),
+    Option("labels", "bool", True, N_("Joint labels"), N_("Name each joint axis in the 3-D view.")),
     Option(
         "scale",
         "float",
         1.0,
-        "Glyph scale",
-        "1: a column of 1 m/rad is drawn 0.5 m long",
+        N_("Glyph scale"),
+        N_("1: a column of 1 m/rad is drawn 0.5 m long"),
         lo=0.1,
         hi=3.0,
         step=0.05,
@@ -121,21 +127,21 @@ OPTIONS: tuple[Option, ...] = (
     # J(q)
     _choice(
         "jacobian_frame",
-        {"base": "base", "tool": "tool"},
-        "Frame of J",
-        "Axes in which J is written",
+        {"base": N_("base"), "tool": N_("tool")},
+        N_("Frame of J"),
+        N_("Axes in which J is written"),
         "matrix",
         "base",
     ),
     _choice(
         "representation",
         {
-            "geometric": "geometric J",
-            "zyx": "analytic J_A, roll-pitch-yaw (ZYX)",
-            "zyz": "analytic J_A, Euler ZYZ",
+            "geometric": N_("geometric J"),
+            "zyx": N_("analytic J_A, roll-pitch-yaw (ZYX)"),
+            "zyz": N_("analytic J_A, Euler ZYZ"),
         },
-        "Representation",
-        "Geometric J (rows [v; ω]) or the analytic J_A (rows [v; φ̇], φ: Euler angles)",
+        N_("Representation"),
+        N_("Geometric J (rows [v; ω]) or the analytic J_A (rows [v; φ̇], φ: Euler angles)"),
         "matrix",
         "geometric",
     ),
@@ -143,8 +149,8 @@ OPTIONS: tuple[Option, ...] = (
         "course_letters",
         "bool",
         False,
-        "Course letters (l₁, a₂, d₄ …)",
-        "DH lengths and offsets as letters; det J, its factors, singular sets below J",
+        N_("Course letters (l₁, a₂, d₄ …)"),
+        N_("DH lengths and offsets as letters; det J, its factors, singular sets below J"),
         "matrix",
     ),
     # v = J q̇
@@ -152,8 +158,8 @@ OPTIONS: tuple[Option, ...] = (
         "jdot_arrow",
         "bool",
         True,
-        "J̇ q̇ arrow at the tool",
-        "The tool's acceleration when the joints turn at constant rate (ẍ = J̇ q̇ when q̈ = 0)",
+        N_("J̇ q̇ arrow at the tool"),
+        N_("The tool's acceleration when the joints turn at constant rate (ẍ = J̇ q̇ when q̈ = 0)"),
         "forward",
     ),
     # q̇ = J⁺ v
@@ -161,20 +167,22 @@ OPTIONS: tuple[Option, ...] = (
         "damping",
         "float",
         0.0,
-        "damping λ",
-        "0: pseudo-inverse J⁺; > 0: damped least squares (bounded rates, less accuracy)",
+        N_("damping λ"),
+        N_("0: pseudo-inverse J⁺; > 0: damped least squares (bounded rates, less accuracy)"),
         "inverse",
         lo=0.0,
         hi=0.5,
         step=0.005,
     ),
-    Option("symbolic_inverse", "bool", False, "Symbolic J⁻¹ = adj J / det J", "", "inverse", widget="button"),
+    Option(
+        "symbolic_inverse", "bool", False, N_("Symbolic J⁻¹ = adj J / det J"), "", "inverse", widget="button"
+    ),
     # Motion
     _choice(
         "twist_frame",
-        {"base": "base", "tool": "tool"},
-        "v in axes",
-        "tool: v is held in the moving tool's own axes",
+        {"base": N_("base"), "tool": N_("tool")},
+        N_("v in axes"),
+        N_("tool: v is held in the moving tool's own axes"),
         "motion",
         "base",
     ),
@@ -182,47 +190,52 @@ OPTIONS: tuple[Option, ...] = (
         "speed",
         "float",
         1.0,
-        "Speed",
-        "1: real time; 0.1: ten times slower",
+        N_("Speed"),
+        N_("1: real time; 0.1: ten times slower"),
         "motion",
         lo=0.05,
         hi=2.0,
         step=0.05,
     ),
-    Option("gizmo", "bool", False, "Drag handle at the tool", "", "motion"),
+    Option("gizmo", "bool", False, N_("Drag handle at the tool"), "", "motion"),
     _choice(
         "ik_method",
-        {"dls": "DLS (damped)", "newton": "Newton (J⁻¹, J⁺)"},
-        "Method",
-        "q_{k+1} = q_k + J⁺ (y_d − k(q_k))",
+        {"dls": N_("DLS (damped)"), "newton": N_("Newton (J⁻¹, J⁺)")},
+        N_("Method"),
+        N_("q_{k+1} = q_k + J⁺ (y_d − k(q_k))"),
         "motion",
         "dls",
     ),
     _choice(
-        "ik_mode", {"position": "tool position", "pose": "tool pose"}, "Follow", "", "motion", "position"
+        "ik_mode",
+        {"position": N_("tool position"), "pose": N_("tool pose")},
+        N_("Follow"),
+        "",
+        "motion",
+        "position",
     ),
     # Maps
     Option(
         "workspace",
         "bool",
         False,
-        "Workspace cloud",
-        "20,000 tool points of random configurations, coloured by w (yellow: high, purple: low)",
+        N_("Workspace cloud"),
+        N_("20,000 tool points of random configurations, coloured by w (yellow: high, purple: low)"),
         "maps",
     ),
-    Option("joint_map", "bool", False, "Joint-space map of w", "", "maps"),
-    Option("map_i", "joint", 1, "x axis", "", "maps", widget="own"),
-    Option("map_j", "joint", 2, "y axis", "", "maps", widget="own"),
+    Option("joint_map", "bool", False, N_("Joint-space map of w"), "", "maps"),
+    Option("map_i", "joint", 1, N_("x axis"), "", "maps", widget="own"),
+    Option("map_j", "joint", 2, N_("y axis"), "", "maps", widget="own"),
     # Derive
     _choice(
         "derive",
-        {"": "Nothing (DH table only)", **{k: m.label for k, m in STEP_METHODS.items()}},
-        "Walk through",
-        "Pick one of the course's derivations of J and step through it joint by joint.",
+        {"": N_("Nothing (DH table only)"), **{k: m.label for k, m in STEP_METHODS.items()}},
+        N_("Walk through"),
+        N_("Pick one of the course's derivations of J and step through it joint by joint."),
         "derive",
         "",
     ),
-    Option("derive_step", "step", 0, "Joint i", "", "derive", widget="own"),
+    Option("derive_step", "step", 0, N_("Joint i"), "", "derive", widget="own"),
 )
 """Every option, in the order the panel lists its widgets within a tab."""
 

@@ -1,10 +1,11 @@
 """What a tab's page keeps across a reload or a server restart, read back as hostile input.
 
-The page keeps the tab's robot, q and open tab in its address (``?robot=puma560&q=0,0.5,…&tab=Motion``)
-and a presenter's reconnect key in its local storage; on every (re)connection its script reports
-them (:mod:`app.views.panel.page`). Anyone can edit an address, so everything is checked like a
-widget value: a bounded JSON object of known keys, a robot of the catalogue, q of the robot's
-joint count, finite, clamped to its slider ranges, and a tab of the panel's.
+The page keeps the tab's robot, q, open tab and chosen language in its address
+(``?robot=puma560&q=0,0.5,…&tab=Motion&lang=pt``) and a presenter's reconnect key in its local
+storage; on every (re)connection its script reports them with the browser's languages
+(``navigator.languages``) (:mod:`app.views.panel.page`). Anyone can edit an address, so everything
+is checked like a widget value: a bounded JSON object of known keys, a robot of the catalogue, q of
+the robot's joint count, finite, clamped to its slider ranges, and a tab of the panel's.
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ MAX_REPORT = 4096
 """Longest report a page may send [characters]."""
 _SECRET = re.compile(r"[A-Za-z0-9_\-]{16,64}")
 _NAME = re.compile(r"[^\x00-\x1f\x7f]{1,120}")
+_TAG = re.compile(r"[A-Za-z]{1,8}(?:[-_][A-Za-z0-9]{1,8}){0,4}")
+"""A language tag as a browser or an address writes it (``pt``, ``pt-BR``, ``zh-Hant-TW``)."""
 
 
 class PageError(ValueError):
@@ -41,6 +44,9 @@ class PageReport:
         robot: The robot named in the address ("" when none).
         q: The joint values of the address [rad | m] (unchecked against a robot), or ``None``.
         tab: The open tab's label ("" when none).
+        lang: The language the address asks for (``?lang=``), as written there ("" when none; an
+            unknown one is kept so the tab can say it speaks English instead).
+        browser: The browser's languages (``navigator.languages``), most wanted first.
     """
 
     kind: str
@@ -48,6 +54,8 @@ class PageReport:
     robot: str = ""
     q: tuple[float, ...] | None = None
     tab: str = ""
+    lang: str = ""
+    browser: tuple[str, ...] = ()
 
 
 def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
@@ -75,14 +83,21 @@ def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
     address = data.get("address", "")
     if not isinstance(address, str):
         raise PageError("the page's address is not text")
-    robot, q, tab_in_address = _address(address)
+    robot, q, tab_in_address, lang = _address(address)
     if tab_in_address and tab_in_address not in tabs:
         tab_in_address = ""  # an edited tab name: the default tab
-    return PageReport("load", resume, robot, q, tab_in_address or tab)
+    browser = data.get("languages", [])
+    if not isinstance(browser, list):
+        browser = []
+    tags = tuple(t for t in browser[:16] if isinstance(t, str) and _TAG.fullmatch(t))
+    return PageReport("load", resume, robot, q, tab_in_address or tab, lang, tags)
 
 
-def _address(address: str) -> tuple[str, tuple[float, ...] | None, str]:
+def _address(address: str) -> tuple[str, tuple[float, ...] | None, str, str]:
     fields = parse_qs(address.lstrip("?#"), keep_blank_values=False, max_num_fields=8)
+    lang = fields.get("lang", [""])[0][:40]
+    if lang and not _TAG.fullmatch(lang):
+        lang = "?"  # not a language tag: unknown, spoken as English with a notice
     robot = fields.get("robot", [""])[0]
     if robot and not _NAME.fullmatch(robot):
         raise PageError("the address names no robot this lab can show")
@@ -97,7 +112,7 @@ def _address(address: str) -> tuple[str, tuple[float, ...] | None, str]:
             raise PageError("the address's q is not a list of numbers") from None
         if not all(math.isfinite(x) for x in q):
             raise PageError("the address's q is not finite")
-    return robot, q, fields.get("tab", [""])[0]
+    return robot, q, fields.get("tab", [""])[0], lang
 
 
 def checked_q(robot: Robot, q: tuple[float, ...]) -> tuple[float, ...]:
@@ -111,10 +126,12 @@ def checked_q(robot: Robot, q: tuple[float, ...]) -> tuple[float, ...]:
     return tuple(r.clamp_si(x) for r, x in zip(joint_ranges(robot), q, strict=True))
 
 
-def page_address(robot_name: str, q: tuple[float, ...] | list[float]) -> str:
-    """The address fragment of a robot and q (6 decimals: µrad and µm), e.g. ``robot=trr&q=5,1.047198,…``."""
+def page_address(robot_name: str, q: tuple[float, ...] | list[float], lang: str = "") -> str:
+    """The address fragment of a robot, q (6 decimals: µrad and µm) and the tab's chosen language
+    (left out when "": the browser's), e.g. ``robot=trr&q=5,1.047198,…&lang=pt``."""
     values = ",".join(_short(float(x)) for x in q)
-    return f"robot={quote(robot_name, safe='')}&q={values}"
+    chosen = f"&lang={quote(lang, safe='')}" if lang else ""
+    return f"robot={quote(robot_name, safe='')}&q={values}{chosen}"
 
 
 def _short(x: float) -> str:

@@ -34,10 +34,12 @@ from kinematics.files import write_user_file
 from kinematics.singularity import nearest
 
 from ..core.actions import ApplyPreset, FollowPath, Play, Step
+from ..core.i18n import Translator, translations
 from ..core.motion_rules import resample
 from ..core.reducer import reduce
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
+from ..core.words import kind_word, status_words
 from ..views.camera import FROM_ABOVE, View, facing, framing, in_view
 from ..views.fmt import number
 from ..views.scene import SceneView
@@ -124,12 +126,15 @@ class Recording:
         return (len(self.states) - 1) / self.fps
 
 
-def plan(name: str, robot: Robot, preset: str | None = None, frames: int = 240) -> Demo:
+def plan(
+    name: str, robot: Robot, preset: str | None = None, frames: int = 240, tr: Translator | None = None
+) -> Demo:
     """The demo of ``robot`` (listed as ``name``, a library name or a robot file path).
 
     Args:
         preset: Name of a ``[[motions]]`` preset (default: the first one, if any).
         frames: Frames of a path demo (home → a singularity takes the whole recording).
+        tr: The language of its title.
 
     Raises:
         UnknownPreset: ``preset`` is not one of the robot's presets.
@@ -144,16 +149,21 @@ def plan(name: str, robot: Robot, preset: str | None = None, frames: int = 240) 
         )
         return Demo(f"{robot.title} — {p.name}", reduce(applied, Play(True, "resolved_rate")), "preset")
     steps = max(int(frames) - 1, 1)
+    tr = tr or translations()
+    _ = tr.gettext
     singular = next((c for c in robot.configurations if c.singular), None)
     if singular is not None:
         path = _eased(np.array([robot.home, singular.q], float), steps)
         found = f"at {singular.name}: {singular.singular} singularity"
-        title = f"{robot.title} — home → {singular.name} ({singular.singular} singularity)"
+        title = _("{robot} — home → {configuration} ({kind} singularity)").format(
+            robot=robot.title, configuration=singular.name, kind=kind_word(singular.singular, tr)
+        )
         return Demo(title, reduce(state, FollowPath(_rows(path), found)), "configuration")
     result = nearest(robot, robot.home)
     kinds = " + ".join(result.report.kinds) or "singular"
     path = _eased(np.asarray(result.path, float), steps)
-    title = f"{robot.title} — home → the nearest singularity ({kinds})"
+    shown = " + ".join(kind_word(k, tr) for k in result.report.kinds) or tr.pgettext("status", "singular")
+    title = _("{robot} — home → the nearest singularity ({kinds})").format(robot=robot.title, kinds=shown)
     return Demo(title, reduce(state, FollowPath(_rows(path), f"nearest singularity: {kinds}")), "nearest")
 
 
@@ -194,10 +204,14 @@ def play(demo: Demo, seconds: float, fps: float) -> tuple[LabState, ...]:
     return tuple(out)
 
 
-def readout(snap: Snapshot, state: LabState) -> str:
-    """The label under the title: "near singular: wrist   κ = 104" (and why the motion stopped)."""
-    text = f"{snap.report.text()}   κ = {number(snap.report.condition)}"
-    return f"{text}   ·   {state.stopped}" if state.stopped and not state.playing else text
+def readout(snap: Snapshot, state: LabState, tr: Translator | None = None) -> str:
+    """The label under the title: "near singular: wrist   κ = 104" (and why the motion stopped), in
+    ``tr``'s language."""
+    tr = tr or translations()
+    r = snap.report
+    words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration, tr)
+    text = f"{words}   κ = {number(r.condition, tr=tr)}"
+    return f"{text}   ·   {tr.gettext(state.stopped)}" if state.stopped and not state.playing else text
 
 
 class _Labels:
@@ -234,21 +248,28 @@ def record(
     preset: str | None = None,
     seconds: float = DEFAULT_SECONDS,
     fps: float = DEFAULT_FPS,
+    tr: Translator | None = None,
 ) -> Recording:
-    """Play the demo of ``robot`` (see :func:`plan`) and record its 3-D scene, frame by frame.
+    """Play the demo of ``robot`` (see :func:`plan`) and record its 3-D scene, frame by frame, its words
+    in ``tr``'s language (English when None).
 
     A private viser server (127.0.0.1, a free port, no client ever connects) holds the scene; it is
     stopped before returning.
     """
     if not (np.isfinite(seconds) and seconds > 0 and np.isfinite(fps) and fps > 0):
         raise ValueError("seconds and fps must be positive numbers")
-    demo = plan(name, robot, preset, frames=max(int(round(seconds * fps)), 1) + 1)
+    demo = plan(name, robot, preset, frames=max(int(round(seconds * fps)), 1) + 1, tr=tr)
     states = play(demo, seconds, fps)
-    return record_frames(demo.title, robot, states, [compute(s) for s in states], fps)
+    return record_frames(demo.title, robot, states, [compute(s) for s in states], fps, tr)
 
 
 def record_frames(
-    title: str, robot: Robot, states: Sequence[LabState], snaps: Sequence[Snapshot], fps: float
+    title: str,
+    robot: Robot,
+    states: Sequence[LabState],
+    snaps: Sequence[Snapshot],
+    fps: float,
+    tr: Translator | None = None,
 ) -> Recording:
     """Record the 3-D scene of ``states`` (drawn from ``snaps``), one frame every 1/``fps`` seconds:
     the demo of :func:`record`, or what a tab did (:class:`app.tab.recorder.TabRecorder`). Every state
@@ -258,7 +279,7 @@ def record_frames(
     with quiet():
         server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
     try:
-        view = SceneView(server, robot, root="/demo/lab")
+        view = SceneView(server, robot, root="/demo/lab", tr=tr)
         extents = []
         for snap, state in zip(snaps, states, strict=True):  # a dry run: what every frame draws
             view.update(snap, state)
@@ -277,8 +298,8 @@ def record_frames(
         for k, (snap, state) in enumerate(zip(snaps, states, strict=True)):
             serializer.insert_sleep(LEAD if k == 0 else 1.0 / fps)
             view.update(snap, state)
-            rates = rates_readout(state)  # a second line (viser's labels keep line breaks)
-            labels.readout.text = readout(snap, state) + (f"\n{rates}" if rates else "")
+            rates = rates_readout(state, tr)  # a second line (viser's labels keep line breaks)
+            labels.readout.text = readout(snap, state, tr) + (f"\n{rates}" if rates else "")
         data = serializer.serialize()
     finally:
         with quiet():

@@ -22,13 +22,14 @@ from typing import Any
 
 from ..core.actions import SetConfiguration
 from ..core.commands import ChooseRobot, Message
+from ..core.i18n import LANGUAGES, Translator, translations
 from ..core.page_state import PageError, PageReport, checked_q, page_address, parse_report
 from ..core.state import LabState
 from ..services.later import Call, later
 from ..views.panel import TAB_LABELS
 from ..viser_adapter import run_javascript
 
-__all__ = ["PageLink", "ADDRESS_EVERY", "BEAT_EVERY"]
+__all__ = ["PageLink", "ADDRESS_EVERY", "BEAT_EVERY", "TAB_KEYS"]
 
 ADDRESS_EVERY = 0.4
 """The page's address is rewritten at most this often [s] (a dragged slider commits 30 times a second)."""
@@ -39,6 +40,12 @@ BEAT_EVERY = 2.0
 """The server tells the page it is there this often [s]; the page says "connection lost" after 7 s."""
 
 log = logging.getLogger(__name__)
+
+TAB_KEYS: dict[str, str] = {
+    translations(lang.code).gettext(label): label for lang in LANGUAGES for label in TAB_LABELS
+}
+"""A tab's label in any language → its English label, the key the tab, its address and the classroom
+keep (a follower in Spanish opens the tab a presenter in Portuguese opened)."""
 
 
 class PageLink:
@@ -51,6 +58,13 @@ class PageLink:
         load: Loads a robot of the catalogue by name.
         notify: Tells the tab something in words (title, body).
         closed: Whether the tab has gone.
+        languages: Called with the address's language (``?lang=``, "" for none) and the browser's
+            languages when the page (re)connects.
+
+    Attributes:
+        tr: The tab's language (the labels of its tabs in the page).
+        lang: The language the tab chose itself (address or Language menu), kept in the address
+            ("" when it speaks its browser's or the room's).
     """
 
     def __init__(
@@ -61,8 +75,12 @@ class PageLink:
         load: Callable[[str], Any],
         notify: Callable[[str, str], None],
         closed: Callable[[], bool],
+        languages: Callable[[str, tuple[str, ...]], None] = lambda lang, browser: None,
     ) -> None:
         self.client, self._dispatch, self._names, self._load = client, dispatch, names, load
+        self._languages = languages
+        self.tr: Translator = translations()
+        self.lang = ""
         self._notify, self._closed = notify, closed
         self.following: Any = None  # the tab's Following, set by the session
         self.address = ""  # the last address written into the page
@@ -78,20 +96,21 @@ class PageLink:
     def take(self, text: str) -> None:
         """Read one report of the page and act on it (nothing trusted, every refusal in words)."""
         try:
-            report = parse_report(text, TAB_LABELS)
+            report = parse_report(text, tuple(TAB_KEYS))
         except PageError as exc:
-            self._notify("The page's address was not used", str(exc))
+            self._notify(self.tr.gettext("The page's address was not used"), str(exc))
             return
         if report.tab:
-            self.tab = report.tab
+            self.tab = TAB_KEYS[report.tab]
         elif report.kind == "load":
             self.tab = TAB_LABELS[0]  # a page opens on the first tab unless its address names one
         if report.kind == "tab":
             if self.following is not None:
-                self.following.tab_opened(report.tab)
+                self.following.tab_opened(self.tab)
             return
         with self._lock:
             self._loaded = True
+        self._languages(report.lang, report.browser)
         if report.resume and self.following is not None and self.following.resume(report.resume):
             return  # the presenter is back, with the state it showed
         if not self._restore(report):
@@ -109,10 +128,13 @@ class PageLink:
         if not report.robot:
             return False
         if report.robot not in self._names():
+            _ = self.tr.gettext
             self._notify(
-                "The page's address was not used",
-                f"there is no robot “{report.robot[:60]}” in this lab (an upload or a Build-tab robot "
-                "lives only as long as its tab)",
+                _("The page's address was not used"),
+                _(
+                    "there is no robot “{robot}” in this lab (an upload or a Build-tab robot lives only "
+                    "as long as its tab)"
+                ).format(robot=report.robot[:60]),
             )
             return False
         self._dispatch(ChooseRobot(report.robot))
@@ -120,7 +142,7 @@ class PageLink:
             try:
                 q = checked_q(self._load(report.robot), report.q)
             except PageError as exc:
-                self._notify("The address's joint values were not used", str(exc))
+                self._notify(self.tr.gettext("The address's joint values were not used"), str(exc))
             else:
                 self._dispatch(SetConfiguration(q))
         return True
@@ -128,7 +150,7 @@ class PageLink:
     # ------------------------------------------------------------------ server → page
     def update(self, state: LabState) -> None:
         """Keep ``state``'s robot and q in the page's address (throttled; the last one always written)."""
-        address = page_address(state.robot_name, list(state.q))
+        address = page_address(state.robot_name, list(state.q), self.lang)
         with self._lock:
             self._wanted = address
             if address == self.address or not self._loaded:
@@ -167,7 +189,8 @@ class PageLink:
     def show_tab(self, label: str) -> None:
         """Open the tab ``label`` in the page (a follower follows the presenter's)."""
         if label in TAB_LABELS:
-            self._run(f"window.__jacobianLabPage && window.__jacobianLabPage.showTab({json.dumps(label)});")
+            shown = json.dumps(self.tr.gettext(label))
+            self._run(f"window.__jacobianLabPage && window.__jacobianLabPage.showTab({shown});")
 
     def _beat(self) -> None:
         if self._closed():

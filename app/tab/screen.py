@@ -16,6 +16,7 @@ import viser
 
 from kinematics.analysis import task_rows
 
+from ..core.i18n import Translator, translations
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
@@ -28,7 +29,15 @@ if TYPE_CHECKING:
     from .robots import TabCatalog
     from .symbols import TabSymbols
 
-__all__ = ["Screen"]
+__all__ = ["Screen", "SceneMessages"]
+
+
+class SceneMessages(tuple):
+    """A presenter's scene messages and the language their words are in (its 3-D labels): a follower
+    that speaks another language draws its own scene from the presenter's state instead of replaying
+    them (the presenter shares state, not words)."""
+
+    language: str = ""
 
 
 class Screen:
@@ -40,6 +49,7 @@ class Screen:
         catalog: The tab's robots (names, chains, meshes, presets of the robot shown).
         state: The first state (the panel's initial values).
         classroom: Whether the server has a presenter mode (the classroom controls are shown).
+        tr: The tab's language.
 
     Attributes:
         panel: The GUI (:class:`~app.views.panel.PanelView`).
@@ -54,9 +64,11 @@ class Screen:
         catalog: TabCatalog,
         state: LabState,
         classroom: bool,
+        tr: Translator | None = None,
     ) -> None:
         self.client, self.dispatch, self.catalog = client, dispatch, catalog
-        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom)
+        self.classroom, self.tr = classroom, tr or translations()
+        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene: SceneView | None = None
         self.scene_messages: tuple = ()
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
@@ -89,7 +101,7 @@ class Screen:
                 if rebuild or self.scene is None or self._foreign:
                     if self.scene is not None:
                         self.scene.remove()
-                    self.scene = SceneView(self.client, state.robot, self.dispatch)
+                    self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
                     self._foreign = False
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())
@@ -97,7 +109,21 @@ class Screen:
             self.panel.show_role(role)
             self.panel.show_recording(recording)
             symbols.draw(self.panel, everything=rebuild)
-        self.scene_messages = tuple(captured)
+        self.scene_messages = SceneMessages(captured)
+        self.scene_messages.language = self.tr.code
+
+    def relanguage(self, tr: Translator, state: LabState) -> None:
+        """Speak ``tr``'s language: the whole panel is built again in it (its widgets' labels are set
+        once), and the scene with the next draw (which must rebuild)."""
+        self.tr = tr
+        with self.client.atomic():
+            self.client.gui.reset()
+            if self.scene is not None:
+                self.scene.remove()
+                self.scene = None
+            self.panel = PanelView(
+                self.client, self.dispatch, self.catalog.names(), state, self.classroom, tr, report=False
+            )
 
     def draw_symbols(self, symbols: TabSymbols) -> None:
         """Put the symbolic results that arrived on the panel (nothing else changed)."""

@@ -26,7 +26,17 @@ import viser
 
 from ..core.actions import Action, Step
 from ..core.build_table import BUILT_NAME
-from ..core.commands import Message, Mirror, OpenTab, PageReport, Redraw, ResetView, SymbolicResult
+from ..core.commands import (
+    ChooseLanguage,
+    Message,
+    Mirror,
+    OpenTab,
+    PageReport,
+    Redraw,
+    ResetView,
+    SymbolicResult,
+)
+from ..core.i18n import DEFAULT, is_language, negotiate, translations
 from ..core.role import Role
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
@@ -67,6 +77,8 @@ class ClientSession:
         ticker: Ticker | None = None,
         renderer: Renderer | None = None,
         classroom: Classroom | None = None,
+        language: str = "",
+        accept_language: str = "",
     ) -> None:
         self.client, self.key, self.symbolic = client, client.client_id, symbolic
         self.catalog = TabCatalog(catalog)  # the shared robots plus this tab's own (uploads, Build tab)
@@ -90,8 +102,14 @@ class ClientSession:
         )  # fmt: skip
         self.page = PageLink(
             client, self.dispatch, self.catalog.names, self.catalog.load,
-            lambda title, body: self.notices.notify(title, body), lambda: self._closed,
+            lambda title, body: self.notices.notify(title, body), lambda: self._closed, self._page_languages,
         )  # fmt: skip
+        # The tab's language: its own choice (address, Language menu) > the room's (serve --lang) > its
+        # browser's (the handshake's Accept-Language, then navigator.languages) > English.
+        self.room_language = language if is_language(language) else ""
+        self.browser_language = negotiate(accept_language, default="") if accept_language else ""
+        self.language = self._wanted_language = self._decide_language()
+        self.page.tr = self.notices.tr = translations(self.language)
         self.page.following, self.following.page = self.following, self.page
         self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify)
         self.recorder = TabRecorder(self.subscribe)
@@ -102,7 +120,9 @@ class ClientSession:
         self.snapshot: Snapshot | None = None
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
-            self.screen = Screen(client, self.dispatch, self.catalog, self.state, classroom is not None)
+            self.screen = Screen(
+                client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr
+            )
             self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
 
@@ -189,6 +209,8 @@ class ClientSession:
     def _take(self, batch: Batch, message: Message) -> None:
         """Take one message into ``batch``: reduce an action, run a command, draw a mirror."""
         if isinstance(message, Mirror):
+            if getattr(message.scene, "language", self.language) != self.language:
+                message = Mirror(message.state, message.snapshot)  # its words are not ours: draw our own
             if message.state.robot is not self.state.robot:  # only then may it be unknown here
                 self.catalog.keep_shown(message.state.robot_name, message.state.robot)
             batch.take_mirror(message, self.screen.scene is not None)
@@ -196,6 +218,11 @@ class ClientSession:
             batch.force = True
         elif isinstance(message, SymbolicResult):
             batch.symbolic = self.symbols.take(message) or batch.symbolic
+        elif isinstance(message, ChooseLanguage):  # the tab's own, a follower's too: never the state's
+            if is_language(message.code):
+                self.page.lang = message.code
+                self._wanted_language = self._decide_language()
+                batch.force = True
         elif isinstance(message, OpenTab):
             if message.label in TAB_LABELS and message.label != self.page.tab:
                 self.page.tab = self._tab_to_open = message.label  # filled by this draw, opened in its frame
@@ -209,7 +236,7 @@ class ClientSession:
         elif isinstance(message, PageReport):
             shown = self.page.tab
             self.page.take(message.text)
-            if self.page.tab != shown:
+            if self.page.tab != shown or self._wanted_language != self.language:
                 batch.force = True  # the tab opened is drawn with the state on screen
         else:
             result = self.commands.run(batch.state, message)
@@ -229,6 +256,12 @@ class ClientSession:
         snap = snap if isinstance(snap, Snapshot) else compute(state)
         if state.robot_name == BUILT_NAME and not following:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
+        if self._wanted_language != self.language:  # the whole page again, in the tab's new language
+            self.language = self._wanted_language
+            self.page.tr = self.notices.tr = translations(self.language)
+            self.screen.relanguage(self.page.tr, state)
+            self._tab_to_open = self.page.tab  # the rebuilt panel opens on its first tab
+            rebuild = True
         self.symbols.update(state, None if rebuild else old)  # what it shows is drawn below
         self.screen.panel.open_tab = self.page.tab  # only the open tab's readouts are filled
         with self.client.atomic():  # the page's address, when due, rides in the redraw's frame
@@ -252,6 +285,26 @@ class ClientSession:
         if not following:  # a follower's camera is the presenter's
             self.camera.after_commit(self.screen.scene, state, old, rebuild, jump, snap)
         self.subscribers.tell(state, snap)
+
+    # ------------------------------------------------------------------ language
+    def _decide_language(self) -> str:
+        return self.page.lang or self.room_language or self.browser_language or DEFAULT
+
+    def _page_languages(self, lang: str, browser: tuple[str, ...]) -> None:
+        """The page (re)connected: the language its address asks for (``?lang=``), the browser's."""
+        if browser and not self.browser_language:
+            self.browser_language = negotiate(list(browser), default="")
+        if lang:
+            code = lang if is_language(lang) else negotiate([lang], default="")
+            if not code:
+                code = DEFAULT  # unknown: English, said in English
+                self.notices.notify(
+                    "Language not available",
+                    f"This lab does not speak “{lang[:40]}”: it speaks English here. "
+                    "Available: ?lang=en (English), pt (Português), es (Español), pl (Polski).",
+                )
+            self.page.lang = code
+        self._wanted_language = self._decide_language()
 
     def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]:
         """Call ``fn(state, snapshot)`` after every commit (the classroom, a recorder); returns the

@@ -2,7 +2,9 @@
 
 Everything the panel shows goes through these functions, so no ``nan`` or
 ``inf`` text can reach the page: an infinite value reads ``∞`` and a NaN
-(which should never happen) reads ``—``.
+(which should never happen) reads ``—``. Given the tab's translator (``tr``), a number is written as
+its language writes it (``0,432`` in Portuguese, Spanish and Polish); the digits, the real minus sign,
+``×10ⁿ`` and the units stay.
 """
 
 from __future__ import annotations
@@ -10,6 +12,8 @@ from __future__ import annotations
 import html
 import math
 import re
+
+from ..core.i18n import Translator
 
 __all__ = ["number", "quantity", "fixed", "escape", "cleaned", "MINUS", "joint_label", "joint_words"]
 
@@ -19,11 +23,11 @@ _SUPERSCRIPT = str.maketrans(
 )
 
 
-def number(x: float, digits: int = 3) -> str:
+def number(x: float, digits: int = 3, tr: Translator | None = None) -> str:
     """``x`` with ``digits`` significant digits: ``0.432``, ``12.3``, ``1.23×10⁴``, ``∞``.
 
     Magnitudes in [1e-3, 1e5) are written plainly; others in scientific form.
-    A value that rounds to zero is written ``0``.
+    A value that rounds to zero is written ``0``. ``tr``: the language's decimal mark (a point when None).
     """
     try:
         x = float(x)
@@ -41,23 +45,25 @@ def number(x: float, digits: int = 3) -> str:
         text = f"{mag:.{decimals}f}"
         if "." in text:
             text = text.rstrip("0").rstrip(".")
+        text = tr.decimal(text) if tr else text
     else:
         mantissa, exponent = f"{mag:.{digits - 1}e}".split("e")
         if "." in mantissa:
             mantissa = mantissa.rstrip("0").rstrip(".")
+        mantissa = tr.decimal(mantissa) if tr else mantissa
         text = f"{mantissa}×10{str(int(exponent)).translate(_SUPERSCRIPT)}"
     return (MINUS if x < 0 else "") + text
 
 
-def quantity(x: float, unit: str = "", digits: int = 3) -> str:
+def quantity(x: float, unit: str = "", digits: int = 3, tr: Translator | None = None) -> str:
     """``number(x)`` followed by a thin space and ``unit`` (no space before ``°``)."""
-    text = number(x, digits)
+    text = number(x, digits, tr)
     if not unit or text == "—":
         return text
     return f"{text}{unit}" if unit.startswith("°") else f"{text}\u2009{unit}"
 
 
-def fixed(x: float, decimals: int = 3) -> str:
+def fixed(x: float, decimals: int = 3, tr: Translator | None = None) -> str:
     """``x`` with a fixed number of decimals, for aligned matrix entries (``−0.432``, ``0``).
 
     Values that round to zero are written ``0`` (no ``−0.000``); non-finite values as in :func:`number`.
@@ -71,8 +77,9 @@ def fixed(x: float, decimals: int = 3) -> str:
     if abs(x) < 0.5 * 10.0**-decimals:
         return "0"
     if abs(x) >= 1e5:
-        return number(x)
+        return number(x, tr=tr)
     text = f"{abs(x):.{decimals}f}"
+    text = tr.decimal(text) if tr else text
     return (MINUS if x < 0 else "") + text
 
 

@@ -12,7 +12,9 @@ Wrapped:
   to one client through ``client._websock_connection``.
 * :func:`client_address` — the IP a tab connected from (the server's connection table), or behind a
   reverse proxy declared with ``--trusted-proxy`` (:func:`trusted_proxies`), from its
-  ``X-Forwarded-For`` (:func:`forwarded_client`); the log of wrong presenter tokens names it.
+  ``X-Forwarded-For`` (:func:`forwarded_client`); the log of wrong presenter tokens names it;
+  :func:`client_header` — a header of its websocket handshake (its ``Accept-Language``: the tab's
+  first language).
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
@@ -59,6 +61,7 @@ from .core import (
     TESTED_VISER,
     ViserApiChanged,
     client_address,
+    client_header,
     clip,
     forwarded_client,
     handle_uuid,
@@ -127,5 +130,6 @@ __all__ = [
     "client_address",
     "forwarded_client",
     "trusted_proxies",
+    "client_header",
     "quiet_banner",
 ]

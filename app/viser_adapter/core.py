@@ -224,6 +224,24 @@ def client_address(server: viser.ViserServer, client_id: int, trusted: Sequence[
     return forwarded_client(peer, hops, trusted)
 
 
+def client_header(server: viser.ViserServer, client_id: int, name: str) -> str:
+    """The header ``name`` of the websocket handshake tab ``client_id`` connected with (at most 1024
+    characters; ``""`` when it sent none or has gone), e.g. its ``Accept-Language``.
+
+    Through the server's connection table (``server._websock_server._live_connections``) and the
+    connection's handshake request (``websockets``' ``ServerConnection.request``).
+    """
+    connections = _private(
+        "client_header",
+        "ViserServer._websock_server._live_connections",
+        lambda: server._websock_server._live_connections,
+    )
+    request = getattr(connections.get(client_id), "request", None)
+    headers = getattr(request, "headers", None)
+    value = headers.get(name, "") if headers is not None else ""
+    return str(value)[:1024]
+
+
 _QUIET = threading.Lock()
 
 

@@ -149,9 +149,20 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "presenter_token": None,
             "allow_origin": [],
             "xacro_args": None,
+            "language": "",
             "trusted_proxy": ["127.0.0.1"],
         }
     ]
+
+
+def test_serve_lang_sets_the_rooms_language(monkeypatch):
+    import app.server
+
+    calls = []
+    monkeypatch.setattr(app.server, "serve", lambda **kw: calls.append(kw))
+    assert main(["serve", "--lang", "pl", "--port", "8123", "--workers", "1"]) == 0
+    assert calls[0]["language"] == "pl"
+    assert main(["serve", "--lang", "fr"]) == 2  # argparse: not one of en, pt, es, pl
 
 
 # ------------------------------------------------------------------ export

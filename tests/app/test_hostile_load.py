@@ -197,7 +197,9 @@ def test_a_newer_upload_cancels_a_pending_older_one_without_blocking_the_tab(mon
     pending: list[Future] = []
     pool = SimpleNamespace(submit=lambda fn: pending.append(Future()) or pending[-1])  # never started
     monkeypatch.setattr(commands, "background", lambda: pool)
-    notices = SimpleNamespace(preparing=lambda *a: lambda: None, error=lambda exc: None)
+    from app.core.i18n import translations
+
+    notices = SimpleNamespace(preparing=lambda *a: lambda: None, error=lambda exc: None, tr=translations())
     runner = commands.CommandRunner(
         None, None, None, None, None, notices, lambda m: None, lambda: (None, None), lambda: False
     )

@@ -23,14 +23,24 @@ import robots
 from kinematics import Robot
 from kinematics.urdf import ChainInfo
 
-from ...core.commands import ChooseChain, ChooseRobot, Message, PageReport, ResetView, ToggleRecording
+from ...core.commands import (
+    ChooseChain,
+    ChooseLanguage,
+    ChooseRobot,
+    Message,
+    PageReport,
+    ResetView,
+    ToggleRecording,
+)
+from ...core.i18n import LANGUAGES, N_, Translator, translations
 from ...core.options import options_of
 from ...core.robot_menu import robot_menu
 from ...core.role import Role
 from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
-from .classroom import ClassroomPanel, token_js
+from .. import fmt
+from .classroom import ClassroomPanel, classroom_words_js, token_js
 from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
@@ -41,6 +51,7 @@ from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .maps import MapsPanel, slider_ids
 from .matrix import MatrixPanel
 from .motion import MotionPanel
+from .page import LOST_WORDS
 from .page import page_js as page_state_js
 from .readouts import hint_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
@@ -49,7 +60,7 @@ from .typed import NUMBER_GUARD_JS
 __all__ = ["PanelView", "PANEL_WIDTH", "TAB_LABELS"]
 
 
-_LEGEND = (
+_LEGEND = N_(
     "**Colours.** Each joint has one colour: slider, axis, column arrow and bars. "
     "Ellipsoid and links: blue regular, amber near singular, red singular. "
     "Lost direction (dark crimson): an arrow for a lost translation, "
@@ -69,7 +80,11 @@ class PanelView:
         robot_names: list[str],
         state: LabState,
         classroom: bool = False,
+        tr: Translator | None = None,
+        report: bool = True,
     ):
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.gui = gui = client.gui
         self.client = client
         self.dispatch = dispatch
@@ -77,20 +92,22 @@ class PanelView:
         gui.set_panel_label("Jacobian Lab")
         gui.main_panel.dock_right()
         gui.main_panel.set_width(PANEL_WIDTH)
-        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}</style>", order=0)
+        more = _("▾ more below: scroll").replace("\\", "\\\\").replace('"', '\\"').replace("<", "\\3C ")
+        more_css = f'.jl-more::after {{ content: "{more}"; }}'  # the band's words, in the tab's language
+        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}{more_css}</style>", order=0)
         run_javascript(client, page_js())
-        run_javascript(client, LAYOUT_JS)
+        run_javascript(client, classroom_words_js() + LAYOUT_JS)
         run_javascript(client, NUMBER_GUARD_JS)
         # The page's channel back (its address, a presenter's reconnect key, the open tab): a text
         # input the page script hides and fills (app.views.panel.page).
         self.report = gui.add_text("page", "", order=10_000)
         bind(self.report, dispatch, lambda v: PageReport(str(v)) if str(v) else None)
-        run_javascript(client, page_state_js(handle_uuid(self.report)))
+        run_javascript(client, page_state_js(handle_uuid(self.report), _(LOST_WORDS), report))
         set_page_title(client, PAGE_TITLE)
         self.menu = robot_menu(robot_names)
         self._menu_names = tuple(robot_names)
         self.robot = gui.add_dropdown(
-            "Robot", self.menu.labels, initial_value=self.menu.label_of(state.robot_name), order=1
+            _("Robot"), self.menu.labels, initial_value=self.menu.label_of(state.robot_name), order=1
         )
         bind(self.robot, dispatch, self._chosen_robot)
         self.chain: viser.GuiDropdownHandle | None = None
@@ -98,32 +115,38 @@ class PanelView:
         self.status = gui.add_html("", order=2)
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.hint = gui.add_html("", order=2.6, visible=False)  # what to do first, over the 3-D view
-        self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
+        self.classroom = ClassroomPanel(gui, dispatch, order=0.5, tr=tr) if classroom else None
         if self.classroom is not None:  # masked, and filled from the presenter link
             run_javascript(client, token_js(handle_uuid(self.classroom.token)))
         # The views of J live in a second panel docked under the joints: both stay in sight.
         self.views = gui.add_panel()
-        self.tabs = {tab.name: self.views.add_tab(tab.label, tab.icon) for tab in TABS}
+        self.tabs = {tab.name: self.views.add_tab(_(tab.label), tab.icon) for tab in TABS}
         self.views.dock_below(gui.main_panel)
         with self.tabs["about"]:
-            self.reset_view = gui.add_button("Reset view: frame the arm", icon=viser.Icon.FOCUS_CENTERED)
+            self.language = gui.add_dropdown(
+                _("Language"), tuple(lang.name for lang in LANGUAGES), initial_value=tr.language.name
+            )
+            names = {lang.name: lang.code for lang in LANGUAGES}
+            bind(self.language, dispatch, lambda v: ChooseLanguage(names[v]) if v in names else None)
+            self.reset_view = gui.add_button(_("Reset view: frame the arm"), icon=viser.Icon.FOCUS_CENTERED)
             self.reset_view.on_click(lambda _: dispatch(ResetView()))
             self.toggles = {}
             for row in options_of("view"):
                 if row.kind == "bool":
                     self.toggles[row.name] = option_widget(
-                        gui, dispatch, row.name, getattr(state.options, row.name)
+                        gui, dispatch, row.name, getattr(state.options, row.name), tr
                     )
-            self.scale = option_widget(gui, dispatch, "scale", state.options.scale)
-            gui.add_markdown(_LEGEND)
-            self.record = gui.add_button("Record a demo", icon=viser.Icon.PLAYER_RECORD)
-            self.record.on_click(lambda _: dispatch(ToggleRecording()))
-            gui.add_html(
-                '<div class="jl-note">Records the 3-D view until you press again, then downloads it as a '
-                "folder (zip) that plays from any web server, with no Python behind it.</div>"
+            self.scale = option_widget(gui, dispatch, "scale", state.options.scale, tr)
+            gui.add_markdown(_(_LEGEND))
+            self.record = gui.add_button(_("Record a demo"), icon=viser.Icon.PLAYER_RECORD)
+            self.record.on_click(lambda event: dispatch(ToggleRecording()))
+            note = _(
+                "Records the 3-D view until you press again, then downloads it as a folder (zip) that plays "
+                "from any web server, with no Python behind it."
             )
+            gui.add_html(f'<div class="jl-note">{fmt.escape(note)}</div>')
         with self.tabs["build"]:
-            self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100)
+            self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100, tr=tr)
         self.joints: JointsPanel | None = None
         self.parts: dict[str, TabView] = {}
         """The tabs' views for the current robot, by tab name (also ``panel.<name>``)."""
@@ -162,19 +185,21 @@ class PanelView:
             (c for c in chains if c.is_default), None
         )
         if len(chains) > 1:
-            labels = {_chain_label(c): c.tip_link for c in chains}
+            labels = {_chain_label(c, self.tr): c.tip_link for c in chains}
             self.chain = self.gui.add_dropdown(
-                "Chain",
+                self.tr.gettext("Chain"),
                 tuple(labels),
-                initial_value=_chain_label(shown) if shown else next(iter(labels)),
+                initial_value=_chain_label(shown, self.tr) if shown else next(iter(labels)),
                 order=1.2,
-                hint="The serial chain of the URDF shown: from its base link to a tip link.",
+                hint=self.tr.gettext("The serial chain of the URDF shown: from its base link to a tip link."),
             )
             bind(self.chain, self.dispatch, lambda v: ChooseChain(labels[str(v)]) if v in labels else None)
         self.source.content = source_html(robot, shown, meshes)
         self.source.visible = bool(robot.urdf_path)
-        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3)
-        context = TabContext(self.gui, self.dispatch, robot, rows, presets, slider_ids(self.joints.sliders))
+        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3, tr=self.tr)
+        context = TabContext(
+            self.gui, self.dispatch, robot, rows, presets, slider_ids(self.joints.sliders), self.tr
+        )
         for tab in TABS:
             if tab.build is not None:
                 with self.tabs[tab.name]:
@@ -213,16 +238,16 @@ class PanelView:
         sync_value(self.robot, self.menu.label_of(state.robot_name))
         self.joints.show(state.q, state.configuration)
         self._show_options(state.options)
-        self.status.content = status_html(snap, state)
+        self.status.content = status_html(snap, state, self.tr)
         for name, part in self.parts.items():
             if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)
-        live = live_html(state)
+        live = live_html(state, self.tr)
         if live != self.live.content:
             self.live.content = live
         if self.live.visible != bool(live):
             self.live.visible = bool(live)
-        hint = hint_html(state)
+        hint = hint_html(state, self.tr)
         if hint != self.hint.content:
             self.hint.content = hint
         if self.hint.visible != bool(hint):
@@ -230,7 +255,8 @@ class PanelView:
 
     def show_recording(self, recording: bool) -> None:
         """The record button says what a click does next."""
-        self.record.label = "Stop and download the demo" if recording else "Record a demo"
+        _ = self.tr.gettext
+        self.record.label = _("Stop and download the demo") if recording else _("Record a demo")
         self.record.color = "red" if recording else None
 
     def show_role(self, role: Role) -> None:
@@ -240,15 +266,15 @@ class PanelView:
 
     def _show_options(self, options: Options) -> None:
         for key, box in self.toggles.items():
-            show_option(box, key, getattr(options, key))
-        show_option(self.scale, "scale", options.scale)
+            show_option(box, key, getattr(options, key), self.tr)
+        show_option(self.scale, "scale", options.scale, self.tr)
 
 
 class About:
     """The View tab's list of the robot's named configurations."""
 
     def __init__(self, c: TabContext) -> None:
-        self.html = c.gui.add_html(configurations_html(c.robot), order=200)
+        self.html = c.gui.add_html(configurations_html(c.robot, c.tr), order=200)
 
     @property
     def content(self) -> str:
@@ -263,7 +289,7 @@ class About:
 
 def _matrix(c: TabContext) -> MatrixPanel:
     c.gui.add_html('<div class="jl-views-marker"></div>', order=0)
-    return MatrixPanel(c.gui, c.dispatch, c.robot, order=100)
+    return MatrixPanel(c.gui, c.dispatch, c.robot, order=100, tr=c.tr)
 
 
 TABS: tuple[Tab, ...] = (
@@ -283,16 +309,24 @@ TABS: tuple[Tab, ...] = (
     Tab("force", "τ = JᵀF", viser.Icon.WEIGHT, lambda c: ForcePanel(c.gui, c.dispatch, c.robot, order=100)),
     Tab(
         "motion",
-        "Motion",
+        N_("Motion"),
         viser.Icon.PLAYER_PLAY,
-        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100),
+        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100, c.tr),
     ),
     Tab(
-        "maps", "Maps", viser.Icon.MAP, lambda c: MapsPanel(c.gui, c.dispatch, c.robot, c.joint_sliders, 100)
+        "maps",
+        N_("Maps"),
+        viser.Icon.MAP,
+        lambda c: MapsPanel(c.gui, c.dispatch, c.robot, c.joint_sliders, 100),
     ),
-    Tab("derive", "Derive", viser.Icon.STAIRS, lambda c: DerivePanel(c.gui, c.dispatch, c.robot, order=100)),
-    Tab("about", "View", viser.Icon.EYE, About),
-    Tab("build", "Build", viser.Icon.TOOL, None),
+    Tab(
+        "derive",
+        N_("Derive"),
+        viser.Icon.STAIRS,
+        lambda c: DerivePanel(c.gui, c.dispatch, c.robot, order=100),
+    ),
+    Tab("about", N_("View"), viser.Icon.EYE, About),
+    Tab("build", N_("Build"), viser.Icon.TOOL, None),
 )
 
 TAB_LABELS = tuple(tab.label for tab in TABS)
@@ -307,5 +341,6 @@ _ALWAYS_DRAWN = frozenset({"motion", "derive"})
 click applies, the step a click moves from)."""
 
 
-def _chain_label(chain: ChainInfo) -> str:
-    return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"
+def _chain_label(chain: ChainInfo, tr: Translator) -> str:
+    joints = tr.ngettext("{n} joint", "{n} joints", chain.dof).format(n=chain.dof)
+    return f"{chain.base_link} → {chain.tip_link} ({joints})"

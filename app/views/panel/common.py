@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 import viser
@@ -15,6 +15,7 @@ from kinematics import Robot
 
 from ...core.actions import Action, SetOption
 from ...core.commands import Message
+from ...core.i18n import Translator, translations
 from ...core.options import OPTION
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
@@ -73,33 +74,47 @@ def sync_value(handle: Any, value: float | str | bool) -> None:
 
 
 def option_widget(
-    gui: viser.GuiApi, dispatch: Dispatch, name: str, initial: Any = None, **kwargs: Any
+    gui: viser.GuiApi,
+    dispatch: Dispatch,
+    name: str,
+    initial: Any = None,
+    tr: Translator | None = None,
+    **kwargs: Any,
 ) -> Any:
     """The widget of option ``name`` as its row of :data:`app.core.options.OPTION` describes it (a
     checkbox, a slider over its range, a dropdown of its choices' labels), bound to ``SetOption``.
 
-    ``initial``: the value shown first (default: the row's default); ``kwargs`` go to viser
-    (``order``, ``disabled`` …).
+    ``initial``: the value shown first (default: the row's default); ``tr``: the tab's language (its
+    label, hint and choices' labels translated); ``kwargs`` go to viser (``order``, ``disabled`` …).
     """
+    _ = (tr or translations()).gettext
     row = OPTION[name]
     value = row.default if initial is None else initial
-    hint = row.hint or None
+    hint = _(row.hint) if row.hint else None
     if row.kind == "bool":
-        box = gui.add_checkbox(row.label, initial_value=bool(value), hint=hint, **kwargs)
+        box = gui.add_checkbox(_(row.label), initial_value=bool(value), hint=hint, **kwargs)
         bind(box, dispatch, lambda v: SetOption(name, bool(v)))
         return box
     if row.kind == "float":
         slider = gui.add_slider(
-            row.label, min=row.lo, max=row.hi, step=row.step, initial_value=float(value), hint=hint, **kwargs
+            _(row.label),
+            min=row.lo,
+            max=row.hi,
+            step=row.step,
+            initial_value=float(value),
+            hint=hint,
+            **kwargs,
         )
         bind(slider, dispatch, lambda v: SetOption(name, float(v)))
         return slider
     if row.kind == "choice":
-        shown = row.labels or row.choices
-        menu = gui.add_dropdown(row.label, shown, initial_value=row.label_of(value), hint=hint, **kwargs)
+        shown = tuple(_(label) for label in (row.labels or row.choices))
+        menu = gui.add_dropdown(
+            _(row.label), shown, initial_value=shown[row.choices.index(value)], hint=hint, **kwargs
+        )
 
         def chosen(label: Any) -> Action | None:
-            choice = row.value_of(str(label))
+            choice = row.choices[shown.index(label)] if label in shown else None
             return None if choice is None else SetOption(name, choice)
 
         bind(menu, dispatch, chosen)
@@ -107,11 +122,11 @@ def option_widget(
     raise ValueError(f"option {name!r} ({row.kind}) has no widget of its own kind: its tab builds it")
 
 
-def show_option(handle: Any, name: str, value: Any) -> None:
-    """Show option ``name``'s ``value`` on its widget (a choice by its label)."""
+def show_option(handle: Any, name: str, value: Any, tr: Translator | None = None) -> None:
+    """Show option ``name``'s ``value`` on its widget (a choice by its label, in ``tr``'s language)."""
     row = OPTION[name]
     if row.kind == "choice":
-        sync_value(handle, row.label_of(value))
+        sync_value(handle, (tr or translations()).gettext(row.label_of(value)))
     elif row.kind == "float":
         sync_value(handle, float(value))
     else:
@@ -127,6 +142,7 @@ class TabContext:
         dispatch: Where its widgets send actions.
         robot: The robot shown; rows: its task rows; presets: its resolved-rate presets.
         joint_sliders: The ids of the joint sliders (always visible above the tabs).
+        tr: The tab's language (every word a view shows, and its numbers).
     """
 
     gui: viser.GuiApi
@@ -135,6 +151,7 @@ class TabContext:
     rows: tuple[int, ...]
     presets: Sequence[robots.MotionPreset]
     joint_sliders: Sequence[str]
+    tr: Translator = field(default_factory=translations)
 
 
 class TabView(Protocol):

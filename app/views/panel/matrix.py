@@ -20,6 +20,7 @@ from kinematics import Robot
 from ...core.actions import GoToRepresentationSingularity, SetOption
 from ...core.commands import RequestDownload
 from ...core.downloads import EXPORT_FORMATS
+from ...core.i18n import Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
@@ -27,6 +28,7 @@ from ..palette import joint_hex, joint_text_hex
 from .common import Dispatch, bind_click, option_widget, show_option
 from .course import analytic_html
 from .readouts import ROW_NAMES, measures_html, status_html
+from .style import CLOSE
 
 __all__ = ["matrix_html", "MatrixPanel"]
 
@@ -41,26 +43,43 @@ def _head(robot: Robot) -> str:
 
 
 def matrix_html(
-    J: np.ndarray, robot: Robot, rows: tuple[int, ...], frame: str, big: bool = False, head: str = ""
+    J: np.ndarray,
+    robot: Robot,
+    rows: tuple[int, ...],
+    frame: str,
+    big: bool = False,
+    head: str = "",
+    tr: Translator | None = None,
 ) -> str:
     """HTML table of J (6, n): coloured joint columns headed q1…qn, [v; ω] rows, non-task rows greyed.
 
-    ``head``: the header cells as :func:`_head` writes them for ``robot`` (worked out when empty).
+    ``head``: the header cells as :func:`_head` writes them for ``robot`` (worked out when empty);
+    ``tr``: the tab's language (its words and decimal mark).
     """
+    tr = tr or translations()
+    _ = tr.gettext
     head = head or _head(robot)
     values = fmt.cleaned(np.asarray(J, float).ravel().tolist())
     n = J.shape[1]
     body = []
     for r in range(6):
         classes = [c for c in ("off" if r not in rows else "", "split" if r == 3 else "") if c]
-        cells = "".join([f"<td>{fmt.fixed(x, 3)}</td>" for x in values[r * n : (r + 1) * n]])
+        cells = "".join([f"<td>{fmt.fixed(x, 3, tr)}</td>" for x in values[r * n : (r + 1) * n]])
         body.append(f'<tr class="{" ".join(classes)}"><th class="row">{ROW_NAMES[r]}</th>{cells}</tr>')
-    caption = (
-        f'<div class="jl-note">J(q) in {"base" if frame == "base" else "tool"} axes, rows [v; ω], '
-        "v = velocity of the tool point; v rows in m/rad (m/m for a prismatic joint), ω rows in rad/rad."
-        + (" Grey rows are outside the task." if len(rows) < 6 else "")
-        + "</div>"
+    words = (
+        _(
+            "J(q) in base axes, rows [v; ω], v = velocity of the tool point; v rows in m/rad (m/m for a "
+            "prismatic joint), ω rows in rad/rad."
+        )
+        if frame == "base"
+        else _(
+            "J(q) in tool axes, rows [v; ω], v = velocity of the tool point; v rows in m/rad (m/m for a "
+            "prismatic joint), ω rows in rad/rad."
+        )
     )
+    if len(rows) < 6:
+        words += " " + _("Grey rows are outside the task.")
+    caption = f'<div class="jl-note">{words}</div>'
     table = f'<table class="jl-matrix"><tr><th></th>{head}</tr>{"".join(body)}</table>'
     return f'<div class="jl{" jl-big" if big else ""}">{table}{caption}</div>'
 
@@ -73,7 +92,11 @@ def _mathml_html(inner: str, note: str = "") -> str:
 class MatrixPanel:
     """Numeric and symbolic J for one robot, measures, downloads and an enlarged view."""
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+    def __init__(
+        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float, tr: Translator | None = None
+    ) -> None:
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.gui = gui
         self.robot = robot
         self._modal: Any = None  # viser's modal handle (not exported by name)
@@ -85,59 +108,60 @@ class MatrixPanel:
         self._head = _head(robot)  # the same for every redraw of this robot
         self.root = gui.add_folder(None, order=order)
         with self.root:
-            self.frame = option_widget(gui, dispatch, "jacobian_frame")
-            self.representation = option_widget(gui, dispatch, "representation")
+            self.frame = option_widget(gui, dispatch, "jacobian_frame", tr=tr)
+            self.representation = option_widget(gui, dispatch, "representation", tr=tr)
             self.numeric = gui.add_html("")
             self.analytic = gui.add_html("")
             # At a representation singularity: switch to the convention that is regular here.
             self._instead = ""
             self.use_instead = gui.add_button(
-                "Use the regular angles", icon=viser.Icon.ARROWS_EXCHANGE, visible=False
+                _("Use the regular angles"), icon=viser.Icon.ARROWS_EXCHANGE, visible=False
             )
             bind_click(self.use_instead, dispatch, lambda: SetOption("representation", self._instead))
             self.go_singular: viser.GuiButtonHandle | None = None
             self._convention = "zyx"
             if robot.dof >= 6:
                 self.go_singular = gui.add_button(
-                    "Go to a representation singularity", icon=viser.Icon.TARGET
+                    _("Go to a representation singularity"), icon=viser.Icon.TARGET
                 )
                 bind_click(
                     self.go_singular, dispatch, lambda: GoToRepresentationSingularity(self._convention)
                 )
-            enlarge = gui.add_button("Enlarge J (Esc closes)", icon=viser.Icon.ARROWS_MAXIMIZE)
+            enlarge = gui.add_button(_("Enlarge J (Esc closes)"), icon=viser.Icon.ARROWS_MAXIMIZE)
             enlarge.on_click(lambda _event: self.open_large())
             self.measures = gui.add_html("")
-            with gui.add_folder("Symbolic J(q)", expand_by_default=False):
+            with gui.add_folder(_("Symbolic J(q)"), expand_by_default=False):
                 self.letters: viser.GuiCheckboxHandle | None = None
                 if robot.dh is not None:
-                    self.letters = option_widget(gui, dispatch, "course_letters")
-                self.symbolic = gui.add_html(_mathml_html("", "computing the symbolic form…"))
-                self.download = gui.add_button_group("Download J(q)", tuple(EXPORT_FORMATS))
+                    self.letters = option_widget(gui, dispatch, "course_letters", tr=tr)
+                self.symbolic = gui.add_html(_mathml_html("", _("computing the symbolic form…")))
+                self.download = gui.add_button_group(_("Download J(q)"), tuple(EXPORT_FORMATS))
                 self.download.on_click(lambda event: dispatch(RequestDownload(event.target.value)))
 
     def draw(self, state: LabState, snap: Snapshot) -> None:
         frame = state.options.jacobian_frame
         self.show(frame)
         self.show_course(state, snap)
-        status, measures = status_html(snap, state), measures_html(snap, state.robot)
+        status, measures = status_html(snap, state, self.tr), measures_html(snap, state.robot, self.tr)
         self.update(snap.J_shown, snap.rows, frame, status, measures)
 
     def show(self, frame: str) -> None:
-        show_option(self.frame, "jacobian_frame", frame)
+        show_option(self.frame, "jacobian_frame", frame, self.tr)
 
     def show_course(self, state: LabState, snap: Snapshot) -> None:
         """The representation chosen, φ, M(φ) and J_A (or why J_A does not exist), the letters box."""
         o = state.options
-        show_option(self.representation, "representation", o.representation)
+        show_option(self.representation, "representation", o.representation, self.tr)
         if o.representation != "geometric":
             self._convention = o.representation
         if self.letters is not None:
-            show_option(self.letters, "course_letters", o.course_letters)
+            show_option(self.letters, "course_letters", o.course_letters, self.tr)
         self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows)
         instead = snap.analytic.regular_instead if snap.analytic is not None else ""
         if instead:
             self._instead = instead
-            label = "Use Euler ZYZ here" if instead == "zyz" else "Use roll-pitch-yaw (ZYX) here"
+            _ = self.tr.gettext
+            label = _("Use Euler ZYZ here") if instead == "zyz" else _("Use roll-pitch-yaw (ZYX) here")
             if self.use_instead.label != label:
                 self.use_instead.label = label
         if self.use_instead.visible != bool(instead):
@@ -145,7 +169,7 @@ class MatrixPanel:
 
     def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:
         """Show the numeric J and measures, and in the enlarged view (if open) J under the status."""
-        self.numeric.content = matrix_html(J, self.robot, rows, frame, head=self._head)
+        self.numeric.content = matrix_html(J, self.robot, rows, frame, head=self._head, tr=self.tr)
         self.measures.content = measures
         with self._lock:
             self._last_args = (J, rows, frame, status)
@@ -154,10 +178,11 @@ class MatrixPanel:
 
     def _big(self) -> str:
         J, rows, frame, status = self._last_args
-        self._last = status + matrix_html(J, self.robot, rows, frame, big=True, head=self._head)
+        self._last = status + matrix_html(J, self.robot, rows, frame, big=True, head=self._head, tr=self.tr)
         symbolic = f'<div class="jl jl-big">{self._symbolic}</div>' if self._symbolic else ""
+        title, word = fmt.escape(self.tr.gettext("Close (Esc)")), fmt.escape(self.tr.gettext("close"))
         close = (
-            '<div class="jl-close-row"><button class="jl-close-x" title="Close (Esc)">× close</button></div>'
+            f'<div class="jl-close-row"><button class="jl-close-x" title="{title}">× {word}</button></div>'
         )
         return close + self._last + symbolic
 
@@ -181,10 +206,13 @@ class MatrixPanel:
                 self._open()
 
     def _open(self) -> None:
-        with self.gui.add_modal(f"Jacobian J(q) of the {self.robot.title or self.robot.name}") as modal:
+        title = self.tr.gettext("Jacobian J(q) of the {robot}").format(
+            robot=self.robot.title or self.robot.name
+        )
+        with self.gui.add_modal(title) as modal:
             self._modal = modal
             self._modal_html = self.gui.add_html(self._big())
-            close = self.gui.add_button("Close", icon=viser.Icon.X)
+            close = self.gui.add_button(self.tr.gettext(CLOSE), icon=viser.Icon.X)
             close.on_click(lambda _event: self.close_large())
 
     def close_large(self) -> None:

@@ -1,14 +1,15 @@
-"""The page script that keeps a tab's robot, q and open tab in the page's address (its query string,
-``?robot=puma560&q=0,0.5,…&tab=Motion``: never the fragment, which breaks viser's reconnection),
-and a presenter's reconnect key in the browser's local storage, and reports them on every
-(re)connection.
+"""The page script that keeps a tab's robot, q, open tab and chosen language in the page's address (its
+query string, ``?robot=puma560&q=0,0.5,…&tab=Motion&lang=pt``: never the fragment, which breaks
+viser's reconnection), and a presenter's reconnect key in the browser's local storage, and reports
+them on every (re)connection.
 
 The server never sees the page's address (viser), so the script writes a JSON report into a hidden
-text input of the panel (``report``): ``{"kind": "load", "address": …, "resume": …, "tab": …}``
-when the page (re)connects (a reload, a server restart: viser reconnects the same page and the
-script runs again) and ``{"kind": "tab", "tab": …}`` when the user opens a tab. The server reads
-it as hostile input (:func:`app.core.page_state.parse_report`). The server calls
-``window.__jacobianLabPage.address(text)``, ``.remember(key)`` and ``.showTab(label)`` back.
+text input of the panel (``report``): ``{"kind": "load", "address": …, "resume": …, "tab": …,
+"languages": navigator.languages}`` when the page (re)connects (a reload, a server restart: viser
+reconnects the same page and the script runs again) and ``{"kind": "tab", "tab": …}`` when the
+user opens a tab. The server reads it as hostile input (:func:`app.core.page_state.parse_report`).
+The server calls ``window.__jacobianLabPage.address(text)``, ``.remember(key)`` and
+``.showTab(label)`` back.
 The script also says in words when the connection to the lab is lost (viser shows no message).
 """
 
@@ -16,14 +17,16 @@ from __future__ import annotations
 
 import json
 
+from ...core.i18n import N_
+
 __all__ = ["page_js", "STORAGE_KEY", "LOST_WORDS"]
 
 STORAGE_KEY = "jacobianLab.presenterKey"
-LOST_WORDS = "Connection to the lab lost: trying to reconnect… (what you see is not live)."
+LOST_WORDS = N_("Connection to the lab lost: trying to reconnect… (what you see is not live).")
 
 _JS = r"""
 (() => {
-  const REPORT = %(report)s, STORAGE = %(storage)s, LOST = %(lost)s;
+  const REPORT = %(report)s, STORAGE = %(storage)s, LOST = %(lost)s, LOAD = %(load)s;
   const w = window;
   // read before anything rewrites it; a presenter link's token is kept for the token box's script
   // (app.views.panel.classroom) and never reported nor left in the address bar
@@ -135,12 +138,14 @@ _JS = r"""
   // The report of this (re)connection: the address, the kept key and the open tab.
   let tries = 0;
   const report = () => {
+    if (!LOAD) { reported = true; return; }
     const f = new URLSearchParams(initial);
     const ok = send({
       kind: "load",
       address: initial,
       resume: (() => { try { return localStorage.getItem(STORAGE) || ""; } catch (e) { return ""; } })(),
       tab: "",
+      languages: Array.from(navigator.languages || [navigator.language || ""]).slice(0, 16),
     });
     if (!ok && ++tries < 100) { setTimeout(report, 100); return; }
     reported = true;
@@ -151,11 +156,14 @@ _JS = r"""
 """
 
 
-def page_js(report_uuid: str) -> str:
-    """The page script of one tab whose hidden report input has DOM label ``report_uuid``
-    (every value passed as a JSON literal, never as code)."""
+def page_js(report_uuid: str, lost: str = LOST_WORDS, report: bool = True) -> str:
+    """The page script of one tab whose hidden report input has DOM label ``report_uuid``; ``lost``:
+    the words for a lost connection, in the tab's language; ``report``: report the address (a
+    (re)connection; not when the panel is only built again in another language). Every value is
+    passed as a JSON literal, never as code."""
     return _JS % {
+        "load": json.dumps(report),
         "report": json.dumps(report_uuid),
         "storage": json.dumps(STORAGE_KEY),
-        "lost": json.dumps(LOST_WORDS),
+        "lost": json.dumps(lost),
     }

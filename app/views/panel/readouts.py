@@ -10,9 +10,10 @@ from __future__ import annotations
 from kinematics import Robot
 from kinematics.conventions import ROW_HTML
 
+from ...core.i18n import N_, Translator, translations
 from ...core.snapshot import Loss, Snapshot
 from ...core.state import LabState
-from ...core.words import status_words
+from ...core.words import status_word, status_words
 from .. import fmt
 from ..palette import status_hex
 
@@ -35,126 +36,179 @@ def row_label(rows: tuple[int, ...]) -> str:
     return ", ".join(ROW_NAMES[r] for r in rows)
 
 
-def task_name(rows: tuple[int, ...]) -> str:
+def task_name(rows: tuple[int, ...], tr: Translator | None = None) -> str:
     """Words for a set of task rows."""
+    _ = (tr or translations()).gettext
     if rows == (0, 1, 2, 3, 4, 5):
-        return "all six rows"
+        return _("all six rows")
     if rows == (0, 1, 2):
-        return "tool-point velocity"
+        return _("tool-point velocity")
     if rows == (3, 4, 5):
-        return "tool rotation"
+        return _("tool rotation")
     if rows == (0, 1, 5):
-        return "planar rows"
-    return "rows " + row_label(rows)
+        return _("planar rows")
+    return _("rows {rows}").format(rows=row_label(rows))
 
 
-def direction(u: object) -> str:
-    """A unit direction in words: "+z" when it is a base axis, else "(0.71, 0, 0.71)"."""
+def direction(u: object, tr: Translator | None = None) -> str:
+    """A unit direction in words: "+z (base)" when it is a base axis, else "(0.71, 0, 0.71)"."""
     import numpy as np
 
+    tr = tr or translations()
     v = np.asarray(u, float)
     k = int(np.argmax(np.abs(v)))
     if abs(abs(v[k]) - 1.0) < 1e-3:
-        return f"{'+' if v[k] > 0 else '−'}{'xyz'[k]} (base)"
-    return "(" + ", ".join(fmt.number(0.0 if abs(x) < 5e-3 else x, 2) for x in v) + ")"
+        axis = f"{'+' if v[k] > 0 else '−'}{'xyz'[k]}"
+        return tr.gettext("{axis} (base)").format(axis=axis)
+    # a list of numbers with decimal commas is separated by semicolons
+    sep = "; " if tr.decimal_symbol == "," else ", "
+    return "(" + sep.join(fmt.number(0.0 if abs(x) < 5e-3 else x, 2, tr) for x in v) + ")"
 
 
-def _tool_line(loss: Loss, planar: bool) -> str:
+def _share(share: float, tr: Translator) -> str:
+    return "" if share > 0.999 else f" {fmt.number(100 * share, 2, tr)} %"
+
+
+def _tool_line(loss: Loss, planar: bool, tr: Translator) -> str:
+    _ = tr.gettext
     parts = []
     if loss.translation_share >= 0.1 or planar:
-        share = "" if loss.translation_share > 0.999 else f" {fmt.number(100 * loss.translation_share, 2)} %"
-        parts.append(f"translation{share} along {direction(loss.translation)}")
+        parts.append(
+            _("translation{share} along {direction}").format(
+                share=_share(loss.translation_share, tr), direction=direction(loss.translation, tr)
+            )
+        )
     if loss.rotation_share >= 0.1 and not planar:
-        share = "" if loss.rotation_share > 0.999 else f" {fmt.number(100 * loss.rotation_share, 2)} %"
-        parts.append(f"rotation{share} about {direction(loss.rotation)}")
-    return f"<b>Lost</b>: {' + '.join(parts) or 'a mixed direction'}."
+        parts.append(
+            _("rotation{share} about {direction}").format(
+                share=_share(loss.rotation_share, tr), direction=direction(loss.rotation, tr)
+            )
+        )
+    return _("<b>Lost</b>: {what}.").format(what=" + ".join(parts) or _("a mixed direction"))
 
 
-def lost_text(snap: Snapshot, planar: bool) -> str:
+def lost_text(snap: Snapshot, planar: bool, tr: Translator | None = None) -> str:
     """What is lost, in words, one sentence per part (empty when regular): the wrist's rotation and the
     arm's translation of the wrist centre for a spherical wrist, else every direction lost at the tool
     point, with the point and the weighing it refers to."""
     if not snap.losses:
         return ""
+    tr = tr or translations()
+    _ = tr.gettext
     exact = snap.report.status == "singular"
-    arm = [direction(x.translation) for x in snap.losses if x.part == "arm"]
-    wrist = [direction(x.rotation) for x in snap.losses if x.part == "wrist"]
+    arm = [direction(x.translation, tr) for x in snap.losses if x.part == "arm"]
+    wrist = [direction(x.rotation, tr) for x in snap.losses if x.part == "wrist"]
     lines = []
     if wrist:
-        head, verb = ("Wrist singular", "loses") if exact else ("Near a wrist singularity", "can hardly give")
-        lines.append(f"<b>{head}</b>: the wrist {verb} a rotation about {' and '.join(wrist)}.")
+        axes = _(" and ").join(wrist)
+        if exact:
+            lines.append(
+                _("<b>Wrist singular</b>: the wrist loses a rotation about {axes}.").format(axes=axes)
+            )
+        else:
+            lines.append(
+                _(
+                    "<b>Near a wrist singularity</b>: the wrist can hardly give a rotation about {axes}."
+                ).format(axes=axes)
+            )
     if arm:
-        head, verb = ("Arm singular", "cannot") if exact else ("Near an arm singularity", "can hardly")
-        lines.append(f"<b>{head}</b>: the wrist centre {verb} move along {' nor '.join(arm)}.")
+        axes = _(" nor ").join(arm)
+        if exact:
+            lines.append(
+                _("<b>Arm singular</b>: the wrist centre cannot move along {axes}.").format(axes=axes)
+            )
+        else:
+            lines.append(
+                _("<b>Near an arm singularity</b>: the wrist centre can hardly move along {axes}.").format(
+                    axes=axes
+                )
+            )
     if arm or wrist:
-        zero = " and ".join(
+        zero = _(" and ").join(
             f"det J<sub>{k}</sub> = 0" for k, part in (("11", arm), ("22", wrist)) if part and exact
         )
-        lines.append(
+        decoupled = _(
             "Decoupled at the wrist centre: det J = det J<sub>11</sub> (arm) · det J<sub>22</sub> (wrist)"
-            + (f"; {zero}." if zero else ".")
         )
+        lines.append(decoupled + (f"; {zero}." if zero else "."))
         return "<br>".join(lines)
-    lines = [_tool_line(loss, planar) for loss in snap.losses]
+    lines = [_tool_line(loss, planar, tr) for loss in snap.losses]
     mixed = any(r < 3 for r in snap.rows) and any(r >= 3 for r in snap.rows)
-    weigh = (
-        f", rad/s weighed as the tool moving L = {fmt.quantity(snap.length, 'm')} (the reach)"
-        if mixed
-        else ""
-    )
-    rows = "" if len(snap.rows) == 6 else f" (rows {row_label(snap.rows)})"
-    lines.append(f"Measured at the tool point{rows}{weigh}.")
+    length = fmt.quantity(snap.length, "m", tr=tr)
+    if len(snap.rows) == 6:
+        line = (
+            _("Measured at the tool point, rad/s weighed as the tool moving L = {length} (the reach).")
+            if mixed
+            else _("Measured at the tool point.")
+        )
+    else:
+        line = (
+            _(
+                "Measured at the tool point (rows {rows}), rad/s weighed as the tool moving L = {length} "
+                "(the reach)."
+            )
+            if mixed
+            else _("Measured at the tool point (rows {rows}).")
+        )
+    lines.append(line.format(rows=row_label(snap.rows), length=length))
     if "wrist" in snap.report.kinds:
-        lines.append("The wrist axes lie in one plane (not decoupled: no spherical wrist on an arm).")
+        lines.append(_("The wrist axes lie in one plane (not decoupled: no spherical wrist on an arm)."))
     return "<br>".join(lines)
 
 
-def status_html(snap: Snapshot, state: LabState) -> str:
+def status_html(snap: Snapshot, state: LabState, tr: Translator | None = None) -> str:
     """The coloured banner ("regular", "near singular: wrist", "singular: wrist") with κ, and one line
     under it: the visited configuration's description, or why a motion stopped.
 
     The banner and the J(q) tab show it for the same redraw: the last one is kept (by identity).
     """
+    tr = tr or translations()
     last = _LAST_STATUS[0]  # one tuple, read and replaced whole: safe with tabs on several threads
-    if last is not None and last[0] is snap and last[1] is state:
-        return last[2]
-    html = _status_html(snap, state)
-    _LAST_STATUS[0] = (snap, state, html)
+    if last is not None and last[0] is snap and last[1] is state and last[2] is tr:
+        return last[3]
+    html = _status_html(snap, state, tr)
+    _LAST_STATUS[0] = (snap, state, tr, html)
     return html
 
 
-_LAST_STATUS: list[tuple[Snapshot, LabState, str] | None] = [None]
+_LAST_STATUS: list[tuple[Snapshot, LabState, Translator, str] | None] = [None]
 
 
-def _status_html(snap: Snapshot, state: LabState) -> str:
+def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
+    _ = tr.gettext
     r = snap.report
     icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
-    words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration)
+    words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration, tr)
     banner = (
         f'<div class="jl-status" style="background:{status_hex(r.status)}" data-status="{r.status}">'
         f"<span>{icon}</span><span>{fmt.escape(words)}</span>"
-        f'<small style="margin-left:auto">κ = {fmt.number(r.condition)}</small></div>'
+        f'<small style="margin-left:auto">κ = {fmt.number(r.condition, tr=tr)}</small></div>'
     )
     robot = state.robot
     sub = ""
     if state.stopped:
-        sub = fmt.escape(state.stopped)
+        sub = fmt.escape(_(state.stopped))
     elif state.configuration:
         conf = next((c for c in robot.configurations if c.name == state.configuration), None)
         text = conf.description if conf is not None and conf.description else ""
         sub = f"<b>{fmt.escape(state.configuration.replace('_', ' '))}</b>" + (
             f": {fmt.escape(text)}" if text else ""
         )
-    lost = lost_text(snap, robot.planar)
+    lost = lost_text(snap, robot.planar, tr)
     a = snap.analytic
-    representation = (
-        f"<b>representation singular</b> ({a.convention.upper()}, "
-        f"{'pitch ±90°' if a.convention == 'zyx' else 'θ = 0 or 180°'}): no J<sub>A</sub>; "
-        f"J {r.status}, rank {snap.rank}"
-        + (f"; {a.regular_instead.upper()} is regular here" if a.regular_instead else "")
-        if a is not None and a.singular
-        else ""
-    )
+    representation = ""
+    if a is not None and a.singular:
+        representation = _(
+            "<b>representation singular</b> ({convention}, {where}): no J<sub>A</sub>; "
+            "J: {status}, rank {rank}"
+        ).format(
+            convention=a.convention.upper(),
+            where=_("pitch ±90°") if a.convention == "zyx" else _("θ = 0 or 180°"),
+            status=status_word(r.status, tr),
+            rank=snap.rank,
+        )
+        if a.regular_instead:
+            representation += _("; {convention} is regular here").format(convention=a.regular_instead.upper())
     # Every line wraps; a configuration's description (up to 376 characters) keeps at most two lines,
     # ending in "…" when cut, so the sliders stay in sight on a projector; a click on it shows all of it
     # (a checkbox and its label: no script), until the next change redraws the status. The lines keep
@@ -176,55 +230,61 @@ def _description(html: str) -> str:
     )
 
 
-FIRST_HINT = (
+FIRST_HINT = N_(
     "<b>First:</b> drag a joint slider and watch J(q) change; then pick a singularity under Configuration."
 )
 """What a new tab says to do first, in the 3-D view's lower corner, until its first change."""
 
 
-def hint_html(state: LabState) -> str:
+def hint_html(state: LabState, tr: Translator | None = None) -> str:
     """The first hint ("" once the tab has changed anything: gone for good)."""
-    return "" if state.started else f'<div class="jl jl-hint">{FIRST_HINT}</div>'
+    hint = (tr or translations()).gettext(FIRST_HINT)
+    return "" if state.started else f'<div class="jl jl-hint">{hint}</div>'
 
 
-def measures_html(snap: Snapshot, robot: Robot) -> str:
+def measures_html(snap: Snapshot, robot: Robot, tr: Translator | None = None) -> str:
     """The table of measures, each labelled with what it is (task rows named)."""
+    tr = tr or translations()
+    _ = tr.gettext
     n_rows, n = len(snap.rows), robot.dof
+    num = lambda x: fmt.number(x, tr=tr)  # noqa: E731
     rows = [
-        (f"κ, task ({task_name(snap.rows)})", fmt.number(snap.report.condition)),
+        (_("κ, task ({task})").format(task=task_name(snap.rows, tr)), num(snap.report.condition)),
         (
-            "κ translational (v rows)"
+            _("κ translational (v rows)")
             if not robot.planar
-            else "κ translational (v<sub>x</sub>, v<sub>y</sub>)",
-            fmt.number(snap.cond_translational),
+            else _("κ translational (v<sub>x</sub>, v<sub>y</sub>)"),
+            num(snap.cond_translational),
         ),
     ]
     if snap.cond_rotational is not None:
-        rows.append(("κ rotational (ω rows)", fmt.number(snap.cond_rotational)))
+        rows.append((_("κ rotational (ω rows)"), num(snap.cond_rotational)))
+    sep = "; " if tr.decimal_symbol == "," else ", "  # a list of decimal-comma numbers
     rows += [
-        ("w = √det(J Jᵀ)", fmt.number(snap.manipulability)),
-        ("σ", ", ".join(fmt.number(s) for s in fmt.cleaned(snap.sigma))),
-        ("det J", fmt.number(snap.det) if snap.det is not None else f"— ({n_rows}×{n}, not square)"),
-        ("rank", f"{snap.rank} of {min(n_rows, n)}"),
+        ("w = √det(J Jᵀ)", num(snap.manipulability)),
+        ("σ", sep.join(num(s) for s in fmt.cleaned(snap.sigma))),
+        (
+            "det J",
+            num(snap.det)
+            if snap.det is not None
+            else _("— ({rows}×{joints}, not square)").format(rows=n_rows, joints=n),
+        ),
+        (_("rank"), _("{rank} of {most}").format(rank=snap.rank, most=min(n_rows, n))),
     ]
     d = snap.decoupling
     if d is not None:
-        arm = (
-            fmt.number(d.det_arm)
-            if d.det_arm is not None
-            else f"σ<sub>min</sub> {fmt.number(d.sigma_arm[-1])}"
-        )
-        rows.append(("arm J<sub>11</sub> (wrist centre), det", arm))
-        rows.append(("wrist J<sub>22</sub>, det", fmt.number(d.det_wrist)))
+        arm = num(d.det_arm) if d.det_arm is not None else f"σ<sub>min</sub> {num(d.sigma_arm[-1])}"
+        rows.append((_("arm J<sub>11</sub> (wrist centre), det"), arm))
+        rows.append((_("wrist J<sub>22</sub>, det"), num(d.det_wrist)))
     body = "".join(
-        f'<tr><th>{label}</th><td class="{"v wrap" if ", " in value else "v"}">{value}</td></tr>'
+        f'<tr><th>{label}</th><td class="{"v wrap" if sep in value else "v"}">{value}</td></tr>'
         for label, value in rows
     )
-    note = (
-        f'<div class="jl-note">Task rows {row_label(snap.rows)} of the base-frame J. '
-        "κ = σ<sub>max</sub>/σ<sub>min</sub> (∞ at a singularity); w = Π σ<sub>i</sub>.</div>"
-    )
-    return f'<div class="jl"><table class="jl-table">{body}</table>{note}</div>'
+    note = _(
+        "Task rows {rows} of the base-frame J. κ = σ<sub>max</sub>/σ<sub>min</sub> (∞ at a singularity); "
+        "w = Π σ<sub>i</sub>."
+    ).format(rows=row_label(snap.rows))
+    return f'<div class="jl"><table class="jl-table">{body}</table><div class="jl-note">{note}</div></div>'
 
 
 def _plain(html_text: str) -> str:

@@ -8,6 +8,7 @@ element (the handle's uuid) and their label's ``for`` attribute.
 
 from __future__ import annotations
 
+from ...core.i18n import LANGUAGES, N_, translations
 from ..palette import STATUS_TEXT, joint_hex, joint_text_hex
 
 __all__ = ["BASE_CSS", "slider_css", "PAGE_JS", "PAGE_TITLE", "steps_js"]
@@ -123,11 +124,12 @@ PAGE_JS = """
   // The split of the right-hand column is app.views.panel.layout's.
   if (window.__jacobianLabKeys) return;
   window.__jacobianLabKeys = true;
+  const CLOSE_WORDS = window.__jacobianLabCloseWords || ["Close"];
   const modalClose = () => {
     for (const content of document.querySelectorAll(".mantine-Modal-content")) {
       if (!content.querySelector(".jl-big")) continue;
       for (const button of content.querySelectorAll("button")) {
-        if (button.textContent.trim() === "Close") { button.click(); return true; }
+        if (CLOSE_WORDS.includes(button.textContent.trim())) { button.click(); return true; }
       }
     }
     return false;
@@ -198,9 +200,17 @@ PAGE_JS = """
 """
 
 
+CLOSE = N_("Close")
+"""The enlarged J's close button (the page script clicks it on Escape, found by its words)."""
+
+
 def page_js() -> str:
-    """The page script (slider keys, closing the enlarged J, clicks on the joint map)."""
-    return PAGE_JS
+    """The page script (slider keys, closing the enlarged J, clicks on the joint map). The close
+    button's words in every language: the script runs once per page, whatever language it speaks."""
+    import json
+
+    words = sorted({translations(lang.code).gettext(CLOSE) for lang in LANGUAGES})
+    return f"window.__jacobianLabCloseWords = {json.dumps(words)};" + PAGE_JS
 
 
 def steps_js(steps: dict[str, float]) -> str:
