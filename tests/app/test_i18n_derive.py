@@ -10,38 +10,15 @@ import re
 
 import pytest
 from app_helpers import running_lab, scene_node
-from babel.messages.pofile import read_po
+from i18n_words import english_only, plain, words
 
 from app.core.actions import GoTo, SetWrench
 from app.core.commands import ChooseRobot
-from app.core.i18n import LOCALE_DIR, language_of, translations
+from app.core.i18n import translations
 from app.core.snapshot.derive import METHODS
 from app.views.scene.overlays import MAX_LOSSES
 
 LANGUAGES = ("pt", "es", "pl")
-_WORD = re.compile(r"[^\W\d_]{3,}")
-
-
-def _words(text: str) -> set[str]:
-    return {w.lower() for w in _WORD.findall(text)}
-
-
-def _plain(html: str) -> str:
-    """An HTML fragment's text, its entities read (&lt;origin&gt; → <origin>)."""
-    text = re.sub(r"<[^>]*>", " ", html)
-    return text.replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&").replace("&quot;", '"')
-
-
-def _english_only(code: str) -> set[str]:
-    """Words of the English catalog ids (three letters or more) that no translation of ``code`` uses:
-    any of them on a ``code`` screen is English left over ("column", "joint", "equals", "step")."""
-    with (LOCALE_DIR / "messages.pot").open("rb") as f:
-        ids = [m.id for m in read_po(f) if m.id]
-    with (LOCALE_DIR / language_of(code).locale / "LC_MESSAGES" / "messages.po").open("rb") as f:
-        strings = [m.string for m in read_po(f, locale=language_of(code).locale) if m.id]
-    english = set().union(*(_words(" ".join(i) if isinstance(i, tuple) else i) for i in ids))
-    own = set().union(*(_words(" ".join(s) if isinstance(s, tuple) else s) for s in strings))
-    return english - own
 
 
 def _report(session, **fields) -> None:
@@ -72,7 +49,7 @@ def _shown(session) -> str:
     'In symbols' part (the fake symbolic service's own captions and MathML, "fake step A1", taken out)."""
     d = session.panel.derive
     fake = re.sub(r'<div class="jl-mathml">.*?</div>', " ", d.formula.content)  # the fake's MathML
-    formula = re.sub(r"fake (step \S+|J|det J)", " ", _plain(fake))
+    formula = re.sub(r"fake (step \S+|J|det J)", " ", plain(fake))
     parts = [
         d.method.label,
         str(d.method.value),
@@ -80,8 +57,8 @@ def _shown(session) -> str:
         d.step.label,
         d.buttons.label,
         *map(str, d.buttons.options),
-        _plain(d.body.content),
-        _plain(d.table.content),
+        plain(d.body.content),
+        plain(d.table.content),
         formula,
     ]
     return "\n".join(parts)
@@ -94,16 +71,16 @@ def _numbers(text: str) -> list[str]:
 @pytest.mark.parametrize("code", LANGUAGES)
 @pytest.mark.parametrize("method", ["whitney", "dh"])
 def test_every_step_of_the_walk_speaks_the_tabs_language(code, method):
-    english = _english_only(code)
+    english = english_only(code)
     tr = translations(code)
     with running_lab() as (_lab, session, _ws):
         _open(session, code)
         robot = session.state.robot
-        names = _words(" ".join([robot.name, *(j.name for j in robot.joints)]))
+        names = words(" ".join([robot.name, *(j.name for j in robot.joints)]))
         for step in range(robot.dof):
             _walk(session, code, method, step)
             shown = _shown(session)
-            left = sorted((_words(shown) - names) & english)
+            left = sorted((words(shown) - names) & english)
             assert not left, f"{method} step {step + 1} in {code}: English left {left}\n{shown}"
             head = tr.gettext("Step {i} of {n}: joint {i} ({name})").format(
                 i=step + 1, n=robot.dof, name=robot.joints[step].name
@@ -111,7 +88,7 @@ def test_every_step_of_the_walk_speaks_the_tabs_language(code, method):
             assert head in shown and head != f"Step {step + 1} of {robot.dof}"
             numbers = _numbers(shown)
             assert numbers and all("," in x for x in numbers), numbers  # the DH table's and the step's
-            body = _plain(session.panel.derive.body.content)
+            body = plain(session.panel.derive.body.content)
             if method == "whitney":
                 assert tr.gettext("equals column {i} of J(q)").format(i=step + 1) in body
                 # a vector's components parted by semicolons where the decimal mark is a comma
@@ -137,6 +114,6 @@ def test_the_3d_labels_at_the_pumas_wrist_singularity_are_in_the_tabs_language(c
         texts = {scene_node(session, f"/lab/derive/label_{k}").text for k in range(6)}
         about = tr.gettext("{tau} about {z}").format(tau="τ₅", z="z₄")
         assert about in texts and "τ₅ about z₄" not in texts, texts
-        english = _english_only(code)
-        left = sorted(_words(" ".join(shown + sorted(texts))) & english)
+        english = english_only(code)
+        left = sorted(words(" ".join(shown + sorted(texts))) & english)
         assert not left, left
