@@ -117,3 +117,25 @@ def test_the_3d_labels_at_the_pumas_wrist_singularity_are_in_the_tabs_language(c
         english = english_only(code)
         left = sorted(words(" ".join(shown + sorted(texts))) & english)
         assert not left, left
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("code", LANGUAGES)
+def test_the_symbolic_steps_of_whitney_are_captioned_in_the_tabs_language(code):
+    """What the symbolic worker sends for the Whitney walk (planar 2R, in process): every joint's
+    'In symbols' captions (z, p, pₙ − p, the column, ⁰Tᵢ) in the tab's language, escaped, no English left."""
+    from app.services.symbolic_requests import _steps_mathml
+    from app.views.panel.derive_html import formulas_html
+    from robots import load
+
+    steps = _steps_mathml(load("planar2"), "whitney", 120.0)
+    assert all(s[4][0] for s in steps if s[1].startswith(("whitney.", "T0_", "A")))  # each has its id
+    tr = translations(code)
+    english = english_only(code)
+    for joint in range(2):
+        html = formulas_html(steps, "", "whitney", joint, last=False, tr=tr)
+        captions = " ".join(re.findall(r'<div class="jl-note">(.*?)</div>', html))
+        left = sorted(words(plain(captions)) & english)
+        assert not left, f"joint {joint + 1} in {code}: English left {left}: {captions}"
+        column = tr.gettext("Column {j} = {formula}").split("{")[0]
+        assert column in captions and not re.search(r"\bColumn\b", captions)

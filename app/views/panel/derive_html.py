@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -119,8 +120,9 @@ def formulas_html(
 ) -> str:
     """The symbolic steps of ``method`` that belong to ``joint``, each caption over its MathML.
 
-    ``steps``: (joint, key, caption HTML, MathML) tuples from the symbolic worker (captions and
-    MathML are escaped there), or ``None`` (then ``note`` says why). At the ``last`` step the
+    ``steps``: (joint, key, caption HTML, MathML[, (catalog id, arguments)]) tuples from the symbolic
+    worker (captions and MathML are escaped there; a caption with a catalog id is shown in ``tr``'s
+    language), or ``None`` (then ``note`` says why). At the ``last`` step the
     assembled J and det J (factored, singular sets named) follow.
     """
     _ = (tr or translations()).gettext
@@ -136,7 +138,16 @@ def formulas_html(
         none = fmt.escape(_("No symbolic step for this joint."))
         return head + f'<div class="jl-note">{none}</div>'
     body = "".join(
-        f'<div class="jl-note">{caption}</div><div class="jl-mathml">{ml}</div>'
-        for _, _, caption, ml in chosen
+        f'<div class="jl-note">{_caption(step, _)}</div><div class="jl-mathml">{step[3]}</div>'
+        for step in chosen
     )
     return head + body
+
+
+def _caption(step: tuple, _: Callable[[str], str]) -> str:
+    """A symbolic step's caption (HTML) in the tab's language: its catalog id translated and filled
+    with its arguments (symbols and numbers), escaped; the worker's English caption when it has none."""
+    if len(step) > 4 and step[4][0]:
+        msgid, args = step[4]
+        return fmt.escape(_(msgid).format(**dict(args)))
+    return str(step[2])

@@ -41,6 +41,7 @@ from typing import Literal
 import sympy as sp
 
 from ...model import Robot
+from ...text import N_, words
 from ..chain import frames_within, multiply
 from ..core import DEFAULT_TIMEOUT, check_timeout
 from ..model import SymbolicError, build_model, check_frame
@@ -87,7 +88,11 @@ def _transform_steps(ctx: Context) -> list[Step]:
     m, F = ctx.model, ctx.F
     out: list[Step] = []
     dh = bool(m.dh)
-    what = "DH link transform" if dh else "link transform of the chain"
+    what = (
+        N_("{A} = {T}, the DH link transform of joint {joint}{formula}")
+        if dh
+        else N_("{A} = {T}, the link transform of the chain of joint {joint}{formula}")
+    )
     if not _is_identity(m.base):
         out.append(
             ctx.step(
@@ -110,7 +115,7 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 f"A{k + 1}",
-                f"A{_sub(k + 1)} = {_sup(k)}T{_sub(k + 1)}, the {what} of joint {k + 1}{formula}",
+                words(what, A=f"A{_sub(k + 1)}", T=f"{_sup(k)}T{_sub(k + 1)}", joint=k + 1, formula=formula),
                 f"A_{{{k + 1}}}",
                 A,
                 m.axis_joint[k],
@@ -134,7 +139,7 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 f"T0_{k + 1}",
-                title + f": frame {k + 1} in the base frame",
+                words(N_("{T}: frame {i} in the base frame"), T=title, i=k + 1),
                 f"{{}}^{{0}}T_{{{k + 1}}}",
                 F.link[k],
                 m.axis_joint[k],

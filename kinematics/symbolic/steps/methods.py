@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from ...text import N_, words
 from ..chain import Frames
 from ..derivations import carry_inward, carry_outward, chain_elements
 from ..model import SymbolicModel
@@ -111,7 +112,7 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             i, W = lab[k], F.joint[k]
             zs = ctx.step(
                 f"whitney.z{k}",
-                f"z{_s(i)}: the axis of joint {k + 1}, in the base axes",
+                words(N_("{z}: the axis of joint {joint}, in the base axes"), z=f"z{_s(i)}", joint=k + 1),
                 f"z_{{{i}}}",
                 W[:3, 2],
                 j,
@@ -123,7 +124,11 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             if m.kinds[k] == "revolute":
                 p = ctx.step(
                     f"whitney.p{k}",
-                    f"p{_s(i)}: a point of joint {k + 1}'s axis (its frame's origin)",
+                    words(
+                        N_("{p}: a point of joint {joint}'s axis (its frame's origin)"),
+                        p=f"p{_s(i)}",
+                        joint=k + 1,
+                    ),
                     f"p_{{{i}}}",
                     W[:3, 3],
                     j,
@@ -131,7 +136,11 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
                 )
                 r = ctx.step(
                     f"whitney.r{k}",
-                    f"pₙ − p{_s(i)}: from joint {k + 1}'s axis to the tool origin",
+                    words(
+                        N_("{r}: from joint {joint}'s axis to the tool origin"),
+                        r=f"pₙ − p{_s(i)}",
+                        joint=k + 1,
+                    ),
                     f"p_{{n}} - p_{{{i}}}",
                     p_n - W[:3, 3],
                     j,
@@ -139,13 +148,17 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
                 )
                 out += [p, r]
                 col += rate * sp.Matrix.vstack(z.cross(r.expr), z)
-                formula = f"z{_s(i)} × (pₙ − p{_s(i)}), z{_s(i)}"
+                formula = words(
+                    N_("Column {j} = {formula}"), j=j + 1, formula=f"z{_s(i)} × (pₙ − p{_s(i)}), z{_s(i)}"
+                )
             else:
                 col += rate * sp.Matrix.vstack(z, sp.zeros(3, 1))
-                formula = f"z{_s(i)}, 0 (prismatic: the tool slides along the axis, no rotation)"
-        step = ctx.step(
-            f"whitney.col{j + 1}", f"Column {j + 1} = {formula}", f"J_{{{j + 1}}}", col, j, "whitney"
-        )
+                formula = words(
+                    N_("Column {j} = {z}, 0 (prismatic: the tool slides along the axis, no rotation)"),
+                    j=j + 1,
+                    z=f"z{_s(i)}",
+                )
+        step = ctx.step(f"whitney.col{j + 1}", formula, f"J_{{{j + 1}}}", col, j, "whitney")
         out.append(step)
         cols.append(step.expr)
     return out, sp.Matrix.hstack(*cols), "base"
