@@ -174,7 +174,7 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         name = m.display[qj]
         dp = ctx.step(
             f"diff.dp{j + 1}",
-            f"∂p/∂q{_s(j + 1)}: the v part of column {j + 1}",
+            words(N_("{dp}: the v part of column {j}"), dp=f"∂p/∂q{_s(j + 1)}", j=j + 1),
             f"\\frac{{\\partial p}}{{\\partial {name}}}",
             p.diff(qj),
             j,
@@ -182,7 +182,11 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         )
         S = ctx.step(
             f"diff.S{j + 1}",
-            f"(∂R/∂q{_s(j + 1)}) Rᵀ = [ω]×: a skew matrix; the ω part of column {j + 1} is (S₃₂, S₁₃, S₂₁)",
+            words(
+                N_("{S} = [ω]×: a skew matrix; the ω part of column {j} is (S₃₂, S₁₃, S₂₁)"),
+                S=f"(∂R/∂q{_s(j + 1)}) Rᵀ",
+                j=j + 1,
+            ),
             f"\\frac{{\\partial R}}{{\\partial {name}}} R^{{T}}",
             R.diff(qj) * R.T,
             j,
@@ -191,7 +195,7 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         s = S.expr
         col = ctx.step(
             f"diff.col{j + 1}",
-            f"Column {j + 1} = ∂p/∂q{_s(j + 1)}, (S₃₂, S₁₃, S₂₁)",
+            words(N_("Column {j} = {dp}, (S₃₂, S₁₃, S₂₁)"), j=j + 1, dp=f"∂p/∂q{_s(j + 1)}"),
             f"J_{{{j + 1}}}",
             sp.Matrix([*dp.expr, s[2, 1], s[0, 2], s[1, 0]]),
             j,
@@ -219,19 +223,38 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         last_of_link = 0 <= k < len(m.kinds) and idx + 1 < len(chain) and chain[idx + 1][2] != k
         if last_of_link:
             j, i = m.axis_joint[k], k + 1
-            extra = " plus ḋ along the axis" if m.kinds[k] == "prismatic" else ""
             ws = mk(
                 f"prop.w{i}",
-                f"ω of link {i} in its own axes: link {i - 1}'s ω carried into frame {i}"
-                + (f", plus θ̇{_s(j + 1)} about joint {i}'s axis" if m.kinds[k] == "revolute" else ""),
+                words(
+                    N_(
+                        "ω of link {i} in its own axes: link {before}'s ω carried into frame {i}, plus "
+                        "{rate} about joint {i}'s axis"
+                    )
+                    if m.kinds[k] == "revolute"
+                    else N_("ω of link {i} in its own axes: link {before}'s ω carried into frame {i}"),
+                    i=i,
+                    before=i - 1,
+                    rate=f"θ̇{_s(j + 1)}",
+                ),
                 f"{{}}^{{{i}}}\\omega_{{{i}}}",
                 w,
                 j,
             )
             vs = mk(
                 f"prop.v{i}",
-                f"Velocity of link {i}'s origin in its own axes: link {i - 1}'s origin velocity plus "
-                f"ω × (the offset between the origins){extra}",
+                words(
+                    N_(
+                        "Velocity of link {i}'s origin in its own axes: link {before}'s origin velocity plus "
+                        "ω × (the offset between the origins) plus ḋ along the axis"
+                    )
+                    if m.kinds[k] == "prismatic"
+                    else N_(
+                        "Velocity of link {i}'s origin in its own axes: link {before}'s origin velocity plus "
+                        "ω × (the offset between the origins)"
+                    ),
+                    i=i,
+                    before=i - 1,
+                ),
                 f"{{}}^{{{i}}}v_{{{i}}}",
                 v,
                 j,
@@ -294,16 +317,28 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             j, i = m.axis_joint[k], k + 1
             fs = mk(
                 f"force.f{i}",
-                f"Force on link {i} at joint {i}, in the axes of joint {i}'s frame (z along its axis): "
-                f"link {i + 1}'s force carried inward",
+                words(
+                    N_(
+                        "Force on link {i} at joint {i}, in the axes of joint {i}'s frame (z along its "
+                        "axis): link {next}'s force carried inward"
+                    ),
+                    i=i,
+                    next=i + 1,
+                ),
                 f"f_{{{i}}}",
                 f,
                 j,
             )
             ns = mk(
                 f"force.n{i}",
-                f"Moment on link {i} about joint {i}'s frame origin: link {i + 1}'s moment carried inward "
-                "plus p × f",
+                words(
+                    N_(
+                        "Moment on link {i} about joint {i}'s frame origin: link {next}'s moment carried "
+                        "inward plus p × f"
+                    ),
+                    i=i,
+                    next=i + 1,
+                ),
                 f"n_{{{i}}}",
                 n,
                 j,
@@ -314,13 +349,13 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             tau[j] = tau.get(j, sp.Integer(0)) + sp.diff(X, m.q[j]) * torque
             if k == min(_axes_of(m, j)):
                 what = (
-                    "n · z: the moment about the axis"
+                    N_("{tau} = n · z: the moment about the axis")
                     if kind == "revolute"
-                    else "f · z: the force along the axis"
+                    else N_("{tau} = f · z: the force along the axis")
                 )
                 taus[j] = mk(
                     f"force.tau{j + 1}",
-                    f"τ{_s(j + 1)} = {what}",
+                    words(what, tau=f"τ{_s(j + 1)}"),
                     f"\\tau_{{{j + 1}}}",
                     sp.Matrix([[tau[j]]]),
                     j,
