@@ -142,3 +142,6 @@ def test_the_symbolic_steps_of_a_walk_are_captioned_in_the_tabs_language(method,
         assert captions
         left = sorted(words(plain(captions)) & english)
         assert not left, f"{method}, joint {joint + 1} in {code}: English left {left}: {captions}"
+    whole = next(s for s in steps if s[1] == "J")  # the assembled J under the last joint's steps
+    assert whole[4][0] and tr.gettext(whole[4][0]) != whole[4][0]
+    assert plain(formulas_html(steps, "", method, 1, last=True, tr=tr)).count(tr.gettext(whole[4][0])) == 1

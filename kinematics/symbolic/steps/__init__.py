@@ -97,7 +97,7 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 "base",
-                "The robot's base transform: frame 0 seen from the base",
+                words(N_("The robot's base transform: frame 0 seen from the base")),
                 "T_{\\mathrm{base}}",
                 m.base,
                 None,
@@ -126,7 +126,7 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 "Atool",
-                f"The tool transform: the tool frame seen from frame {n}",
+                words(N_("The tool transform: the tool frame seen from frame {n}"), n=n),
                 f"{{}}^{{{n}}}T_{{\\mathrm{{tool}}}}",
                 m.tool,
                 None,
@@ -149,8 +149,12 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 "T0_tool",
-                f"⁰T_tool = ⁰T{_sub(len(m.kinds))} · {_sup(len(m.kinds))}T_tool: the tool pose "
-                "(pₙ is its origin)",
+                words(
+                    N_("{T} = {product}: the tool pose ({p} is its origin)"),
+                    T="⁰T_tool",
+                    product=f"⁰T{_sub(len(m.kinds))} · {_sup(len(m.kinds))}T_tool",
+                    p="pₙ",
+                ),
                 "{}^{0}T_{\\mathrm{tool}}",
                 F.tool,
                 None,
@@ -219,20 +223,31 @@ def _build(
     own, J, axes = METHOD_STEPS[method](ctx)
     steps += own
     if axes != frame:  # Whitney and differentiation give J in the base axes, force propagation in the tool's
-        what = {"base": "the base axes: the columns side by side", "tool": "the tool axes"}[axes]
+        what = {
+            "base": N_("J in the base axes: the columns side by side"),
+            "tool": N_("J in the tool axes"),
+        }[axes]
         lhs = {"base": "J_{\\mathrm{base}}", "tool": "J_{\\mathrm{tool}}"}[axes]
-        steps.append(ctx.step(f"J_{axes}", f"J in {what}", lhs, J, None, "result"))
+        steps.append(ctx.step(f"J_{axes}", words(what), lhs, J, None, "result"))
         R = F.tool[:3, :3]
         J = rotate_rows(J, R.T if frame == "tool" else R)
     title = {
-        "base": "J: the columns side by side, rows [v; ω] in the base axes (v: velocity of the tool origin)",
-        "tool": "J in the tool axes: blockdiag(Rᵀ, Rᵀ) J_base, R the tool's rotation",
+        "base": N_(
+            "J: the columns side by side, rows [v; ω] in the base axes (v: velocity of the tool origin)"
+        ),
+        "tool": N_("J in the tool axes: blockdiag(Rᵀ, Rᵀ) J_base, R the tool's rotation"),
     }[frame]
     if method == "propagation":
-        title = "J: the coefficients of q̇ in [v; ω]" + (" (base axes)" if frame == "base" else " (tool axes)")
+        title = (
+            N_("J: the coefficients of q̇ in [v; ω] (base axes)")
+            if frame == "base"
+            else N_("J: the coefficients of q̇ in [v; ω] (tool axes)")
+        )
     if method == "force" and frame == "base":
-        title = "J = blockdiag(R, R) J_tool, R the tool's rotation: rows [v; ω] in the base axes"
-    steps.append(ctx.step("J", title, "J" if frame == "base" else "J_{\\mathrm{tool}}", J, None, "result"))
+        title = N_("J = blockdiag(R, R) J_tool, R the tool's rotation: rows [v; ω] in the base axes")
+    steps.append(
+        ctx.step("J", words(title), "J" if frame == "base" else "J_{\\mathrm{tool}}", J, None, "result")
+    )
     det = _det_step(ctx, robot, symbolic_params) if frame == "base" else None
     if det is not None:
         steps.append(det)

@@ -264,14 +264,14 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     if m.tool != sp.eye(4):
         ws = mk(
             "prop.wtool",
-            "ω of the tool in the tool axes",
+            words(N_("ω of the tool in the tool axes")),
             "{}^{\\mathrm{tool}}\\omega_{\\mathrm{tool}}",
             w,
             None,
         )
         vs = mk(
             "prop.vtool",
-            "Velocity of the tool origin in the tool axes: v + ω × (the tool offset)",
+            words(N_("Velocity of the tool origin in the tool axes: v + ω × (the tool offset)")),
             "{}^{\\mathrm{tool}}v_{\\mathrm{tool}}",
             v,
             None,
@@ -283,14 +283,14 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         end = "\\mathrm{tool}" if m.tool != sp.eye(4) else "n"
         ws = mk(
             "prop.w_base",
-            "ω of the tool rotated to the base axes: ⁰R_tool ω",
+            words(N_("ω of the tool rotated to the base axes: ⁰R_tool ω")),
             f"{{}}^{{0}}\\omega_{{{end}}}",
             R * w,
             None,
         )
         vs = mk(
             "prop.v_base",
-            "Velocity of the tool origin rotated to the base axes: ⁰R_tool v",
+            words(N_("Velocity of the tool origin rotated to the base axes: ⁰R_tool v")),
             f"{{}}^{{0}}v_{{{end}}}",
             R * v,
             None,
@@ -363,7 +363,7 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
                 out.append(taus[j])
         f, n = carry_inward(kind, X, f, n)
     JT = sp.Matrix([taus[j].expr[0, 0] for j in range(m.dof)]).jacobian(sp.Matrix(W))
-    title = "Jᵀ in the tool axes: the coefficients of the tool wrench in τ (τ = Jᵀ [f; n])"
+    title = words(N_("Jᵀ in the tool axes: the coefficients of the tool wrench in τ (τ = Jᵀ [f; n])"))
     jt = ctx.step("force.JT", title, "J_{\\mathrm{tool}}^{T}", JT, None, "force")
     out.append(jt)
     return out, jt.expr.T, "tool"
