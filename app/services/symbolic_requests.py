@@ -113,8 +113,10 @@ def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:
 
 def _steps_mathml(
     robot: Robot, method: str, timeout: float, letters: bool = False
-) -> tuple[tuple[int | None, str, str, str], ...]:
-    """In the worker process: every step of one derivation, its caption and its MathML (panel width)."""
+) -> tuple[tuple[int | None, str, str, str, tuple[str, tuple[tuple[str, str], ...]]], ...]:
+    """In the worker process: every step of one derivation, its caption and its MathML (panel width),
+    and the caption's catalog id with its arguments (("", ()) for a caption not marked for the catalogs)
+    so the tab shows it in its own language."""
     try:
         from kinematics.symbolic import derivation_steps
         from kinematics.symbolic.handout.parts import singular_texts
@@ -125,8 +127,11 @@ def _steps_mathml(
         ml = s.mathml(STEP_WIDTH_PX)
         return ml + _math_blocks(singular_texts(s.notation(), s, latex=False)) if s.singular else ml
 
+    def words(s: Step) -> tuple[str, tuple[tuple[str, str], ...]]:
+        return (str(getattr(s.title, "msgid", "")), tuple(getattr(s.title, "args", ())))
+
     return tuple(
-        (s.joint, s.key, s.title_html(), body(s))
+        (s.joint, s.key, s.title_html(), body(s), words(s))
         for s in derivation_steps(robot, method, symbolic_params=letters, timeout=timeout)
     )
 

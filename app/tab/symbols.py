@@ -18,6 +18,7 @@ from concurrent.futures import Future
 from typing import Any
 
 from ..core.commands import Message, SymbolicResult
+from ..core.i18n import N_
 from ..core.state import LabState
 from ..services.symbolic_service import (
     WORKER_RESTARTED,
@@ -214,7 +215,9 @@ class TabSymbols:
         letters = state.options.course_letters and state.robot.dh is not None
         if self.steps.want(
             (state.robot, "whitney" if derive == "dh" else derive, letters) if derive else None,
-            "working out the step in symbols… (the numbers above are live)",
+            N_(
+                "working out the step in symbols… (the numbers above are live)"
+            ),  # the Derive tab translates it
             _steps_ready,
         ):
             self._changed.add("derive")

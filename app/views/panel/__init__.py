@@ -323,7 +323,7 @@ TABS: tuple[Tab, ...] = (
         "derive",
         N_("Derive"),
         viser.Icon.STAIRS,
-        lambda c: DerivePanel(c.gui, c.dispatch, c.robot, order=100),
+        lambda c: DerivePanel(c.gui, c.dispatch, c.robot, order=100, tr=c.tr),
     ),
     Tab("about", N_("View"), viser.Icon.EYE, About),
     Tab("build", N_("Build"), viser.Icon.TOOL, None),

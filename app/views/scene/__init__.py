@@ -93,7 +93,10 @@ GLYPHS: tuple[Glyph, ...] = (
         "drive", lambda c: DriveView(c.scene, c.dispatch, c.geometry.size, c.robot.planar, f"{c.root}/drive")
     ),
     Glyph("path", lambda c: ToolPath(c.scene, f"{c.root}/motion")),
-    Glyph("derive", lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels)),
+    Glyph(
+        "derive",
+        lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels, c.tr),
+    ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
 J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step."""
