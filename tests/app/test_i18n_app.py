@@ -162,3 +162,46 @@ def test_tab_labels_of_every_language_map_back_to_the_english_key():
     for code in ("en", "pt", "es", "pl"):
         for label in TAB_LABELS:
             assert TAB_KEYS[translations(code).gettext(label)] == label
+
+
+def test_a_robots_configuration_description_is_in_the_tabs_language_else_english():
+    """The Puma's named configurations come with their description in the tab's language, from the robot
+    file's translations (robots/data/puma560.toml); a robot whose file has only English shows English."""
+    import robots
+
+    puma = robots.load("puma560")
+    wrist = next(c for c in puma.configurations if c.name == "wrist_singular")
+    with running_lab(robot="puma560") as (_lab, session, _ws):
+        session.dispatch(GoTo("wrist_singular"))
+        session.settle()
+        assert wrist.description.split(":")[0] in session.panel.status.content  # English first
+        report(session, address="?lang=pl&robot=puma560")
+        assert session.language == "pl"
+        status = session.panel.status.content
+        assert wrist.translations["pl"]["description"].split(":")[0] in status
+        assert "zgięciem nadgarstka q5 = 0" in status and "efektor traci" in status
+        assert wrist.description.split(":")[0] not in status
+        report(session, address="?lang=es&robot=puma560")
+        assert "la flexión de muñeca q5 = 0" in session.panel.status.content
+
+
+def test_a_robot_file_without_translations_shows_english_in_every_language():
+    import dataclasses
+
+    import robots
+    from app.core.i18n import translations as tr_of
+    from app.core.robot_texts import configuration_description, robot_description, robot_title
+
+    puma = robots.load("puma560")
+    bare = dataclasses.replace(
+        puma,
+        translations={},
+        configurations=tuple(dataclasses.replace(c, translations={}) for c in puma.configurations),
+    )
+    for code in ("pt", "es", "pl"):
+        tr = tr_of(code)
+        assert robot_title(bare, tr) == puma.title and robot_description(bare, tr) == puma.description
+        assert [configuration_description(c, tr) for c in bare.configurations] == [
+            c.description for c in puma.configurations
+        ]
+        assert robot_description(puma, tr) == puma.translations[code]["description"] != puma.description
