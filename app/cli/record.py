@@ -1,7 +1,9 @@
 """``jacobian-lab record``: a demo any static web server can play, with no Python behind it.
 
-``jacobian-lab record ROBOT -o DIR [--preset NAME] [--seconds S] [--fps F]``, with ROBOT a library
-name or a path to a robot file (.toml) or URDF. Writes ``DIR/index.html``, ``DIR/viser-client.html``,
+``jacobian-lab record ROBOT -o DIR [--preset NAME] [--seconds S] [--fps F] [--lang en|pt|es|pl]``,
+with ROBOT a library name or a path to a robot file (.toml) or URDF; ``--lang`` is the language of its
+labels (title, status, κ and joint rates with decimal commas in pt, es, pl) and of ``index.html``.
+Writes ``DIR/index.html``, ``DIR/viser-client.html``,
 ``DIR/recording.viser`` and ``DIR/joint_rates.csv`` (see :mod:`app.demo.record`); serve DIR
 (``python -m http.server -d DIR``) and open ``index.html``. Every mistake (an unknown robot or
 preset, a folder that cannot be written, a non-positive duration or frame rate) is one line on stderr
@@ -17,6 +19,7 @@ from pathlib import Path
 
 from kinematics.errors import JacobianLabError
 
+from ..core.i18n import CODES, translations
 from ..demo.record import DEFAULT_FPS, DEFAULT_SECONDS, UnknownPreset, check_preset, record, write_demo
 from .args import MAX_FPS, MAX_SECONDS, bounded
 from .export import add_chain_arguments, load_robot
@@ -54,6 +57,12 @@ def _parser() -> argparse.ArgumentParser:
         default=DEFAULT_FPS,
         metavar="F",
         help=f"frames per second (default: {DEFAULT_FPS:g}, at most {MAX_FPS:g})",
+    )
+    p.add_argument(
+        "--lang",
+        choices=CODES,
+        default="en",
+        help="language of the demo's labels and page (default: en)",
     )
     add_chain_arguments(p)
     return p
@@ -102,7 +111,7 @@ def main(argv: list[str] | None = None) -> int:
     if problem:
         return _fail(problem)
     try:
-        recording = record(name, robot, args.preset, args.seconds, args.fps)
+        recording = record(name, robot, args.preset, args.seconds, args.fps, translations(args.lang))
     except JacobianLabError as exc:
         return _fail(str(exc))
     try:
