@@ -274,14 +274,14 @@ def test_a_file_with_english_only_reads_with_no_translations():
     ],
 )
 def test_a_wrong_translation_is_refused_in_words(snippet, message):
-    text = robots.dumps(robots.load("planar2"), name="p")
+    text = robots.dumps(robots.load("scara"), name="p")  # a file with English only
     head, _, rest = text.partition("[[joints]]")
     with pytest.raises(RobotDefinitionError, match=message):
         robots.loads(head + snippet + "\n[[joints]]" + rest, "p.toml")
 
 
 def test_a_wrong_configuration_translation_is_refused_in_words():
-    text = robots.dumps(robots.load("planar2"), name="p")
+    text = robots.dumps(robots.load("scara"), name="p")  # a file with English only
     bad = text.replace('singular = ""', 'singular = ""\ntranslations.pl.name = "dom"', 1)
     with pytest.raises(RobotDefinitionError, match="configurations entry 1, translations.pl: unknown key"):
         robots.loads(bad, "p.toml")
