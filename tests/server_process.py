@@ -55,17 +55,22 @@ def cmdline(pid: int) -> str:
 
 
 class Server:
-    """The app in a subprocess of its own session, with its log in a file."""
+    """The app in a subprocess of its own session, with its log in a file: ``code`` run by ``python -c``,
+    or ``argv``, the command line's arguments as a user types them after ``jacobian-lab`` (run as
+    ``python -m app.cli.main``, the console script's entry point), in the folder ``cwd``."""
 
-    def __init__(self, tmp_path: Path, code: str) -> None:
+    def __init__(
+        self, tmp_path: Path, code: str = "", argv: list[str] | None = None, cwd: Path = ROOT
+    ) -> None:
         self.log = tmp_path / "server.log"
+        command = ["-m", "app.cli.main", *argv] if argv is not None else ["-c", code]
         with open(self.log, "wb") as log:
             self.proc = subprocess.Popen(
-                [sys.executable, "-u", "-c", code],
+                [sys.executable, "-u", *command],
                 stdout=subprocess.PIPE,
                 stderr=log,
                 text=True,
-                cwd=ROOT,
+                cwd=cwd,
                 env=dict(os.environ, PYTHONPATH=str(ROOT)),
                 start_new_session=True,
             )
@@ -74,7 +79,7 @@ class Server:
         match = None
         for line in self.proc.stdout:  # until the URL is printed (or the process ends)
             self.out.append(line)
-            match = re.search(r"open http://127\.0\.0\.1:(\d+)", line)
+            match = re.search(r"open http://[^\s/]+:(\d+) in a browser", line)
             if match:
                 break
         if not match:

@@ -69,7 +69,9 @@ class ViserWsClient:
         self, url: str, width: int = 800, height: int = 600, headers: dict[str, str] | None = None
     ) -> None:
         self.url = url
-        self.headers = dict(headers or {})  # of the handshake, as a browser sends them (Accept-Language)
+        self.headers = dict(
+            headers or {}
+        )  # extra handshake headers (Accept-Language, a proxy's X-Forwarded-For)
         self.size = (width, height)
         self.messages: list[tuple[float, dict[str, Any]]] = []
         self._cond = threading.Condition()

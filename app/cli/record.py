@@ -1,9 +1,7 @@
 """``jacobian-lab record``: a demo any static web server can play, with no Python behind it.
 
-``jacobian-lab record ROBOT -o DIR [--preset NAME] [--seconds S] [--fps F] [--lang en|pt|es|pl]``,
-with ROBOT a library name or a path to a robot file (.toml) or URDF; ``--lang`` is the language of its
-labels (title, status, κ and joint rates with decimal commas in pt, es, pl) and of ``index.html``.
-Writes ``DIR/index.html``, ``DIR/viser-client.html``,
+``jacobian-lab record ROBOT -o DIR [--preset NAME] [--seconds S] [--fps F]``, with ROBOT a library
+name or a path to a robot file (.toml) or URDF. Writes ``DIR/index.html``, ``DIR/viser-client.html``,
 ``DIR/recording.viser`` and ``DIR/joint_rates.csv`` (see :mod:`app.demo.record`); serve DIR
 (``python -m http.server -d DIR``) and open ``index.html``. Every mistake (an unknown robot or
 preset, a folder that cannot be written, a non-positive duration or frame rate) is one line on stderr
@@ -62,7 +60,7 @@ def _parser() -> argparse.ArgumentParser:
         "--lang",
         choices=CODES,
         default="en",
-        help="language of the demo's labels and page (default: en)",
+        help="the language of the demo's words (its title, status and 3-D labels; default: en)",
     )
     add_chain_arguments(p)
     return p

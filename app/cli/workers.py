@@ -36,12 +36,12 @@ import socket
 import sys
 import threading
 import time
-import urllib.parse
 from multiprocessing.connection import Connection
 from multiprocessing.connection import wait as wait_for_handles
 from typing import Any
 
 from app.services.catalog import DEFAULT_ROBOT
+from app.services.classroom import presenter_link
 from app.services.lifecycle import (
     check_listen_address,
     dump_stacks_on_sigusr1,
@@ -385,7 +385,7 @@ def serve_workers(
         print(f"Jacobian Lab: open http://{shown}:{pool.port} in a browser (robot: {robot}; {workers} worker "
               f"processes: {pids})", flush=True)  # fmt: skip
         if presenter_token:
-            link = f"http://{shown}:{pool.port}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
+            link = presenter_link(f"http://{shown}:{pool.port}", presenter_token)
             print(
                 f"Classroom mode: open {link} in the tab you present from (keep the link off the "
                 "projector; it fills in the presenter token, masked, and drops it from the address bar). "

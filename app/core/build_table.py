@@ -28,6 +28,7 @@ from kinematics.errors import RobotDefinitionError
 from kinematics.parts import CONVENTIONS, JOINT_TYPES
 from kinematics.urdf import to_urdf
 
+from .i18n import N_, Translator, translations
 from .numbers import NumberError, parse_number
 from .ranges import joint_ranges
 from .state import LabState, default_options, frozen
@@ -55,13 +56,13 @@ ROBOT_FILE_FORMATS = ("Robot file (TOML)", "URDF")
 """Download labels answered from the robot itself (the symbolic J ones go to the symbolic worker)."""
 
 FIELDS = {
-    "joint": "joint type",
+    "joint": N_("joint type"),
     "a": "a [m]",
     "alpha": "α [°]",
     "d": "d [m]",
-    "theta": "θ offset [°]",
-    "lo": "lower limit",
-    "hi": "upper limit",
+    "theta": N_("θ offset [°]"),
+    "lo": N_("lower limit"),
+    "hi": N_("upper limit"),
 }
 """Field of a row → its name on screen (the message of a bad value names it)."""
 
@@ -69,8 +70,10 @@ FIELDS = {
 class TableError(ValueError):
     """A value of the table that cannot make a robot: ``row`` (from 1; 0: the whole table), ``field``."""
 
-    def __init__(self, row: int, field: str, message: str) -> None:
-        where = f"Row {row}, {FIELDS.get(field, field)}" if row else FIELDS.get(field, field)
+    def __init__(self, row: int, field: str, message: str, tr: Translator | None = None) -> None:
+        _ = (tr or translations()).gettext
+        name = _(FIELDS[field]) if field in FIELDS else field
+        where = _("Row {row}, {field}").format(row=row, field=name) if row else name
         super().__init__(f"{where}: {message}")
         self.row, self.field = row, field
 
@@ -145,29 +148,36 @@ MAX_ANGLE = 3600.0
 """Largest |α|, |θ| or revolute limit the editor takes [°]."""
 
 
-def _number(value: object, row: int, field: str, unit: str) -> float:
+def _number(value: object, row: int, field: str, unit: str, tr: Translator | None = None) -> float:
     bound = MAX_ANGLE if unit == "°" else MAX_LENGTH
     try:
-        return parse_number(value, bound, unit)
+        return parse_number(value, bound, unit, tr)
     except NumberError as exc:
-        raise TableError(row, field, str(exc)) from None
+        raise TableError(row, field, str(exc), tr) from None
 
 
-def rows_si(table: Table) -> list[dict[str, object]]:
-    """The rows as :meth:`Robot.from_dh` takes them (radians), every field checked.
+def rows_si(table: Table, tr: Translator | None = None) -> list[dict[str, object]]:
+    """The rows as :meth:`Robot.from_dh` takes them (radians), every field checked; numbers typed as
+    ``tr``'s language writes them (a decimal comma in pt, es, pl), refusals in its words.
 
     Raises:
         TableError: the first bad field (row and field named).
     """
+    tr = tr or translations()
+    _ = tr.gettext
     out: list[dict[str, object]] = []
     for i, r in enumerate(table.rows, start=1):
         if r.joint not in JOINT_TYPES:
-            raise TableError(i, "joint", f"expected revolute or prismatic, got {str(r.joint)[:30]!r}")
+            message = _("expected revolute or prismatic, got {value}").format(value=repr(str(r.joint)[:30]))
+            raise TableError(i, "joint", message, tr)
         limit_unit = "°" if r.joint == "revolute" else "m"
         units = {"a": "m", "alpha": "°", "d": "m", "theta": "°", "lo": limit_unit, "hi": limit_unit}
-        v = {k: _number(getattr(r, k), i, k, u) for k, u in units.items()}
+        v = {k: _number(getattr(r, k), i, k, u, tr) for k, u in units.items()}
         if v["lo"] > v["hi"]:
-            raise TableError(i, "lo", f"the lower limit {v['lo']:g} is above the upper limit {v['hi']:g}")
+            message = _("the lower limit {lo} is above the upper limit {hi}").format(
+                lo=tr.decimal(f"{v['lo']:g}"), hi=tr.decimal(f"{v['hi']:g}")
+            )
+            raise TableError(i, "lo", message, tr)
         rev = r.joint == "revolute"
         qlim = (math.radians(v["lo"]), math.radians(v["hi"])) if rev else (v["lo"], v["hi"])
         row: dict[str, object] = {
@@ -189,18 +199,22 @@ MAX_ROWS = 24
 for every redraw; real arms have at most a dozen joints)."""
 
 
-def build(table: Table) -> Robot:
-    """The robot of ``table`` (named :data:`FILE_STEM`).
+def build(table: Table, tr: Translator | None = None) -> Robot:
+    """The robot of ``table`` (named :data:`FILE_STEM`), its numbers read in ``tr``'s language.
 
     Raises:
         TableError: a bad field, more than :data:`MAX_ROWS` rows, or a table :meth:`Robot.from_dh`
             rejects (its message kept).
     """
+    tr = tr or translations()
+    _ = tr.gettext
     if len(table.rows) > MAX_ROWS:
-        raise TableError(0, "rows", f"a table has at most {MAX_ROWS} rows, this one has {len(table.rows)}")
+        message = _("a table has at most {most} rows, this one has {rows}")
+        raise TableError(0, "rows", message.format(most=MAX_ROWS, rows=len(table.rows)), tr)
     if table.convention not in CONVENTIONS:
-        raise TableError(0, "convention", f"expected standard or modified, got {table.convention!r}")
-    rows = rows_si(table)
+        message = _("expected standard or modified, got {value}").format(value=repr(table.convention))
+        raise TableError(0, "convention", message, tr)
+    rows = rows_si(table, tr)
     same_joints = tuple(r.joint for r in table.rows) == table.kinds
     try:
         robot = Robot.from_dh(
@@ -222,7 +236,7 @@ def build(table: Table) -> Robot:
         text = str(exc)
         row = next((i + 1 for i in range(len(rows)) if f"DH row {i + 1}," in text), 0)
         field = next((k for k in ("alpha", "theta", "qlim", "a", "d") if f"key '{k}'" in text), "table")
-        raise TableError(row, "lo" if field == "qlim" else field, text) from None
+        raise TableError(row, "lo" if field == "qlim" else field, text, tr) from None
 
 
 # ---------------------------------------------------------------------- robot files

@@ -31,7 +31,7 @@ def joint_rates(state: LabState) -> np.ndarray | None:
 
 def rates_readout(state: LabState, tr: Translator | None = None) -> str:
     """The label under the readout: "q̇  q1 12 °/s · q2 −40 °/s · …" ("" when nothing moves the joints),
-    its numbers as ``tr``'s language writes them (a decimal comma in pt, es, pl; a point when None)."""
+    its numbers as ``tr``'s language writes them."""
     qd = joint_rates(state)
     if qd is None:
         return ""
@@ -43,9 +43,7 @@ def rates_readout(state: LabState, tr: Translator | None = None) -> str:
 
 
 def _rate(kind: str, x: float, tr: Translator | None = None) -> str:
-    if kind == "prismatic":
-        return f"{number(x, 3, tr=tr)} m/s"
-    return f"{number(np.degrees(x), 3, tr=tr)} °/s"
+    return f"{number(x, 3, tr)} m/s" if kind == "prismatic" else f"{number(np.degrees(x), 3, tr)} °/s"
 
 
 def rates_csv(states: Sequence[LabState], fps: float) -> str:

@@ -204,11 +204,9 @@ def play(demo: Demo, seconds: float, fps: float) -> tuple[LabState, ...]:
 
 
 def readout(snap: Snapshot, state: LabState, tr: Translator | None = None) -> str:
-    """The label under the title: "near singular: wrist   κ = 104" (and why the motion stopped); in
-    ``tr``'s language, as the panel's status line says it (``snap.report.text()`` when None)."""
-    if tr is None:
-        text = f"{snap.report.text()}   κ = {number(snap.report.condition)}"
-        return f"{text}   ·   {state.stopped}" if state.stopped and not state.playing else text
+    """The label under the title: "near singular: wrist   κ = 104" (and why the motion stopped), in
+    ``tr``'s language."""
+    tr = tr or translations()
     r = snap.report
     words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration, tr)
     text = f"{words}   κ = {number(r.condition, tr=tr)}"
@@ -280,7 +278,7 @@ def record_frames(
     with quiet():
         server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
     try:
-        view = SceneView(server, robot, root="/demo/lab")
+        view = SceneView(server, robot, root="/demo/lab", tr=tr)
         extents = []
         for snap, state in zip(snaps, states, strict=True):  # a dry run: what every frame draws
             view.update(snap, state)

@@ -182,9 +182,6 @@ class RoomLimits:
         uploads_per_tab: Uploads one tab may have in flight.
         bytes_in_flight: Declared bytes of every upload in flight, over the server [bytes].
         notices_per_second: Refusal notices a tab is shown per second (more are only logged).
-        token_tries_per_address, token_tries_per_server, token_window: Wrong presenter tokens one
-            address, and all addresses together, may try per window [s]; more are refused unread
-            (per address, not per tab: reconnecting tabs share their address's tries).
         clock: Time source [s].
 
     Attributes:
@@ -199,18 +196,11 @@ class RoomLimits:
         uploads_per_tab: int = 2,
         bytes_in_flight: int = 16 * 1024 * 1024,
         notices_per_second: float = 4.0,
-        token_tries_per_address: int = 5,
-        token_tries_per_server: int = 30,
-        token_window: float = 60.0,
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
         self.max_upload_bytes, self.part_bytes = max_upload_bytes, part_bytes
         self.uploads_per_tab, self.bytes_in_flight = uploads_per_tab, bytes_in_flight
         self.notices_per_second, self.clock = notices_per_second, clock
-        self.token_tries_per_address = token_tries_per_address
-        self.token_tries_per_server = token_tries_per_server
-        self.token_window = token_window
-        self._token_tries: deque[tuple[float, Hashable]] = deque()  # (time, address) of wrong tokens
         self.refusals: deque[tuple[Hashable, str]] = deque(maxlen=200)
         self.refused = 0
         self._lock = threading.Lock()
@@ -266,35 +256,6 @@ class RoomLimits:
         with self._lock:
             mine = [u for u in self._uploads.values() if tab is None or u[0] == tab]
             return len(mine), sum(u[1] for u in mine)
-
-    # ---------------------------------------------------------------- presenter tokens
-    def _recent_tries(self) -> deque[tuple[float, Hashable]]:
-        now = self.clock()
-        while self._token_tries and now - self._token_tries[0][0] >= self.token_window:
-            self._token_tries.popleft()
-        return self._token_tries
-
-    def try_token(self, address: Hashable, right: bool) -> str:
-        """One presenter token from ``address``: ``""`` when it is ``right`` and may be taken, else why
-        not (a wrong one is counted; over the limits, even a right one is refused unread)."""
-        with self._lock:
-            now, tries = self.clock(), self._recent_tries()
-            mine = [t for t, a in tries if a == address]
-            if len(mine) >= self.token_tries_per_address:
-                wait = self.token_window - (now - mine[0])
-                return f"too many wrong tokens from this computer: try again in {max(1, round(wait))} s"
-            if len(tries) >= self.token_tries_per_server:
-                wait = self.token_window - (now - tries[0][0])
-                return f"too many wrong tokens in this room: try again in {max(1, round(wait))} s"
-            if right:
-                return ""
-            tries.append((now, address))
-            return "that is not the presenter token"
-
-    def wrong_tokens(self, address: Hashable | None = None) -> int:
-        """Wrong tokens within the window, from ``address`` or from anywhere."""
-        with self._lock:
-            return sum(1 for _, a in self._recent_tries() if address is None or a == address)
 
     # ---------------------------------------------------------------- refusals
     def refuse(self, tab: Hashable, text: str) -> bool:

@@ -139,7 +139,8 @@ class CommandRunner:
         if older is not None:  # outside the lock: cancelling runs its done callback here, which takes it
             older.cancel()
         shown = display_name(command.filename)
-        remove_note = self.notices.preparing("Building…", f"the robot of {shown}")
+        _ = self.notices.tr.gettext
+        remove_note = self.notices.preparing(_("Building…"), _("the robot of {file}").format(file=shown))
 
         def build() -> SetRobot:
             name = self.catalog.add_upload(command.filename, command.content, command.refused_size)
@@ -187,12 +188,17 @@ class CommandRunner:
             return
         frames = self.recorder.stop()
         if len(frames) < 2:
+            _ = self.notices.tr.gettext
             self.notices.notify(
-                "Nothing recorded", "Move something between starting and stopping the recording."
+                _("Nothing recorded"), _("Move something between starting and stopping the recording.")
             )
             return
-        title = f"{state.robot.title or state.robot.name} — recorded in Jacobian Lab"
-        remove_note = self.notices.preparing("Preparing the demo…", f"{len(frames)} frames")
+        title = self.notices.tr.gettext("{robot} — recorded in Jacobian Lab").format(
+            robot=state.robot.title or state.robot.name
+        )
+        tr = self.notices.tr
+        frames_text = tr.npgettext("recording", "{n} frame", "{n} frames", len(frames)).format(n=len(frames))
+        remove_note = self.notices.preparing(tr.gettext("Preparing the demo…"), frames_text)
 
         def done(future: Future[bytes]) -> None:
             remove_note()
@@ -205,7 +211,7 @@ class CommandRunner:
             except Exception as exc:
                 self.notices.error(exc)
 
-        background().submit(demo_zip, frames, title).add_done_callback(done)
+        background().submit(demo_zip, frames, title, self.notices.tr).add_done_callback(done)
 
     # ------------------------------------------------------------------ downloads
     def _download(self, state: LabState, label: str) -> None:
@@ -223,9 +229,14 @@ class CommandRunner:
                 self._downloads.append(label)
                 waiting = 0
         if waiting:
+            tr = self.notices.tr
             self.notices.notify(
-                "Download not queued",
-                f"{waiting} downloads of this tab are waiting: try again once they are done.",
+                tr.gettext("Download not queued"),
+                tr.ngettext(
+                    "{n} download of this tab is waiting: try again once it is done.",
+                    "{n} downloads of this tab are waiting: try again once they are done.",
+                    waiting,
+                ).format(n=waiting),
             )
             return
         self._next_download(state)
@@ -237,8 +248,12 @@ class CommandRunner:
             self._download_busy = True
             label = self._downloads.popleft()
         robot, frame = state.robot, state.options.jacobian_frame
+        _ = self.notices.tr.gettext
         remove_note = self.notices.preparing(
-            f"Preparing J(q) as {label}…", f"{robot.title or robot.name}, {frame} axes"
+            _("Preparing J(q) as {format}…").format(format=label),
+            (_("{robot}, base axes") if frame == "base" else _("{robot}, tool axes")).format(
+                robot=robot.title or robot.name
+            ),
         )
 
         def ready(future: Future[tuple[str, bytes]]) -> None:
@@ -250,7 +265,7 @@ class CommandRunner:
             try:
                 filename, content = future.result()
             except SymbolicUnavailable as exc:
-                self.notices.notify("Download not available", str(exc))
+                self.notices.notify(self.notices.tr.gettext("Download not available"), str(exc))
             except Exception as exc:
                 self.notices.error(exc)
             else:

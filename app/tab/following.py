@@ -102,9 +102,12 @@ class Following:
         now = time.monotonic()
         if not isinstance(message, Step) and now - self._told_read_only >= READ_ONLY_EVERY:
             self._told_read_only = now
+            _ = self._notices.tr.gettext
             self._notices.notify(
-                "You follow the presenter",
-                "Your inputs follow the presenter: press “Explore on my own” first.",
+                _("You follow the presenter"),
+                _("Your inputs follow the presenter: press “{button}” first.").format(
+                    button=_("Explore on my own")
+                ),
             )
         return True
 
@@ -156,7 +159,7 @@ class Following:
         following_before = self.role.following
         self.role = role
         if role.note and not role.presenting:
-            self._notices.notify("Classroom", role.note)
+            self._notices.notify(self._notices.tr.gettext("Classroom"), role.note)
         if role.following and not following_before:
             self._stop_ticker()
         self._dispatch(Redraw())
@@ -194,7 +197,7 @@ class Following:
             return  # typing went on: a later try comes
         why = self.classroom.claim(self.key, command.token)
         if why:
-            self._notices.notify("Not the presenter", why, seconds=6.0)
+            self._notices.notify(self._notices.tr.gettext("Not the presenter"), why, seconds=6.0)
         elif self.page is not None:  # the page keeps the reconnect key (never the token)
             self.page.remember(self.classroom.resume_key(self.key))
             if self.page.tab:

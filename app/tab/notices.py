@@ -11,6 +11,8 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
+from ..core.i18n import Translator, translations
+
 __all__ = ["Notices"]
 
 log = logging.getLogger(__name__)
@@ -28,10 +30,12 @@ class Notices:
 
     Attributes:
         errors: Number of failures shown to this tab.
+        tr: The tab's language (the session keeps it current): callers take their words from it.
     """
 
     def __init__(self, client: Any, closed: Callable[[], bool]) -> None:
         self.client = client
+        self.tr: Translator = translations()
         self._closed = closed
         self.errors = 0
 
@@ -48,7 +52,7 @@ class Notices:
         log.error("client %s: %s", self.client.client_id, str(exc)[:_LONGEST])
         with contextlib.suppress(Exception):
             self.client.add_notification(
-                "That did not work",
+                self.tr.gettext("That did not work"),
                 f"{type(exc).__name__}: {str(exc)[:_LONGEST]}",
                 color="red",
                 auto_close_seconds=10.0,

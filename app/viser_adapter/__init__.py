@@ -10,9 +10,11 @@ Wrapped:
 * :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
 * :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
   to one client through ``client._websock_connection``.
-* :func:`client_address` — the IP a tab connected from (the server's connection table), by which
-  wrong presenter tokens are counted; :func:`client_header` — a header of its websocket handshake
-  (its ``Accept-Language``: the tab's first language).
+* :func:`client_address` — the IP a tab connected from (the server's connection table), or behind a
+  reverse proxy declared with ``--trusted-proxy`` (:func:`trusted_proxies`), from its
+  ``X-Forwarded-For`` (:func:`forwarded_client`); the log of wrong presenter tokens names it;
+  :func:`client_header` — a header of its websocket handshake (its ``Accept-Language``: the tab's
+  first language).
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
@@ -59,6 +61,7 @@ from .core import (
     client_address,
     client_header,
     clip,
+    forwarded_client,
     handle_uuid,
     is_removed,
     message_class,
@@ -67,6 +70,7 @@ from .core import (
     run_javascript,
     scene_handles,
     set_page_title,
+    trusted_proxies,
 )
 from .events import LoopSafeEvent, install_loop_safe_events
 from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
@@ -122,6 +126,8 @@ __all__ = [
     "set_pose",
     "clip",
     "client_address",
+    "forwarded_client",
+    "trusted_proxies",
     "client_header",
     "quiet_banner",
 ]

@@ -113,6 +113,22 @@ def test_show_serves_from_the_kernel_and_stop_closes_the_port(monkeypatch):
     poll(lambda: _refused(port))
 
 
+def test_show_lang_speaks_that_language_in_the_cell(monkeypatch):
+    from wsclient import ViserWsClient
+
+    monkeypatch.setattr("app.server.SymbolicService", FakeSymbolicService)
+    nb = show("planar2", lang="es")
+    try:
+        with ViserWsClient(f"ws://127.0.0.1:{nb.lab.port}", headers={"Accept-Language": "pl"}):
+            session = nb.lab.session()
+            assert session.language == "es"  # the cell's language, over the browser's
+            assert "configuración regular" in session.panel.status.content
+    finally:
+        nb.stop()
+    with pytest.raises(ValueError, match="no language"):
+        show("planar2", lang="fr")
+
+
 def _refused(port: int) -> bool:
     try:
         socket.create_connection(("127.0.0.1", port), timeout=1).close()

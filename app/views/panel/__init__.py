@@ -40,7 +40,7 @@ from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
 from .. import fmt
-from .classroom import ClassroomPanel, token_js
+from .classroom import ClassroomPanel, classroom_words_js, token_js
 from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
@@ -92,9 +92,11 @@ class PanelView:
         gui.set_panel_label("Jacobian Lab")
         gui.main_panel.dock_right()
         gui.main_panel.set_width(PANEL_WIDTH)
-        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}</style>", order=0)
+        more = _("▾ more below: scroll").replace("\\", "\\\\").replace('"', '\\"').replace("<", "\\3C ")
+        more_css = f'.jl-more::after {{ content: "{more}"; }}'  # the band's words, in the tab's language
+        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}{more_css}</style>", order=0)
         run_javascript(client, page_js())
-        run_javascript(client, LAYOUT_JS)
+        run_javascript(client, classroom_words_js() + LAYOUT_JS)
         run_javascript(client, NUMBER_GUARD_JS)
         # The page's channel back (its address, a presenter's reconnect key, the open tab): a text
         # input the page script hides and fills (app.views.panel.page).
@@ -113,7 +115,7 @@ class PanelView:
         self.status = gui.add_html("", order=2)
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.hint = gui.add_html("", order=2.6, visible=False)  # what to do first, over the 3-D view
-        self.classroom = ClassroomPanel(gui, dispatch, order=0.5) if classroom else None
+        self.classroom = ClassroomPanel(gui, dispatch, order=0.5, tr=tr) if classroom else None
         if self.classroom is not None:  # masked, and filled from the presenter link
             run_javascript(client, token_js(handle_uuid(self.classroom.token)))
         # The views of J live in a second panel docked under the joints: both stay in sight.
@@ -144,7 +146,7 @@ class PanelView:
             )
             gui.add_html(f'<div class="jl-note">{fmt.escape(note)}</div>')
         with self.tabs["build"]:
-            self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100)
+            self.editor = EditorPanel(gui, dispatch, library_dh_robots(), order=100, tr=tr)
         self.joints: JointsPanel | None = None
         self.parts: dict[str, TabView] = {}
         """The tabs' views for the current robot, by tab name (also ``panel.<name>``)."""
@@ -183,18 +185,18 @@ class PanelView:
             (c for c in chains if c.is_default), None
         )
         if len(chains) > 1:
-            labels = {_chain_label(c): c.tip_link for c in chains}
+            labels = {_chain_label(c, self.tr): c.tip_link for c in chains}
             self.chain = self.gui.add_dropdown(
                 self.tr.gettext("Chain"),
                 tuple(labels),
-                initial_value=_chain_label(shown) if shown else next(iter(labels)),
+                initial_value=_chain_label(shown, self.tr) if shown else next(iter(labels)),
                 order=1.2,
                 hint=self.tr.gettext("The serial chain of the URDF shown: from its base link to a tip link."),
             )
             bind(self.chain, self.dispatch, lambda v: ChooseChain(labels[str(v)]) if v in labels else None)
         self.source.content = source_html(robot, shown, meshes)
         self.source.visible = bool(robot.urdf_path)
-        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3)
+        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3, tr=self.tr)
         context = TabContext(
             self.gui, self.dispatch, robot, rows, presets, slider_ids(self.joints.sliders), self.tr
         )
@@ -240,7 +242,7 @@ class PanelView:
         for name, part in self.parts.items():
             if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)
-        live = live_html(state)
+        live = live_html(state, self.tr)
         if live != self.live.content:
             self.live.content = live
         if self.live.visible != bool(live):
@@ -272,7 +274,7 @@ class About:
     """The View tab's list of the robot's named configurations."""
 
     def __init__(self, c: TabContext) -> None:
-        self.html = c.gui.add_html(configurations_html(c.robot), order=200)
+        self.html = c.gui.add_html(configurations_html(c.robot, c.tr), order=200)
 
     @property
     def content(self) -> str:
@@ -309,7 +311,7 @@ TABS: tuple[Tab, ...] = (
         "motion",
         N_("Motion"),
         viser.Icon.PLAYER_PLAY,
-        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100),
+        lambda c: MotionPanel(c.gui, c.dispatch, c.robot, c.presets, 100, c.tr),
     ),
     Tab(
         "maps",
@@ -339,5 +341,6 @@ _ALWAYS_DRAWN = frozenset({"motion", "derive"})
 click applies, the step a click moves from)."""
 
 
-def _chain_label(chain: ChainInfo) -> str:
-    return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"
+def _chain_label(chain: ChainInfo, tr: Translator) -> str:
+    joints = tr.ngettext("{n} joint", "{n} joints", chain.dof).format(n=chain.dof)
+    return f"{chain.base_link} → {chain.tip_link} ({joints})"

@@ -15,10 +15,14 @@ import json
 import viser
 
 from ...core.commands import ClaimPresenter, Command, ExploreAlone, FollowPresenter, StopPresenting
+from ...core.i18n import LANGUAGES, N_, Translator, translations
 from ...core.role import Role
 from .common import Dispatch, bind, sync_value
 
-__all__ = ["ClassroomPanel", "compact_title", "token_js"]
+__all__ = ["ClassroomPanel", "compact_title", "token_js", "classroom_words_js", "CLASSROOM"]
+
+CLASSROOM = N_("Classroom")
+"""The box's title; presenting or following, "<title> · <role>" (the layout script folds it)."""
 
 _TOKEN_JS = """(() => {
   const uuid = %s;
@@ -56,6 +60,13 @@ _TOKEN_JS = """(() => {
 })();"""
 
 
+def classroom_words_js() -> str:
+    """A page script naming the box's title in every language (the layout script folds the box whose
+    title starts "<title> ·"; a page speaks one language at a time, and may change)."""
+    words = sorted({translations(lang.code).gettext(CLASSROOM) for lang in LANGUAGES})
+    return f"window.__jacobianLabClassroomWords = {json.dumps(words)};"
+
+
 def token_js(uuid: str) -> str:
     """A page script masking the token input (DOM id ``uuid``) and filling it from the presenter link."""
     return _TOKEN_JS % json.dumps(uuid)
@@ -64,19 +75,23 @@ def token_js(uuid: str) -> str:
 class ClassroomPanel:
     """Presenter token, follow / explore alone, and the tab's role in words."""
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, order: float) -> None:
+    def __init__(
+        self, gui: viser.GuiApi, dispatch: Dispatch, order: float, tr: Translator | None = None
+    ) -> None:
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.role = Role()
         self._shown: Role | None = None
-        self.root = gui.add_folder("Classroom", order=order)
+        self.root = gui.add_folder(_(CLASSROOM), order=order)
         with self.root:
             self.status = gui.add_html("")
             self.token = gui.add_text(
-                "Presenter token",
+                _("Presenter token"),
                 initial_value="",
-                hint="The server's token: this tab then presents.",
+                hint=_("The server's token: this tab then presents."),
             )
             bind(self.token, dispatch, lambda v: ClaimPresenter(str(v)) if str(v).strip() else None)
-            self.button = gui.add_button("Explore on my own", visible=False)
+            self.button = gui.add_button(_("Explore on my own"), visible=False)
             self.button.on_click(lambda _: dispatch(self._next()))
 
     def _next(self) -> Command:
@@ -93,23 +108,29 @@ class ClassroomPanel:
         if role == self._shown:
             return
         self._shown = role
+        tr = self.tr
+        _ = tr.gettext
         if role.presenting:
             n = role.followers
-            text = f"<b>You are presenting</b>: {n} tab{'s' if n != 1 else ''} follow{'s' if n == 1 else ''}."
-            label = "Stop presenting"
+            text = tr.ngettext(
+                "<b>You are presenting</b>: {n} tab follows.",
+                "<b>You are presenting</b>: {n} tabs follow.",
+                n,
+            ).format(n=n)
+            label = _("Stop presenting")
         elif role.following:
-            text = "<b>Following the presenter</b>: your inputs are read-only."
-            label = "Explore on my own"
+            text = _("<b>Following the presenter</b>: your inputs are read-only.")
+            label = _("Explore on my own")
         elif role.presenter:
-            text = "<b>Exploring on your own</b>; a presenter is on."
-            label = "Follow the presenter"
+            text = _("<b>Exploring on your own</b>; a presenter is on.")
+            label = _("Follow the presenter")
         else:
-            text = "No presenter yet: tabs follow the presenter once one is on."
+            text = _("No presenter yet: tabs follow the presenter once one is on.")
             label = ""
         self.status.content = f'<div class="jl-note" style="font-size:13.5px">{text}</div>'
         # Presenting or following, the box folds to its one title line (app.views.panel.layout's script
         # folds a folder whose title starts "Classroom ·"; a click on it opens it again).
-        self.root.label = compact_title(role)
+        self.root.label = compact_title(role, tr)
         self.button.visible = bool(label)
         if label:
             self.button.label = label
@@ -121,11 +142,15 @@ class ClassroomPanel:
         self.root.remove()
 
 
-def compact_title(role: Role) -> str:
-    """The box's title: "Classroom", or one line saying the role once the tab presents or follows."""
+def compact_title(role: Role, tr: Translator | None = None) -> str:
+    """The box's title: "Classroom", or one line saying the role once the tab presents or follows
+    ("<title> · <role>": the layout script folds the box on that separator)."""
+    tr = tr or translations()
+    title = tr.gettext(CLASSROOM)
     if role.presenting:
         n = role.followers
-        return f"Classroom · presenting: {n} tab{'s' if n != 1 else ''} follow{'s' if n == 1 else ''}"
+        what = tr.ngettext("presenting: {n} tab follows", "presenting: {n} tabs follow", n).format(n=n)
+        return f"{title} · {what}"
     if role.following:
-        return "Classroom · following the presenter (read-only)"
-    return "Classroom"
+        return f"{title} · " + tr.gettext("following the presenter (read-only)")
+    return title

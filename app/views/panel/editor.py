@@ -32,16 +32,20 @@ from ...core import build_table as dt
 from ...core.actions import EditRobot
 from ...core.commands import RequestDownload, UploadRobot
 from ...core.downloads import EXPORT_FORMATS
+from ...core.i18n import N_, Translator, translations
+from ...core.numbers import NumberError, parse_number
 from ...viser_adapter import MAX_UPLOAD_BYTES, is_removed, upload_too_large
 from .. import fmt
 from .common import Dispatch
 
 __all__ = ["EditorPanel", "EMPTY", "DOWNLOADS"]
 
-EMPTY = "empty table (one joint)"
-"""The "Start from" entry of a fresh one-row table."""
-ROW_BUTTONS = ("+ Add", "− Remove", "↑ Up", "↓ Down")
+EMPTY = N_("empty table (one joint)")
+"""The "Start from" entry of a fresh one-row table (English; shown in the tab's language)."""
+ROW_BUTTONS = (N_("+ Add"), N_("− Remove"), N_("↑ Up"), N_("↓ Down"))
 DOWNLOADS = {"TOML": "Robot file (TOML)", "URDF": "URDF", **{f"J {k}": k for k in EXPORT_FORMATS}}
+_KINDS = (N_("revolute"), N_("prismatic"))
+_CONVENTIONS = (N_("standard"), N_("modified"))
 """Download button → :class:`~app.core.actions.RequestDownload` label."""
 
 _CSS = """<style>
@@ -71,7 +75,19 @@ class EditorPanel:
         built: The last robot built from the table (``None`` before the first edit).
     """
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, library: Sequence[str], order: float) -> None:
+    def __init__(
+        self,
+        gui: viser.GuiApi,
+        dispatch: Dispatch,
+        library: Sequence[str],
+        order: float,
+        tr: Translator | None = None,
+    ) -> None:
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
+        # What the dropdowns and buttons show ↔ the values they stand for (English: the same).
+        self._shown = {k: _(k) for k in (EMPTY, *ROW_BUTTONS, *_KINDS, *_CONVENTIONS)}
+        self._value = {v: k for k, v in self._shown.items()}
         self.gui, self.dispatch = gui, dispatch
         self.table = dt.empty()
         self.selected = 0
@@ -84,43 +100,46 @@ class EditorPanel:
         self.root = gui.add_folder(None, order=order)
         with self.root:
             self.start = gui.add_dropdown(
-                "Start from",
-                (EMPTY, *library),
-                initial_value=EMPTY,
-                hint="Copy a library robot's DH table (its base and tool transforms kept), or one joint.",
+                _("Start from"),
+                (self._shown[EMPTY], *library),
+                initial_value=self._shown[EMPTY],
+                hint=_("Copy a library robot's DH table (its base and tool transforms kept), or one joint."),
             )
             self.convention = gui.add_dropdown(
-                "Convention",
-                ("standard", "modified"),
-                hint="standard: A = Rz(θ) Tz(d) Tx(a) Rx(α); modified (Craig): A = Rx(α) Tx(a) Rz(θ) Tz(d)",
+                _("Convention"),
+                tuple(self._shown[c] for c in _CONVENTIONS),
+                hint=_(
+                    "standard: A = Rz(θ) Tz(d) Tx(a) Rx(α); modified (Craig): A = Rx(α) Tx(a) Rz(θ) Tz(d)"
+                ),
             )
             self.summary = gui.add_html("")
-            self.row = gui.add_dropdown("Edit row", ("1",), hint="The row the inputs below edit.")
-            self.kind = gui.add_dropdown("Joint", ("revolute", "prismatic"))
+            self.row = gui.add_dropdown(_("Edit row"), ("1",), hint=_("The row the inputs below edit."))
+            self.kind = gui.add_dropdown(_("Joint"), tuple(self._shown[k] for k in _KINDS))
             # Text boxes, read by app.core.numbers: what is typed is kept ("1e-3", "0.15005"), and
             # what is not a number is refused in words (a number box would mangle it silently).
-            self.a = gui.add_text("a [m]", "0", hint="Link length: along x(i)")
-            self.alpha = gui.add_text("α [°]", "0", hint="Link twist: about x(i)")
-            self.d = gui.add_text("d [m]", "0", hint="Link offset: along z(i-1)")
-            self.theta = gui.add_text("θ offset [°]", "0", hint="Added to q (revolute)")
-            self.lower = gui.add_text("Lower limit [°]", "-180", hint="The joint's lower limit")
-            self.upper = gui.add_text("Upper limit [°]", "180", hint="The joint's upper limit")
+            self.a = gui.add_text("a [m]", "0", hint=_("Link length: along x(i)"))
+            self.alpha = gui.add_text("α [°]", "0", hint=_("Link twist: about x(i)"))
+            self.d = gui.add_text("d [m]", "0", hint=_("Link offset: along z(i-1)"))
+            self.theta = gui.add_text(_("θ offset [°]"), "0", hint=_("Added to q (revolute)"))
+            self.lower = gui.add_text(_("Lower limit [°]"), "-180", hint=_("The joint's lower limit"))
+            self.upper = gui.add_text(_("Upper limit [°]"), "180", hint=_("The joint's upper limit"))
             self.problem = gui.add_html("")  # the message again, in sight of the inputs
-            self.rows = gui.add_button_group("Rows", ROW_BUTTONS)
-            self.download = gui.add_button_group("Download", tuple(DOWNLOADS))
+            self.rows = gui.add_button_group(_("Rows"), tuple(self._shown[b] for b in ROW_BUTTONS))
+            self.download = gui.add_button_group(_("Download"), tuple(DOWNLOADS))
             self.upload = gui.add_upload_button(
-                f"Upload a URDF (at most {MAX_UPLOAD_BYTES // (1024 * 1024)} MB)",
+                _("Upload a URDF (at most {size} MB)").format(size=MAX_UPLOAD_BYTES // (1024 * 1024)),
                 icon=viser.Icon.UPLOAD,
                 mime_type=".urdf,.xml,application/xml,text/xml",
-                hint="Only this tab sees it; its meshes are not loaded (generated geometry is drawn).",
+                hint=_("Only this tab sees it; its meshes are not loaded (generated geometry is drawn)."),
             )
-        self._on(self.start, lambda v: self.start_from(str(v)))
-        self._on(self.convention, lambda v: self._edit(convention=str(v)))
+        value = lambda v: self._value.get(str(v), str(v))  # noqa: E731  (a shown label → its value)
+        self._on(self.start, lambda v: self.start_from(value(v)))
+        self._on(self.convention, lambda v: self._edit(convention=value(v)))
         self._on(self.row, lambda v: self.select(int(str(v)) - 1) if str(v).isdigit() else None)
-        self._on(self.kind, lambda v: self.set_field("joint", v))
+        self._on(self.kind, lambda v: self.set_field("joint", value(v)))
         for field, handle in self._fields():
             self._on(handle, functools.partial(self.set_field, field))
-        self.rows.on_click(lambda event: self._guarded(self.row_operation, event.target.value))
+        self.rows.on_click(lambda event: self._guarded(self.row_operation, value(event.target.value)))
         self.download.on_click(lambda event: dispatch(RequestDownload(DOWNLOADS[str(event.target.value)])))
         self.upload.on_upload(lambda event: self._uploaded(event.target.value))
         with self._lock:
@@ -151,8 +170,10 @@ class EditorPanel:
 
     def start_from(self, name: str) -> None:
         """Replace the table by ``name``'s DH table (a library robot) or by :data:`EMPTY`'s one row."""
-        if name not in self.start.options:  # a library robot's name, never a path (checked again here)
-            self.error = f"“Start from” takes one of its options: {name[:60]!r} is not one of them."
+        if self._shown.get(name, name) not in self.start.options:  # a library robot's name, never a path
+            self.error = self.tr.gettext(
+                "“Start from” takes one of its options: {name} is not one of them."
+            ).format(name=repr(name[:60]))
             self._show_summary()
             return
         try:
@@ -200,7 +221,9 @@ class EditorPanel:
         order: list[int | None] = list(range(n))
         if label == ROW_BUTTONS[0]:
             if n >= dt.MAX_ROWS:
-                self.error = f"A table has at most {dt.MAX_ROWS} rows: remove one before adding another."
+                self.error = self.tr.gettext(
+                    "A table has at most {most} rows: remove one before adding another."
+                ).format(most=dt.MAX_ROWS)
                 self._show_summary()
                 return
             rows.insert(i + 1, dt.Row(a=0.3))
@@ -208,7 +231,7 @@ class EditorPanel:
             i += 1
         elif label == ROW_BUTTONS[1]:
             if n == 1:
-                self.error = "A robot needs at least one joint: row 1 cannot be removed."
+                self.error = self.tr.gettext("A robot needs at least one joint: row 1 cannot be removed.")
                 self._show_summary()
                 return
             del rows[i], order[i]
@@ -242,7 +265,7 @@ class EditorPanel:
         if inputs:
             self._show_inputs()
         try:
-            robot = dt.build(self.table)
+            robot = dt.build(self.table, self.tr)
         except dt.TableError as exc:
             self.error, self._bad = str(exc), (exc.row, exc.field)
         else:
@@ -261,26 +284,30 @@ class EditorPanel:
             if self.row.options != options:
                 self.row.options = options
             _set(self.row, str(self.selected + 1))
-            _set(self.convention, self.table.convention)
-            _set(self.kind, row.joint)
+            _set(self.convention, self._shown.get(self.table.convention, self.table.convention))
+            _set(self.kind, self._shown.get(row.joint, row.joint))
             for field, handle in self._fields():
-                _set(handle, _typed(getattr(row, field)))
+                _set(handle, _typed(getattr(row, field), self.tr))
             revolute = row.joint == "revolute"
-            self.lower.label = "Lower limit [°]" if revolute else "Lower limit [m]"
-            self.upper.label = "Upper limit [°]" if revolute else "Upper limit [m]"
-            self.theta.label = "θ offset [°]" if revolute else "θ [°]"
-            self.d.label = "d [m]" if revolute else "d offset [m]"
+            _ = self.tr.gettext
+            self.lower.label = _("Lower limit [°]") if revolute else _("Lower limit [m]")
+            self.upper.label = _("Upper limit [°]") if revolute else _("Upper limit [m]")
+            self.theta.label = _("θ offset [°]") if revolute else "θ [°]"
+            self.d.label = "d [m]" if revolute else _("d offset [m]")
         finally:
             self._quiet = False
 
     def _show_summary(self) -> None:
-        head = "<tr><th>#</th><th></th><th>a</th><th>α°</th><th>d</th><th>θ°</th><th>limits</th></tr>"
+        tr = self.tr
+        _ = tr.gettext
+        limits = fmt.escape(_("limits"))
+        head = f"<tr><th>#</th><th></th><th>a</th><th>α°</th><th>d</th><th>θ°</th><th>{limits}</th></tr>"
         body = []
         for i, r in enumerate(self.table.rows):
             unit = "°" if r.joint == "revolute" else " m"
             cells = [str(i + 1), "R" if r.joint == "revolute" else "P"]
-            cells += [_cell(r.a), _cell(r.alpha), _cell(r.d), _cell(r.theta)]
-            cells.append(f"{_cell(r.lo)}…{_cell(r.hi)}{unit}")
+            cells += [_cell(r.a, tr), _cell(r.alpha, tr), _cell(r.d, tr), _cell(r.theta, tr)]
+            cells.append(f"{_cell(r.lo, tr)}…{_cell(r.hi, tr)}{unit}")
             # The value the error names is shown as typed, marked (the arm keeps its last good table).
             bad = {"a": 2, "alpha": 3, "d": 4, "theta": 5, "lo": 6, "hi": 6}.get(self._bad[1], -1)
             bad = bad if self.error and self._bad[0] == i + 1 else -1
@@ -299,11 +326,16 @@ class EditorPanel:
             msg = f'<div class="jl-dh-msg bad" role="alert">⚠ {fmt.escape(self.error)}</div>'
         else:
             n = len(self.table.rows)
-            what = f"{n} joint{'s' * (n != 1)}, {self.table.convention} DH"
+            convention = self._shown.get(self.table.convention, self.table.convention)
+            what = tr.ngettext("{n} joint, {convention} DH", "{n} joints, {convention} DH", n).format(
+                n=n, convention=convention
+            )
             if self.table.source:
-                what += f", from {self.table.source} (its base and tool transforms kept)"
-            state = "drawn live" if self.built is not None else "edit a value to draw it"
-            msg = f'<div class="jl-dh-msg ok">{fmt.escape(what)}: {state}.</div>'
+                what += _(", from {robot} (its base and tool transforms kept)").format(
+                    robot=self.table.source
+                )
+            state = _("drawn live") if self.built is not None else _("edit a value to draw it")
+            msg = f'<div class="jl-dh-msg ok">{fmt.escape(what)}: {fmt.escape(state)}.</div>'
         self.summary.content = f'{_CSS}<table class="jl-dh">{head}{"".join(body)}</table>{msg}'
         self.problem.content = msg if self.error else ""
 
@@ -315,20 +347,27 @@ def _set(handle: Any, value: object) -> None:
     handle.value = value
 
 
-def _typed(value: object) -> str:
-    """What an input shows: the text as typed, or a number in its shortest exact form (0.15005)."""
+def _typed(value: object, tr: Translator) -> str:
+    """What an input shows: the text as typed, or a number in its shortest exact form (0.15005; 0,15005
+    in a language with a decimal comma)."""
     if isinstance(value, str):
         return value
     try:
-        return format(float(value), ".12g")  # type: ignore[arg-type]
+        return tr.decimal(format(float(value), ".12g"))  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):
         return str(value)
 
 
-def _cell(value: object) -> str:
+def _cell(value: object, tr: Translator) -> str:
     """A table cell: a number in 4 significant figures, anything else (1e400, NaN, 0,3) as typed."""
+    typed = value
+    if isinstance(typed, str):
+        try:
+            value = parse_number(typed, tr=tr)  # "0,3" typed in Portuguese is 0.3
+        except NumberError:
+            return typed.strip()[:8]
     try:
         x = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):
         return str(value).strip()[:8]
-    return f"{x:.4g}" if math.isfinite(x) else str(value).strip()[:8]
+    return tr.decimal(f"{x:.4g}") if math.isfinite(x) else str(value).strip()[:8]

@@ -16,6 +16,7 @@ import viser
 from kinematics import Robot
 
 from ...core.actions import GoTo, SetJoint
+from ...core.i18n import N_, Translator, translations
 from ...core.ranges import Range, from_display, joint_ranges, to_display
 from ...viser_adapter import handle_uuid
 from .. import fmt
@@ -24,7 +25,7 @@ from .style import slider_css
 
 __all__ = ["JointsPanel", "slider_label", "configuration_label", "configurations_html", "MOVED"]
 
-MOVED = "— (moved)"
+MOVED = N_("— (moved)")
 """What the configuration dropdown shows when the arm is at no named configuration."""
 
 
@@ -42,7 +43,11 @@ def configuration_label(name: str) -> str:
 class JointsPanel:
     """Sliders for q and buttons for the robot's named configurations."""
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+    def __init__(
+        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float, tr: Translator | None = None
+    ) -> None:
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self.robot = robot
         self.ranges = joint_ranges(robot)
         self.root = gui.add_folder(None, order=order)
@@ -58,9 +63,15 @@ class JointsPanel:
                     step=r.step,
                     initial_value=round(value, 6),
                     marks=(),
-                    hint=f"{joint.name}: {joint.kind} joint, "
-                    f"{fmt.number(r.lo)} to {fmt.number(r.hi)} {r.unit}. "
-                    "Arrow keys: 10 steps; Shift + arrow: one fine step.",
+                    hint=(
+                        _("{name}: revolute joint, {lo} to {hi} {unit}.")
+                        if joint.kind == "revolute"
+                        else _("{name}: prismatic joint, {lo} to {hi} {unit}.")
+                    ).format(
+                        name=joint.name, lo=fmt.number(r.lo, tr=tr), hi=fmt.number(r.hi, tr=tr), unit=r.unit
+                    )
+                    + " "
+                    + _("Arrow keys: 10 steps; Shift + arrow: one fine step."),
                 )
                 bind(slider, dispatch, functools.partial(_set_joint, i, r))
                 css.append(slider_css(handle_uuid(slider), i))
@@ -68,19 +79,25 @@ class JointsPanel:
             gui.add_html(f"<style>{''.join(css)}</style>")
             names = ["home", *(c.name for c in robot.configurations if c.name != "home")]
             singular = {c.name for c in robot.configurations if c.singular}
-            self._labels = {n: configuration_label(n) + (" (singular)" * (n in singular)) for n in names}
+            self._labels = {
+                n: _("{name} (singular)").format(name=configuration_label(n))
+                if n in singular
+                else configuration_label(n)
+                for n in names
+            }
+            self._moved = _(MOVED)
             by_label = {label: n for n, label in self._labels.items()}
             self.configuration = gui.add_dropdown(
-                "Configuration",
-                (MOVED, *self._labels.values()),
+                _("Configuration"),
+                (self._moved, *self._labels.values()),
                 initial_value=self._labels["home"],
-                hint="Go to a named configuration; its description shows under the status.",
+                hint=_("Go to a named configuration; its description shows under the status."),
             )
             bind(self.configuration, dispatch, lambda v: GoTo(by_label[str(v)]) if v in by_label else None)
 
     def show(self, q: np.ndarray, configuration: str) -> None:
         """Put ``q`` on the sliders and the configuration's name in the dropdown (echoes are ignored)."""
-        sync_value(self.configuration, self._labels.get(configuration, MOVED))
+        sync_value(self.configuration, self._labels.get(configuration, self._moved))
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(min(max(to_display(r, q[i]), r.lo), r.hi), 6))
 
@@ -88,17 +105,19 @@ class JointsPanel:
         self.root.remove()
 
 
-def configurations_html(robot: Robot) -> str:
+def configurations_html(robot: Robot, tr: Translator | None = None) -> str:
     """Every named configuration with its description (singular ones marked)."""
+    _ = (tr or translations()).gettext
+    singular = fmt.escape(_("(singular)"))
     items = "".join(
         f"<li><b>{fmt.escape(configuration_label(c.name))}</b>"
-        + (" <span class='jl-warn'>(singular)</span>" if c.singular else "")
+        + (f" <span class='jl-warn'>{singular}</span>" if c.singular else "")
         + f": {fmt.escape(c.description)}</li>"
         for c in robot.configurations
         if c.description
     )
-    listing = f'<ul class="jl-conf">{items or "<li>none</li>"}</ul>'
-    return f'<div class="jl"><b>Named configurations</b>{listing}</div>'
+    listing = f'<ul class="jl-conf">{items or "<li>" + fmt.escape(_("none")) + "</li>"}</ul>'
+    return f'<div class="jl"><b>{fmt.escape(_("Named configurations"))}</b>{listing}</div>'
 
 
 def _set_joint(i: int, r: Range, value: Any) -> SetJoint:

@@ -193,7 +193,8 @@ LAYOUT_JS = """
     for (const head of document.querySelectorAll('[data-dock-region] div[style*="cursor: pointer"]')) {
       const title = head.textContent.trim();
       const role = title.split(":")[0];  // "Classroom · presenting", not the number of followers
-      if (!title.startsWith("Classroom ·") || head.dataset.jlFolded === role) continue;
+      const words = window.__jacobianLabClassroomWords || ["Classroom"];
+      if (!words.some((w) => title.startsWith(w + " ·")) || head.dataset.jlFolded === role) continue;
       head.dataset.jlFolded = role;
       const body = head.nextElementSibling;
       if (body && body.getAttribute("aria-hidden") === "false") head.click();

@@ -14,6 +14,7 @@ import numpy as np
 from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_HTML
 
+from ...core.i18n import Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.state import LabState
 from .. import fmt
@@ -21,16 +22,22 @@ from ..palette import joint_text_hex
 
 __all__ = ["live_html"]
 
-_DOING = {
-    "resolved_rate": "holding v",
-    "climb": "climbing w",
-    "path": "to the nearest singularity",
-    "joints": "moving at q̇",
-}
+
+def _doing(kind: str, tr: Translator) -> str:
+    _ = tr.gettext
+    if kind == "resolved_rate":
+        return _("holding v")
+    if kind == "climb":
+        return _("climbing w")
+    if kind == "path":
+        return _("to the nearest singularity")
+    return _("moving at q̇") if kind == "joints" else ""
 
 
-def live_html(state: LabState) -> str:
+def live_html(state: LabState, tr: Translator | None = None) -> str:
     """Rates [°/s | m/s], κ, σmin, the motion's time and its pace; "" when nothing is traced."""
+    tr = tr or translations()
+    _ = tr.gettext
     m = state.motion
     trace = m.trace
     if trace is None or len(trace) < 2:
@@ -43,13 +50,14 @@ def live_html(state: LabState) -> str:
         unit = "°/s" if revolute else "m/s"
         cells.append(
             f'<div class="jl-live-rate" style="color:{joint_text_hex(i)}"><span>q̇{_sub(i + 1)}</span>'
-            f"<b>{fmt.fixed(value, 1 if revolute else 3)}</b><small>{unit}</small></div>"
+            f"<b>{fmt.fixed(value, 1 if revolute else 3, tr)}</b><small>{unit}</small></div>"
         )
     kappa = float(trace.kappa[-1])
-    doing = _DOING.get(m.kind, "")
-    state_word = "playing" if state.playing else "paused" if not state.stopped else "stopped"
+    doing = _doing(m.kind, tr)
+    state_word = _("playing") if state.playing else _("paused") if not state.stopped else _("stopped")
+    slowed = _("slowed ×{factor} near the singularity").format(factor=fmt.number(m.pace, 2, tr))
     pace = (
-        f' · <span class="jl-live-slow">slowed ×{fmt.number(m.pace, 2)} near the singularity</span>'
+        f' · <span class="jl-live-slow">{slowed}</span>'
         if state.playing and m.kind == "resolved_rate" and m.pace < 0.95
         else ""
     )
@@ -61,11 +69,12 @@ def live_html(state: LabState) -> str:
         else ""
     )
     head = (
-        f'<div class="jl-live-head"><span>κ{rows} <b>{fmt.number(kappa)}</b></span>'
-        f"<span>σ<sub>min</sub> <b>{fmt.number(float(trace.sigma_min[-1]))}</b></span>"
-        f"<span>t <b>{fmt.fixed(state.time, 2)}</b> s</span></div>"
+        f'<div class="jl-live-head"><span>κ{rows} <b>{fmt.number(kappa, tr=tr)}</b></span>'
+        f"<span>σ<sub>min</sub> <b>{fmt.number(float(trace.sigma_min[-1]), tr=tr)}</b></span>"
+        f"<span>t <b>{fmt.fixed(state.time, 2, tr)}</b> s</span></div>"
     )
-    foot = f'<div class="jl-live-foot">{state_word}{": " + doing if doing else ""}{pace}</div>'
+    what = _("{state}: {doing}").format(state=state_word, doing=doing) if doing else state_word
+    foot = f'<div class="jl-live-foot">{what}{pace}</div>'
     return f'<div class="jl jl-live">{head}<div class="jl-live-rates">{"".join(cells)}</div>{foot}</div>'
 
 

@@ -23,6 +23,7 @@ from kinematics.conventions import ROW_TEXT
 
 from ...core.actions import ApplyPreset, Play, ResetMotion, SelfMove, StepOnce
 from ...core.commands import FindSingularity
+from ...core.i18n import N_, Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
 from ...core.snapshot import Snapshot
@@ -34,8 +35,8 @@ from .errata import erratum_html
 
 __all__ = ["MotionPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 
-OWN_TWIST = "your own v (set in q̇ = J⁺v)"
-PLAY_BUTTONS = ("Play", "Pause", "Step", "Reset")
+OWN_TWIST = N_("your own v (set in q̇ = J⁺v)")
+PLAY_BUTTONS = (N_("Play"), N_("Pause"), N_("Step"), N_("Reset"))
 _CHART_HEIGHT = 150
 _Y_TICK_SPACE = 14
 """Least space between two y ticks [px] (uPlot's default, 30, left one or two ticks on a 150 px chart)."""
@@ -69,7 +70,12 @@ class MotionPanel:
         robot: Robot,
         presets: Sequence[robots.MotionPreset],
         order: float,
+        tr: Translator | None = None,
     ) -> None:
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
+        self.own_twist = _(OWN_TWIST)  # the dropdown's entry in the tab's language
+        self._buttons = {_(b): b for b in PLAY_BUTTONS}  # a button's words → its English key
         self.robot = robot
         self.presets = {p.name: p for p in presets}
         self.root = gui.add_folder(None, order=order)
@@ -77,20 +83,22 @@ class MotionPanel:
         self._shown: tuple | None = None
         with self.root:
             # Resolved rate: the course's q_{k+1} = q_k + Δt J⁺ v, the tool twist held.
-            with gui.add_folder("Resolved rate: q̇ = J⁺v held in time"):
+            with gui.add_folder(_("Resolved rate: q̇ = J⁺v held in time")):
                 # The robot's first preset is shown first: Play on a fresh tab runs it (the arm goes to its
                 # start), instead of refusing "your own v" = 0.
                 self.preset = gui.add_dropdown(
-                    "Preset",
-                    (*self.presets, OWN_TWIST),
-                    initial_value=next(iter(self.presets), OWN_TWIST),
-                    hint="A start and a tool twist.",
+                    _("Preset"),
+                    (*self.presets, self.own_twist),
+                    initial_value=next(iter(self.presets), self.own_twist),
+                    hint=_("A start and a tool twist."),
                 )
                 bind(self.preset, dispatch, self._preset)
                 self._own = not self.presets  # the user chose "your own v"
                 self._pending: ApplyPreset | None = None  # the preset shown but not applied yet
-                self.buttons = gui.add_button_group("", PLAY_BUTTONS)
-                self.buttons.on_click(lambda event: self._click(dispatch, str(event.target.value)))
+                self.buttons = gui.add_button_group("", tuple(self._buttons))
+                self.buttons.on_click(
+                    lambda event: self._click(dispatch, self._buttons.get(str(event.target.value), ""))
+                )
                 self.readout = gui.add_html("")
                 # The blow-up first: the joint rates, then κ, then σmin and w (all against the motion's t).
                 names = [f"q̇{i + 1}" for i in range(robot.dof)]
@@ -101,25 +109,25 @@ class MotionPanel:
                 mixed = "|" in unit
                 self.rates = _chart(
                     gui,
-                    f"joint rates q̇ [{unit}]" if mixed else "joint rates q̇",
+                    _("joint rates q̇ [{unit}]").format(unit=unit) if mixed else _("joint rates q̇"),
                     names,
                     colors,
                     "q̇" if mixed else f"q̇ [{unit}]",
                 )
                 self.kappa = _chart(
-                    gui, "condition number κ", ("κ",), ("#c2410c",), "κ (log scale, no unit)", log=True
+                    gui, _("condition number κ"), ("κ",), ("#c2410c",), _("κ (log scale, no unit)"), log=True
                 )
                 self.measures = _chart(
-                    gui, "σmin and w of the task rows", ("σmin", "w"), ("#c2255c", "#3b5bdb"), "σmin, w"
+                    gui, _("σmin and w of the task rows"), ("σmin", "w"), ("#c2255c", "#3b5bdb"), "σmin, w"
                 )
                 self.about = gui.add_html("")
-                self.frame = option_widget(gui, dispatch, "twist_frame")
-                self.speed = option_widget(gui, dispatch, "speed")
+                self.frame = option_widget(gui, dispatch, "twist_frame", tr=tr)
+                self.speed = option_widget(gui, dispatch, "speed", tr=tr)
             # Drive the tool: IK every frame while the handle is dragged.
-            with gui.add_folder("Drive the tool (IK)", expand_by_default=False):
-                self.gizmo = option_widget(gui, dispatch, "gizmo")
-                self.method = option_widget(gui, dispatch, "ik_method")
-                self.mode = option_widget(gui, dispatch, "ik_mode")
+            with gui.add_folder(_("Drive the tool (IK)"), expand_by_default=False):
+                self.gizmo = option_widget(gui, dispatch, "gizmo", tr=tr)
+                self.method = option_widget(gui, dispatch, "ik_method", tr=tr)
+                self.mode = option_widget(gui, dispatch, "ik_mode", tr=tr)
                 self.ik = gui.add_html("")
             # Redundancy: self-motion and the manipulability climb, the tool held.
             rows = redundancy_rows(robot)
@@ -128,38 +136,42 @@ class MotionPanel:
             self.self_chart = None
             self.notes: list[viser.GuiHtmlHandle] = []  # the course's error beside the climb
             if rows is not None:
-                with gui.add_folder("Redundancy: move with the tool held", expand_by_default=False):
+                with gui.add_folder(_("Redundancy: move with the tool held"), expand_by_default=False):
                     held = ", ".join(ROW_TEXT[r] for r in rows)
                     task = ", ".join(ROW_TEXT[r] for r in task_rows(robot))
-                    gui.add_html(
-                        f'<div class="jl-note">{robot.dof} joints, {len(rows)} task rows held ({held}): '
-                        f"the arm can move in the null space of J without moving the tool. "
-                        f"<b>Climb</b> raises w = √det(J Jᵀ) of these rows ({held})"
-                        + (f", not the banner's κ of all task rows ({task})." if task != held else ".")
-                        + "</div>"
+                    joints = tr.ngettext("{n} joint", "{n} joints", robot.dof).format(n=robot.dof)
+                    text = _(
+                        "{joints}, {rows} task rows held ({held}): the arm can move in the null space of J "
+                        "without moving the tool. <b>Climb</b> raises w = √det(J Jᵀ) of these rows ({held})"
+                    ).format(joints=joints, rows=len(rows), held=held)
+                    text += (
+                        _(", not the banner's κ of all task rows ({task}).").format(task=task)
+                        if task != held
+                        else "."
                     )
+                    gui.add_html(f'<div class="jl-note">{text}</div>')
                     self.self_slider = gui.add_slider(
-                        "Self-motion s",
+                        _("Self-motion s"),
                         min=-3.0,
                         max=3.0,
                         step=0.01,
                         initial_value=0.0,
-                        hint="along the null space",
+                        hint=_("along the null space"),
                     )
                     bind(self.self_slider, dispatch, lambda v: SelfMove(float(v)))
-                    climb = gui.add_button("Climb manipulability", icon=viser.Icon.TRENDING_UP)
+                    climb = gui.add_button(_("Climb manipulability"), icon=viser.Icon.TRENDING_UP)
                     climb.on_click(lambda _: dispatch(Play(True, "climb")))
                     self.notes.append(gui.add_html(f'<div class="jl">{erratum_html("gradient")}</div>'))
                     self.self_chart = gui.add_uplot(
                         (np.zeros(1), np.zeros(1)),
                         ({"label": "s"}, {"label": "w", "stroke": "#3b5bdb", "width": 2}),
-                        title="w along the self-motion",
+                        title=_("w along the self-motion"),
                         scales={"x": {"time": False}},
                         axes=({"label": "s"}, {"label": "w", "space": _Y_TICK_SPACE}),
                         height=_CHART_HEIGHT,
                         aspect=2.0,
                     )
-            nearest = gui.add_button("Go to the nearest singularity", icon=viser.Icon.TARGET)
+            nearest = gui.add_button(_("Go to the nearest singularity"), icon=viser.Icon.TARGET)
             nearest.on_click(lambda _: dispatch(FindSingularity()))
 
     def _preset(self, value: Any) -> ApplyPreset | None:
@@ -177,7 +189,7 @@ class MotionPanel:
         """Its sliders whose step the page honours."""
         return [self.speed] + ([self.self_slider] if self.self_slider is not None else [])
 
-    def _click(self, dispatch: Dispatch, label: str) -> None:
+    def _click(self, dispatch: Dispatch, label: str) -> None:  # label: the button's English key
         """Play or Step with a preset shown but not applied applies it first; then the button's action."""
         pending = self._pending
         if pending is not None and label in ("Play", "Step"):
@@ -192,7 +204,7 @@ class MotionPanel:
         if m.preset in self.presets:
             return m.preset
         if self._own or not self.presets or np.any(state.v_desired) or m.trace is not None:
-            return OWN_TWIST
+            return self.own_twist
         return next(iter(self.presets))
 
     def draw(self, state: LabState, snap: Snapshot) -> None:
@@ -201,9 +213,9 @@ class MotionPanel:
         sync_value(self.preset, shown)
         self._pending = self._apply(shown) if shown != m.preset else None
         for handle, name in ((self.frame, "twist_frame"), (self.speed, "speed"), (self.gizmo, "gizmo")):
-            show_option(handle, name, getattr(o, name))
-        show_option(self.method, "ik_method", o.ik_method)
-        show_option(self.mode, "ik_mode", o.ik_mode)
+            show_option(handle, name, getattr(o, name), self.tr)
+        show_option(self.method, "ik_method", o.ik_method, self.tr)
+        show_option(self.mode, "ik_mode", o.ik_mode, self.tr)
         if self.self_slider is not None:
             sync_value(self.self_slider, float(round(m.s, 6)))
         key = (
@@ -217,8 +229,8 @@ class MotionPanel:
         if key != self._shown:
             self._shown = key
             self.about.content = self._about(shown)
-            self.readout.content = _readout(state, snap, self._pending is not None)
-        self.ik.content = _ik_html(state)
+            self.readout.content = _readout(state, snap, self._pending is not None, self.tr)
+        self.ik.content = _ik_html(state, self.tr)
         # Charts at most every third frame while playing (each update resends the whole series).
         if (
             m.trace is not self._trace
@@ -262,48 +274,78 @@ def _button(label: str) -> Play | StepOnce | ResetMotion:
     return ResetMotion()
 
 
-def _readout(state: LabState, snap: Snapshot, pending: bool = False) -> str:
+def _readout(state: LabState, snap: Snapshot, pending: bool = False, tr: Translator | None = None) -> str:
+    tr = tr or translations()
+    _ = tr.gettext
     if pending:
-        return (
-            '<div class="jl"><div class="jl-note">Press <b>Play</b>: the arm goes to the preset\'s start '
-            "and its tool twist v is held (q̇ = J⁻¹ v), slowed down near the singularity so it can be "
-            "followed.</div></div>"
+        text = _(
+            "Press <b>Play</b>: the arm goes to the preset's start and its tool twist v is held (q̇ = J⁻¹ v), "
+            "slowed down near the singularity so it can be followed."
         )
+        return f'<div class="jl"><div class="jl-note">{text}</div></div>'
     rows = snap.rows
     v = [state.v_desired[r] if r < 3 else math.degrees(state.v_desired[r]) for r in rows]
-    parts = ", ".join(f"{ROW_TEXT[r]} {fmt.number(x, 5)}" for r, x in zip(rows, v, strict=True))
-    axes = "tool" if state.options.twist_frame == "tool" else "base"
-    doing = {
-        "resolved_rate": "holding v",
-        "climb": "climbing w of the held rows",
-        "path": "descending to the nearest singularity",
-        "joints": "moving at q̇",
-    }.get(state.motion.kind, "")
-    line = f'<div class="jl-note">v held: {parts} (m/s, °/s; {axes} axes).</div>'
+    sep = "; " if tr.decimal_symbol == "," else ", "
+    parts = sep.join(f"{ROW_TEXT[r]} {fmt.number(x, 5, tr)}" for r, x in zip(rows, v, strict=True))
+    kind = state.motion.kind
+    doing = (
+        _("holding v")
+        if kind == "resolved_rate"
+        else _("climbing w of the held rows")
+        if kind == "climb"
+        else _("descending to the nearest singularity")
+        if kind == "path"
+        else _("moving at q̇")
+        if kind == "joints"
+        else ""
+    )
+    held = (
+        _("v held: {values} (m/s, °/s; tool axes).")
+        if state.options.twist_frame == "tool"
+        else _("v held: {values} (m/s, °/s; base axes).")
+    ).format(values=parts)
+    line = f'<div class="jl-note">{held}</div>'
     if state.playing:
-        line += f'<div class="jl-note"><b>Playing</b>: {doing}.</div>'
+        line += '<div class="jl-note">' + _("<b>Playing</b>: {what}.").format(what=doing) + "</div>"
     elif state.stopped:
-        line += f'<div class="jl-warn">{fmt.escape(state.stopped)}</div>'
+        line += f'<div class="jl-warn">{fmt.escape(_(state.stopped))}</div>'
     return f'<div class="jl">{line}</div>'
 
 
-def _ik_html(state: LabState) -> str:
+def _ik_html(state: LabState, tr: Translator | None = None) -> str:
+    tr = tr or translations()
+    _ = tr.gettext
     ik = state.motion.ik
     if not state.options.gizmo:
-        return '<div class="jl-note">Tick the box, then drag the handle at the tool: the arm follows.</div>'
-    if ik is None:
-        return '<div class="jl-note">Drag the handle at the tool.</div>'
-    method = "damped least squares" if ik.method == "dls" else "Newton"
-    text = (
-        f"{method}: {ik.iterations} iterations, residual {fmt.number(ik.residual)}, "
-        f"{'converged' if ik.converged else 'not converged'}."
-    )
-    if ik.departure > 1e-3:
-        text += (
-            f' <span class="jl-warn">The tool stops {fmt.quantity(ik.departure * 1000, "mm")} short'
-            + (": damping keeps the rates bounded near the singularity." if ik.method == "dls" else ".")
-            + "</span>"
+        return (
+            '<div class="jl-note">'
+            + _("Tick the box, then drag the handle at the tool: the arm follows.")
+            + "</div>"
         )
+    if ik is None:
+        return '<div class="jl-note">' + _("Drag the handle at the tool.") + "</div>"
+    method = _("damped least squares") if ik.method == "dls" else "Newton"
+    text = (
+        tr.ngettext(
+            "{method}: {n} iteration, residual {residual}, converged.",
+            "{method}: {n} iterations, residual {residual}, converged.",
+            ik.iterations,
+        )
+        if ik.converged
+        else tr.ngettext(
+            "{method}: {n} iteration, residual {residual}, not converged.",
+            "{method}: {n} iterations, residual {residual}, not converged.",
+            ik.iterations,
+        )
+    ).format(method=method, n=ik.iterations, residual=fmt.number(ik.residual, tr=tr))
+    if ik.departure > 1e-3:
+        short = fmt.quantity(ik.departure * 1000, "mm", tr=tr)
+        stops = (
+            _("The tool stops {distance} short: damping keeps the rates bounded near the singularity.")
+            if ik.method == "dls"
+            else _("The tool stops {distance} short.")
+        ).format(distance=short)
+        text += f' <span class="jl-warn">{stops}</span>'
     return f'<div class="jl"><div class="jl-note">{text}</div></div>'
 
 
