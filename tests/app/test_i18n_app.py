@@ -13,6 +13,7 @@ from wsclient import ViserWsClient
 
 from app.core.actions import GoTo, SetJoint
 from app.core.i18n import translations
+from app.views import fmt
 from app.views.panel import TAB_LABELS
 
 TOKEN = "lecture-27"
@@ -186,8 +187,17 @@ def test_a_robots_configuration_description_is_in_the_tabs_language_else_english
         assert wrist.translations["pl"]["description"].split(":")[0] in status
         assert "zgięciem nadgarstka q5 = 0" in status and "efektor traci" in status
         assert wrist.description.split(":")[0] not in status
+        # the View tab's list of named configurations: every description in Polish
+        listing = session.panel.about.content
+        for c in puma.configurations:
+            assert fmt.escape(c.translations["pl"]["description"]) in listing, c.name
+            assert fmt.escape(c.description) not in listing, c.name
         report(session, address="?lang=es&robot=puma560")
         assert "la flexión de muñeca q5 = 0" in session.panel.status.content
+        assert "La pose nominal de Corke" in session.panel.about.content
+        # the Motion tab's note on the preset: the robot file's Spanish
+        preset = robots.motions("puma560")[0]
+        assert fmt.escape(preset.translations["es"]["description"]) in session.panel.motion.about.content
 
 
 def test_a_robot_file_without_translations_shows_english_in_every_language():
