@@ -4,6 +4,7 @@ random tables; hostile names are escaped so they come back unchanged and cannot 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import sys
 
@@ -261,6 +262,13 @@ def test_a_file_with_english_only_reads_with_no_translations():
     assert dict(robots.loads(text, "plain.toml").robot.translations) == {}
 
 
+def _english_only(name: str) -> Robot:
+    """Library robot ``name`` with its translations dropped (a file as a user might write it)."""
+    robot = robots.load(name)
+    confs = tuple(dataclasses.replace(c, translations={}) for c in robot.configurations)
+    return dataclasses.replace(robot, translations={}, configurations=confs)
+
+
 @pytest.mark.parametrize(
     ("snippet", "message"),
     [
@@ -274,14 +282,14 @@ def test_a_file_with_english_only_reads_with_no_translations():
     ],
 )
 def test_a_wrong_translation_is_refused_in_words(snippet, message):
-    text = robots.dumps(robots.load("scara"), name="p")  # a file with English only
+    text = robots.dumps(_english_only("scara"), name="p")
     head, _, rest = text.partition("[[joints]]")
     with pytest.raises(RobotDefinitionError, match=message):
         robots.loads(head + snippet + "\n[[joints]]" + rest, "p.toml")
 
 
 def test_a_wrong_configuration_translation_is_refused_in_words():
-    text = robots.dumps(robots.load("scara"), name="p")  # a file with English only
+    text = robots.dumps(_english_only("scara"), name="p")
     bad = text.replace('singular = ""', 'singular = ""\ntranslations.pl.name = "dom"', 1)
     with pytest.raises(RobotDefinitionError, match="configurations entry 1, translations.pl: unknown key"):
         robots.loads(bad, "p.toml")

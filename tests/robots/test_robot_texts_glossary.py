@@ -70,7 +70,9 @@ def test_every_robot_text_says_the_courses_words_and_writes_decimal_commas(code)
     assert not problems, "\n".join(problems)
 
 
-@pytest.mark.parametrize("name", ["puma560", "puma560_mdh", "trr", "planar2", "planar3", "elbow3r", "wrist"])
+@pytest.mark.parametrize(
+    "name", ["puma560", "puma560_mdh", "trr", "planar2", "planar3", "elbow3r", "wrist", "scara", "stanford"]
+)
 @pytest.mark.parametrize("code", TEXT_LANGUAGES)
 def test_the_course_robots_are_translated_in_full(name, code):
     """The Puma and the courses' robots (TRR, planar 2R, spatial 3R): title, description, every configuration
