@@ -71,7 +71,8 @@ def test_every_robot_text_says_the_courses_words_and_writes_decimal_commas(code)
 
 
 @pytest.mark.parametrize(
-    "name", ["puma560", "puma560_mdh", "trr", "planar2", "planar3", "elbow3r", "wrist", "scara", "stanford"]
+    "name",
+    ["puma560", "puma560_mdh", "trr", "planar2", "planar3", "elbow3r", "wrist", "scara", "stanford", "ur5"],
 )
 @pytest.mark.parametrize("code", TEXT_LANGUAGES)
 def test_the_course_robots_are_translated_in_full(name, code):
