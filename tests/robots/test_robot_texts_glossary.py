@@ -72,12 +72,11 @@ def test_every_robot_text_says_the_courses_words_and_writes_decimal_commas(code)
 
 @pytest.mark.parametrize(
     "name",
-    ["puma560", "puma560_mdh", "trr", "planar2", "planar3", "elbow3r", "wrist", "scara", "stanford", "ur5"],
+    robots.names(),
 )
 @pytest.mark.parametrize("code", TEXT_LANGUAGES)
 def test_the_course_robots_are_translated_in_full(name, code):
-    """The Puma and the courses' robots (TRR, planar 2R, spatial 3R): title, description, every configuration
-    and motion."""
+    """Every library robot: title, description, every configuration and motion."""
     robot = robots.load(name)
     assert set(robot.translations[code]) == {"title", "description"}
     assert all(code in c.translations for c in robot.configurations)
