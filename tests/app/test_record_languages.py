@@ -46,7 +46,7 @@ def test_a_path_demo_names_its_singularity_in_polish():
     robot, pl = robots.load("stanford"), translations("pl")
     demo = plan("stanford", robot, frames=10, tr=pl)
     singular = next(c for c in robot.configurations if c.singular)
-    assert demo.title == f"{robot.title} — home → {singular.name} (osobliwość: nadgarstek)"
+    assert demo.title == f"Manipulator Stanford (Scheinman) — home → {singular.name} (osobliwość: nadgarstek)"
     assert plan("stanford", robot, frames=10).title.endswith(f"({singular.singular} singularity)")
 
 
