@@ -13,6 +13,7 @@ from wsclient import ViserWsClient
 
 from app.core.actions import GoTo, SetJoint
 from app.core.i18n import translations
+from app.views import fmt
 from app.views.panel import TAB_LABELS
 
 TOKEN = "lecture-27"
@@ -167,6 +168,58 @@ def test_tab_labels_of_every_language_map_back_to_the_english_key():
     for code in ("en", "pt", "es", "pl"):
         for label in TAB_LABELS:
             assert TAB_KEYS[translations(code).gettext(label)] == label
+
+
+def test_a_robots_configuration_description_is_in_the_tabs_language_else_english():
+    """The Puma's named configurations come with their description in the tab's language, from the robot
+    file's translations (robots/data/puma560.toml); a robot whose file has only English shows English."""
+    import robots
+
+    puma = robots.load("puma560")
+    wrist = next(c for c in puma.configurations if c.name == "wrist_singular")
+    with running_lab(robot="puma560") as (_lab, session, _ws):
+        session.dispatch(GoTo("wrist_singular"))
+        session.settle()
+        assert wrist.description.split(":")[0] in session.panel.status.content  # English first
+        report(session, address="?lang=pl&robot=puma560")
+        assert session.language == "pl"
+        status = session.panel.status.content
+        assert wrist.translations["pl"]["description"].split(":")[0] in status
+        assert "zgięciem nadgarstka q5 = 0" in status and "efektor traci" in status
+        assert wrist.description.split(":")[0] not in status
+        # the View tab's list of named configurations: every description in Polish
+        listing = session.panel.about.content
+        for c in puma.configurations:
+            assert fmt.escape(c.translations["pl"]["description"]) in listing, c.name
+            assert fmt.escape(c.description) not in listing, c.name
+        report(session, address="?lang=es&robot=puma560")
+        assert "la flexión de muñeca q5 = 0" in session.panel.status.content
+        assert "La pose nominal de Corke" in session.panel.about.content
+        # the Motion tab's note on the preset: the robot file's Spanish
+        preset = robots.motions("puma560")[0]
+        assert fmt.escape(preset.translations["es"]["description"]) in session.panel.motion.about.content
+
+
+def test_a_robot_file_without_translations_shows_english_in_every_language():
+    import dataclasses
+
+    import robots
+    from app.core.i18n import translations as tr_of
+    from app.core.robot_texts import configuration_description, robot_description, robot_title
+
+    puma = robots.load("puma560")
+    bare = dataclasses.replace(
+        puma,
+        translations={},
+        configurations=tuple(dataclasses.replace(c, translations={}) for c in puma.configurations),
+    )
+    for code in ("pt", "es", "pl"):
+        tr = tr_of(code)
+        assert robot_title(bare, tr) == puma.title and robot_description(bare, tr) == puma.description
+        assert [configuration_description(c, tr) for c in bare.configurations] == [
+            c.description for c in puma.configurations
+        ]
+        assert robot_description(puma, tr) == puma.translations[code]["description"] != puma.description
 
 
 def test_the_build_tab_takes_a_decimal_comma_in_portuguese_and_refuses_a_thousands_point_in_words():

@@ -18,6 +18,7 @@ from kinematics import Robot
 from ...core.actions import GoTo, SetJoint
 from ...core.i18n import N_, Translator, translations
 from ...core.ranges import Range, from_display, joint_ranges, to_display
+from ...core.robot_texts import configuration_description
 from ...viser_adapter import handle_uuid
 from .. import fmt
 from .common import Dispatch, bind, sync_value
@@ -107,12 +108,13 @@ class JointsPanel:
 
 def configurations_html(robot: Robot, tr: Translator | None = None) -> str:
     """Every named configuration with its description (singular ones marked)."""
-    _ = (tr or translations()).gettext
+    tr = tr or translations()
+    _ = tr.gettext
     singular = fmt.escape(_("(singular)"))
     items = "".join(
         f"<li><b>{fmt.escape(configuration_label(c.name))}</b>"
         + (f" <span class='jl-warn'>{singular}</span>" if c.singular else "")
-        + f": {fmt.escape(c.description)}</li>"
+        + f": {fmt.escape(configuration_description(c, tr))}</li>"
         for c in robot.configurations
         if c.description
     )

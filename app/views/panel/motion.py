@@ -26,6 +26,7 @@ from ...core.commands import FindSingularity
 from ...core.i18n import N_, Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
+from ...core.robot_texts import motion_description
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
@@ -245,7 +246,8 @@ class MotionPanel:
 
     def _about(self, name: str) -> str:
         p = self.presets.get(name)
-        return f'<div class="jl-note">{fmt.escape(p.description)}</div>' if p and p.description else ""
+        text = motion_description(p, self.tr) if p else ""
+        return f'<div class="jl-note">{fmt.escape(text)}</div>' if text else ""
 
     def _plot(self, trace: Trace) -> None:
         if len(trace) < 2:
