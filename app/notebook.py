@@ -6,6 +6,7 @@ Example (one cell)::
     lab = show("puma560")          # the live app in the cell, served from this kernel
     lab.q, lab.J                   # what the cell shows, read from Python
     lab.set_q([0, 0.3, 0, 0, 0, 0])  # ... and set from Python: the cell's arm moves
+    show("trr", lang="es")         # the panel in the Argentinian course's Spanish
 
 :func:`show` starts a :class:`~app.server.Lab` on 127.0.0.1 and a free port in the kernel's own
 process (stopped with the kernel, or by :meth:`NotebookLab.stop`) and displays it in an ``<iframe>``.
@@ -168,6 +169,7 @@ def show(
     base_link: str | None = None,
     tip_link: str | None = None,
     xacro_args: Mapping[str, str] | None = None,
+    lang: str = "",
 ) -> NotebookLab:
     """Start the app for ``robot`` (a library name or robot file) or ``urdf`` in this kernel and show
     it in the cell (the returned :class:`NotebookLab` displays itself as the cell's value).
@@ -179,9 +181,13 @@ def show(
         allow_origin: Origins of pages allowed to connect besides the lab's own (a notebook behind a
             proxy: its own origin), as ``jacobian-lab serve --allow-origin``.
         base_link, tip_link, xacro_args: The chain of a URDF and a xacro file's arguments.
+        lang: The language of the cell's panel (``"en"``, ``"pt"``, ``"es"``, ``"pl"``; default: the
+            notebook browser's): the lab's room language, and the cell's address says it
+            (``?lang=es``), as ``jacobian-lab serve --lang``.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot cannot be loaded.
+        ValueError: ``lang`` is not one of the app's languages (the message lists them).
     """
     with quiet():  # viser's banner: the cell shows the lab instead
         lab = Lab(
@@ -193,8 +199,12 @@ def show(
             tip_link=tip_link,
             allow_origin=allow_origin,
             xacro_args=xacro_args,
+            language=lang,
         )
-    return NotebookLab(lab, height=height, url=url)
+    address = url or f"http://127.0.0.1:{lab.port}/"
+    if lang:
+        address += ("&" if "?" in address else "?") + f"lang={lang}"
+    return NotebookLab(lab, height=height, url=address)
 
 
 class RecordingView:

@@ -18,7 +18,6 @@ import socket
 import sys
 import threading
 import time
-import urllib.parse
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
@@ -26,7 +25,7 @@ import viser
 
 from .core.i18n import CODES, is_language
 from .services.catalog import RobotCatalog
-from .services.classroom import Classroom
+from .services.classroom import Classroom, presenter_link
 from .services.classroom_relay import RelayedClassroom, RoomChannel
 from .services.lifecycle import check_listen_address, wait_for_stop
 from .services.ratelimit import RoomLimits
@@ -44,6 +43,7 @@ from .viser_adapter import (
     install_message_limits,
     listen_on,
     quiet_banner,
+    trusted_proxies,
     welcome_tabs,
 )
 
@@ -77,6 +77,8 @@ class Lab:
             (:mod:`app.services.classroom_relay`); ``presenter_token`` is then not given.
         language: The room's language (``en``, ``pt``, ``es``, ``pl``): every tab speaks it unless it
             chose its own (``?lang=``, the Language menu); "" (default): each tab its browser's.
+        trusted_proxy: Addresses or networks of reverse proxies whose ``X-Forwarded-For`` names the
+            client (``--trusted-proxy``); any other peer's header is ignored.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -98,7 +100,11 @@ class Lab:
         xacro_args: Mapping[str, str] | None = None,
         room_pipe: object = None,
         language: str = "",
+        trusted_proxy: Sequence[str] = (),
     ) -> None:
+        if language and not is_language(language):  # before anything starts
+            raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
+        self.trusted_proxies = trusted_proxies(trusted_proxy)
         files = [urdf] if urdf else []
         if robot and _is_path(robot):
             files.append(robot)
@@ -117,8 +123,6 @@ class Lab:
         self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
-        if language and not is_language(language):
-            raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
         self.language = language
         if listen_socket is not None:  # one of several worker processes accepting on one socket
             port = listen_socket.getsockname()[1]
@@ -136,12 +140,10 @@ class Lab:
         self.classroom: Classroom | None = None
         if room_pipe is not None:
             channel = RoomChannel(room_pipe)
-            self.classroom = RelayedClassroom(
-                channel, self.catalog, limits=self.room, address_of=self._address
-            )
+            self.classroom = RelayedClassroom(channel, self.catalog, address_of=self._address)
             channel.start()
         elif presenter_token:
-            self.classroom = Classroom(presenter_token, limits=self.room, address_of=self._address)
+            self.classroom = Classroom(presenter_token, address_of=self._address)
         self._gone: set[int] = set()
         self._lock = threading.Lock()
         self._session_hooks: list[Callable[[ClientSession], None]] = []
@@ -225,14 +227,14 @@ class Lab:
             session.close()
 
     def _address(self, client_id: int) -> str:
-        return client_address(self.server, client_id)
+        return client_address(self.server, client_id, self.trusted_proxies)
 
     def _symbolic_restarted(self, notice: str) -> None:
         """Tell every tab that the symbolic worker stopped and was restarted (its request is retried)."""
         with self._lock:
             sessions = list(self.sessions.values())
         for session in sessions:
-            session.notices.notify("Symbolic worker restarted", notice)
+            session.notices.notify(session.notices.tr.gettext("Symbolic worker restarted"), notice)
 
     def session(self, timeout: float = 10.0) -> ClientSession:
         """The most recent client's session, waiting up to ``timeout`` seconds for one (for tests)."""
@@ -273,6 +275,7 @@ def serve(
     allow_origin: Sequence[str] = (),
     xacro_args: Mapping[str, str] | None = None,
     language: str = "",
+    trusted_proxy: Sequence[str] = (),
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -286,6 +289,7 @@ def serve(
         presenter_token: Classroom mode with this presenter token (see :class:`Lab`).
         allow_origin: Origins of pages that may embed the lab (see :class:`Lab`).
         language: The room's language (see :class:`Lab`).
+        trusted_proxy: Reverse proxies whose ``X-Forwarded-For`` is read (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -312,10 +316,11 @@ def serve(
         allow_origin=allow_origin,
         xacro_args=xacro_args,
         language=language,
+        trusted_proxy=trusted_proxy,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:
-        link = f"{lab.url}/?presenter={urllib.parse.quote(presenter_token, safe='')}"
+        link = presenter_link(lab.url, presenter_token)
         print(
             f"Classroom mode: open {link} in the tab you present from (keep the link off the "
             "projector; it fills in the presenter token, masked, and drops it from the address bar). "

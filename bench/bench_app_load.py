@@ -21,8 +21,10 @@ reconnects as viser's page does (at once, then every second, to the same address
 goes on moving once drawn again. Then printed: the other tabs' p95 before the kill and in the 5 s
 after, when the killed worker's tabs were drawn again and had a change answered (from the kill), how
 many never came back (10 s after the window), the worker processes before and after (the new one
-serving or not, from the server's log) and, after SIGTERM to the server, which of its processes are
-still running.
+serving or not, from the server's log), how many of 20 new tabs opened at once after the window (once
+the new worker serves) reach the restarted worker, and, after SIGTERM to the server, which of its
+processes are still running. With ``--workers``, every run also prints how many tabs each worker serves
+at the window's end.
 
 Usage::
 
@@ -289,6 +291,10 @@ def flood_process(url: str, seconds: float, out: multiprocessing.Queue, go) -> N
 AFTER_KILL = 5.0
 """Seconds after the kill over which the latency of the other tabs is reported."""
 
+FRESH = 20
+"""New tabs opened at once after the window of a ``--kill-worker-at`` run (how many reach the restarted
+worker)."""
+
 
 @dataclass
 class WorkerKill:
@@ -317,6 +323,27 @@ class WorkerKill:
         self.dead = {ports[p] for p in served[self.killed] if p in ports}
         self.killed_at = time.perf_counter()
         os.kill(self.killed, signal.SIGKILL)
+
+    async def fresh_tabs(self, url: str, log: Path | None, count: int = FRESH) -> tuple[int, int]:
+        """After the window, once the restarted worker serves: ``count`` new tabs opening at once; how
+        many of them it took, of how many (0, 0: it never served)."""
+        new: list[int] = []
+        end = time.perf_counter() + 60
+        while not new and log is not None and time.perf_counter() < end:
+            serving = set(map(int, re.findall(r"\(pid (\d+)\) serving", log.read_text())))
+            after = await asyncio.to_thread(worker_pids, self.pid, self.port)
+            new = [w for w in after if w not in self.before and w in serving]
+            await asyncio.sleep(0.2)
+        if not new:
+            return 0, 0
+        tabs = [Tab() for _ in range(count)]
+        await asyncio.gather(*(t.connect(url) for t in tabs))
+        await asyncio.wait_for(asyncio.gather(*(t.drawn.wait() for t in tabs)), 120)
+        theirs = await asyncio.to_thread(peer_ports, new[0], self.port)
+        took = sum(1 for t in tabs if t.ws.local_address[1] in theirs)
+        for t in tabs:
+            await t.close()
+        return took, count
 
     def report(self, clients: list[Tab], t0: float, log: Path | None) -> dict:
         """What the room saw: the other tabs' latency before and after, when the killed worker's tabs
@@ -468,8 +495,11 @@ async def run(
         "switches_per_change": switched / max(sum(t.sent for t in clients), 1),
         "client_cpu": own,
     }
+    workers = await asyncio.to_thread(worker_pids, pid, port)  # none when one process serves
+    result["spread"] = [len(await asyncio.to_thread(peer_ports, w, port)) for w in workers]
     if kill is not None:
         result["kill"] = kill.report(clients, t0, log)
+        result["kill"]["fresh"] = await kill.fresh_tabs(url, log)
     if watch is not None:
         result["memory"] = (watch.idle, watch.peak)
     if hostile:
@@ -522,6 +552,8 @@ def kill_lines(k: dict, at: float, left: tuple[list[str], list[str]]) -> list[st
         f"worker processes: {k['workers_before']} before, {k['workers_after']} after"
         + (f"; new: {new}" if new else "; none started again")
         + f"; tabs per worker after: {'+'.join(map(str, k['spread_after']))}",
+        f"new tabs after the restart: {k['fresh'][0]} of {k['fresh'][1]} opened at once reached the "
+        "restarted worker",
         f"after SIGTERM: {len(left[0])} of its processes running when it exited"
         + (f" ({', '.join(role(p) for p in left[0])})" if left[0] else "")
         + f", {len(left[1])} 5 s later"
@@ -682,6 +714,8 @@ def main() -> int:
         )
         for note in r["silent"][:5]:
             print(f"      {note}")
+        if r["spread"]:
+            print(f"      tabs per worker at the window's end: {'+'.join(map(str, r['spread']))}")
         if kill is not None:
             for note in kill_lines(r["kill"], kill.at, left):
                 print(f"      {note}")

@@ -107,8 +107,9 @@ def memory(pid: int) -> tuple[float, float, int]:
 
 def worker_pids(pid: int, port: int) -> list[int]:
     """The worker processes of ``jacobian-lab serve --workers N`` (N ≥ 2) running as ``pid`` on ``port``:
-    its children that multiprocessing spawned (``spawn_main`` in their command line) and that hold the
-    listening socket of ``port``. Its other children: multiprocessing's resource tracker
+    its children that multiprocessing spawned (``spawn_main`` in their command line) and that hold a
+    socket listening on ``port`` (on Linux each worker its own, in one ``SO_REUSEPORT`` group, once it
+    serves; elsewhere the one they share). Its other children: multiprocessing's resource tracker
     (``resource_tracker``) and the one symbolic process it runs for all workers (spawned too, but it holds
     no listening socket). (With ``--workers 1`` the server serves from its own process.)"""
     found = []

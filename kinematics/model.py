@@ -43,6 +43,7 @@ from .parts import (
     Task,
     check_choice,
     param_names,
+    translations,
     value_bound,
 )
 from .transforms import check_rigid_transform
@@ -71,7 +72,10 @@ class Robot:
             planar robot, position rows below 6 joints, else all six), or one of
             ``"full"``, ``"linear"``, ``"angular"``, ``"planar"`` (a spherical wrist
             alone has the task ``"angular"``).
-        title, description, source: Human-readable metadata (source = citation).
+        title, description, source: Human-readable metadata (source = citation), in English.
+        translations: The title and description in other languages, language code →
+            {"title": …, "description": …} (read-only, empty by default; either key may be missing:
+            whoever shows them falls back to English). See :func:`kinematics.parts.translations`.
         configurations: Named configurations worth visiting (names unique).
         urdf_path: The URDF file the robot was read from, or ``None``.
         param_names: Course names of the symbolic DH parameters, default name → course name
@@ -100,6 +104,7 @@ class Robot:
     configurations: tuple[NamedConfiguration, ...] = ()
     urdf_path: str | None = None
     param_names: Mapping[str, str] = field(default_factory=dict)
+    translations: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str):
@@ -127,6 +132,11 @@ class Robot:
         if self.dh is not None:
             set_(self, "dh", _parts(self.dh, DHRow, f"{who}, dh"))
         set_(self, "param_names", param_names(self.param_names, self.name))
+        set_(
+            self,
+            "translations",
+            translations(self.translations, ("title", "description"), f"{who}, translations"),
+        )
         self._check_chain(who)
 
     def _check_chain(self, who: str) -> None:
@@ -265,6 +275,7 @@ class Robot:
         task: str = "auto",
         configurations: Sequence[NamedConfiguration] = (),
         param_names: Mapping[str, str] | None = None,
+        translations: Mapping[str, Mapping[str, str]] | None = None,
     ) -> Robot:
         """Build a robot from a Denavit–Hartenberg table.
 
@@ -279,7 +290,7 @@ class Robot:
                 ``"modified"`` (Craig): A = Rx(α) Tx(a) Rz(θ) Tz(d).
             base, tool: 4×4 rigid transforms; T_base_tool = base · A1 ⋯ An · tool.
             name: Robot identifier.
-            title, description, source, planar, task, configurations, param_names: See
+            title, description, source, planar, task, configurations, param_names, translations: See
                 the attributes of :class:`Robot`.
 
         Raises:
@@ -311,6 +322,7 @@ class Robot:
             source=source,
             configurations=tuple(configurations),
             param_names={} if param_names is None else param_names,
+            translations={} if translations is None else translations,
         )
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import difflib
 import re
 from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal, TypeVar
 
 import numpy as np
@@ -180,18 +180,24 @@ class NamedConfiguration:
         description: One sentence for the GUI.
         singular: Kind of singularity ("wrist", "elbow", "shoulder", "boundary", ...)
             or "" for a regular configuration.
+        translations: The description in other languages, language code → {"description": text}
+            (``{"pl": {"description": "…"}}``; read-only, empty by default; see :func:`translations`).
     """
 
     name: str
     q: FloatArray
     description: str = ""
     singular: str = ""
+    translations: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         name = _text(self.name, "configuration name")
         where = f"configuration {name!r}"
         _text(self.description, f"{where}, description")
         _text(self.singular, f"{where}, singular")
+        object.__setattr__(
+            self, "translations", translations(self.translations, ("description",), f"{where}, translations")
+        )
         raw = self.q
         if isinstance(raw, (str, bytes)) or not isinstance(raw, (Sequence, np.ndarray)):
             raise RobotDefinitionError(f"{where}: q must be a sequence of numbers, got {show(raw)}")
@@ -248,3 +254,53 @@ def param_names(value: object, name: str) -> Mapping[str, str]:
             raise RobotDefinitionError(f"{where}, {key!r}: the name {new!r} is given twice")
         out[key] = new
     return FrozenNames(out)
+
+
+_LANGUAGE_CODE = re.compile(r"[a-z]{2,3}")
+
+
+def translations(value: object, keys: Sequence[str], where: str) -> Mapping[str, Mapping[str, str]]:
+    """Checked, read-only texts in other languages: language code (``"pt"``, ``"es"``, ``"pl"``: two
+    or three lowercase letters) → {key: text}, each key one of ``keys`` (``"title"``, ``"description"``).
+
+    The kinematics never read them: they travel with the robot for whoever shows it (the app shows a
+    robot's texts in the tab's language, falling back to the English attribute).
+    """
+    if not isinstance(value, Mapping):
+        raise RobotDefinitionError(f"{where}: expected a mapping of language codes, got {show(value)}")
+    out: dict[str, FrozenNames] = {}
+    for code, texts in value.items():
+        if not isinstance(code, str) or not _LANGUAGE_CODE.fullmatch(code):
+            raise RobotDefinitionError(
+                f"{where}: {show(code)} is not a language code (e.g. 'pt', 'es', 'pl')"
+            )
+        if not isinstance(texts, Mapping):
+            raise RobotDefinitionError(f"{where}, {code!r}: expected a table of texts, got {show(texts)}")
+        for key, text in texts.items():
+            if key not in keys:
+                allowed = ", ".join(map(repr, keys))
+                raise RobotDefinitionError(f"{where}, {code!r}: unknown key {show(key)}; allowed: {allowed}")
+            _text(text, f"{where}, {code!r}, {key!r}")
+        out[code] = FrozenNames(texts)
+    return _FrozenTexts(out)
+
+
+class _FrozenTexts(Mapping[str, Mapping[str, str]]):
+    """A read-only, picklable mapping language code → texts."""
+
+    __slots__ = ("_items",)
+
+    def __init__(self, items: Mapping[str, Mapping[str, str]]) -> None:
+        self._items = dict(items)
+
+    def __getitem__(self, key: str) -> Mapping[str, str]:
+        return self._items[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __repr__(self) -> str:
+        return f"Translations({self._items!r})"

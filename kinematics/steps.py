@@ -33,6 +33,7 @@ from .errors import ArrayError
 from .model import Robot
 from .numeric import as_configuration, chain_frames, fk, link_frames
 from .parts import JointType
+from .text import N_
 from .validation import show
 
 __all__ = [
@@ -318,7 +319,7 @@ class StepMethod:
 
     Attributes:
         key: The one spelling of the method (``Options.derive``, ``handout --method``, symbolic steps).
-        label: Its name with its formula (the Derive tab's dropdown).
+        label: Its name with its formula (the Derive tab's dropdown; marked for the app's catalogs).
         title: Heading of its section in a handout.
         intro: The paragraph that opens that section.
         inputs: What a step needs besides q: "" nothing, "rates" q̇ (n,), "wrench" [f; n] (6,).
@@ -340,10 +341,10 @@ class StepMethod:
 METHODS: dict[str, StepMethod] = {
     m.key: m
     for m in (
-        StepMethod("dh", "DH frames: Aᵢ and ⁰Tᵢ", "DH frames", "", "", None, None, ("A", "T0_")),
+        StepMethod("dh", N_("DH frames: Aᵢ and ⁰Tᵢ"), "DH frames", "", "", None, None, ("A", "T0_")),
         StepMethod(
             "whitney",
-            "Whitney: Jᵢ = zᵢ₋₁ × (pₙ − pᵢ₋₁)",
+            N_("Whitney: Jᵢ = zᵢ₋₁ × (pₙ − pᵢ₋₁)"),
             "Whitney's method: the columns of J",
             "Whitney's method (course 000, section 4): column i of J is [zᵢ₋₁ × (pₙ − pᵢ₋₁); zᵢ₋₁] for a "
             "revolute joint and [zᵢ₋₁; 0] for a prismatic one, where zᵢ₋₁ is the axis of joint i and pᵢ₋₁ a "
@@ -355,7 +356,7 @@ METHODS: dict[str, StepMethod] = {
         ),
         StepMethod(
             "differentiation",
-            "Differentiation: ∂p/∂qᵢ",
+            N_("Differentiation: ∂p/∂qᵢ"),
             "Differentiating the forward kinematics",
             "Differentiating the forward kinematics (course 001, method 1; course 004): the v part of "
             "column i is ∂p/∂qᵢ of the tool position p; the ω part comes from S = (∂R/∂qᵢ) Rᵀ, a skew matrix "
@@ -367,7 +368,7 @@ METHODS: dict[str, StepMethod] = {
         ),
         StepMethod(
             "propagation",
-            "Velocity propagation: ωᵢ, vᵢ",
+            N_("Velocity propagation: ωᵢ, vᵢ"),
             "Velocity propagation, link by link",
             "Velocity propagation (course 000, section 3; course 001, method 2; Craig's outward iteration): "
             "from the base outward, each link's angular velocity ω and the velocity v of its origin, in the "
@@ -380,7 +381,7 @@ METHODS: dict[str, StepMethod] = {
         ),
         StepMethod(
             "force",
-            "Force propagation: τ = Jᵀ F",
+            N_("Force propagation: τ = Jᵀ F"),
             "Force propagation: τ = Jᵀ F",
             "Force propagation (course 001, method 3; course 000, section 6; Craig's inward iteration): a "
             "wrench [f; n] on the tool, in the tool axes, carried inward link by link (f = R f', "

@@ -3,8 +3,11 @@
 A robot file is TOML (``robots/data/puma560.toml`` is the commented example): the top-level keys
 ``name`` (the file stem), ``title``, ``description``, ``source``, ``convention`` and optionally
 ``planar`` and ``task``; optional ``[base]`` and ``[tool]`` tables (``xyz`` [m], ``rpy`` [deg]);
-an optional ``[symbols]`` table (course names of the symbolic parameters, ``a2 = "l2"``); one
-``[[joints]]`` table per DH row; optional ``[[configurations]]`` and ``[[motions]]``.
+an optional ``[symbols]`` table (course names of the symbolic parameters, ``a2 = "l2"``); optional
+``[translations.<language>]`` tables (the title and description in ``pt``, ``es`` or ``pl``); one
+``[[joints]]`` table per DH row; optional ``[[configurations]]`` and ``[[motions]]``, each of which
+may hold ``translations.<language>.description``. English is the file's own language: every text
+has its English key, and a language a file does not translate falls back to it.
 
 Files are in metres and DEGREES (alpha, theta, revolute limits and configuration entries,
 base/tool rpy, the angular part of a motion's twist and revolute rates); :func:`read` converts
@@ -19,8 +22,8 @@ from __future__ import annotations
 import math
 import re
 import sys
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -33,6 +36,8 @@ from kinematics.files import decode_utf8, read_user_file
 from kinematics.parts import CONVENTIONS, JOINT_TYPES
 from kinematics.transforms import matrix_to_rpy, rpy_to_matrix
 
+from . import texts
+from .texts import TEXT_LANGUAGES
 from .toml_values import check_numbers, check_table, key_text, number_text, one_of, string_text
 
 if sys.version_info >= (3, 11):
@@ -40,7 +45,17 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["MAX_ROBOT_FILE_BYTES", "MotionPreset", "RobotFile", "read", "loads", "dumps", "validated", "meta"]
+__all__ = [
+    "MAX_ROBOT_FILE_BYTES",
+    "TEXT_LANGUAGES",
+    "MotionPreset",
+    "RobotFile",
+    "read",
+    "loads",
+    "dumps",
+    "validated",
+    "meta",
+]
 
 MAX_ROBOT_FILE_BYTES = 1024 * 1024  # a robot file is a table of a few dozen numbers
 
@@ -54,14 +69,15 @@ _TOP_OPTIONAL = {
     "configurations": list,
     "motions": list,  # [[motions]]: resolved-rate presets (a start, a tool twist held)
     "symbols": dict,  # [symbols]: course names of the symbolic parameters, kinematics.Robot.param_names
+    "translations": dict,  # [translations.pl]: title and description in another language
 }
 _JOINT = {"joint": str, "a": float, "alpha": float, "d": float, "theta": float}
 _JOINT_OPTIONAL = {"name": str, "qlim": list}
 _CONF = {"name": str, "q": list}
-_CONF_OPTIONAL = {"description": str, "singular": str}
+_CONF_OPTIONAL = {"description": str, "singular": str, "translations": dict}
 _FRAME_OPTIONAL = {"xyz": list, "rpy": list}
 _MOTION = {"name": str, "start": str, "twist": list}
-_MOTION_OPTIONAL = {"frame": str, "description": str, "speed": float, "rates": list}
+_MOTION_OPTIONAL = {"frame": str, "description": str, "speed": float, "rates": list, "translations": dict}
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,6 +96,7 @@ class MotionPreset:
             file gives revolute rates in deg/s), or ``None``: the course's q̇ for v = J q̇.
         start: The name of the configuration ``q`` is ("" for a preset made in code: the writer
             then looks for a configuration with exactly this ``q``).
+        translations: The description in other languages, {"pl": {"description": "…"}}.
     """
 
     name: str
@@ -90,6 +107,7 @@ class MotionPreset:
     speed: float = 1.0
     rates: np.ndarray | None = None
     start: str = ""
+    translations: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True, eq=False)
@@ -152,8 +170,10 @@ def loads(text: str, file_name: str) -> RobotFile:
     confs = []
     for c in doc.get("configurations", []):
         q = [_to_si(v, rev) for v, rev in zip(c["q"], revolute, strict=True)]
-        text_ = _text(c.get("description", ""))
-        confs.append(NamedConfiguration(c["name"], np.array(q, dtype=float), text_, c.get("singular", "")))
+        text_, tr = _text(c.get("description", "")), texts.read_translations(c)
+        confs.append(
+            NamedConfiguration(c["name"], np.array(q, dtype=float), text_, c.get("singular", ""), tr)
+        )
     base, tool = _frame(doc, "base"), _frame(doc, "tool")
     try:
         robot = Robot.from_dh(
@@ -164,6 +184,7 @@ def loads(text: str, file_name: str) -> RobotFile:
             doc["name"],
             configurations=confs,
             param_names=_symbols(doc, file_name),
+            translations=texts.read_translations(doc),
             **meta(doc),
         )
     except RobotDefinitionError as exc:
@@ -189,7 +210,8 @@ def _motions(doc: dict[str, Any], revolute: list[bool]) -> tuple[MotionPreset, .
             m.get("frame", "base"),
             float(m.get("speed", 1.0)),
         )
-        out.append(MotionPreset(m["name"], text_, q, twist, frame, speed, rates, m["start"]))
+        tr = texts.read_translations(m)
+        out.append(MotionPreset(m["name"], text_, q, twist, frame, speed, rates, m["start"], tr))
     return tuple(out)
 
 
@@ -238,6 +260,7 @@ def validated(doc: object, f: str) -> dict[str, Any]:
         raise RobotDefinitionError(f"{f}, key 'name': {doc['name']!r} must equal the file stem {stem!r}")
     one_of(doc["convention"], CONVENTIONS, f"{f}, key 'convention'")
     one_of(doc.get("task", "auto"), TASKS, f"{f}, key 'task'")
+    texts.check_translations(doc, texts.TOP_KEYS, f)
     if not doc["joints"]:
         raise RobotDefinitionError(f"{f}, key 'joints': expected at least one [[joints]] row")
     for i, j in enumerate(doc["joints"]):
@@ -259,11 +282,13 @@ def validated(doc: object, f: str) -> dict[str, Any]:
         if c["name"] in seen:
             raise RobotDefinitionError(f"{where}, key 'name': duplicate configuration name {c['name']!r}")
         seen.add(c["name"])
+        texts.check_translations(c, texts.ENTRY_KEYS, where)
         check_numbers(c["q"], len(doc["joints"]), f"{where} ({c['name']!r}), key 'q' (one value per joint)")
     for i, m in enumerate(doc.get("motions", [])):
         where = f"{f}, motions entry {i + 1}"
         check_table(m, _MOTION, _MOTION_OPTIONAL, where)
         one_of(m["start"], tuple(seen), f"{where}, key 'start' (a configuration name)")
+        texts.check_translations(m, texts.ENTRY_KEYS, where)
         check_numbers(m["twist"], 6, f"{where}, key 'twist' (vx vy vz in m/s, ωx ωy ωz in deg/s)")
         one_of(m.get("frame", "base"), FRAMES, f"{where}, key 'frame'")
         if "rates" in m:
@@ -302,6 +327,7 @@ def dumps(
     out += _frame_lines(robot.base, "base") + _frame_lines(robot.tool, "tool")
     if robot.param_names:
         out += ["[symbols]", *(f"{key_text(k)} = {string_text(v)}" for k, v in robot.param_names.items()), ""]
+    out += texts.translation_tables(robot.translations)
     for r in robot.dh:
         out.append("[[joints]]")
         out += [f"name = {string_text(r.name)}"] if r.name else []
@@ -312,13 +338,14 @@ def dumps(
         out.append("")
     for c in robot.configurations:
         out += ["[[configurations]]", f"name = {string_text(c.name)}", f"q = {_values(c.q, revolute)}"]
-        out += [f"description = {string_text(c.description)}", f"singular = {string_text(c.singular)}", ""]
+        out += [f"description = {string_text(c.description)}", f"singular = {string_text(c.singular)}"]
+        out += [*texts.translation_lines(c.translations), ""]
     for m in motions:
         out += ["[[motions]]", f"name = {string_text(m.name)}", f"start = {string_text(_start(robot, m))}"]
         out += [f"twist = {_values(m.twist, [False] * 3 + [True] * 3)}", f"frame = {string_text(m.frame)}"]
         out += [f"speed = {number_text(m.speed)}"]
         out += [f"rates = {_values(m.rates, revolute)}"] if m.rates is not None else []
-        out += [f"description = {string_text(m.description)}", ""]
+        out += [f"description = {string_text(m.description)}", *texts.translation_lines(m.translations), ""]
     return "\n".join(out)
 
 

@@ -65,12 +65,13 @@ def image(png: bytes) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
 
 
-def new_page(browser, viewport: dict[str, int] | None = None, scale: float = 1.0):
+def new_page(browser, viewport: dict[str, int] | None = None, scale: float = 1.0, locale: str | None = None):
     """A page of ``browser`` (default 1280×720, ``scale``: the device scale factor, 1.5 for a 150 %
-    zoom) whose Playwright waits (clicks, locators, screenshots, navigation) poll up to
+    zoom; ``locale``: the browser's language, e.g. "pt-BR": its Accept-Language and navigator.language) whose Playwright waits (clicks, locators, screenshots, navigation) poll up to
     :data:`fakes.POLL_TIMEOUT` instead of Playwright's 30 s: a loaded machine makes a browser test
     slower, never red."""
-    page = browser.new_page(viewport=viewport or VIEWPORT, device_scale_factor=scale)
+    options: dict[str, Any] = {"locale": locale} if locale else {}
+    page = browser.new_page(viewport=viewport or VIEWPORT, device_scale_factor=scale, **options)
     page.set_default_timeout(POLL_TIMEOUT * 1000)
     page.set_default_navigation_timeout(POLL_TIMEOUT * 1000)
     return page
@@ -114,10 +115,11 @@ def close_notifications(page) -> None:
 
 @contextlib.contextmanager
 def app_page(
-    lab, viewport: dict[str, int] | None = None, scale: float = 1.0
+    lab, viewport: dict[str, int] | None = None, scale: float = 1.0, locale: str | None = None, path: str = ""
 ) -> Iterator[tuple[Any, Any, list[str]]]:
     """A headless-Chromium page (1280×720 unless ``viewport``; ``scale``: device pixels per CSS pixel,
-    1.5 for a 150 % zoom) on ``lab``'s app, once its tab is drawn and its toasts are hidden:
+    1.5 for a 150 % zoom; ``locale``: the browser's language; ``path``: after the address, e.g.
+    ``?lang=pl``) on ``lab``'s app, once its tab is drawn and its toasts are hidden:
     ``(page, session, errors)``, ``errors`` collecting the page's script errors. The browser closes and
     the lab stops on the way out (also when the browser is missing: skipped, or failed in CI).
     """
@@ -127,9 +129,9 @@ def app_page(
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
             try:
-                page = new_page(browser, viewport, scale)
+                page = new_page(browser, viewport, scale, locale)
                 page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
-                page.goto(lab.url)
+                page.goto(lab.url + path)
                 page.wait_for_selector("[role=slider]")
                 session = lab.session()
                 poll(lambda: session.snapshot is not None)

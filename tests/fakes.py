@@ -109,12 +109,15 @@ def _fake_inverse(robot, letters: bool, timeout: float) -> str:
     return _math(f"fake J⁻¹ of {robot.name}{' (letters)' if letters else ''}")
 
 
-def _fake_steps(robot, method: str, timeout: float) -> tuple:
-    from app.views.panel.derive_html import STEP_KEYS
+def _fake_steps(robot, method: str, timeout: float, letters: bool = False) -> tuple:
+    from app.views.methods import METHODS
+
+    def keys(name: str) -> tuple[str, ...]:
+        return METHODS[name].symbols if name in METHODS else ()
 
     steps: list[tuple[int | None, str, str, str]] = []
     # The tab asks for "whitney" on its DH view too: the A and ⁰T steps come with every method.
-    for prefixes in dict.fromkeys((STEP_KEYS.get(method, ()), STEP_KEYS.get("dh", ()))):
+    for prefixes in dict.fromkeys((keys(method), keys("dh"))):
         for joint in range(robot.dof):
             for prefix in prefixes:
                 steps.append((joint, f"{prefix}{joint + 1}", f"fake step {prefix}{joint + 1}", _math(prefix)))

@@ -137,3 +137,21 @@ def all_widgets(ws: ViserWsClient, timeout: float = 30.0) -> dict[str, dict[str,
         last = len(found)
         time.sleep(0.5)
     return widgets(ws)
+
+
+def chain_urdf(joints: int, general: bool = False) -> bytes:
+    """A serial URDF chain of ``joints`` revolute joints: about z, 1 cm apart (the issues' uploads), or
+    ``general`` (axes turning x, y, z, skewed offsets: nothing for the symbolic snapping to use)."""
+    axes = ("1 0 0", "0 1 0", "0 0 1")
+    links = "".join(f'<link name="l{i}"/>' for i in range(joints + 1))
+    chain = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
+        + (
+            f'<origin xyz="0.1 0.05 0.2" rpy="0 0.3 0"/><axis xyz="{axes[i % 3]}"/>'
+            if general
+            else '<origin xyz="0.01 0 0"/><axis xyz="0 0 1"/>'
+        )
+        + '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        for i in range(joints)
+    )
+    return f'<?xml version="1.0"?><robot name="c{joints}">{links}{chain}</robot>'.encode()

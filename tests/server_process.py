@@ -8,6 +8,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 from pathlib import Path
 
 from fakes import POLL_TIMEOUT
@@ -55,17 +56,22 @@ def cmdline(pid: int) -> str:
 
 
 class Server:
-    """The app in a subprocess of its own session, with its log in a file."""
+    """The app in a subprocess of its own session, with its log in a file: ``code`` run by ``python -c``,
+    or ``argv``, the command line's arguments as a user types them after ``jacobian-lab`` (run as
+    ``python -m app.cli.main``, the console script's entry point), in the folder ``cwd``."""
 
-    def __init__(self, tmp_path: Path, code: str) -> None:
+    def __init__(
+        self, tmp_path: Path, code: str = "", argv: list[str] | None = None, cwd: Path = ROOT
+    ) -> None:
         self.log = tmp_path / "server.log"
+        command = ["-m", "app.cli.main", *argv] if argv is not None else ["-c", code]
         with open(self.log, "wb") as log:
             self.proc = subprocess.Popen(
-                [sys.executable, "-u", "-c", code],
+                [sys.executable, "-u", *command],
                 stdout=subprocess.PIPE,
                 stderr=log,
                 text=True,
-                cwd=ROOT,
+                cwd=cwd,
                 env=dict(os.environ, PYTHONPATH=str(ROOT)),
                 start_new_session=True,
             )
@@ -74,7 +80,7 @@ class Server:
         match = None
         for line in self.proc.stdout:  # until the URL is printed (or the process ends)
             self.out.append(line)
-            match = re.search(r"open http://127\.0\.0\.1:(\d+)", line)
+            match = re.search(r"open http://[^\s/]+:(\d+) in a browser", line)
             if match:
                 break
         if not match:
@@ -103,3 +109,42 @@ def rss_bytes(pid: int, field: str = "VmRSS") -> int:
         if line.startswith(field + ":"):
             return int(line.split()[1]) * 1024
     raise ValueError(f"no {field} for process {pid}")
+
+
+def tree_pss_bytes(pid: int) -> int:
+    """PSS of process ``pid``'s session (a :class:`Server` and every process it started) [bytes]: a
+    page shared by k processes counts 1/k in each, so the sum is what the server costs the machine."""
+    total = 0
+    for p in session_processes(os.getsid(pid)):
+        try:
+            text = Path(f"/proc/{p}/smaps_rollup").read_text()
+        except OSError:  # the process just ended
+            continue
+        total += sum(int(line.split()[1]) for line in text.splitlines() if line.startswith("Pss:"))
+    return total * 1024
+
+
+class TreeMemory:
+    """The whole tree's PSS sampled in a thread every ``every`` seconds while a test runs."""
+
+    def __init__(self, pid: int, every: float = 0.2) -> None:
+        self.pid, self.every = pid, every
+        self.samples: list[tuple[float, int]] = []
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True, name="tree-memory")
+
+    def __enter__(self) -> TreeMemory:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join(10)
+
+    def _run(self) -> None:
+        start = time.monotonic()
+        while not self._stop.wait(self.every):
+            self.samples.append((time.monotonic() - start, tree_pss_bytes(self.pid)))
+
+    def peak(self) -> int:
+        return max((b for _, b in self.samples), default=0)

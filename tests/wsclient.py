@@ -27,6 +27,7 @@ import viser
 import websockets
 import zstandard
 from fakes import POLL_TIMEOUT
+from websockets.exceptions import InvalidMessage
 
 from app.viser_adapter import message_class
 
@@ -69,7 +70,9 @@ class ViserWsClient:
         self, url: str, width: int = 800, height: int = 600, headers: dict[str, str] | None = None
     ) -> None:
         self.url = url
-        self.headers = dict(headers or {})  # of the handshake, as a browser sends them (Accept-Language)
+        self.headers = dict(
+            headers or {}
+        )  # extra handshake headers (Accept-Language, a proxy's X-Forwarded-For)
         self.size = (width, height)
         self.messages: list[tuple[float, dict[str, Any]]] = []
         self._cond = threading.Condition()
@@ -89,12 +92,19 @@ class ViserWsClient:
         """Connect and announce a camera (the server then builds this client's session).
 
         A worker of ``serve --workers N`` that is still starting closes a new tab with 1013 ("try again
-        later"); like viser's page, this client then connects again (at once, then every second).
+        later"), or, on a busy machine, drops a connection it accepted before it could answer (no HTTP
+        response); like viser's page, this client then connects again (at once, then every second).
         """
         self._thread.start()
         end = time.monotonic() + timeout
         while True:
-            asyncio.run_coroutine_threadsafe(self._connect(), self._loop).result(timeout)
+            try:
+                asyncio.run_coroutine_threadsafe(self._connect(), self._loop).result(timeout)
+            except (InvalidMessage, ConnectionResetError):
+                if time.monotonic() > end:
+                    raise
+                time.sleep(1.0)
+                continue
             with self._cond:  # the first message, or the close of a worker not yet serving
                 while not self.messages and self._ws.close_code is None and time.monotonic() < end:
                     self._cond.wait(0.05)

@@ -2,12 +2,13 @@
 
 ``jacobian-lab handout ROBOT [--method whitney|differentiation|propagation|force|all]
 [--symbolic-params] [--frame base|tool] [--configuration NAME] [--rates Q̇1 Q̇2 …]
-[--base LINK] [--tip LINK] -o FILE.html|FILE.tex``, with ROBOT a library name or a path to a robot
-file (.toml) or URDF. The format follows the file's extension (``--format`` for stdout). The worked
-example is at the named configuration (default ``home``); joint rates are given in deg/s
+[--lang en|pt|es|pl] [--base LINK] [--tip LINK] -o FILE.html|FILE.tex``, with ROBOT a library name or a
+path to a robot file (.toml) or URDF. The format follows the file's extension (``--format`` for
+stdout). The worked example is at the named configuration (default ``home``); joint rates are given in deg/s
 (revolute) and m/s (prismatic); without them, a motion of the robot file that starts at that
-configuration gives the tool velocity for q̇ = J⁻¹ v. The work is done by
-:func:`kinematics.symbolic.handout.handout`.
+configuration gives the tool velocity for q̇ = J⁻¹ v. ``--lang`` writes it in the language of that
+course (its words from the app's catalogs, the robot file's translated texts, decimal commas in pt, es
+and pl). The work is done by :func:`kinematics.symbolic.handout.handout`.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 import robots
+from app.core.i18n import CODES, translations
 from kinematics.conventions import FRAMES
 from kinematics.errors import JacobianLabError
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
@@ -70,6 +72,12 @@ def _parser() -> argparse.ArgumentParser:
         "-f",
         choices=("html", "tex"),
         help="format when writing to stdout, or to override the extension",
+    )
+    p.add_argument(
+        "--lang",
+        choices=CODES,
+        default="en",
+        help="language of the handout: its words, the robot's texts and decimal commas (default: en)",
     )
     add_chain_arguments(p)
     p.add_argument(
@@ -142,6 +150,7 @@ def main(argv: list[str] | None = None) -> int:
                 twist=twist,
                 timeout=args.timeout,
                 progress=progress,
+                words=translations(args.lang),
             )
     except JacobianLabError as exc:
         print(f"jacobian-lab handout: error: {exc}", file=sys.stderr)

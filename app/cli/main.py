@@ -85,6 +85,15 @@ def _build_parser() -> argparse.ArgumentParser:
         help="also let pages from ORIGIN (e.g. https://course.example.org) connect, for a deliberate "
         "embedding; by default only the lab's own page may (repeatable)",
     )
+    serve.add_argument(
+        "--trusted-proxy",
+        metavar="ADDR",
+        action="append",
+        default=[],
+        help="a reverse proxy in front of the lab (an address such as 127.0.0.1, or a network such as "
+        "10.0.0.0/8): its X-Forwarded-For header names the client in the log; any other peer's header is "
+        "ignored (repeatable)",
+    )
     sub.add_parser("robots", help="list the library robots")
     sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
     sub.add_parser(
@@ -125,6 +134,7 @@ def _serve(args: argparse.Namespace) -> int:
         check_listen_address(args.host, args.port)
     except ValueError as exc:
         return _fail(str(exc))
+    from app.viser_adapter.core import trusted_proxies
     from app.viser_adapter.handshake import normalized_origin
 
     try:
@@ -132,6 +142,10 @@ def _serve(args: argparse.Namespace) -> int:
             normalized_origin(origin)
     except ValueError as exc:
         return _fail(f"--allow-origin: {exc}")
+    try:
+        trusted_proxies(args.trusted_proxy)
+    except ValueError as exc:
+        return _fail(f"--trusted-proxy: {exc}")
     token = args.presenter_token if args.presenter_token is not None else args.presenter
     if token == "" and args.presenter == "":  # --presenter alone
         from app.services.classroom import random_token
@@ -154,7 +168,7 @@ def _serve(args: argparse.Namespace) -> int:
             robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro)
         if workers > 1:
             options = {"robot": args.robot, "urdf": args.urdf, "base_link": args.base, "tip_link": args.tip}
-            options["allow_origin"] = args.allow_origin
+            options["allow_origin"], options["trusted_proxy"] = args.allow_origin, args.trusted_proxy
             options["xacro_args"] = xacro
             options["language"] = args.lang
             return serve_workers(workers, options, host=args.host, port=args.port, presenter_token=token)
@@ -172,6 +186,7 @@ def _serve(args: argparse.Namespace) -> int:
             allow_origin=args.allow_origin,
             xacro_args=xacro,
             language=args.lang,
+            trusted_proxy=args.trusted_proxy,
         )
     except (JacobianLabError, ValueError, RuntimeError) as exc:
         return _fail(str(exc))

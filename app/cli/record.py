@@ -17,6 +17,7 @@ from pathlib import Path
 
 from kinematics.errors import JacobianLabError
 
+from ..core.i18n import CODES, translations
 from ..demo.record import DEFAULT_FPS, DEFAULT_SECONDS, UnknownPreset, check_preset, record, write_demo
 from .args import MAX_FPS, MAX_SECONDS, bounded
 from .export import add_chain_arguments, load_robot
@@ -54,6 +55,12 @@ def _parser() -> argparse.ArgumentParser:
         default=DEFAULT_FPS,
         metavar="F",
         help=f"frames per second (default: {DEFAULT_FPS:g}, at most {MAX_FPS:g})",
+    )
+    p.add_argument(
+        "--lang",
+        choices=CODES,
+        default="en",
+        help="the language of the demo's words (its title, status and 3-D labels; default: en)",
     )
     add_chain_arguments(p)
     return p
@@ -102,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
     if problem:
         return _fail(problem)
     try:
-        recording = record(name, robot, args.preset, args.seconds, args.fps)
+        recording = record(name, robot, args.preset, args.seconds, args.fps, translations(args.lang))
     except JacobianLabError as exc:
         return _fail(str(exc))
     try:

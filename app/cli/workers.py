@@ -2,13 +2,14 @@
 
 A single Python process draws every tab under one interpreter lock, so one server saturates one core
 (about 3.5 ms of CPU per slider change: 60 tabs moving a slider five times a second need more than a
-core). Here the parent binds the listening socket once and starts N worker processes ("spawn", so it
-works the same on Linux, macOS and Windows). Each worker runs a whole :class:`~app.server.Lab` that
-*accepts on the shared socket* instead of binding its own port. The operating system hands each new
-connection to one of the workers waiting in ``accept``, and a tab's websocket stays with the worker
-that accepted it for its whole life (viser's page is the same from any worker). On Linux and macOS
-every worker accepts on the same socket; on Windows the socket is passed with ``socket.share`` by
-multiprocessing and accepting from several processes works the same way.
+core). Here the parent holds the port and starts N worker processes ("spawn", so it works the same on
+Linux, macOS and Windows). Each worker runs a whole :class:`~app.server.Lab` that *accepts on a socket
+the parent gives it* instead of binding its own port (:mod:`app.cli.sockets`): on Linux a socket of its
+own in one ``SO_REUSEPORT`` group, the kernel spreading the new connections evenly over the workers
+(a restarted worker's new socket takes its share at once); elsewhere one listening socket shared by
+every worker (on Windows passed with ``socket.share`` by multiprocessing), the operating system handing
+each connection to a worker waiting in ``accept``. A tab's websocket stays with the worker that
+accepted it for its whole life (viser's page is the same from any worker).
 
 The parent:
 
@@ -16,8 +17,9 @@ The parent:
 * restarts a worker that dies (its tabs lose their connection; viser's page reconnects by itself and
   lands on a live worker, as a new tab);
 * keeps the symbolic pool of every worker (:class:`~app.services.symbolic_hub.SymbolicHub`);
-* on Ctrl-C, SIGTERM or SIGHUP stops every worker (SIGTERM, then a kill after a few seconds), then
-  the symbolic processes; a worker or symbolic process whose parent is gone (``kill -9``) exits by itself.
+* on Ctrl-C, SIGTERM or SIGHUP stops every worker and the symbolic processes at once (SIGTERM, one
+  deadline for all, then a kill), and ends multiprocessing's resource tracker before it exits; a worker
+  or symbolic process whose parent is gone (``kill -9``) exits by itself.
 
 Classroom mode (a presenter token) spans every worker: the parent keeps the room
 (:class:`~app.services.room.RoomHub`: the token and its tries, who presents, the follower counts) and
@@ -27,45 +29,29 @@ presenter's states, camera and tab to the other workers. Only the parent knows t
 
 from __future__ import annotations
 
-import dataclasses
 import logging
-import multiprocessing
 import os
-import queue
 import socket
 import sys
-import threading
-import time
-import urllib.parse
-from multiprocessing.connection import Connection
-from multiprocessing.connection import wait as wait_for_handles
 from typing import Any
 
 from app.services.catalog import DEFAULT_ROBOT
-from app.services.lifecycle import (
-    check_listen_address,
-    dump_stacks_on_sigusr1,
-    install_stop_signals,
-    wait_in_main_thread,
-    watch_parent,
-)
-from app.services.room import RoomHub
-from app.services.state_codec import dumps, loads
-from app.services.symbolic_hub import SymbolicHub
-from app.services.symbolic_relay import remote_service
+from app.services.classroom import presenter_link
+from app.services.lifecycle import install_stop_signals
 
-__all__ = ["WORKER_CAP", "default_workers", "listening_socket", "serve_workers", "WorkerPool"]
+from .sockets import listening_socket, port_socket
+from .supervision import KILL_WAIT, READY_TIMEOUT, STOP_GRACE, WORKER_CAP, WorkerPool
 
-log = logging.getLogger(__name__)
-
-WORKER_CAP = 16
-"""Most worker processes ``--workers`` starts (each holds the app and viser; the symbolic pool is shared)."""
-
-READY_TIMEOUT = 60.0
-"""Seconds a worker may take to import the app and start serving before the start is given up."""
-
-STOP_GRACE = 5.0
-"""Seconds the workers get to stop after SIGTERM before they are killed."""
+__all__ = [
+    "WORKER_CAP",
+    "READY_TIMEOUT",
+    "STOP_GRACE",
+    "KILL_WAIT",
+    "default_workers",
+    "listening_socket",
+    "serve_workers",
+    "WorkerPool",
+]
 
 
 def default_workers() -> int:
@@ -77,302 +63,18 @@ def default_workers() -> int:
     return max(1, min(cores, WORKER_CAP))
 
 
-def listening_socket(host: str, port: int) -> socket.socket:
-    """A listening TCP socket on ``host``: ``port``, or the next free port after it (as viser does).
-
-    Raises:
-        ValueError: the address is not one of this machine's, or no port from ``port`` to ``port`` + 99
-            is free.
-    """
-    check_listen_address(host, port)
-    family, kind, proto, _, address = socket.getaddrinfo(
-        host or None, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE
-    )[0]
-    last: OSError | None = None
-    for attempt in range(port, port + 100) if port else [0]:
-        sock = socket.socket(family, kind, proto)
-        try:
-            if os.name != "nt":
-                sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-            sock.bind((address[0], attempt, *address[2:]))
-            sock.listen(512)
-            sock.setblocking(False)
-            return sock
-        except OSError as exc:
-            sock.close()
-            last = exc
-    raise ValueError(f"cannot listen on {host!r}: ports {port} to {port + 99} are busy ({last})")
-
-
-class _Outbox:
-    """The parent's messages to one worker's room pipe, sent by a thread of their own (a busy worker
-    never holds up the parent's loop, nor the other workers)."""
-
-    def __init__(self, conn: Connection) -> None:
-        self.conn = conn
-        self._queue: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
-        threading.Thread(target=self._send, name="room-outbox", daemon=True).start()
-
-    def put(self, raw: bytes) -> None:
-        self._queue.put(raw)
-
-    def close(self) -> None:
-        self._queue.put(None)
-
-    def _send(self) -> None:
-        while (raw := self._queue.get()) is not None:
-            try:
-                self.conn.send_bytes(raw)
-            except (OSError, ValueError):
-                break
-        self.conn.close()
-
-
-@dataclasses.dataclass
-class _Worker:
-    index: int
-    process: Any  # multiprocessing.Process (spawn context)
-    ready: Connection
-    started: float
-    port: int = 0
-    room: Connection | None = None  # the parent's end of the worker's room pipe (classroom mode)
-    outbox: _Outbox | None = None
-
-
-def _worker_main(
-    index: int,
-    sock: socket.socket,
-    lab_options: dict[str, Any],
-    ready: Connection,
-    parent_pid: int,
-    symbolic: Connection,
-    room: Connection | None = None,
-) -> None:
-    """One worker: a whole Lab accepting on the shared socket, until SIGTERM or its parent is gone."""
-    watch_parent(parent_pid)  # ends this worker if the parent is killed outright; ignores Ctrl-C
-    logging.basicConfig(level=logging.INFO, format=f"%(levelname)s worker {index} %(name)s: %(message)s")
-    logging.getLogger("websockets").setLevel(logging.WARNING)
-    sys.setswitchinterval(0.001)
-    from app.server import Lab  # the worker's own import: the parent never builds a Lab
-
-    lab = Lab(listen_socket=sock, room_pipe=room, symbolic=remote_service(symbolic), **lab_options)
-    stop = threading.Event()
-    signals = install_stop_signals(stop.set)
-    ready.send(("ready", os.getpid(), lab.port))
-    ready.close()
-    dump_stacks_on_sigusr1()
-    try:
-        wait_in_main_thread(stop)
-    finally:
-        signals.restore()
-        lab.stop()
-
-
-class WorkerPool:
-    """N worker processes serving one listening socket, restarted when they die.
-
-    Args:
-        sock: The listening socket (see :func:`listening_socket`).
-        workers: How many worker processes.
-        lab_options: Keyword arguments of :class:`app.server.Lab` (robot, urdf, host, chain …).
-        presenter_token: Classroom mode across the workers (the parent's :class:`RoomHub` keeps it).
-    """
-
-    def __init__(
-        self,
-        sock: socket.socket,
-        workers: int,
-        lab_options: dict[str, Any],
-        presenter_token: str | None = None,
-    ) -> None:
-        if not 1 <= workers <= WORKER_CAP:
-            raise ValueError(f"workers must be 1 to {WORKER_CAP}, got {workers}")
-        self.sock = sock
-        self.count = workers
-        self.lab_options = dict(lab_options)
-        self.context = multiprocessing.get_context("spawn")
-        self.workers: dict[int, _Worker] = {}
-        self.restarts = 0
-        self.hub = RoomHub(presenter_token) if presenter_token else None
-        self.symbolic = SymbolicHub()  # one symbolic pool for every worker
-
-    @property
-    def port(self) -> int:
-        return int(self.sock.getsockname()[1])
-
-    def start(self) -> None:
-        """Start every worker and wait until each serves (or raise, stopping those started)."""
-        for index in range(1, self.count + 1):
-            self._spawn(index)
-        try:
-            for worker in list(self.workers.values()):
-                self._wait_ready(worker)
-            for worker in list(self.workers.values()):
-                self._room_started(worker)
-        except BaseException:
-            self.stop()
-            raise
-
-    def _spawn(self, index: int) -> _Worker:
-        mine, theirs = self.context.Pipe(duplex=False)
-        room, their_room = self.context.Pipe(duplex=True) if self.hub is not None else (None, None)
-        symbolic, their_symbolic = self.context.Pipe(duplex=True)
-        process = self.context.Process(
-            target=_worker_main,
-            args=(index, self.sock, self.lab_options, theirs, os.getpid(), their_symbolic, their_room),
-            name=f"jacobian-lab-worker-{index}",
-        )
-        process.start()
-        for end in filter(None, (theirs, their_symbolic, their_room)):
-            end.close()
-        self.symbolic.attach(index, symbolic)
-        worker = _Worker(index, process, mine, time.monotonic(), room=room)
-        if room is not None:
-            worker.outbox = _Outbox(room)
-        self.workers[index] = worker
-        return worker
-
-    def _wait_ready(self, worker: _Worker) -> None:
-        ready = wait_for_handles([worker.ready, worker.process.sentinel], timeout=READY_TIMEOUT)
-        if worker.ready in ready:
-            try:
-                self._take_ready(worker)
-                return
-            except EOFError:
-                pass
-        code = worker.process.exitcode
-        raise RuntimeError(
-            f"worker {worker.index} did not start (exit status {code}); its error is printed above"
-            if code is not None
-            else f"worker {worker.index} did not start within {READY_TIMEOUT:.0f} s"
-        )
-
-    def _take_ready(self, worker: _Worker) -> None:
-        _, pid, port = worker.ready.recv()
-        worker.port = int(port)
-        log.info("worker %d (pid %d) serving", worker.index, pid)
-
-    def pids(self) -> list[int]:
-        return [w.process.pid for w in self.workers.values() if w.process.pid is not None]
-
-    # ------------------------------------------------------------------ the room (classroom mode)
-    def _room_started(self, worker: _Worker) -> None:
-        if self.hub is not None:
-            self._send(self.hub.started(worker.index))
-
-    def _send(self, outgoing: list[tuple[int, dict[str, Any]]]) -> None:
-        encoded: dict[int, bytes] = {}  # a message for several workers is encoded once
-        for index, message in outgoing:
-            worker = self.workers.get(index)
-            if worker is not None and worker.outbox is not None:
-                raw = encoded.get(id(message))
-                if raw is None:
-                    raw = encoded[id(message)] = dumps(message)
-                worker.outbox.put(raw)
-
-    def _room_message(self, worker: _Worker) -> None:
-        """Take what ``worker`` said to the room (all it has sent); a closed pipe is left to the
-        sentinel (the worker is ending)."""
-        assert self.hub is not None and worker.room is not None
-        try:
-            while worker.room.poll():
-                raw = worker.room.recv_bytes()
-                try:
-                    self._send(self.hub.handle(worker.index, loads(raw)))
-                except Exception:  # one bad message never stops the parent
-                    log.exception("worker %d: a room message could not be taken", worker.index)
-        except (OSError, EOFError):
-            worker.room = None
-
-    def supervise(self, stop_requested: Any) -> None:
-        """Until ``stop_requested()``: relay the room's messages (classroom mode) and restart every
-        worker that dies (one restart a second at most). Nothing here waits for one worker: a worker
-        starting again is watched like the others, so the room goes on meanwhile."""
-        starting: set[int] = set()  # restarted, not serving yet
-        while not stop_requested():
-            handles: dict[int, tuple[str, _Worker, Any]] = {}
-            for worker in self.workers.values():
-                handles[id(worker.process.sentinel)] = ("ended", worker, worker.process.sentinel)
-                if worker.index in starting:
-                    handles[id(worker.ready)] = ("ready", worker, worker.ready)
-                elif worker.room is not None:
-                    handles[id(worker.room)] = ("room", worker, worker.room)
-            for handle in wait_for_handles([h for _, _, h in handles.values()], timeout=0.25):
-                kind, worker, _ = handles[id(handle)]
-                if kind == "room":
-                    self._room_message(worker)
-                elif kind == "ready" and worker.process.is_alive():
-                    starting.discard(worker.index)
-                    try:
-                        self._take_ready(worker)
-                        self._room_started(worker)
-                    except (EOFError, OSError, ValueError):
-                        pass  # it is ending: its sentinel says so
-            now = time.monotonic()
-            for index, worker in list(self.workers.items()):
-                if worker.index in starting and now - worker.started > READY_TIMEOUT:
-                    log.error("worker %d did not start within %.0f s: killing it", index, READY_TIMEOUT)
-                    worker.process.kill()
-                if worker.process.is_alive() or stop_requested():
-                    continue
-                log.warning(
-                    "worker %d (pid %s) ended with status %s: starting it again; its tabs reconnect",
-                    index,
-                    worker.process.pid,
-                    worker.process.exitcode,
-                )
-                worker.process.join(0)
-                worker.ready.close()
-                self._close_room(worker)
-                self.symbolic.detach(index)
-                # A worker that dies at once, again and again, must not spin the parent.
-                if now - worker.started < 1.0:
-                    time.sleep(1.0)
-                self.restarts += 1
-                self._spawn(index)
-                starting.add(index)
-
-    def _close_room(self, worker: _Worker) -> None:
-        """``worker`` ended: the hub forgets its followers (and its presenter, who may come back)."""
-        if worker.outbox is not None:
-            worker.outbox.close()
-            worker.outbox = None
-        worker.room = None
-        if self.hub is not None:
-            self._send(self.hub.gone(worker.index))
-
-    def stop(self) -> None:
-        """SIGTERM every worker, wait up to :data:`STOP_GRACE` s, kill the rest."""
-        workers = list(self.workers.values())
-        for worker in workers:
-            if worker.process.is_alive():
-                worker.process.terminate()
-        end = time.monotonic() + STOP_GRACE
-        for worker in workers:
-            worker.process.join(max(0.0, end - time.monotonic()))
-            if worker.process.is_alive():
-                log.warning("worker %d did not stop in %.0f s: killing it", worker.index, STOP_GRACE)
-                worker.process.kill()
-                worker.process.join(2.0)
-            worker.ready.close()
-            if worker.outbox is not None:
-                worker.outbox.close()
-        self.workers.clear()
-        self.symbolic.close()
-        self.sock.close()
-
-
 def serve_workers(
     workers: int, lab_options: dict[str, Any], host: str, port: int, presenter_token: str | None = None
 ) -> int:
-    """Serve the app from ``workers`` processes on one address until a stop signal; returns 0.
+    """Serve the app from ``workers`` processes on one address until a stop signal, then end this
+    process (status 0) once every worker, the symbolic processes and the resource tracker are gone.
 
     Raises:
         ValueError: the address cannot be listened on.
         RuntimeError: a worker could not start (e.g. the robot cannot be loaded).
     """
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
-    sock = listening_socket(host, port)
+    sock = port_socket(host, port)
     pool = WorkerPool(sock, workers, dict(lab_options, host=host), presenter_token)
     stopping: list[str] = []
     signals = install_stop_signals(lambda: stopping.append("stop"))
@@ -385,7 +87,7 @@ def serve_workers(
         print(f"Jacobian Lab: open http://{shown}:{pool.port} in a browser (robot: {robot}; {workers} worker "
               f"processes: {pids})", flush=True)  # fmt: skip
         if presenter_token:
-            link = f"http://{shown}:{pool.port}/#presenter={urllib.parse.quote(presenter_token, safe='')}"
+            link = presenter_link(f"http://{shown}:{pool.port}", presenter_token)
             print(
                 f"Classroom mode: open {link} in the tab you present from (keep the link off the "
                 "projector; it fills in the presenter token, masked, and drops it from the address bar). "
@@ -396,4 +98,9 @@ def serve_workers(
     finally:
         signals.restore()
         pool.stop()
-    return 0
+    # Everything is stopped: end now, as a worker does. The interpreter's shutdown of this process's
+    # threads (pipes, the symbolic pool's) took up to 3 s more on a busy machine, with nothing to do.
+    logging.shutdown()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)

@@ -155,7 +155,7 @@ MAX_ANGLE = 3600.0
 """Largest |α|, |θ| or revolute limit the editor takes [°]."""
 
 
-def _number(value: object, row: int, field: str, unit: str, tr: Translator) -> float:
+def _number(value: object, row: int, field: str, unit: str, tr: Translator | None = None) -> float:
     bound = MAX_ANGLE if unit == "°" else MAX_LENGTH
     try:
         return parse_number(value, bound, unit, tr)
@@ -164,8 +164,8 @@ def _number(value: object, row: int, field: str, unit: str, tr: Translator) -> f
 
 
 def rows_si(table: Table, tr: Translator | None = None) -> list[dict[str, object]]:
-    """The rows as :meth:`Robot.from_dh` takes them (radians), every field checked; numbers read and
-    refusals said in ``tr``'s language (a decimal comma in pt, es and pl).
+    """The rows as :meth:`Robot.from_dh` takes them (radians), every field checked; numbers typed as
+    ``tr``'s language writes them (a decimal comma in pt, es, pl), refusals in its words.
 
     Raises:
         TableError: the first bad field (row and field named).
@@ -175,15 +175,16 @@ def rows_si(table: Table, tr: Translator | None = None) -> list[dict[str, object
     out: list[dict[str, object]] = []
     for i, r in enumerate(table.rows, start=1):
         if r.joint not in JOINT_TYPES:
-            got = repr(str(r.joint)[:30])
-            raise TableError(i, "joint", _("expected revolute or prismatic, got {got}").format(got=got), tr)
+            message = _("expected revolute or prismatic, got {value}").format(value=repr(str(r.joint)[:30]))
+            raise TableError(i, "joint", message, tr)
         limit_unit = "°" if r.joint == "revolute" else "m"
         units = {"a": "m", "alpha": "°", "d": "m", "theta": "°", "lo": limit_unit, "hi": limit_unit}
         v = {k: _number(getattr(r, k), i, k, u, tr) for k, u in units.items()}
         if v["lo"] > v["hi"]:
-            lo, hi = (tr.decimal(format(v[k], "g")) for k in ("lo", "hi"))
-            text = _("the lower limit {lo} is above the upper limit {hi}").format(lo=lo, hi=hi)
-            raise TableError(i, "lo", text, tr)
+            message = _("the lower limit {lo} is above the upper limit {hi}").format(
+                lo=tr.decimal(f"{v['lo']:g}"), hi=tr.decimal(f"{v['hi']:g}")
+            )
+            raise TableError(i, "lo", message, tr)
         rev = r.joint == "revolute"
         qlim = (math.radians(v["lo"]), math.radians(v["hi"])) if rev else (v["lo"], v["hi"])
         row: dict[str, object] = {
@@ -206,7 +207,7 @@ for every redraw; real arms have at most a dozen joints)."""
 
 
 def build(table: Table, tr: Translator | None = None) -> Robot:
-    """The robot of ``table`` (named :data:`FILE_STEM`); a refusal in ``tr``'s language.
+    """The robot of ``table`` (named :data:`FILE_STEM`), its numbers read in ``tr``'s language.
 
     Raises:
         TableError: a bad field, more than :data:`MAX_ROWS` rows, or a table :meth:`Robot.from_dh`
@@ -215,15 +216,11 @@ def build(table: Table, tr: Translator | None = None) -> Robot:
     tr = tr or translations()
     _ = tr.gettext
     if len(table.rows) > MAX_ROWS:
-        text = tr.ngettext(
-            "a table has at most {most} rows, this one has {n}",
-            "a table has at most {most} rows, this one has {n}",
-            len(table.rows),
-        ).format(most=MAX_ROWS, n=len(table.rows))
-        raise TableError(0, "rows", text, tr)
+        message = _("a table has at most {most} rows, this one has {rows}")
+        raise TableError(0, "rows", message.format(most=MAX_ROWS, rows=len(table.rows)), tr)
     if table.convention not in CONVENTIONS:
-        got = repr(table.convention)
-        raise TableError(0, "convention", _("expected standard or modified, got {got}").format(got=got), tr)
+        message = _("expected standard or modified, got {value}").format(value=repr(table.convention))
+        raise TableError(0, "convention", message, tr)
     rows = rows_si(table, tr)
     same_joints = tuple(r.joint for r in table.rows) == table.kinds
     try:

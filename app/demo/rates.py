@@ -11,6 +11,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ..core.i18n import Translator
 from ..core.state import LabState
 from ..views.fmt import number
 
@@ -28,19 +29,21 @@ def joint_rates(state: LabState) -> np.ndarray | None:
     return np.asarray(trace.qd[-1], dtype=float)
 
 
-def rates_readout(state: LabState) -> str:
-    """The label under the readout: "q̇  q1 12 °/s · q2 −40 °/s · …" ("" when nothing moves the joints)."""
+def rates_readout(state: LabState, tr: Translator | None = None) -> str:
+    """The label under the readout: "q̇  q1 12 °/s · q2 −40 °/s · …" ("" when nothing moves the joints),
+    its numbers as ``tr``'s language writes them."""
     qd = joint_rates(state)
     if qd is None:
         return ""
     parts = [
-        f"{j.name.split()[0]} {_rate(j.kind, float(x))}" for j, x in zip(state.robot.joints, qd, strict=True)
+        f"{j.name.split()[0]} {_rate(j.kind, float(x), tr)}"
+        for j, x in zip(state.robot.joints, qd, strict=True)
     ]
     return "q̇   " + " · ".join(parts)
 
 
-def _rate(kind: str, x: float) -> str:
-    return f"{number(x, 3)} m/s" if kind == "prismatic" else f"{number(np.degrees(x), 3)} °/s"
+def _rate(kind: str, x: float, tr: Translator | None = None) -> str:
+    return f"{number(x, 3, tr)} m/s" if kind == "prismatic" else f"{number(np.degrees(x), 3, tr)} °/s"
 
 
 def rates_csv(states: Sequence[LabState], fps: float) -> str:

@@ -16,33 +16,32 @@ every frame of the motion. The folder also keeps every frame's q and q̇ as numb
 
 from __future__ import annotations
 
-import base64
 import contextlib
-import html
 import io
-import json
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import viser
 
 import robots
 from kinematics import Robot
-from kinematics.files import write_user_file
 from kinematics.singularity import nearest
 
 from ..core.actions import ApplyPreset, FollowPath, Play, Step
+from ..core.i18n import Translator, translations
 from ..core.motion_rules import resample
 from ..core.reducer import reduce
+from ..core.robot_texts import robot_title
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
+from ..core.words import kind_word, status_words
 from ..views.camera import FROM_ABOVE, View, facing, framing, in_view
 from ..views.fmt import number
 from ..views.scene import SceneView
 from ..views.scene.geometry import finite
-from .rates import rates_csv, rates_readout
+from .folder import CLIENT_PAGE, RATES, RECORDING, demo_files, embedded_page, write_demo
+from .rates import rates_readout
 
 __all__ = [
     "Demo",
@@ -66,11 +65,6 @@ __all__ = [
     "LEAD",
 ]
 
-CLIENT_PAGE = "viser-client.html"
-"""viser's client page, copied next to the recording."""
-RECORDING = "recording.viser"
-RATES = "joint_rates.csv"
-"""Every frame's q and the motion's q̇, with units (the recording draws them; this keeps the numbers)."""
 DEFAULT_SECONDS = 15.0
 DEFAULT_FPS = 30.0
 LEAD = 1e-3
@@ -107,12 +101,14 @@ class Recording:
         title: The demo's title.
         states: The state drawn at every frame (the first one at t = 0).
         fps: Frames per second (the recording sleeps 1/fps between frames).
+        language: The code of the language its labels speak (``"en"``, ``"pt"``, ``"es"``, ``"pl"``).
     """
 
     data: bytes
     title: str
     states: tuple[LabState, ...]
     fps: float
+    language: str = "en"
 
     @property
     def frames(self) -> int:
@@ -124,16 +120,21 @@ class Recording:
         return (len(self.states) - 1) / self.fps
 
 
-def plan(name: str, robot: Robot, preset: str | None = None, frames: int = 240) -> Demo:
+def plan(
+    name: str, robot: Robot, preset: str | None = None, frames: int = 240, tr: Translator | None = None
+) -> Demo:
     """The demo of ``robot`` (listed as ``name``, a library name or a robot file path).
 
     Args:
         preset: Name of a ``[[motions]]`` preset (default: the first one, if any).
         frames: Frames of a path demo (home → a singularity takes the whole recording).
+        tr: The language of its title and of why it stops (English when None).
 
     Raises:
         UnknownPreset: ``preset`` is not one of the robot's presets.
     """
+    tr = tr or translations()
+    title = robot_title(robot, tr)
     state = LabState.initial(name, robot)
     presets = check_preset(name, robot, preset)
     if presets:
@@ -142,19 +143,27 @@ def plan(name: str, robot: Robot, preset: str | None = None, frames: int = 240) 
             state,
             ApplyPreset(p.name, tuple(map(float, p.q)), tuple(map(float, p.twist)), p.frame, p.speed),
         )
-        return Demo(f"{robot.title} — {p.name}", reduce(applied, Play(True, "resolved_rate")), "preset")
+        return Demo(f"{title} — {p.name}", reduce(applied, Play(True, "resolved_rate")), "preset")
     steps = max(int(frames) - 1, 1)
     singular = next((c for c in robot.configurations if c.singular), None)
     if singular is not None:
         path = _eased(np.array([robot.home, singular.q], float), steps)
-        found = f"at {singular.name}: {singular.singular} singularity"
-        title = f"{robot.title} — home → {singular.name} ({singular.singular} singularity)"
-        return Demo(title, reduce(state, FollowPath(_rows(path), found)), "configuration")
+        kind = kind_word(singular.singular, tr)
+        found = tr.gettext("at {configuration}: {kind} singularity").format(
+            configuration=singular.name, kind=kind
+        )
+        heading = tr.gettext("{robot} — home → {configuration} ({kind} singularity)").format(
+            robot=title, configuration=singular.name, kind=kind
+        )
+        return Demo(heading, reduce(state, FollowPath(_rows(path), found)), "configuration")
     result = nearest(robot, robot.home)
-    kinds = " + ".join(result.report.kinds) or "singular"
+    kinds = " + ".join(kind_word(k, tr) for k in result.report.kinds) or tr.pgettext("status", "singular")
     path = _eased(np.asarray(result.path, float), steps)
-    title = f"{robot.title} — home → the nearest singularity ({kinds})"
-    return Demo(title, reduce(state, FollowPath(_rows(path), f"nearest singularity: {kinds}")), "nearest")
+    heading = tr.gettext("{robot} — home → the nearest singularity ({kinds})").format(
+        robot=title, kinds=kinds
+    )
+    found = tr.gettext("nearest singularity: {kinds}").format(kinds=kinds)
+    return Demo(heading, reduce(state, FollowPath(_rows(path), found)), "nearest")
 
 
 def check_preset(name: str, robot: Robot, preset: str | None) -> tuple[robots.MotionPreset, ...]:
@@ -194,10 +203,14 @@ def play(demo: Demo, seconds: float, fps: float) -> tuple[LabState, ...]:
     return tuple(out)
 
 
-def readout(snap: Snapshot, state: LabState) -> str:
-    """The label under the title: "near singular: wrist   κ = 104" (and why the motion stopped)."""
-    text = f"{snap.report.text()}   κ = {number(snap.report.condition)}"
-    return f"{text}   ·   {state.stopped}" if state.stopped and not state.playing else text
+def readout(snap: Snapshot, state: LabState, tr: Translator | None = None) -> str:
+    """The label under the title: "near singular: wrist   κ = 104" (and why the motion stopped), in
+    ``tr``'s language."""
+    tr = tr or translations()
+    r = snap.report
+    words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration, tr)
+    text = f"{words}   κ = {number(r.condition, tr=tr)}"
+    return f"{text}   ·   {tr.gettext(state.stopped)}" if state.stopped and not state.playing else text
 
 
 class _Labels:
@@ -234,21 +247,28 @@ def record(
     preset: str | None = None,
     seconds: float = DEFAULT_SECONDS,
     fps: float = DEFAULT_FPS,
+    tr: Translator | None = None,
 ) -> Recording:
-    """Play the demo of ``robot`` (see :func:`plan`) and record its 3-D scene, frame by frame.
+    """Play the demo of ``robot`` (see :func:`plan`) and record its 3-D scene, frame by frame; its
+    labels (title, status, κ, joint rates) in ``tr``'s language (English when None).
 
     A private viser server (127.0.0.1, a free port, no client ever connects) holds the scene; it is
     stopped before returning.
     """
     if not (np.isfinite(seconds) and seconds > 0 and np.isfinite(fps) and fps > 0):
         raise ValueError("seconds and fps must be positive numbers")
-    demo = plan(name, robot, preset, frames=max(int(round(seconds * fps)), 1) + 1)
+    demo = plan(name, robot, preset, frames=max(int(round(seconds * fps)), 1) + 1, tr=tr)
     states = play(demo, seconds, fps)
-    return record_frames(demo.title, robot, states, [compute(s) for s in states], fps)
+    return record_frames(demo.title, robot, states, [compute(s) for s in states], fps, tr)
 
 
 def record_frames(
-    title: str, robot: Robot, states: Sequence[LabState], snaps: Sequence[Snapshot], fps: float
+    title: str,
+    robot: Robot,
+    states: Sequence[LabState],
+    snaps: Sequence[Snapshot],
+    fps: float,
+    tr: Translator | None = None,
 ) -> Recording:
     """Record the 3-D scene of ``states`` (drawn from ``snaps``), one frame every 1/``fps`` seconds:
     the demo of :func:`record`, or what a tab did (:class:`app.tab.recorder.TabRecorder`). Every state
@@ -258,7 +278,7 @@ def record_frames(
     with quiet():
         server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
     try:
-        view = SceneView(server, robot, root="/demo/lab")
+        view = SceneView(server, robot, root="/demo/lab", tr=tr)
         extents = []
         for snap, state in zip(snaps, states, strict=True):  # a dry run: what every frame draws
             view.update(snap, state)
@@ -277,13 +297,13 @@ def record_frames(
         for k, (snap, state) in enumerate(zip(snaps, states, strict=True)):
             serializer.insert_sleep(LEAD if k == 0 else 1.0 / fps)
             view.update(snap, state)
-            rates = rates_readout(state)  # a second line (viser's labels keep line breaks)
-            labels.readout.text = readout(snap, state) + (f"\n{rates}" if rates else "")
+            rates = rates_readout(state, tr)  # a second line (viser's labels keep line breaks)
+            labels.readout.text = readout(snap, state, tr) + (f"\n{rates}" if rates else "")
         data = serializer.serialize()
     finally:
         with quiet():
             server.stop()
-    return Recording(data, title, tuple(states), float(fps))
+    return Recording(data, title, tuple(states), float(fps), tr.code if tr is not None else "en")
 
 
 def _frame_camera(server: viser.ViserServer, points: np.ndarray, pad: float, planar: bool) -> None:
@@ -309,68 +329,3 @@ def _frame_camera(server: viser.ViserServer, points: np.ndarray, pad: float, pla
     camera.up = (0.0, 0.0, 1.0)
     camera.position = finite(position).astype(float)
     camera.look_at = finite(look_at).astype(float)
-
-
-_INDEX = """<!doctype html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<title>{title}</title>
-<meta http-equiv="refresh" content="0; url={target}">
-<script>location.replace({target_js} + location.hash);</script>
-</head>
-<body><p><a href="{target}">{title}</a> (a recorded Jacobian Lab demo)</p></body>
-</html>
-"""
-
-
-def client_page() -> Path:
-    """viser's client page, as shipped in its wheel (one self-contained HTML file)."""
-    return Path(viser.__file__).resolve().parent / "client" / "build" / "index.html"
-
-
-def write_demo(recording: Recording, out_dir: str | Path) -> Sequence[Path]:
-    """Write ``index.html``, the client page, ``recording.viser`` and ``joint_rates.csv`` into
-    ``out_dir`` (created if needed); returns the files written.
-
-    Raises:
-        OSError: the folder or a file cannot be written.
-    """
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    files = {out / name: data for name, data in demo_files(recording).items()}
-    for path, data in files.items():  # names the user did not give: never written through a link
-        write_user_file(path, data, named=False)
-    return list(files)
-
-
-def demo_files(recording: Recording) -> dict[str, bytes]:
-    """The files of a demo folder by name: ``index.html``, the client page, ``recording.viser`` and the
-    joint rates (``joint_rates.csv``)."""
-    target = f"{CLIENT_PAGE}?playbackPath={RECORDING}"
-    page = client_page().read_text(encoding="utf-8")
-    page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
-    return {
-        RECORDING: recording.data,
-        RATES: rates_csv(recording.states, recording.fps).encode("utf-8"),
-        CLIENT_PAGE: page.encode("utf-8"),
-        "index.html": _INDEX.format(
-            title=html.escape(recording.title), target=html.escape(target), target_js=json.dumps(target)
-        ).encode("utf-8"),
-    }
-
-
-def embedded_page(recording: Recording, dark_mode: bool = False) -> str:
-    """One self-contained HTML page that plays ``recording`` with no server and no other file: viser's
-    client page with the recording inside (as viser's own ``as_html`` embeds a scene), for a notebook
-    cell or a single file to mail."""
-    page = client_page().read_text(encoding="utf-8")
-    page = page.replace("<title>Viser</title>", f"<title>{html.escape(recording.title)}</title>", 1)
-    data = base64.b64encode(recording.data).decode("ascii")
-    dark = "true" if dark_mode else "false"
-    inject = (
-        f'<script>window.__VISER_EMBED_DATA__="{data}";'
-        f"window.__VISER_EMBED_CONFIG__={{darkMode:{dark}}};</script>"
-    )
-    head_end = page.index("</head>")
-    return page[:head_end] + inject + page[head_end:]

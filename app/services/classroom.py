@@ -1,9 +1,10 @@
 """Classroom mode: one presenter tab, a room of tabs that follow it.
 
 The server owns one :class:`Classroom` when it was started with a presenter token. A tab becomes the
-presenter by typing the token (compared in constant time; wrong tokens are rate-limited per address
-and per server by the server's :class:`~app.services.ratelimit.RoomLimits`, so reconnecting tabs gain
-nothing); a presenter that another tab replaces is told.
+presenter by typing the token (compared in constant time). Wrong tokens are limited per connection
+(:data:`TOKEN_TRIES`), never per address nor for the whole room, so no tab can lock another out: a wrong
+guess never refuses the right token typed in another tab (``docs/security.md`` has the arithmetic that
+keeps guessing hopeless). A presenter that another tab replaces is told.
 Every other tab follows by default: each state the presenter's tab commits, with the snapshot it
 computed, is handed to the followers, which draw it without computing it again (one computation per
 presenter change, not one per follower). The presenter's camera is relayed too. A follower can leave
@@ -16,10 +17,12 @@ The classroom never touches viser: it calls the small :class:`Member` interface 
 from __future__ import annotations
 
 import hmac
+import logging
 import math
 import secrets
 import threading
 import time
+import urllib.parse
 from collections.abc import Callable
 from typing import Protocol
 
@@ -27,24 +30,33 @@ from ..core.i18n import N_
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
-from .ratelimit import RoomLimits
 
 __all__ = [
     "Classroom",
     "Member",
+    "presenter_link",
     "random_token",
     "token_weakness",
     "TOKEN_TRIES",
-    "TOKEN_WINDOW",
+    "RANDOM_TOKEN_BYTES",
     "RESUME_GRACE",
     "PRESENTER_AWAY",
+    "WRONG_TOKEN",
+    "TOO_MANY_TRIES",
 ]
 
+log = logging.getLogger(__name__)
+
 TOKEN_TRIES = 5
-"""Wrong tokens one address may type per :data:`TOKEN_WINDOW` seconds; more are refused unread."""
-TOKEN_WINDOW = 60.0
+"""Wrong tokens one connection (a tab, until it reloads) may type; its later tries are refused unread.
+Counted per connection only: no address, and no room-wide count, so no tab can lock another out."""
+RANDOM_TOKEN_BYTES = 16
+"""Random bytes of the token ``--presenter`` alone makes: 128 bits, out of reach of guessing at any rate."""
 STRONG_BITS = 64
 """A token given by hand with less estimated randomness than this [bits] is warned about."""
+WRONG_TOKEN = N_("that is not the presenter token")
+TOO_MANY_TRIES = "this tab has typed {tries} wrong tokens: reload the page to try again"
+"""Said in a tab's language by :meth:`app.tab.following.Following` (a plural of ``tries``)."""
 TAKEN_OVER = N_("Another tab took over as presenter: this tab now follows it.")
 MAX_TOKEN_LENGTH = 200
 RESUME_GRACE = 120.0
@@ -56,9 +68,17 @@ PRESENTER_AWAY = N_(
 
 
 def random_token() -> str:
-    """A fresh presenter token: 96 random bits in 16 URL-safe characters (never typed on the projector:
+    """A fresh presenter token: 128 random bits in 22 URL-safe characters (never typed on the projector:
     ``serve`` prints a presenter link that fills it in)."""
-    return secrets.token_urlsafe(12)
+    return secrets.token_urlsafe(RANDOM_TOKEN_BYTES)
+
+
+def presenter_link(url: str, token: str) -> str:
+    """The presenter link ``serve`` prints, for the lab at ``url`` (``http://host:port``), by every path
+    (one process or workers): ``url/?presenter=TOKEN``. In the query, never the fragment: viser's page
+    opens its websocket at its own address minus the query, and a WebSocket address with a fragment is
+    refused (the page would never connect). The page's script drops it from the address bar."""
+    return f"{url.rstrip('/')}/?presenter={urllib.parse.quote(token, safe='')}"
 
 
 def token_weakness(token: str) -> str:
@@ -111,17 +131,15 @@ class Classroom:
 
     Args:
         token: The presenter token (the server's ``--presenter-token``).
-        clock: Monotonic clock [s] (a fake one in tests of the rate limit).
-        limits: The server's limits, which count wrong tokens per address and per server (default:
-            the classroom's own, on ``clock``).
-        address_of: A tab's network address (its key is used when ``None``, or when unknown).
+        clock: Monotonic clock [s] (a fake one in tests of the reconnect grace).
+        address_of: A tab's network address, for the log of wrong tokens (its key is used when
+            ``None``, or when unknown).
     """
 
     def __init__(
         self,
         token: str,
         clock: Callable[[], float] = time.monotonic,
-        limits: RoomLimits | None = None,
         address_of: Callable[[int], str] | None = None,
     ) -> None:
         if not token or len(token) > MAX_TOKEN_LENGTH:
@@ -131,9 +149,9 @@ class Classroom:
         self._lock = threading.RLock()
         self._members: dict[int, Member] = {}
         self._alone: set[int] = set()  # tabs exploring on their own
+        self._wrong: dict[int, int] = {}  # wrong tokens of each connected tab (forgotten when it closes)
         self._presenter: int | None = None
         self._unsubscribe: Callable[[], None] | None = None
-        self.limits = limits if limits is not None else RoomLimits(clock=clock)
         self._address_of = address_of
         self.relayed = 0
         # Reconnection: a random key per presenter (never the token), the last state it showed, and
@@ -163,6 +181,7 @@ class Classroom:
         with self._lock:
             self._members.pop(key, None)
             self._alone.discard(key)
+            self._wrong.pop(key, None)
             was_presenter = key == self._presenter
             if was_presenter:
                 unsubscribe = self._stop_relay()
@@ -176,12 +195,14 @@ class Classroom:
         """Make tab ``key`` the presenter if ``token`` is right.
 
         Returns:
-            "" when it now presents, else why not (wrong token, too many tries).
+            "" when it now presents, else why not (wrong token, too many tries from this tab).
         """
-        given = token.encode("utf-8")[: MAX_TOKEN_LENGTH * 4]
-        why = self.limits.try_token(self.address(key), hmac.compare_digest(given, self._token))
+        why = self._spent(key)
         if why:
             return why
+        given = token.encode("utf-8")[: MAX_TOKEN_LENGTH * 4]
+        if not hmac.compare_digest(given, self._token):
+            return self._wrong_try(key)
         with self._lock:
             if key not in self._members:
                 return N_("this tab is not connected")
@@ -242,13 +263,29 @@ class Classroom:
         self._tell_all(personal={replaced: TAKEN_OVER} if replaced is not None else None)
 
     def address(self, key: int) -> str:
-        """The network address of tab ``key`` (what wrong tokens are counted by)."""
+        """The network address of tab ``key``, for the log (never what tries are counted by)."""
         address = self._address_of(key) if self._address_of is not None else ""
         return address or f"tab {key}"
 
     def wrong_tries(self, key: int) -> int:
-        """Wrong tokens from tab ``key``'s address within the last :data:`TOKEN_WINDOW` seconds."""
-        return self.limits.wrong_tokens(self.address(key))
+        """Wrong tokens tab ``key`` typed on its connection."""
+        with self._lock:
+            return self._wrong.get(key, 0)
+
+    def _spent(self, key: int) -> str:
+        """Why tab ``key`` may not try a token any more (it typed :data:`TOKEN_TRIES` wrong ones), or ""."""
+        tries = self.wrong_tries(key)
+        return TOO_MANY_TRIES.format(tries=tries) if tries >= TOKEN_TRIES else ""
+
+    def _wrong_try(self, key: int) -> str:
+        """Tab ``key`` typed a wrong token: count it for its connection (only), log it, say so."""
+        with self._lock:
+            tries = self._wrong.get(key, 0) + 1
+            if key in self._members:  # a closed tab's count would never be forgotten
+                self._wrong[key] = tries
+        address = self.address(key)
+        log.warning("wrong presenter token from tab %d at %s (%d of %d)", key, address, tries, TOKEN_TRIES)
+        return WRONG_TOKEN
 
     def resign(self, key: int) -> None:
         """The presenter stops presenting (followers keep the last state)."""

@@ -5,9 +5,10 @@ tabs, roles and relays within the worker) with the room's decisions taken by the
 :class:`~app.services.room.RoomHub`, over a :class:`RoomChannel` (a ``multiprocessing`` pipe carrying
 JSON, never pickles):
 
-* a typed token and a reconnect key are checked by the hub (one presenter, one count of wrong tries for
-  the whole server); the hub's reconnect key is the one the presenter's page keeps, so a presenter whose
-  worker died comes back in another;
+* a typed token and a reconnect key are checked by the hub (one presenter for the whole server; each
+  worker counts the wrong tokens of its own tabs' connections, as one process does); the hub's
+  reconnect key is the one the presenter's page keeps, so a presenter whose worker died comes back in
+  another;
 * the presenter's worker relays each commit to its own followers as before (the presenter's snapshot and
   scene messages) and sends the state to the hub (:mod:`app.services.state_codec`: robots the presenter
   built or uploaded as their file's text); every other worker computes the snapshot of each state it
@@ -30,7 +31,6 @@ from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
 from .catalog import RobotCatalog
 from .classroom import MAX_TOKEN_LENGTH, PRESENTER_AWAY, TAKEN_OVER, Classroom, Member
-from .ratelimit import RoomLimits
 from .state_codec import RobotWire, decode_state, dumps, encode_state, loads
 
 __all__ = ["RoomChannel", "RelayedClassroom", "ANSWER_TIMEOUT"]
@@ -123,19 +123,17 @@ class RelayedClassroom(Classroom):
     Args:
         channel: The pipe to the hub (:class:`RoomChannel`; its ``on_message`` is set here).
         catalog: The server's catalogue (robots are named by it between workers).
-        limits, address_of: As for :class:`~app.services.classroom.Classroom` (here ``limits`` counts
-            nothing: the hub counts wrong tokens).
+        address_of: As for :class:`~app.services.classroom.Classroom` (for the log of wrong tokens).
     """
 
     def __init__(
         self,
         channel: RoomChannel,
         catalog: RobotCatalog,
-        limits: RoomLimits | None = None,
         address_of: Callable[[int], str] | None = None,
     ) -> None:
         # The worker never knows the token: the hub checks it. This one is never compared.
-        super().__init__(secrets.token_urlsafe(32), limits=limits, address_of=address_of)
+        super().__init__(secrets.token_urlsafe(32), address_of=address_of)
         self.channel = channel
         self.wire = RobotWire(catalog)
         self._remote = False  # a tab of another worker presents
@@ -182,16 +180,17 @@ class RelayedClassroom(Classroom):
         with self._lock:
             if key not in self._members:
                 return "this tab is not connected"
+        why = self._spent(key)  # this connection's tries are counted here, as in one process
+        if why:
+            return why
         given = token[: MAX_TOKEN_LENGTH * 4]
-        answer = self.channel.ask(
-            {"op": "claim", "key": key, "address": self.address(key), "token": given}, self._claimed
-        )
+        answer = self.channel.ask({"op": "claim", "key": key, "token": given}, self._claimed)
         return NO_ANSWER if answer is None else answer[0]
 
     def _claimed(self, answer: dict[str, Any]) -> str:
-        if answer.get("why"):
-            return str(answer["why"])
         key = int(answer["key"])
+        if not answer.get("ok"):
+            return self._wrong_try(key)
         with self._lock:
             if key not in self._members:  # closed meanwhile: the hub hears it as the presenter's close
                 self._presenter = key

@@ -37,6 +37,7 @@ __all__ = [
     "wait_in_main_thread",
     "dump_stacks_on_sigusr1",
     "terminate_children",
+    "end_resource_tracker",
     "check_listen_address",
 ]
 
@@ -186,6 +187,41 @@ def terminate_children(timeout: float = 2.0) -> None:
         if child.is_alive():
             child.kill()
             child.join(timeout)
+
+
+def end_resource_tracker(timeout: float = 0.5) -> None:
+    """End multiprocessing's resource tracker of this process now, once its children are gone, instead of
+    leaving it to outlive the process (it exits when every holder of its pipe has closed it, which a
+    stray descendant may never do): close this process's end, wait up to ``timeout`` [s], kill it then.
+
+    The tracker (started by the first semaphore or queue of a "spawn" context: a process pool's) unlinks
+    what its processes leaked as it ends. Nothing happens if this process has none.
+    """
+    from multiprocessing import resource_tracker
+
+    tracker = getattr(resource_tracker, "_resource_tracker", None)
+    lock = getattr(tracker, "_lock", None)
+    if tracker is None or lock is None:
+        return
+    with lock:
+        fd, pid = getattr(tracker, "_fd", None), getattr(tracker, "_pid", None)
+        if fd is None or pid is None:
+            return
+        tracker._fd = tracker._pid = None  # a later use starts a new one, as the standard library does
+    os.close(fd)
+    end = time.monotonic() + timeout
+    while True:
+        try:
+            if os.waitpid(pid, os.WNOHANG)[0] == pid:
+                return
+        except ChildProcessError:
+            return
+        if time.monotonic() > end:
+            log.warning("multiprocessing's resource tracker (pid %d) did not end: killing it", pid)
+            os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+            return
+        time.sleep(0.01)
 
 
 def watch_parent(parent_pid: int) -> None:

@@ -12,8 +12,6 @@ from collections import OrderedDict, deque
 from collections.abc import Callable, Hashable
 from typing import Any
 
-from ..core.i18n import N_
-
 __all__ = ["TokenBucket", "LeakyCounter", "LatestFirstQueue", "TabLimiter", "RoomLimits"]
 
 
@@ -110,6 +108,10 @@ class LatestFirstQueue:
             return self._waiting.popitem(last=False)[1]
         return None
 
+    def clear(self) -> None:
+        """Forget every waiting message."""
+        self._waiting.clear()
+
 
 def state_key(message: Any) -> tuple | None:
     """What a viser client message sets, by its class name: messages with the same key are states
@@ -168,6 +170,11 @@ class TabLimiter:
         """The waiting messages the rates allow now (at most one per queue)."""
         return [m for m in (self.other.pop_ready(), self.gui.pop_ready()) if m is not None]
 
+    def clear(self) -> None:
+        """Forget every waiting message (the tab left)."""
+        self.gui.clear()
+        self.other.clear()
+
 
 class RoomLimits:
     """What every tab of one server may hold at once, and what was refused: one object, so that a
@@ -176,17 +183,17 @@ class RoomLimits:
     Uploads are counted from their start to their end (or their tab's): at most
     ``uploads_per_tab`` at once per tab and ``bytes_in_flight`` declared bytes over the server,
     each at most ``max_upload_bytes`` in parts of ``part_bytes``; a part that would take a transfer
-    past its declared size ends it.
+    past its declared size ends it, and so does ``upload_stall_seconds`` without a part
+    (:meth:`upload_idle` tells how long a transfer has waited; the viser adapter ends it).
 
     Args:
         max_upload_bytes: Largest file a tab may upload [bytes].
         part_bytes: Size of an upload's parts [bytes] (the browser's).
         uploads_per_tab: Uploads one tab may have in flight.
         bytes_in_flight: Declared bytes of every upload in flight, over the server [bytes].
+        upload_stall_seconds: An upload in flight with no part for this long is dropped [s] (a
+            browser sends its parts back to back: 512 KiB take 4 s at 1 Mbit/s).
         notices_per_second: Refusal notices a tab is shown per second (more are only logged).
-        token_tries_per_address, token_tries_per_server, token_window: Wrong presenter tokens one
-            address, and all addresses together, may try per window [s]; more are refused unread
-            (per address, not per tab: reconnecting tabs share their address's tries).
         clock: Time source [s].
 
     Attributes:
@@ -200,23 +207,18 @@ class RoomLimits:
         part_bytes: int = 512 * 1024,
         uploads_per_tab: int = 2,
         bytes_in_flight: int = 16 * 1024 * 1024,
+        upload_stall_seconds: float = 30.0,
         notices_per_second: float = 4.0,
-        token_tries_per_address: int = 5,
-        token_tries_per_server: int = 30,
-        token_window: float = 60.0,
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
         self.max_upload_bytes, self.part_bytes = max_upload_bytes, part_bytes
         self.uploads_per_tab, self.bytes_in_flight = uploads_per_tab, bytes_in_flight
+        self.upload_stall_seconds = upload_stall_seconds
         self.notices_per_second, self.clock = notices_per_second, clock
-        self.token_tries_per_address = token_tries_per_address
-        self.token_tries_per_server = token_tries_per_server
-        self.token_window = token_window
-        self._token_tries: deque[tuple[float, Hashable]] = deque()  # (time, address) of wrong tokens
         self.refusals: deque[tuple[Hashable, str]] = deque(maxlen=200)
         self.refused = 0
         self._lock = threading.Lock()
-        self._uploads: dict[Hashable, list] = {}  # transfer → [tab, declared, received]
+        self._uploads: dict[Hashable, list] = {}  # transfer → [tab, declared, received, last part's time]
         self._notices: OrderedDict[Hashable, TokenBucket] = OrderedDict()
 
     # ---------------------------------------------------------------- uploads
@@ -237,7 +239,7 @@ class RoomLimits:
             total = sum(u[1] for u in self._uploads.values())
             if total + declared > self.bytes_in_flight:
                 return "the server is receiving too many files right now: try again in a moment"
-            self._uploads[transfer] = [tab, declared, 0]
+            self._uploads[transfer] = [tab, declared, 0, self.clock()]
         return ""
 
     def receive_part(self, transfer: Hashable, size: int) -> str:
@@ -249,7 +251,14 @@ class RoomLimits:
             if size > self.part_bytes or upload[2] + size > upload[1]:
                 return f"its parts bring more than the {upload[1]} bytes it declared"
             upload[2] += size
+            upload[3] = self.clock()
         return ""
+
+    def upload_idle(self, transfer: Hashable) -> float | None:
+        """Seconds since the upload's last part (or its start) [s]; ``None`` once it ended."""
+        with self._lock:
+            upload = self._uploads.get(transfer)
+            return None if upload is None else self.clock() - upload[3]
 
     def end_upload(self, transfer: Hashable) -> None:
         """The upload finished or was dropped."""
@@ -268,35 +277,6 @@ class RoomLimits:
         with self._lock:
             mine = [u for u in self._uploads.values() if tab is None or u[0] == tab]
             return len(mine), sum(u[1] for u in mine)
-
-    # ---------------------------------------------------------------- presenter tokens
-    def _recent_tries(self) -> deque[tuple[float, Hashable]]:
-        now = self.clock()
-        while self._token_tries and now - self._token_tries[0][0] >= self.token_window:
-            self._token_tries.popleft()
-        return self._token_tries
-
-    def try_token(self, address: Hashable, right: bool) -> str:
-        """One presenter token from ``address``: ``""`` when it is ``right`` and may be taken, else why
-        not (a wrong one is counted; over the limits, even a right one is refused unread)."""
-        with self._lock:
-            now, tries = self.clock(), self._recent_tries()
-            mine = [t for t, a in tries if a == address]
-            if len(mine) >= self.token_tries_per_address:
-                wait = self.token_window - (now - mine[0])
-                return f"too many wrong tokens from this computer: try again in {max(1, round(wait))} s"
-            if len(tries) >= self.token_tries_per_server:
-                wait = self.token_window - (now - tries[0][0])
-                return f"too many wrong tokens in this room: try again in {max(1, round(wait))} s"
-            if right:
-                return ""
-            tries.append((now, address))
-            return N_("that is not the presenter token")
-
-    def wrong_tokens(self, address: Hashable | None = None) -> int:
-        """Wrong tokens within the window, from ``address`` or from anywhere."""
-        with self._lock:
-            return sum(1 for _, a in self._recent_tries() if address is None or a == address)
 
     # ---------------------------------------------------------------- refusals
     def refuse(self, tab: Hashable, text: str) -> bool:

@@ -3,14 +3,15 @@
 ``serve --workers N --presenter`` runs one :class:`RoomHub` in the supervising parent. Each worker's
 :class:`~app.services.classroom_relay.RelayedClassroom` talks to it over its own pipe, in JSON messages
 (``{"op": …}``); the hub answers and says which workers to tell what. It holds what must be one for the
-whole server: the presenter token and the count of wrong tries (per address and per server, in its own
-:class:`~app.services.ratelimit.RoomLimits`), which tab of which worker presents, its reconnect key and
-grace (:data:`~app.services.classroom.RESUME_GRACE`), the last state it showed and the tab it has open
-(for followers that arrive later, in any worker), and each worker's count of followers (the presenter
-is shown the room's). The hub does no I/O and keeps no thread: the parent's loop feeds it
-(:meth:`RoomHub.handle`, :meth:`RoomHub.started`, :meth:`RoomHub.gone`) and sends what it returns.
+whole server: the presenter token (each worker counts its own connections' wrong tries: tries are
+limited per connection, never per address nor per room), which tab of which worker presents, its
+reconnect key and grace (:data:`~app.services.classroom.RESUME_GRACE`), the last state it showed and
+the tab it has open (for followers that arrive later, in any worker), and each worker's count of
+followers (the presenter is shown the room's). The hub does no I/O and keeps no thread: the parent's
+loop feeds it (:meth:`RoomHub.handle`, :meth:`RoomHub.started`, :meth:`RoomHub.gone`) and sends what
+it returns.
 
-Worker → hub: ``claim`` (id, key, address, token), ``resume`` (id, key, resume), ``state`` (the
+Worker → hub: ``claim`` (id, key, token), ``resume`` (id, key, resume), ``state`` (the
 presenter's commit, :mod:`app.services.state_codec`), ``camera``, ``tab``, ``away`` (the presenter's
 tab closed), ``resign``, ``count`` (its followers). Hub → worker: ``reply`` (id, …), ``presenter`` (a
 tab of another worker presents now), ``state``, ``camera``, ``tab``, ``away``, ``resigned``, ``others``
@@ -26,7 +27,6 @@ from collections.abc import Callable
 from typing import Any
 
 from .classroom import MAX_TOKEN_LENGTH, RESUME_GRACE
-from .ratelimit import RoomLimits
 
 __all__ = ["RoomHub", "Outgoing"]
 
@@ -35,22 +35,18 @@ Outgoing = list[tuple[int, dict[str, Any]]]
 
 
 class RoomHub:
-    """The room's presenter, token tries and follower counts, for N workers.
+    """The room's presenter, token and follower counts, for N workers.
 
     Args:
         token: The presenter token.
         clock: Monotonic clock [s].
-        limits: Counts wrong tokens (default: a :class:`RoomLimits` on ``clock``).
     """
 
-    def __init__(
-        self, token: str, clock: Callable[[], float] = time.monotonic, limits: RoomLimits | None = None
-    ) -> None:
+    def __init__(self, token: str, clock: Callable[[], float] = time.monotonic) -> None:
         if not token or len(token) > MAX_TOKEN_LENGTH:
             raise ValueError(f"a presenter token needs 1 to {MAX_TOKEN_LENGTH} characters")
         self._token = token.encode("utf-8")
         self._clock = clock
-        self.limits = limits if limits is not None else RoomLimits(clock=clock)
         self.workers: set[int] = set()
         self.presenter: tuple[int, int] | None = None  # (worker, tab key)
         self.resume_key = ""
@@ -120,11 +116,10 @@ class RoomHub:
 
     def _claim(self, worker: int, message: dict[str, Any]) -> Outgoing:
         given = str(message.get("token", "")).encode("utf-8")[: MAX_TOKEN_LENGTH * 4]
-        address = str(message.get("address", ""))[:200] or f"worker {worker}"
-        why = self.limits.try_token(address, hmac.compare_digest(given, self._token))
+        ok = hmac.compare_digest(given, self._token)
         key = int(message["key"])
-        reply: dict[str, Any] = {"op": "reply", "id": message.get("id"), "key": key, "why": why}
-        if why:
+        reply: dict[str, Any] = {"op": "reply", "id": message.get("id"), "key": key, "ok": ok}
+        if not ok:  # the worker counts it against the tab's connection
             return [(worker, reply)]
         self.resume_key, self.resume_until, self.last, self.tab = secrets.token_urlsafe(24), None, None, ""
         return [(worker, {**reply, "resume": self.resume_key}), *self._take_over(worker, key)]

@@ -2,8 +2,9 @@
 
 The parent keeps a :class:`SymbolicHub`: the server's only symbolic worker processes (one for the
 panel's MathML, J⁻¹ and Derive steps, one for downloads, each started on first use, restarted when it
-dies, ended when the parent is gone, as :class:`~app.services.symbolic_service.WorkerPool` does in a
-single process). Each worker's :class:`~app.services.symbolic_service.SymbolicService` keeps its own
+dies, ended when the parent is gone, and stopped at its time and memory limits, as
+:class:`~app.services.symbolic_process.WorkerPool` does in a single process). Each worker's
+:class:`~app.services.symbolic_service.SymbolicService` keeps its own
 bookkeeping (one request per key for its tabs, release, the restart listeners) and sends its
 computations to the hub through :class:`~app.services.symbolic_relay.RemotePools`, over a
 ``multiprocessing`` pipe of its own:

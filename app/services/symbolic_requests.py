@@ -18,11 +18,62 @@ from kinematics import Robot
 if TYPE_CHECKING:
     from kinematics.symbolic.steps.step import Step
 
-__all__ = ["REQUESTS", "Request", "SymbolicUnavailable", "STEP_WIDTH_PX"]
+__all__ = [
+    "REQUESTS",
+    "Request",
+    "SymbolicUnavailable",
+    "SymbolicStopped",
+    "SymbolicNotAttempted",
+    "MAX_SYMBOLIC_JOINTS",
+    "STEP_WIDTH_PX",
+]
+
+MAX_SYMBOLIC_JOINTS = 7
+"""The most joints of an arm whose symbolic J, J⁻¹, steps or export the server attempts. Measured cold
+(``bench/bench_symbolic_size.py``, docs/performance.md): a general 7-joint URDF chain takes 39 s and
+97 MB, the library's 7-joint arms less; no 8-joint chain of general axes, and no 12- or 24-joint
+chain at all, finished in 60 s, and their memory kept growing (to gigabytes in minutes)."""
 
 
 class SymbolicUnavailable(RuntimeError):
     """The symbolic module (or the export module) is not installed in this build."""
+
+
+class SymbolicStopped(RuntimeError):
+    """The server stopped a symbolic computation at one of its limits
+    (:class:`~app.services.symbolic_process.Limits`).
+
+    Attributes:
+        limit: ``"time"`` or ``"memory"``: the limit it reached.
+        seconds: The time limit [s].
+        memory_mb: The memory limit [MB].
+    """
+
+    def __init__(self, limit: str, seconds: float, memory_mb: float) -> None:
+        super().__init__(limit, seconds, memory_mb)  # pickled between processes as these three
+        self.limit, self.seconds, self.memory_mb = limit, seconds, memory_mb
+
+    def __str__(self) -> str:
+        if self.limit == "time":
+            return f"stopped after {self.seconds:.0f} s"
+        return f"stopped at {self.memory_mb:.0f} MB"
+
+
+class SymbolicNotAttempted(RuntimeError):
+    """A symbolic computation the server does not start: the arm has more joints than
+    :data:`MAX_SYMBOLIC_JOINTS` (from ``bench/bench_symbolic_size.py``).
+
+    Attributes:
+        joints: The arm's joints.
+        most: The most joints attempted.
+    """
+
+    def __init__(self, joints: int, most: int) -> None:
+        super().__init__(joints, most)
+        self.joints, self.most = joints, most
+
+    def __str__(self) -> str:
+        return f"{self.joints} joints, more than the {self.most} worked out symbolically"
 
 
 STEP_WIDTH_PX = 370
@@ -62,8 +113,10 @@ def _inverse_mathml(robot: Robot, letters: bool, timeout: float) -> str:
 
 def _steps_mathml(
     robot: Robot, method: str, timeout: float, letters: bool = False
-) -> tuple[tuple[int | None, str, str, str], ...]:
-    """In the worker process: every step of one derivation, its caption and its MathML (panel width)."""
+) -> tuple[tuple[int | None, str, str, str, tuple[str, tuple[tuple[str, str], ...]]], ...]:
+    """In the worker process: every step of one derivation, its caption and its MathML (panel width),
+    and the caption's catalog id with its arguments (("", ()) for a caption not marked for the catalogs)
+    so the tab shows it in its own language."""
     try:
         from kinematics.symbolic import derivation_steps
         from kinematics.symbolic.handout.parts import singular_texts
@@ -74,8 +127,11 @@ def _steps_mathml(
         ml = s.mathml(STEP_WIDTH_PX)
         return ml + _math_blocks(singular_texts(s.notation(), s, latex=False)) if s.singular else ml
 
+    def words(s: Step) -> tuple[str, tuple[tuple[str, str], ...]]:
+        return (str(getattr(s.title, "msgid", "")), tuple(getattr(s.title, "args", ())))
+
     return tuple(
-        (s.joint, s.key, s.title_html(), body(s))
+        (s.joint, s.key, s.title_html(), body(s), words(s))
         for s in derivation_steps(robot, method, symbolic_params=letters, timeout=timeout)
     )
 

@@ -14,6 +14,12 @@ on to another robot) is cancelled before it starts. The symbolic modules are
 imported lazily in the workers and may be missing; then the panel shows a
 plain note.
 
+Every computation is bounded by the operating system (:mod:`app.services.symbolic_process`: a
+time and memory limit per computation, its process killed and replaced at either), and an arm with
+more than :data:`~app.services.symbolic_requests.MAX_SYMBOLIC_JOINTS` joints is not attempted at all:
+its future fails at once with :class:`SymbolicNotAttempted` (measured in
+``bench/bench_symbolic_size.py``: such a J does not finish within the limits).
+
 Where the computations run is the service's :class:`Pools`: :class:`LocalPools`, its own worker
 processes (one server process), or, in a worker of ``jacobian-lab serve --workers N``,
 :class:`~app.services.symbolic_relay.RemotePools`, the parent's one pool for every worker. Either way a
@@ -22,26 +28,32 @@ computation is named by its kind in :data:`REQUESTS`, never by a function the ca
 
 from __future__ import annotations
 
-import contextlib
 import logging
-import multiprocessing
-import os
 import threading
 from collections.abc import Callable
-from concurrent.futures import Future, InvalidStateError, ProcessPoolExecutor
-from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Protocol
 
 from kinematics import Robot
 
 from ..core.downloads import EXPORT_FORMATS
-from .lifecycle import watch_parent
-from .symbolic_requests import REQUESTS, Request, SymbolicUnavailable, _export
+from .symbolic_process import WORKER_RESTARTED, Limits, SymbolicFuture, WorkerPool
+from .symbolic_requests import (
+    MAX_SYMBOLIC_JOINTS,
+    REQUESTS,
+    Request,
+    SymbolicNotAttempted,
+    SymbolicStopped,
+    SymbolicUnavailable,
+    _export,
+)
 
 __all__ = [
     "SymbolicService",
     "SymbolicUnavailable",
+    "SymbolicStopped",
+    "SymbolicNotAttempted",
     "SymbolicFuture",
+    "Limits",
     "WorkerPool",
     "WORKER_RESTARTED",
     "LocalPools",
@@ -51,152 +63,6 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
-
-
-WORKER_RESTARTED = "the symbolic worker stopped and was restarted"
-"""The notice given to :meth:`SymbolicService.on_restart` listeners when a worker was restarted."""
-
-
-class SymbolicFuture(Future[Any]):
-    """A future of a worker computation that is retried once on a new worker if the worker died.
-
-    Attributes:
-        restarted: True when this computation's first worker stopped (e.g. was killed) and the
-            computation was run again on a restarted worker.
-    """
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.restarted = False
-        self._inner: Future | None = None
-
-    def cancel(self) -> bool:
-        """Cancel unless the computation already runs in a worker (then it is left to finish)."""
-        inner = self._inner
-        if inner is not None and not inner.cancel():
-            return False
-        return super().cancel()
-
-
-class WorkerPool:
-    """One worker process, started on first use with "spawn" (the server's threads make forking unsafe).
-
-    The worker exits by itself when this process is gone (:func:`app.services.lifecycle.watch_parent`).
-    When it dies (killed, out of memory), the pool starts a new one: each computation that
-    was queued or running is run once more there, and ``on_restart(WORKER_RESTARTED)`` is called.
-
-    Args:
-        on_restart: Called with :data:`WORKER_RESTARTED` after a restart, in a new thread (so it may
-            take any lock).
-    """
-
-    def __init__(self, on_restart: Callable[[str], None] | None = None) -> None:
-        self.restarts = 0
-        self._on_restart = on_restart
-        self._pool: ProcessPoolExecutor | None = None
-        self._generation = 0
-        self._closed = False
-        self._lock = threading.Lock()
-
-    def submit(self, fn: Callable[..., Any], *args: Any) -> SymbolicFuture:
-        """``fn(*args)`` in the worker; ``fn`` must be importable by name (a module-level function)."""
-        future = SymbolicFuture()
-        self._run(future, fn, args, retry=True)
-        return future
-
-    def _run(self, future: SymbolicFuture, fn: Callable[..., Any], args: tuple, retry: bool) -> None:
-        with self._lock:
-            if self._closed:
-                raise RuntimeError("the symbolic worker pool was closed")
-            if self._pool is None:
-                self._pool = ProcessPoolExecutor(
-                    max_workers=1,
-                    mp_context=multiprocessing.get_context("spawn"),
-                    initializer=watch_parent,
-                    initargs=(os.getpid(),),
-                )
-            generation = self._generation
-            try:
-                inner = self._pool.submit(fn, *args)
-            except BrokenProcessPool as exc:
-                inner = Future()
-                inner.set_exception(exc)
-            future._inner = inner
-        inner.add_done_callback(lambda f: self._settle(future, f, fn, args, retry, generation))
-
-    def _settle(
-        self, future: SymbolicFuture, inner: Future, fn, args: tuple, retry: bool, generation: int
-    ) -> None:
-        if inner.cancelled():
-            future.cancel()
-            return
-        exc = inner.exception()
-        if isinstance(exc, BrokenProcessPool) and retry and not self._closed and not future.done():
-            self._restart(generation)
-            future.restarted = True
-            try:
-                self._run(future, fn, args, retry=False)
-                return
-            except Exception as again:  # closed meanwhile
-                exc = again
-        elif isinstance(exc, BrokenProcessPool) and not retry:
-            exc = SymbolicUnavailable("the symbolic worker stopped twice during this computation")
-        with contextlib.suppress(InvalidStateError):  # cancelled by its last interested client
-            if exc is not None:
-                future.set_exception(exc)
-            else:
-                future.set_result(inner.result())
-
-    def _restart(self, generation: int) -> None:
-        """Drop the broken pool (once per breakage: the first failing future does it)."""
-        with self._lock:
-            if generation != self._generation or self._closed:
-                return
-            self._generation += 1
-            broken, self._pool = self._pool, None
-            self.restarts += 1
-        log.warning("%s (restart %d)", WORKER_RESTARTED, self.restarts)
-        if broken is not None:
-            _end_pool(broken)
-        if self._on_restart is not None:  # in a thread of its own: the caller may hold any lock
-            threading.Thread(target=self._notify, name="symbolic-restart", daemon=True).start()
-
-    def _notify(self) -> None:
-        try:
-            self._on_restart(WORKER_RESTARTED)  # type: ignore[misc]
-        except Exception:
-            log.exception("a restart listener failed")
-
-    def pids(self) -> list[int]:
-        """Process ids of the running worker(s) (none before the first computation)."""
-        with self._lock:
-            pool = self._pool
-        return [p.pid for p in _pool_processes(pool) if p.pid is not None] if pool is not None else []
-
-    def close(self) -> None:
-        """End the worker now (a running computation is abandoned) and refuse further work."""
-        with self._lock:
-            self._closed = True
-            pool, self._pool = self._pool, None
-        if pool is not None:
-            _end_pool(pool)
-
-
-def _pool_processes(pool: ProcessPoolExecutor) -> list[multiprocessing.process.BaseProcess]:
-    """The worker processes of ``pool`` (the standard library keeps them private, in ``_processes``)."""
-    return list((getattr(pool, "_processes", None) or {}).values())
-
-
-def _end_pool(pool: ProcessPoolExecutor) -> None:
-    """Terminate the workers of ``pool`` (a running simplification would hold up exit) and shut it down."""
-    processes = _pool_processes(pool)
-    for process in processes:
-        process.terminate()
-    pool.shutdown(wait=False, cancel_futures=True)
-    for process in processes:
-        process.join(2.0)
-        if process.is_alive():
-            process.kill()
 
 
 class Pools(Protocol):
@@ -324,6 +190,9 @@ class SymbolicService:
         self._release((robot.fingerprint(), "steps", method, bool(letters)))
 
     def _want(self, key: tuple, kind: str, *args: Any) -> SymbolicFuture:
+        refused = _not_attempted(args[0])
+        if refused is not None:
+            return refused
         with self._lock:
             self._interest[key] = self._interest.get(key, 0) + 1
             future = self._mathml.get(key)
@@ -355,8 +224,21 @@ class SymbolicService:
         """A future of (file name, content) of J(q) exported as ``label`` ("LaTeX", "Python" or "JSON")."""
         fmt, ext = EXPORT_FORMATS[label]
         name = f"{robot.name or 'robot'}_J_{frame}.{ext}"
+        refused = _not_attempted(robot)
+        if refused is not None:
+            return refused
         return self._pools.export((robot, fmt, frame, float(self.timeout), name))
 
     def close(self) -> None:
         """Stop the worker processes (pending computations are abandoned)."""
         self._pools.close()
+
+
+def _not_attempted(robot: Robot) -> SymbolicFuture | None:
+    """A future already failed with :class:`SymbolicNotAttempted` when ``robot`` has more joints than
+    are worked out symbolically (nothing is started), else None."""
+    if robot.dof <= MAX_SYMBOLIC_JOINTS:
+        return None
+    future = SymbolicFuture()
+    future.set_exception(SymbolicNotAttempted(robot.dof, MAX_SYMBOLIC_JOINTS))
+    return future

@@ -44,6 +44,7 @@ from .following import Following
 from .notices import Notices
 from .recorder import TabRecorder, demo_zip
 from .robots import TabCatalog, display_name
+from .symbolic_words import told
 
 __all__ = ["CommandRunner", "LOOKING", "MAX_QUEUED_DOWNLOADS"]
 
@@ -187,17 +188,18 @@ class CommandRunner:
             self.recorder.start(state, self._shown()[1])
             return
         frames = self.recorder.stop()
-        tr = self.notices.tr
-        _ = tr.gettext
         if len(frames) < 2:
+            _ = self.notices.tr.gettext
             self.notices.notify(
                 _("Nothing recorded"), _("Move something between starting and stopping the recording.")
             )
             return
-        robot = state.robot.title or state.robot.name
-        title = _("{robot} — recorded in {app}").format(robot=robot, app="Jacobian Lab")  # the name stays
-        count = tr.ngettext("{n} snapshot", "{n} snapshots", len(frames)).format(n=len(frames))
-        remove_note = self.notices.preparing(_("Preparing the demo…"), count)
+        title = self.notices.tr.gettext("{robot} — recorded in Jacobian Lab").format(
+            robot=state.robot.title or state.robot.name
+        )
+        tr = self.notices.tr
+        frames_text = tr.npgettext("recording", "{n} frame", "{n} frames", len(frames)).format(n=len(frames))
+        remove_note = self.notices.preparing(tr.gettext("Preparing the demo…"), frames_text)
 
         def done(future: Future[bytes]) -> None:
             remove_note()
@@ -210,7 +212,7 @@ class CommandRunner:
             except Exception as exc:
                 self.notices.error(exc)
 
-        background().submit(demo_zip, frames, title).add_done_callback(done)
+        background().submit(demo_zip, frames, title, self.notices.tr).add_done_callback(done)
 
     # ------------------------------------------------------------------ downloads
     def _download(self, state: LabState, label: str) -> None:
@@ -248,10 +250,11 @@ class CommandRunner:
             label = self._downloads.popleft()
         robot, frame = state.robot, state.options.jacobian_frame
         _ = self.notices.tr.gettext
-        name = robot.title or robot.name
-        axes = _("{robot}, tool axes") if frame == "tool" else _("{robot}, base axes")
         remove_note = self.notices.preparing(
-            _("Preparing J(q) as {format}…").format(format=label), axes.format(robot=name)
+            _("Preparing J(q) as {format}…").format(format=label),
+            (_("{robot}, base axes") if frame == "base" else _("{robot}, tool axes")).format(
+                robot=robot.title or robot.name
+            ),
         )
 
         def ready(future: Future[tuple[str, bytes]]) -> None:
@@ -265,7 +268,11 @@ class CommandRunner:
             except SymbolicUnavailable as exc:
                 self.notices.notify(self.notices.tr.gettext("Download not available"), str(exc))
             except Exception as exc:
-                self.notices.error(exc)
+                words = told("download", exc, robot.dof, label)
+                if words is not None:  # stopped at a limit of the server's, or not attempted
+                    self.notices.notify(*words)
+                else:
+                    self.notices.error(exc)
             else:
                 self.client.send_file_download(filename, content, save_immediately=True)
             self._next_download(state)

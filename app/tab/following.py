@@ -35,7 +35,7 @@ from ..core.commands import (
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
-from ..services.classroom import Classroom
+from ..services.classroom import TOO_MANY_TRIES, Classroom
 from .camera import TabCamera
 from .notices import Notices
 
@@ -105,7 +105,9 @@ class Following:
             _ = self._notices.tr.gettext
             self._notices.notify(
                 _("You follow the presenter"),
-                _("Your inputs follow the presenter: press “Explore on my own” first."),
+                _("Your inputs follow the presenter: press “{button}” first.").format(
+                    button=_("Explore on my own")
+                ),
             )
         return True
 
@@ -196,12 +198,25 @@ class Following:
             return  # typing went on: a later try comes
         why = self.classroom.claim(self.key, command.token)
         if why:
-            _ = self._notices.tr.gettext
-            self._notices.notify(_("Not the presenter"), _(why), seconds=6.0)
+            self._notices.notify(
+                self._notices.tr.gettext("Not the presenter"), self._refusal(why), seconds=6.0
+            )
         elif self.page is not None:  # the page keeps the reconnect key (never the token)
             self.page.remember(self.classroom.resume_key(self.key))
             if self.page.tab:
                 self.classroom.tab(self.key, self.page.tab)
+
+    def _refusal(self, why: str) -> str:
+        """Why a claim was refused (the classroom's English), in the tab's language."""
+        tr = self._notices.tr
+        tries = self.classroom.wrong_tries(self.key) if self.classroom is not None else 0
+        if why == TOO_MANY_TRIES.format(tries=tries):
+            return tr.ngettext(
+                "this tab has typed {tries} wrong token: reload the page to try again",
+                "this tab has typed {tries} wrong tokens: reload the page to try again",
+                tries,
+            ).format(tries=tries)
+        return tr.gettext(why)
 
     def camera_moved(self, camera: Any) -> None:
         """The presenter's camera moved: relay it to the followers."""

@@ -27,24 +27,17 @@ class Notices:
     Args:
         client: The tab's viser client (``add_notification``).
         closed: Whether the tab has gone (nothing is shown then).
-        language: The tab's language now (the words of a notice; English when not given).
 
     Attributes:
         errors: Number of failures shown to this tab.
+        tr: The tab's language (the session keeps it current): callers take their words from it.
     """
 
-    def __init__(
-        self, client: Any, closed: Callable[[], bool], language: Callable[[], Translator] | None = None
-    ) -> None:
+    def __init__(self, client: Any, closed: Callable[[], bool]) -> None:
         self.client = client
+        self.tr: Translator = translations()
         self._closed = closed
-        self._language = language or translations
         self.errors = 0
-
-    @property
-    def tr(self) -> Translator:
-        """The tab's language now: callers say a notice with ``notices.tr.gettext``."""
-        return self._language()
 
     def notify(self, title: str, body: str, seconds: float = 8.0) -> None:
         """Show this tab a short notice (e.g. the symbolic worker was restarted)."""

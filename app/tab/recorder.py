@@ -15,6 +15,7 @@ import time
 import zipfile
 from collections.abc import Callable
 
+from ..core.i18n import Translator
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
 from ..demo.record import demo_files, record_frames
@@ -88,11 +89,12 @@ class TabRecorder:
         return out
 
 
-def demo_zip(frames: list[tuple[LabState, Snapshot]], title: str) -> bytes:
-    """A zip of the demo folder (index.html, the viser client page, recording.viser) of ``frames``."""
+def demo_zip(frames: list[tuple[LabState, Snapshot]], title: str, tr: Translator | None = None) -> bytes:
+    """A zip of the demo folder (index.html, the viser client page, recording.viser) of ``frames``, its
+    3-D words in ``tr``'s language (the tab's)."""
     states = [s for s, _ in frames]
     snaps = [p for _, p in frames]
-    recording = record_frames(title, states[-1].robot, states, snaps, FPS)
+    recording = record_frames(title, states[-1].robot, states, snaps, FPS, tr)
     buffer = io.BytesIO()
     with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as z:
         for name, data in demo_files(recording).items():

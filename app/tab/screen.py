@@ -29,7 +29,15 @@ if TYPE_CHECKING:
     from .robots import TabCatalog
     from .symbols import TabSymbols
 
-__all__ = ["Screen"]
+__all__ = ["Screen", "SceneMessages"]
+
+
+class SceneMessages(tuple):
+    """A presenter's scene messages and the language their words are in (its 3-D labels): a follower
+    that speaks another language draws its own scene from the presenter's state instead of replaying
+    them (the presenter shares state, not words)."""
+
+    language: str = ""
 
 
 class Screen:
@@ -93,7 +101,7 @@ class Screen:
                 if rebuild or self.scene is None or self._foreign:
                     if self.scene is not None:
                         self.scene.remove()
-                    self.scene = SceneView(self.client, state.robot, self.dispatch)
+                    self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
                     self._foreign = False
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())
@@ -101,7 +109,8 @@ class Screen:
             self.panel.show_role(role)
             self.panel.show_recording(recording)
             symbols.draw(self.panel, everything=rebuild)
-        self.scene_messages = tuple(captured)
+        self.scene_messages = SceneMessages(captured)
+        self.scene_messages.language = self.tr.code
 
     def relanguage(self, tr: Translator, state: LabState) -> None:
         """Speak ``tr``'s language: the whole panel is built again in it (its widgets' labels are set

@@ -93,7 +93,7 @@ class ClientSession:
         self._tab_to_open = ""  # a panel tab to open in the page once drawn (OpenTab)
         self.pace = VisitPace()
         self.subscribers = Subscribers(self.key)
-        self.notices = Notices(client, lambda: self._closed, lambda: self.page.tr)
+        self.notices = Notices(client, lambda: self._closed)
         self.ticker = ticker if ticker is not None else Ticker(self.dispatch)
         self.camera = TabCamera(client)
         self.following = Following(
@@ -109,9 +109,9 @@ class ClientSession:
         self.room_language = language if is_language(language) else ""
         self.browser_language = negotiate(accept_language, default="") if accept_language else ""
         self.language = self._wanted_language = self._decide_language()
-        self.page.tr = translations(self.language)
+        self.page.tr = self.notices.tr = translations(self.language)
         self.page.following, self.following.page = self.following, self.page
-        self.symbols = TabSymbols(symbolic, self.dispatch)
+        self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
             client, self.catalog, symbolic, self.recorder, self.following, self.notices,
@@ -209,6 +209,8 @@ class ClientSession:
     def _take(self, batch: Batch, message: Message) -> None:
         """Take one message into ``batch``: reduce an action, run a command, draw a mirror."""
         if isinstance(message, Mirror):
+            if getattr(message.scene, "language", self.language) != self.language:
+                message = Mirror(message.state, message.snapshot)  # its words are not ours: draw our own
             if message.state.robot is not self.state.robot:  # only then may it be unknown here
                 self.catalog.keep_shown(message.state.robot_name, message.state.robot)
             batch.take_mirror(message, self.screen.scene is not None)
@@ -256,7 +258,7 @@ class ClientSession:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
         if self._wanted_language != self.language:  # the whole page again, in the tab's new language
             self.language = self._wanted_language
-            self.page.tr = translations(self.language)
+            self.page.tr = self.notices.tr = translations(self.language)
             self.screen.relanguage(self.page.tr, state)
             self._tab_to_open = self.page.tab  # the rebuilt panel opens on its first tab
             rebuild = True

@@ -18,14 +18,25 @@ from concurrent.futures import Future
 from typing import Any
 
 from ..core.commands import Message, SymbolicResult
+from ..core.i18n import N_
 from ..core.state import LabState
-from ..services.symbolic_service import WORKER_RESTARTED, SymbolicFuture, SymbolicService, SymbolicUnavailable
+from ..services.symbolic_service import (
+    WORKER_RESTARTED,
+    SymbolicFuture,
+    SymbolicNotAttempted,
+    SymbolicService,
+    SymbolicUnavailable,
+)
 from ..views.panel import PanelView
+from .symbolic_words import TITLES, told
 
 __all__ = ["Wanted", "TabSymbols"]
 
 Shown = tuple[Any, str]
 """What a part of the panel shows: the content (None: only the note) and a note."""
+
+Notify = Callable[[str, str], None]
+"""Shows the tab a notice (title, body)."""
 
 
 class Wanted:
@@ -36,6 +47,8 @@ class Wanted:
         ask: Asks the service for a key (returns a future).
         release: Tells the service the key is no longer wanted.
         dispatch: The session's way in (the result comes back as a message).
+        notify: Tells the tab in a notice when the server stopped the computation at a limit, or did
+            not start it (:func:`~app.tab.symbolic_words.told`).
 
     Attributes:
         shown: What the part shows now (None: nothing asked yet).
@@ -47,8 +60,10 @@ class Wanted:
         ask: Callable[..., SymbolicFuture],
         release: Callable[..., None],
         dispatch: Callable[[Message], None],
+        notify: Notify | None = None,
     ) -> None:
         self.part, self._ask, self._release, self._dispatch = part, ask, release, dispatch
+        self._notify = notify
         self.key: tuple | None = None
         self.shown: Shown | None = None
 
@@ -63,17 +78,33 @@ class Wanted:
             self.shown = None  # nothing wanted: the part keeps what its own draw shows
             return False
         future = self._ask(*key)
+        joints = key[0].dof
         if future.done():
-            self.shown = result(future)
+            self.shown = self._limited(future, joints) or result(future)
             return True
         self.shown = (None, waiting)
 
-        def ready(f: Future) -> None:  # in the worker's callback thread: only a message
-            content, note = result(f)
+        def ready(f: Future) -> None:  # in the worker's callback thread: only a message (and a notice)
+            content, note = self._limited(f, joints, wanted=self.key == key) or result(f)
             self._dispatch(SymbolicResult(self.part, key, content, note))
 
         future.add_done_callback(ready)
         return True
+
+    def _limited(self, future: Future, joints: int, wanted: bool = True) -> Shown | None:
+        """What the part shows when the server stopped the computation or did not start it (the tab is
+        told in a notice too if it still ``wanted`` it; "not attempted" by the matrix's slot
+        only); None otherwise."""
+        if future.cancelled() or future.exception() is None:
+            return None
+        exc = future.exception()
+        words = told(self.part, exc, joints)  # type: ignore[arg-type]
+        if words is None:
+            return None
+        once = self.part == "matrix" or not isinstance(exc, SymbolicNotAttempted)
+        if wanted and once and self._notify is not None:
+            self._notify(*words)
+        return None, words[1]
 
     def take(self, message: SymbolicResult) -> bool:
         """Keep ``message`` if it is the result still wanted; returns whether it was."""
@@ -95,13 +126,31 @@ class TabSymbols:
     Args:
         service: The shared symbolic service.
         dispatch: The session's way in.
+        notify: Shows the tab a notice (a computation stopped at a limit; once per tab, an arm too large
+            to be attempted: a Build table grown row by row past the rule is told once, its panel at
+            every row).
     """
 
-    def __init__(self, service: SymbolicService, dispatch: Callable[[Message], None]) -> None:
-        self.jacobian = Wanted("matrix", service.mathml, service.release, dispatch)
-        self.inverse = Wanted("inverse", service.inverse, service.release_inverse, dispatch)
-        self.steps = Wanted("derive", service.steps, service.release_steps, dispatch)
+    def __init__(
+        self, service: SymbolicService, dispatch: Callable[[Message], None], notify: Notify | None = None
+    ) -> None:
+        self._told: set[str] = set()
+        if notify is not None:
+            notify = self._once_not_attempted(notify)
+        self.jacobian = Wanted("matrix", service.mathml, service.release, dispatch, notify)
+        self.inverse = Wanted("inverse", service.inverse, service.release_inverse, dispatch, notify)
+        self.steps = Wanted("derive", service.steps, service.release_steps, dispatch, notify)
         self._changed: set[str] = set()
+
+    def _once_not_attempted(self, notify: Notify) -> Notify:
+        def told(title: str, body: str) -> None:
+            if title == TITLES["not attempted"]:
+                if title in self._told:
+                    return
+                self._told.add(title)
+            notify(title, body)
+
+        return told
 
     def take(self, message: SymbolicResult) -> bool:
         """A result arrived (in the session's loop): keep it if still wanted; returns whether it was."""
@@ -166,7 +215,9 @@ class TabSymbols:
         letters = state.options.course_letters and state.robot.dh is not None
         if self.steps.want(
             (state.robot, "whitney" if derive == "dh" else derive, letters) if derive else None,
-            "working out the step in symbols… (the numbers above are live)",
+            N_(
+                "working out the step in symbols… (the numbers above are live)"
+            ),  # the Derive tab translates it
             _steps_ready,
         ):
             self._changed.add("derive")

@@ -10,9 +10,11 @@ Wrapped:
 * :func:`message_class` — a protocol message class (``viser._messages``), for test clients.
 * :func:`run_javascript` and :func:`set_page_title` — viser's ``RunJavascriptMessage``, sent
   to one client through ``client._websock_connection``.
-* :func:`client_address` — the IP a tab connected from (the server's connection table), by which
-  wrong presenter tokens are counted; :func:`client_header` — a header of its websocket handshake
-  (its ``Accept-Language``: the tab's first language).
+* :func:`client_address` — the IP a tab connected from (the server's connection table), or behind a
+  reverse proxy declared with ``--trusted-proxy`` (:func:`trusted_proxies`), from its
+  ``X-Forwarded-For`` (:func:`forwarded_client`); the log of wrong presenter tokens names it;
+  :func:`client_header` — a header of its websocket handshake (its ``Accept-Language``: the tab's
+  first language).
 * :func:`handle_uuid`, :func:`is_removed`, :func:`scene_handles`, :func:`node_props` — a handle's
   internal state (``handle._impl``) and a scene's node table (``SceneApi._handle_from_node_name``).
 * :func:`install_message_limits` — what one websocket message and one tab may cost:
@@ -23,7 +25,9 @@ Wrapped:
 * :func:`install_input_checks` — every value a tab sends, checked where it enters (:mod:`.gate`):
   replaces ``GuiApi._handle_gui_updates`` and its upload handlers (a tab's own widget, ``client.gui``,
   no longer relays its value to its own connection: viser's ``sync_cb``); :func:`check_message` is called
-  by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on).
+  by the message consumer for every message (``GuiFormDirtyMessage`` is never passed on). An upload
+  with no part for ``RoomLimits.upload_stall_seconds`` is dropped, and when a tab leaves the memory it
+  held is given back to the system (glibc's ``malloc_trim``: :mod:`.uploads`).
 * :func:`allow_origins` and :func:`handshake_refusal` — the Host and Origin of every HTTP request and
   websocket handshake checked (:mod:`.handshake`, through the ``process_request`` viser passes to
   ``serve``, replaced by :func:`install_message_limits`).
@@ -48,8 +52,8 @@ Wrapped:
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of nine modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.handshake`, :mod:`.props`,
-:mod:`.mirror`, :mod:`.icons`, :mod:`.events`, :mod:`.inline`), so each stays short;
+A package of ten modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.uploads`, :mod:`.handshake`,
+:mod:`.props`, :mod:`.mirror`, :mod:`.icons`, :mod:`.events`, :mod:`.inline`), so each stays short;
  nothing outside this package touches viser's private API.
 """
 
@@ -59,6 +63,7 @@ from .core import (
     client_address,
     client_header,
     clip,
+    forwarded_client,
     handle_uuid,
     is_removed,
     message_class,
@@ -67,6 +72,7 @@ from .core import (
     run_javascript,
     scene_handles,
     set_page_title,
+    trusted_proxies,
 )
 from .events import LoopSafeEvent, install_loop_safe_events
 from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
@@ -122,6 +128,8 @@ __all__ = [
     "set_pose",
     "clip",
     "client_address",
+    "forwarded_client",
+    "trusted_proxies",
     "client_header",
     "quiet_banner",
 ]

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import contextlib
+import ipaddress
 import json
 import logging
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import Any, TypeVar
 
 import viser
@@ -23,6 +24,8 @@ __all__ = [
     "node_props",
     "clip",
     "client_address",
+    "trusted_proxies",
+    "forwarded_client",
     "quiet_banner",
 ]
 
@@ -152,10 +155,59 @@ def node_props(handle: Any) -> dict[str, Any]:
     return _private("node_props", "handle._impl.props / position / wxyz / visible", get)
 
 
-def client_address(server: viser.ViserServer, client_id: int) -> str:
+Network = ipaddress.IPv4Network | ipaddress.IPv6Network
+
+
+def trusted_proxies(texts: Iterable[str]) -> tuple[Network, ...]:
+    """The reverse proxies named by ``--trusted-proxy``: addresses (``127.0.0.1``) or networks
+    (``10.0.0.0/8``).
+
+    Raises:
+        ValueError: a text is neither, named in words.
+    """
+    networks = []
+    for text in texts:
+        try:
+            networks.append(ipaddress.ip_network(text.strip(), strict=False))
+        except ValueError:
+            raise ValueError(
+                f"expected an IP address or network such as 127.0.0.1 or 10.0.0.0/8, got {clip(text, 80)!r}"
+            ) from None
+    return tuple(networks)
+
+
+def _in(address: str, networks: Sequence[Network]) -> bool:
+    try:
+        ip = ipaddress.ip_address(address)
+    except ValueError:
+        return False
+    if isinstance(ip, ipaddress.IPv6Address) and ip.ipv4_mapped is not None:
+        ip = ip.ipv4_mapped  # a dual-stack socket's IPv4 peer, ::ffff:10.0.0.1
+    return any(ip in network for network in networks)
+
+
+def forwarded_client(peer: str, forwarded_for: Sequence[str], trusted: Sequence[Network]) -> str:
+    """The client's address: ``peer`` (who opened the connection) unless ``peer`` is a trusted proxy;
+    then the ``X-Forwarded-For`` hops (each proxy appends the address it was reached from) read from
+    the right, past every trusted proxy, to the first address no trusted proxy is. What a client wrote
+    into the header itself stands left of that and is never read; an untrusted peer's header is ignored.
+    """
+    if not _in(peer, trusted):
+        return peer
+    hops = [hop.strip() for field in forwarded_for for hop in field.split(",") if hop.strip()]
+    address = peer
+    for hop in reversed(hops):
+        address = clip(hop, 60)
+        if not _in(hop, trusted):
+            break
+    return address
+
+
+def client_address(server: viser.ViserServer, client_id: int, trusted: Sequence[Network] = ()) -> str:
     """The network address (IP) tab ``client_id`` connected from, or ``""`` once it has gone.
 
-    Through the server's connection table (``server._websock_server._live_connections``).
+    Through the server's connection table (``server._websock_server._live_connections``); behind a
+    ``trusted`` reverse proxy, from its ``X-Forwarded-For`` header (:func:`forwarded_client`).
     """
     connections = _private(
         "client_address",
@@ -164,7 +216,12 @@ def client_address(server: viser.ViserServer, client_id: int) -> str:
     )
     connection = connections.get(client_id)
     address = getattr(connection, "remote_address", None)
-    return str(address[0]) if isinstance(address, tuple) and address else ""
+    peer = str(address[0]) if isinstance(address, tuple) and address else ""
+    if not peer or not trusted:
+        return peer
+    headers = getattr(getattr(connection, "request", None), "headers", None)
+    hops = headers.get_all("X-Forwarded-For") if headers is not None else []
+    return forwarded_client(peer, hops, trusted)
 
 
 def client_header(server: viser.ViserServer, client_id: int, name: str) -> str:

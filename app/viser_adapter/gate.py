@@ -14,7 +14,8 @@ place, each message is checked before viser sees it:
   or an upload button), installed over ``GuiApi._handle_gui_updates`` by :func:`install_input_checks`;
 * uploads against the server's :class:`~app.services.ratelimit.RoomLimits`: only to an upload
   button, declared parts consistent with the declared size, bytes received never over it, in flight
-  at most so many per tab and so many bytes per server.
+  at most so many per tab and so many bytes per server, and dropped after so long without a part;
+  the memory of a tab that left, and of a dropped upload, is given back (:mod:`.uploads`).
 
 A refused message changes nothing; the tab is told in words (a notice naming the widget and what was
 wrong) and the refusal is logged in one bounded line and kept in ``RoomLimits.refusals``.
@@ -29,6 +30,7 @@ from typing import Any
 from ..services.ratelimit import RoomLimits
 from .core import ViserApiChanged, _private, clip
 from .inline import run_marked_inline
+from .uploads import give_back_memory, watch_upload
 
 __all__ = ["install_input_checks", "check_message", "check_gui_value", "room_limits", "MAX_TEXT"]
 
@@ -40,6 +42,11 @@ MAX_COORDINATE = 1e4
 """Largest coordinate of a camera, gizmo or pointer a tab may send [m] (a lab is a few metres)."""
 MAX_PIXELS = 16384
 """Largest canvas side a tab may report [px]."""
+UPLOAD_STALLED_TITLE = "Upload dropped"
+UPLOAD_STALLED = (
+    "The upload “{name}” stopped: no part of it arrived for {seconds} s, so it was dropped. "
+    "Send the file again."
+)
 _NEVER_PASSED = {
     "GuiFormDirtyMessage": "a form's dirty flag (viser would keep it for every later tab)",
     "ShareUrlRequest": "a share-link request (this server shares nothing)",
@@ -226,15 +233,21 @@ def _gui_api_class() -> Any:
 
 def refuse(api: Any, client_id: int, what: str, why: str) -> None:
     """Record and log a refused message and tell its tab (``api``: the viser GUI it was sent to)."""
-    room = _room
     text = f"{what}: {why}. Nothing was changed."
     log.warning("refused a message of client %s: %s", client_id, clip(text, 300))
+    tell(api, client_id, text)
+
+
+def tell(api: Any, client_id: int, text: str, title: str = "Refused") -> None:
+    """Record ``text`` (a refusal, or an upload dropped) with the refusals and show it to the tab in a
+    notice titled ``title``, unless the tab was shown enough of them for now."""
+    room = _room
     if room is None or not room.refuse(client_id, text):
         return  # this tab was told enough for now (its notices are rate-limited)
     client = api._resolve_client(client_id)
     if client is not None:
         try:
-            client.add_notification("Refused", text, color="red", auto_close_seconds=8.0)
+            client.add_notification(title, text, color="red", auto_close_seconds=8.0)
         except Exception:  # the tab has gone
             pass
 
@@ -284,6 +297,22 @@ def _transfer_start(self: Any, client_id: int, message: Any) -> None:
         refuse(self, client_id, f"The upload “{clip(message.filename, 60)}”", why)
         return
     _original["_handle_file_transfer_start"](self, client_id, message)
+    if room is not None and message.transfer_uuid in self._current_file_upload_states:
+        watch_upload(self, message.transfer_uuid, room.upload_stall_seconds, room.upload_idle, _drop_stalled)
+
+
+def _drop_stalled(self: Any, transfer: str) -> None:
+    """An upload had no part for ``RoomLimits.upload_stall_seconds``: its parts go, its tab is told."""
+    state = self._current_file_upload_states.pop(transfer, None)
+    room = _room
+    if room is not None:
+        room.end_upload(transfer)
+    if state is not None:
+        seconds = f"{room.upload_stall_seconds:g}" if room is not None else "?"
+        text = UPLOAD_STALLED.format(name=clip(state["filename"], 60), seconds=seconds)
+        log.warning("dropped an upload of client %s: %s", state["client_id"], text)
+        tell(self, state["client_id"], text, UPLOAD_STALLED_TITLE)
+        give_back_memory()
 
 
 def _transfer_part(self: Any, client_id: int, message: Any) -> None:
@@ -297,6 +326,7 @@ def _transfer_part(self: Any, client_id: int, message: Any) -> None:
         if room is not None:
             room.end_upload(message.transfer_uuid)
         refuse(self, client_id, f"The upload “{clip(state['filename'], 60)}”", why or "not this tab's")
+        give_back_memory()
         return
     _original["_handle_file_transfer_part"](self, client_id, message)
 
@@ -308,6 +338,9 @@ def _finish_upload(self: Any, client_id: int, transfer_uuid: str, source: str | 
 
 
 def _drop_uploads(self: Any, client_id: int) -> None:
+    """The tab left (viser's disconnect handler): its uploads end, and what it held goes back to the
+    system once freed (viser's page, the tab's widgets, its unfinished uploads' parts)."""
     if _room is not None:
         _room.end_tab(client_id)
     _original["_drop_uploads_from_client"](self, client_id)
+    give_back_memory()

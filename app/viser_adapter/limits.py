@@ -215,7 +215,9 @@ def welcome_tabs() -> None:
 
 def listen_on(sock: socket.socket | None) -> None:
     """Make the next viser server of this process accept on ``sock`` (a listening socket shared by
-    several worker processes) instead of binding its own host and port; ``None`` undoes it.
+    several worker processes, or a worker's own bound socket of a ``SO_REUSEPORT`` group, which the
+    server's ``listen`` puts in the group as it starts serving) instead of binding its own host and
+    port; ``None`` undoes it.
 
     Needs :func:`install_message_limits` first (its ``serve`` wrapper passes the socket on). Tabs that
     connect before :func:`welcome_tabs` are told to try again.
@@ -324,6 +326,11 @@ async def _guarded_consumer(
                     await websocket.close(1008, "too many messages")
     finally:
         drain.cancel()
+        # The closing exception's traceback holds this frame in a cycle that only the cyclic collector
+        # breaks: drop what the frame holds, the last frame and message read (an upload's part, 1 MiB
+        # with its frame) and the messages waiting, so that they are freed when the tab leaves.
+        limiter.clear()
+        raw = message = None
 
 
 async def _drain(limiter: TabLimiter, wake: asyncio.Event, handle: Callable, limits: MessageLimits) -> None:

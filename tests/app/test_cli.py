@@ -131,6 +131,8 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
                 "8123",
                 "--workers",
                 "1",
+                "--trusted-proxy",
+                "127.0.0.1",
             ]
         )
         == 0
@@ -148,6 +150,7 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "allow_origin": [],
             "xacro_args": None,
             "language": "",
+            "trusted_proxy": ["127.0.0.1"],
         }
     ]
 

@@ -254,7 +254,7 @@ def test_det_j_s_step_shows_its_singular_sets_typeset_under_it_in_the_joints_not
     from app.services.symbolic_requests import _steps_mathml
     from robots import load
 
-    steps = {key: (title, body) for _, key, title, body in _steps_mathml(load("planar2"), "whitney", 120.0)}
+    steps = {s[1]: (s[2], s[3]) for s in _steps_mathml(load("planar2"), "whitney", 120.0)}
     title, body = steps["detJ"]
     assert title.endswith("J is singular where a factor vanishes")
     assert "sin(" not in title and "pi" not in title

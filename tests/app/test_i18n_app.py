@@ -13,6 +13,7 @@ from wsclient import ViserWsClient
 
 from app.core.actions import GoTo, SetJoint
 from app.core.i18n import translations
+from app.views import fmt
 from app.views.panel import TAB_LABELS
 
 TOKEN = "lecture-27"
@@ -151,6 +152,11 @@ def test_a_follower_in_spanish_follows_a_presenter_in_portuguese_and_reads_spani
             assert status_words(presenter) == "configuração singular: punho"
             assert status_words(follower) == "configuración singular: muñeca"
             assert follower.language == "es"
+            # the 3-D words too: the follower draws its own scene from the presenter's state
+            labels = [lab for lab in follower.scene.overlays.lost_labels if lab.visible]
+            assert [lab.text for lab in labels] == ["muñeca:\neje de giro perdido"]  # longer: two lines
+            shown = [lab.text for lab in presenter.scene.overlays.lost_labels if lab.visible]
+            assert shown == ["punho:\neixo de giro perdido"]
             # the presenter's open tab reaches the follower by its key, shown in the follower's words
             report(presenter, kind="tab", tab="Movimento")
             wait_until(lambda: follower.page.tab == "Motion")
@@ -162,3 +168,95 @@ def test_tab_labels_of_every_language_map_back_to_the_english_key():
     for code in ("en", "pt", "es", "pl"):
         for label in TAB_LABELS:
             assert TAB_KEYS[translations(code).gettext(label)] == label
+
+
+def test_a_robots_configuration_description_is_in_the_tabs_language_else_english():
+    """The Puma's named configurations come with their description in the tab's language, from the robot
+    file's translations (robots/data/puma560.toml); a robot whose file has only English shows English."""
+    import robots
+
+    puma = robots.load("puma560")
+    wrist = next(c for c in puma.configurations if c.name == "wrist_singular")
+    with running_lab(robot="puma560") as (_lab, session, _ws):
+        session.dispatch(GoTo("wrist_singular"))
+        session.settle()
+        assert wrist.description.split(":")[0] in session.panel.status.content  # English first
+        report(session, address="?lang=pl&robot=puma560")
+        assert session.language == "pl"
+        status = session.panel.status.content
+        assert wrist.translations["pl"]["description"].split(":")[0] in status
+        assert "zgięciem nadgarstka q5 = 0" in status and "efektor traci" in status
+        assert wrist.description.split(":")[0] not in status
+        # the View tab's list of named configurations: every description in Polish
+        listing = session.panel.about.content
+        for c in puma.configurations:
+            assert fmt.escape(c.translations["pl"]["description"]) in listing, c.name
+            assert fmt.escape(c.description) not in listing, c.name
+        report(session, address="?lang=es&robot=puma560")
+        assert "la flexión de muñeca q5 = 0" in session.panel.status.content
+        assert "La pose nominal de Corke" in session.panel.about.content
+        # the Motion tab's note on the preset: the robot file's Spanish
+        preset = robots.motions("puma560")[0]
+        assert fmt.escape(preset.translations["es"]["description"]) in session.panel.motion.about.content
+
+
+def test_a_robot_file_without_translations_shows_english_in_every_language():
+    import dataclasses
+
+    import robots
+    from app.core.i18n import translations as tr_of
+    from app.core.robot_texts import configuration_description, robot_description, robot_title
+
+    puma = robots.load("puma560")
+    bare = dataclasses.replace(
+        puma,
+        translations={},
+        configurations=tuple(dataclasses.replace(c, translations={}) for c in puma.configurations),
+    )
+    for code in ("pt", "es", "pl"):
+        tr = tr_of(code)
+        assert robot_title(bare, tr) == puma.title and robot_description(bare, tr) == puma.description
+        assert [configuration_description(c, tr) for c in bare.configurations] == [
+            c.description for c in puma.configurations
+        ]
+        assert robot_description(puma, tr) == puma.translations[code]["description"] != puma.description
+
+
+def test_the_build_tab_takes_a_decimal_comma_in_portuguese_and_refuses_a_thousands_point_in_words():
+    with running_lab() as (_lab, session, _ws):
+        report(session, address="?lang=pt")
+        editor = session.panel.editor
+        editor.start.value = "tabela vazia (uma junta)"
+        session.settle()
+        assert editor.kind.value == "rotacional"
+        editor.a.value = "0,3"  # in Portuguese simply 0.3 (English refuses it: "use a point")
+        session.settle()
+        assert editor.error == "" and session.state.robot.dh[0].a == pytest.approx(0.3)
+        assert "0,3" in editor.summary.content and "1 junta, DH padrão" in editor.summary.content
+        good = session.state.robot
+        editor.a.value = "1.234"  # one thousand two hundred and thirty-four, or 1.234? refused
+        session.settle()
+        assert session.state.robot is good
+        assert editor.error == (
+            "Linha 1, a [m]: “1.234”: escreva as casas decimais depois da vírgula (1,234), sem separar os milhares"
+        )
+        editor.a.value = "0,5"
+        editor.kind.value = "prismática"
+        session.settle()
+        assert session.state.robot.dh[0].joint == "prismatic" and session.state.robot.dh[0].a == 0.5
+
+
+def test_record_lang_pl_writes_the_demos_words_in_polish(tmp_path):
+    from test_record import RECORDING, _last, read_viser
+
+    from app.cli.main import main
+
+    out = tmp_path / "demo"
+    assert main(["record", "ur5", "-o", str(out), "--seconds", "1", "--fps", "10", "--lang", "pl"]) == 0
+    f = read_viser((out / RECORDING).read_bytes())
+    assert _last(f["messages"], "/demo/readout", "text").startswith("konfiguracja osobliwa")
+    title = _last(f["messages"], "/demo/title", "text")
+    assert "— home →" in title and "osobliwość" in title  # "UR5 — home → … (osobliwość: …)"
+    lost = [_last(f["messages"], f"/demo/lab/jacobian/lost_label_{i}", "text") for i in range(3)]
+    assert any(t and ("utracon" in t) for t in lost), lost
+    assert main(["record", "ur5", "-o", str(out), "--lang", "fr"]) == 2

@@ -171,9 +171,9 @@ def test_the_same_walk_finds_english_in_an_english_tab():
 @pytest.mark.parametrize(
     ("code", "refusal"),
     [
-        ("pl", "Wiersz 1, dolna granica: dolna granica 90 jest powyżej górnej granicy 10"),
-        ("pt", "Linha 1, limite inferior: o limite inferior 90 está acima do limite superior 10"),
-        ("es", "Fila 1, límite inferior: el límite inferior 90 está por encima del límite superior 10"),
+        ("pl", "Wiersz 1, dolne ograniczenie: dolne ograniczenie 90 jest większe od górnego 10"),
+        ("pt", "Linha 1, limite inferior: o limite inferior 90 é maior que o superior 10"),
+        ("es", "Fila 1, límite inferior: el límite inferior 90 es mayor que el superior 10"),
         ("en", "Row 1, lower limit: the lower limit 90 is above the upper limit 10"),
     ],
 )
@@ -207,7 +207,7 @@ def test_a_decimal_point_is_refused_in_polish_with_the_reason_in_polish():
     ("code", "title", "body"),
     [
         ("pl", "Nic nie nagrano", "Porusz czymś"),
-        ("pt", "Nada gravado", "Mova algo"),
+        ("pt", "Nada foi gravado", "Mova algo"),
         ("es", "No se grabó nada", "Mové algo"),
     ],
 )
@@ -281,3 +281,42 @@ def test_the_number_boxes_guard_speaks_the_tabs_language():
     words = re.search(r"const SAID = (\{.*?\});\n", polish).group(1)
     assert json.loads(words)["dropped"] == "Wykładnik porzucony."
     assert "Use a point for decimals: 0.3, not 0,3." in number_guard_js(translations("en"))
+
+
+@pytest.mark.parametrize(
+    ("code", "wrong", "spent"),
+    [
+        ("pl", "to nie jest kod prowadzącego", "ta karta wpisała 5 błędnych kodów"),
+        ("pt", "esse não é o código do apresentador", "esta aba digitou 5 códigos errados"),
+        ("es", "ese no es el código del presentador", "esta pestaña escribió 5 códigos equivocados"),
+    ],
+)
+def test_a_refused_presenter_token_is_said_in_the_tabs_language(code, wrong, spent):
+    """The classroom refuses a token in English (one classroom serves every language); the tab says
+    why in its own words, the spent connection's count with the language's plural."""
+    from types import SimpleNamespace
+
+    from app.core.commands import ClaimPresenter
+    from app.services.classroom import TOKEN_TRIES, Classroom
+    from app.tab.following import Following
+
+    said: list[tuple[str, str]] = []
+    notices = SimpleNamespace(
+        tr=translations(code), notify=lambda title, body, seconds=8.0: said.append((title, body))
+    )
+    room = Classroom("a-strong-token-for-the-test-1234")
+    member = SimpleNamespace(
+        latest=(None, None), scene_messages=(), role=None, subscribe=lambda fn: lambda: None
+    )
+    member.mirror = member.mirror_camera = member.mirror_tab = lambda *a, **k: None
+    member.role_changed = lambda role: None
+    room.join(1, member)
+    following = Following(1, room, lambda m: None, notices, lambda: None, None, None, None, None)
+    for i in range(TOKEN_TRIES + 1):
+        following._typed_token = f"guess-{i}"
+        following.command(ClaimPresenter(f"guess-{i}", settled=True))
+    bodies = [body for _, body in said]
+    assert len(bodies) == TOKEN_TRIES + 1
+    assert bodies[0] == wrong and bodies[-1].startswith(spent), bodies
+    assert not [b for b in bodies if "token" in b or "reload" in b], bodies
+    assert said[0][0] == translations(code).gettext("Not the presenter") != "Not the presenter"

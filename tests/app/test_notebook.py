@@ -113,6 +113,22 @@ def test_show_serves_from_the_kernel_and_stop_closes_the_port(monkeypatch):
     poll(lambda: _refused(port))
 
 
+def test_show_lang_speaks_that_language_in_the_cell(monkeypatch):
+    from wsclient import ViserWsClient
+
+    monkeypatch.setattr("app.server.SymbolicService", FakeSymbolicService)
+    nb = show("planar2", lang="es")
+    try:
+        with ViserWsClient(f"ws://127.0.0.1:{nb.lab.port}", headers={"Accept-Language": "pl"}):
+            session = nb.lab.session()
+            assert session.language == "es"  # the cell's language, over the browser's
+            assert "configuración regular" in session.panel.status.content
+    finally:
+        nb.stop()
+    with pytest.raises(ValueError, match="no language"):
+        show("planar2", lang="fr")
+
+
 def _refused(port: int) -> bool:
     try:
         socket.create_connection(("127.0.0.1", port), timeout=1).close()
@@ -134,3 +150,27 @@ def test_a_recorded_demo_is_embedded_whole_in_the_cell():
     assert f"<title>{html.escape(rec.title)}</title>" in page
     assert page.index("__VISER_EMBED_DATA__") < page.index("</head>")
     assert "11 frames, 1.0 s" in repr(view)
+
+
+def test_show_with_lang_speaks_that_language_in_the_cell(monkeypatch):
+    """show(..., lang="es"): the cell's address says ?lang=es and a tab that connects speaks the Argentinian
+    course's Spanish (the Puma's configuration text from its robot file, the status in the panel's words)."""
+    from app.core.actions import GoTo
+
+    monkeypatch.setattr("app.server.SymbolicService", FakeSymbolicService)
+    with pytest.raises(ValueError, match="no language 'fr'"):
+        show("planar2", lang="fr")
+    nb = show("puma560", lang="es")
+    try:
+        port = nb.lab.port
+        assert f'src="http://127.0.0.1:{port}/?lang=es"' in nb._repr_html_()
+        with ViserWsClient(f"ws://127.0.0.1:{port}"):
+            session = nb.lab.session()
+            assert session.language == "es"
+            session.dispatch(GoTo("wrist_singular"))
+            session.settle()
+            status = session.panel.status.content
+            assert "configuración singular" in status and "la flexión de muñeca q5 = 0" in status
+    finally:
+        nb.stop()
+    assert show.__kwdefaults__["lang"] == ""  # default: the notebook browser's own language

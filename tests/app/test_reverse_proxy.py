@@ -1,8 +1,10 @@
 """The nginx configuration of ``docs/classroom.md``, run as written: nginx (from Debian's
 ``nginx-light``, installed by ``tests/install_test_deps.py``) terminates TLS in front of a running lab
-started with ``allow_origin`` naming the public address; the page and a websocket (its GUI arrives)
-pass through it. Only the listening port, the certificate and the upstream's port are changed for the
-test."""
+started with the options of the page's ``jacobian-lab serve`` line for a room behind the proxy
+(``--allow-origin`` naming the public address, ``--trusted-proxy`` naming the proxy); the page and a
+websocket (its GUI arrives) pass through it, and the lab knows the tab by the address nginx was reached
+from, not by what the tab wrote in its own ``X-Forwarded-For``. Only the listening port, the
+certificate and the upstream's port are changed for the test."""
 
 from __future__ import annotations
 
@@ -23,6 +25,7 @@ from app_helpers import running_lab
 from fakes import poll
 from wsclient import decode_frame
 
+from app.cli.main import _build_parser
 from app.viser_adapter import message_class
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,6 +38,18 @@ def _documented_config() -> str:
     blocks = re.findall(r"```nginx\n(.*?)```", text, flags=re.S)
     assert len(blocks) == 1, "docs/classroom.md has one nginx configuration"
     return blocks[0]
+
+
+def _documented_room() -> dict:
+    """The options of the page's ``jacobian-lab serve`` line for a room behind the proxy, as the
+    command line reads them."""
+    text = (ROOT / "docs" / "classroom.md").read_text(encoding="utf-8")
+    lines = re.findall(
+        r"^jacobian-lab (serve .*--allow-origin https://lab\.example\.org.*?)(?:#.*)?$", text, re.M
+    )
+    assert len(lines) == 1, lines
+    args = _build_parser().parse_args(lines[0].split())
+    return {"allow_origin": args.allow_origin, "trusted_proxy": args.trusted_proxy}
 
 
 def _free_port() -> int:
@@ -64,7 +79,9 @@ def test_the_documented_nginx_configuration_serves_the_page_and_its_websocket_ov
         check=True,
         capture_output=True,
     )
-    with running_lab(robot="planar2", allow_origin=[ORIGIN]) as (lab, _session, _ws):
+    room = _documented_room()
+    assert room == {"allow_origin": [ORIGIN], "trusted_proxy": ["127.0.0.1"]}
+    with running_lab(robot="planar2", presenter_token="Xq7-vR2pLw9sKd4TzY", **room) as (lab, _session, _ws):
         port = _free_port()
         config = _documented_config()
         for documented, ours in (
@@ -107,14 +124,18 @@ def test_the_documented_nginx_configuration_serves_the_page_and_its_websocket_ov
                     return ""
 
             assert "<html" in poll(page, what="the page through nginx").lower()
-            assert asyncio.run(_websocket(port, context)) == "GuiSliderMessage"
+            # A tab on 127.0.0.2 that wrote its own X-Forwarded-For: nginx appends the address it was
+            # reached from, and the lab (trusting only nginx, 127.0.0.1) reads that one.
+            tab_address = lambda: lab.classroom.address(max(lab.sessions))  # noqa: E731
+            assert asyncio.run(_websocket(port, context, tab_address)) == "127.0.0.2"
         finally:
             nginx.terminate()
             nginx.wait(10)
 
 
-async def _websocket(port: int, context: ssl.SSLContext) -> str:
-    """A tab's websocket through the proxy, as a page of the public address opens it: its first slider."""
+async def _websocket(port: int, context: ssl.SSLContext, address) -> str:
+    """A tab's websocket through the proxy, from 127.0.0.2 with a forged ``X-Forwarded-For``, as a page
+    of the public address opens it: once its first slider arrives, ``address()`` (what the lab reads)."""
     camera = message_class("ViewerCameraMessage")(
         (1.0, 0.0, 0.0, 0.0), (2.0, -2.0, 1.5), 1.0, 0.01, 100.0, 600, 800, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)
     )
@@ -125,9 +146,11 @@ async def _websocket(port: int, context: ssl.SSLContext) -> str:
         origin=ORIGIN,
         max_size=None,
         compression=None,
+        additional_headers={"X-Forwarded-For": "6.6.6.6"},
+        local_addr=("127.0.0.2", 0),
     ) as ws:
         await ws.send(msgspec.msgpack.encode(camera.as_serializable_dict()))
         while True:
             for m in decode_frame(await asyncio.wait_for(ws.recv(), 60)):
                 if m["type"] == "GuiSliderMessage":
-                    return "GuiSliderMessage"
+                    return await asyncio.to_thread(address)

@@ -102,3 +102,38 @@ def test_a_result_ready_at_once_is_drawn_without_a_message():
     assert sent == [] and panel.matrix.shown == [
         ("<math>cached</math>", "J(q) in base axes, from kinematics.symbolic.")
     ]
+
+
+def test_a_computation_stopped_at_a_limit_is_told_in_the_panel_and_in_a_notice():
+    from app.services.symbolic_requests import SymbolicStopped
+
+    service, sent, panel, notices = FakeService(), [], FakePanel(), []
+    symbols = TabSymbols(service, sent.append, lambda title, body: notices.append((title, body)))
+    state = _state()
+    symbols.update(state, None)
+    service.asked[(state.robot, "base", False)].set_exception(SymbolicStopped("memory", 75.0, 110.0))
+    sentence = (
+        "The symbolic J of this 2-joint arm needed more than 110 MB of the server's memory and was stopped; "
+        "the numeric J above is live."
+    )
+    assert notices == [("Symbolic form stopped", sentence)]
+    assert symbols.take(sent[0])
+    symbols.draw(panel, everything=False)
+    assert panel.matrix.shown[-1] == (None, sentence)
+
+
+def test_an_arm_too_large_is_told_at_once_and_the_notice_given_once_per_tab():
+    """A Build table grown row by row past the rule: every row's panel says it, one notice says it."""
+    from app.services.symbolic_requests import MAX_SYMBOLIC_JOINTS, SymbolicNotAttempted
+
+    service, sent, panel, notices = FakeService(), [], FakePanel(), []
+    symbols = TabSymbols(service, sent.append, lambda title, body: notices.append((title, body)))
+    for joints in (8, 9):
+        state = _state("tool" if joints == 9 else "base")  # a new key each time, as a new robot makes
+        service.asked[(state.robot, state.options.jacobian_frame, False)] = failed = Future()
+        failed.set_exception(SymbolicNotAttempted(joints, MAX_SYMBOLIC_JOINTS))
+        symbols.update(state, None)
+        symbols.draw(panel, everything=True)
+        assert panel.matrix.shown[-1][1].startswith("The symbolic J of this 2-joint arm is not worked out")
+    assert sent == []  # said before anything started: no message from a worker
+    assert [title for title, _ in notices] == ["Symbolic form not attempted"]

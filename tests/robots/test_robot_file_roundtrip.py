@@ -4,6 +4,7 @@ random tables; hostile names are escaped so they come back unchanged and cannot 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import sys
 
@@ -30,10 +31,12 @@ def assert_same_file(a: files.RobotFile, b: files.RobotFile) -> None:
     assert [(j.name, j.kind, j.qlim) for j in ra.joints] == [(j.name, j.kind, j.qlim) for j in rb.joints]
     assert np.array_equal(ra.base, rb.base) and np.array_equal(ra.tool, rb.tool)
     assert dict(ra.param_names) == dict(rb.param_names)
+    assert _texts(ra.translations) == _texts(rb.translations)
     assert len(ra.configurations) == len(rb.configurations)
     for ca, cb in zip(ra.configurations, rb.configurations, strict=True):
         assert (ca.name, ca.description, ca.singular) == (cb.name, cb.description, cb.singular)
         assert np.array_equal(ca.q, cb.q), ca.name
+        assert _texts(ca.translations) == _texts(cb.translations), ca.name
     assert len(a.motions) == len(b.motions)
     for ma, mb in zip(a.motions, b.motions, strict=True):
         assert (ma.name, ma.description, ma.frame, ma.speed, ma.start) == (
@@ -46,7 +49,13 @@ def assert_same_file(a: files.RobotFile, b: files.RobotFile) -> None:
         assert np.array_equal(ma.q, mb.q) and np.array_equal(ma.twist, mb.twist)
         assert (ma.rates is None) == (mb.rates is None)
         assert ma.rates is None or np.array_equal(ma.rates, mb.rates)
+        assert _texts(ma.translations) == _texts(mb.translations), ma.name
     assert ra.fingerprint() == rb.fingerprint()
+
+
+def _texts(translations):
+    """Translations as plain dicts (language → {key: text}), to compare."""
+    return {code: dict(texts) for code, texts in translations.items()}
 
 
 @pytest.mark.parametrize("name", robots.names())
@@ -62,6 +71,15 @@ def test_every_library_robot_survives_read_write_read(name):
     assert doc["planar"] == source.get("planar", False)
     assert doc["task"] == source.get("task", "auto")
     assert doc.get("symbols", {}) == source.get("symbols", {})
+    # Translated texts: every language and key the file gives comes back (one paragraph each).
+    folded = {
+        c: {k: " ".join(v.split()) for k, v in t.items()} for c, t in source.get("translations", {}).items()
+    }
+    assert doc.get("translations", {}) == folded
+    for out, given in zip(doc.get("configurations", []), source.get("configurations", []), strict=True):
+        assert out.get("translations", {}) == given.get("translations", {}), given["name"]
+    for out, given in zip(doc.get("motions", []), source.get("motions", []), strict=True):
+        assert out.get("translations", {}) == given.get("translations", {}), given["name"]
     assert [m["name"] for m in doc.get("motions", [])] == [m["name"] for m in source.get("motions", [])]
     assert [m["start"] for m in doc.get("motions", [])] == [m["start"] for m in source.get("motions", [])]
     # Degrees are written as the shortest decimals naming the same radians as the file's own.
@@ -197,3 +215,81 @@ def test_what_cannot_be_written_is_refused_with_a_reason():
         robots.dumps(chain, [stray])
     found = files.MotionPreset("found", "", chain.configurations[0].q.copy(), np.zeros(6), "base")
     assert tomllib.loads(robots.dumps(chain, [found]))["motions"][0]["start"] == chain.configurations[0].name
+
+
+def test_translated_texts_come_back_and_hostile_ones_stay_texts():
+    """Translations (the title and description per language, a configuration's and a motion's
+    description) survive read → write → read, escaped like every other text: a translation holding
+    quotes, a line break and a table header stays one string of its language."""
+    evil = 'Człon "2"\n[translations.pt]\ntitle = "x"\n#'
+    rows = [{"joint": "revolute", "a": 1.0, "alpha": 0.0, "d": 0.0, "theta": 0.0}] * 2
+    conf = NamedConfiguration("home", np.zeros(2), "Home.", translations={"pl": {"description": evil}})
+    robot = Robot.from_dh(
+        rows,
+        name="tr",
+        title="Two links",
+        configurations=[conf],
+        translations={"pl": {"title": evil}, "es": {"description": "Dos eslabones."}},
+    )
+    motion = files.MotionPreset(
+        "m", "Moves.", np.zeros(2), np.zeros(6), "base", translations={"pt": {"description": "Move."}}
+    )
+    text = robots.dumps(robot, [motion])
+    doc = tomllib.loads(text)
+    assert set(doc["translations"]) == {"pl", "es"}  # no "pt" table smuggled in by the evil text
+    back = robots.loads(text, "tr.toml")
+    folded = " ".join(evil.split())
+    assert _texts(back.robot.translations) == {
+        "pl": {"title": folded},
+        "es": {"description": "Dos eslabones."},
+    }
+    assert _texts(back.robot.configurations[0].translations) == {"pl": {"description": folded}}
+    assert _texts(back.motions[0].translations) == {"pt": {"description": "Move."}}
+    assert robots.dumps(back.robot, back.motions) == robots.dumps(
+        robots.loads(robots.dumps(back.robot, back.motions), "tr.toml").robot, back.motions
+    )
+
+
+def test_a_file_with_english_only_reads_with_no_translations():
+    chain = robots.load("planar2")
+    plain = Robot.from_dh(
+        [{"joint": r.joint, "a": r.a, "alpha": r.alpha, "d": r.d, "theta": r.theta} for r in chain.dh],
+        name="plain",
+        title="Plain",
+    )
+    text = robots.dumps(plain)
+    assert "translations" not in text
+    assert dict(robots.loads(text, "plain.toml").robot.translations) == {}
+
+
+def _english_only(name: str) -> Robot:
+    """Library robot ``name`` with its translations dropped (a file as a user might write it)."""
+    robot = robots.load(name)
+    confs = tuple(dataclasses.replace(c, translations={}) for c in robot.configurations)
+    return dataclasses.replace(robot, translations={}, configurations=confs)
+
+
+@pytest.mark.parametrize(
+    ("snippet", "message"),
+    [
+        (
+            '[translations.fr]\ntitle = "Bras"\n',
+            "translations' \\(a language\\): expected one of pt, es, pl; got 'fr'",
+        ),
+        ('[translations.pl]\nsource = "x"\n', "translations.pl: unknown key.*'source'"),
+        ("[translations.pl]\ntitle = 3\n", "translations.pl, key 'title': expected a str"),
+        ("[translations]\npl = 'Robot'\n", "translations.pl: expected a table"),
+    ],
+)
+def test_a_wrong_translation_is_refused_in_words(snippet, message):
+    text = robots.dumps(_english_only("scara"), name="p")
+    head, _, rest = text.partition("[[joints]]")
+    with pytest.raises(RobotDefinitionError, match=message):
+        robots.loads(head + snippet + "\n[[joints]]" + rest, "p.toml")
+
+
+def test_a_wrong_configuration_translation_is_refused_in_words():
+    text = robots.dumps(_english_only("scara"), name="p")
+    bad = text.replace('singular = ""', 'singular = ""\ntranslations.pl.name = "dom"', 1)
+    with pytest.raises(RobotDefinitionError, match="configurations entry 1, translations.pl: unknown key"):
+        robots.loads(bad, "p.toml")

@@ -16,11 +16,12 @@ import numpy as np
 from kinematics import Robot
 from kinematics.steps import StepMethod
 
+from ...core.i18n import Translator
 from ...core.snapshot import Snapshot
 from ...core.snapshot.derive import Derivation
 from .. import fmt
 
-__all__ = ["MethodView", "vec", "row", "check", "matrix4_html", "Drawn", "AXIS_RGB", "LEVER_RGB"]
+__all__ = ["MethodView", "vec", "row", "check", "note", "matrix4_html", "Drawn", "AXIS_RGB", "LEVER_RGB"]
 
 Drawn = tuple[list[Any], list[Any], list[Any], list[Any]]
 """(thick arrows, thin arrows, lines, labels) of one step."""
@@ -34,14 +35,16 @@ class MethodView:
         steps: Its numbers, label, title and intro (:data:`kinematics.steps.METHODS`), shared with the
             handout; its symbolic steps are :data:`kinematics.symbolic.steps.methods.METHOD_STEPS` under
             the same key.
-        html: ``html(robot, derivation, snapshot)`` → one step in the Derive tab, with its check against J.
-        draw: ``draw(robot, derivation, snapshot, unit, lin)`` → :data:`Drawn` for the 3-D view (``unit``:
-            length of a unit direction [m]; ``lin``: seconds a velocity is drawn for, both with the scale).
+        html: ``html(robot, derivation, snapshot, tr)`` → one step in the Derive tab, with its check against
+            J, in the tab's language ``tr`` (its words from the catalogs, escaped; its numbers' decimal mark).
+        draw: ``draw(robot, derivation, snapshot, unit, lin, tr)`` → :data:`Drawn` for the 3-D view
+            (``unit``: length of a unit direction [m]; ``lin``: seconds a velocity is drawn for, both with
+            the scale; ``tr``: the language of its labels, plain text).
     """
 
     steps: StepMethod
-    html: Callable[[Robot, Derivation, Snapshot], str]
-    draw: Callable[[Robot, Derivation, Snapshot, float, float], Drawn]
+    html: Callable[[Robot, Derivation, Snapshot, Translator], str]
+    draw: Callable[[Robot, Derivation, Snapshot, float, float, Translator], Drawn]
 
     @property
     def key(self) -> str:
@@ -83,30 +86,40 @@ LEVER_RGB = (60, 64, 72)
 """The lever from a joint axis to the tool point (pₙ − pᵢ₋₁): dark, to read against the floor grid."""
 
 
-def vec(values: np.ndarray, unit: str = "") -> str:
-    """A vector as "(x, y, z) unit", three decimals, round-off zeros cleaned."""
+def vec(values: np.ndarray, unit: str = "", tr: Translator | None = None) -> str:
+    """A vector as "(x, y, z) unit", three decimals, round-off zeros cleaned, in ``tr``'s numbers:
+    "(0,125; −0,3; 1)" where the decimal mark is a comma (a semicolon then parts the components, as
+    the courses 000, 002 and 004 write them)."""
+    sep = "; " if tr is not None and tr.decimal_symbol == "," else ", "
     return (
         "("
-        + ", ".join(fmt.fixed(x, 3) for x in fmt.cleaned(values, 1e-12))
+        + sep.join(fmt.fixed(x, 3, tr) for x in fmt.cleaned(values, 1e-12))
         + ")"
         + (f" {unit}" if unit else "")
     )
 
 
 def row(name: str, value: str, cls: str = "") -> str:
-    """One named row of a step's table of vectors."""
+    """One named row of a step's table of vectors (``name`` and ``value``: HTML, escaped already)."""
     return f'<tr{cls}><th class="rowname">{name}</th><td>{value}</td></tr>'
 
 
 def check(ok: bool, what: str) -> str:
-    """The line that says whether the step agrees with J."""
-    return f'<div class="jl-note">{"✓" if ok else "✗"} {what}</div>'
+    """The line that says whether the step agrees with J (``what``: plain text, escaped here)."""
+    return f'<div class="jl-note">{"✓" if ok else "✗"} {fmt.escape(what)}</div>'
 
 
-def matrix4_html(T: np.ndarray, title: str) -> str:
-    """A 4×4 transform as a small bracketed table under ``title``."""
+def note(text: str) -> str:
+    """A note under a step (``text``: plain text, a translated sentence: escaped here)."""
+    return f'<div class="jl-note">{fmt.escape(text)}</div>'
+
+
+def matrix4_html(T: np.ndarray, title: str, tr: Translator | None = None) -> str:
+    """A 4×4 transform as a small bracketed table under ``title`` (plain text, escaped here), its
+    numbers in ``tr``'s decimal mark."""
     rows = "".join(
-        "<tr>" + "".join(f"<td>{fmt.fixed(x, 3)}</td>" for x in fmt.cleaned(r, 1e-12)) + "</tr>" for r in T
+        "<tr>" + "".join(f"<td>{fmt.fixed(x, 3, tr)}</td>" for x in fmt.cleaned(r, 1e-12)) + "</tr>"
+        for r in T
     )
     table = f'<table class="jl-matrix jl-br">{rows}</table>'
-    return f'<div class="jl-t4"><div class="jl-t4-title">{title}</div>{table}</div>'
+    return f'<div class="jl-t4"><div class="jl-t4-title">{fmt.escape(title)}</div>{table}</div>'

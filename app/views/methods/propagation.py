@@ -9,21 +9,23 @@ import numpy as np
 from kinematics import Robot
 from kinematics.steps import METHODS
 
+from ...core.i18n import Translator
 from ...core.snapshot import Snapshot
 from ...core.snapshot.derive import Derivation, axis_names, sub
 from .. import fmt
 from ..palette import TWIST_ANGULAR_RGB, TWIST_RGB
-from .common import Drawn, MethodView, check, row, vec
+from .common import Drawn, MethodView, check, note, row, vec
 
 
-def html(robot: Robot, d: Derivation, snap: Snapshot) -> str:
+def html(robot: Robot, d: Derivation, snap: Snapshot, tr: Translator) -> str:
+    _ = tr.gettext
     j, i = d.joint, d.joint + 1
     qd = d.inputs
     link = d.numbers[d.axes[-1]]
     prev = d.numbers[d.axes[0] - 1] if d.axes[0] > 0 else None
     revolute = robot.joints[j].kind == "revolute"
     rate = f"q̇{sub(i)}"
-    z, _ = axis_names(robot, j)
+    z = axis_names(robot, j)[0]
     w, w0, v, v0, p, p0 = (
         f"{x}{sub(n)}" for x, n in (("ω", i), ("ω", i - 1), ("v", i), ("v", i - 1), ("p", i), ("p", i - 1))
     )
@@ -33,31 +35,39 @@ def html(robot: Robot, d: Derivation, snap: Snapshot) -> str:
     else:  # frame i sits on joint i's axis: the joint turns what comes after it
         move = f"{v} = {v0} + {w0} × ({p} − {p0})" + ("" if revolute else f" + {rate} {z}")
     zero = np.zeros(3)
+    speed = fmt.quantity(math.degrees(qd[j]), "°/s", tr=tr) if revolute else fmt.quantity(qd[j], "m/s", tr=tr)
     rows = [
-        row(f"ω{sub(i - 1)}", vec(prev.omega if prev else zero, "rad/s")),
-        row(f"v{sub(i - 1)}", vec(prev.v if prev else zero, "m/s")),
-        row(rate, fmt.quantity(math.degrees(qd[j]), "°/s") if revolute else fmt.quantity(qd[j], "m/s")),
-        row(f"ω{sub(i)}", vec(link.omega, "rad/s"), ' class="res"'),
-        row(f"v{sub(i)}", vec(link.v, "m/s"), ' class="res"'),
-        row(f"in frame {i}: ⁱωᵢ", vec(link.omega_own, "rad/s")),
+        row(f"ω{sub(i - 1)}", vec(prev.omega if prev else zero, "rad/s", tr)),
+        row(f"v{sub(i - 1)}", vec(prev.v if prev else zero, "m/s", tr)),
+        row(rate, speed),
+        row(f"ω{sub(i)}", vec(link.omega, "rad/s", tr), ' class="res"'),
+        row(f"v{sub(i)}", vec(link.v, "m/s", tr), ' class="res"'),
+        row(fmt.escape(_("in frame {i}: {w}").format(i=i, w="ⁱωᵢ")), vec(link.omega_own, "rad/s", tr)),
     ]
-    out = f'<div class="jl-formula">{turn};<br>{move}</div><table class="jl-vec">{"".join(rows)}</table>'
-    out += '<div class="jl-note">Base axes (the last row in the link\'s own axes, as Craig writes it). '
-    out += "Drawn: ω (umber) and v (black) of every link frame up to this one.</div>"
+    formula = f"{fmt.escape(turn)};<br>{fmt.escape(move)}"
+    out = f'<div class="jl-formula">{formula}</div><table class="jl-vec">{"".join(rows)}</table>'
+    out += note(
+        _(
+            "Base axes (the last row in the link's own axes, as Craig writes it). Drawn: ω (umber) and v "
+            "(black) of every link frame up to this one."
+        )
+    )
     if j == robot.dof - 1:
         tool = d.numbers[-1]
         twist = np.concatenate([tool.v, tool.omega])
         ok = np.allclose(twist, snap.J_base @ qd, atol=1e-9 * max(1.0, float(np.abs(twist).max())))
-        out += check(bool(ok), "at the tool, (v, ω) equals J q̇")
+        out += check(bool(ok), _("at the tool, {twist} equals {Jq}").format(twist="(v, ω)", Jq="J q̇"))
     if d.assumed:
-        out += (
-            '<div class="jl-note">The joint rates in “v = J q̇” are all zero: shown for q̇ᵢ = 1 '
-            "(rad/s or m/s) for every joint. Set rates there to use yours.</div>"
+        out += note(
+            _(
+                "The joint rates in “{formula}” are all zero: shown for {rates} (rad/s or m/s) for every "
+                "joint. Set rates there to use yours."
+            ).format(formula="v = J q̇", rates="q̇ᵢ = 1")
         )
     return out
 
 
-def draw(robot: Robot, d: Derivation, snap: Snapshot, unit: float, lin: float) -> Drawn:
+def draw(robot: Robot, d: Derivation, snap: Snapshot, unit: float, lin: float, tr: Translator) -> Drawn:
     """Every link's vₖ and ωₖ up to frame i, each readable: the longest of each kind drawn 0.35 × the
     arm's size and none shorter than 0.08 × (a 0.5 m/s slide beside 26 m/s on the TRR's 24 m arm stays
     visible); a label at every vₖ's tip and at ωᵢ's."""

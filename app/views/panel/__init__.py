@@ -40,12 +40,12 @@ from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
 from .. import fmt
-from .classroom import ClassroomPanel, token_js
+from .classroom import ClassroomPanel, classroom_words_js, token_js
 from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
-from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH, more_css
+from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
 from .live import live_html
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .maps import MapsPanel, slider_ids
@@ -92,9 +92,11 @@ class PanelView:
         gui.set_panel_label("Jacobian Lab")
         gui.main_panel.dock_right()
         gui.main_panel.set_width(PANEL_WIDTH)
-        gui.add_html(BASE_CSS + LAYOUT_CSS + more_css(tr) + f"<style>{status_css()}</style>", order=0)
+        more = _("▾ more below: scroll").replace("\\", "\\\\").replace('"', '\\"').replace("<", "\\3C ")
+        more_css = f'.jl-more::after {{ content: "{more}"; }}'  # the band's words, in the tab's language
+        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}{more_css}</style>", order=0)
         run_javascript(client, page_js())
-        run_javascript(client, LAYOUT_JS)
+        run_javascript(client, classroom_words_js() + LAYOUT_JS)
         run_javascript(client, number_guard_js(tr))
         # The page's channel back (its address, a presenter's reconnect key, the open tab): a text
         # input the page script hides and fills (app.views.panel.page).
@@ -183,11 +185,11 @@ class PanelView:
             (c for c in chains if c.is_default), None
         )
         if len(chains) > 1:
-            labels = {_chain_label(c): c.tip_link for c in chains}
+            labels = {_chain_label(c, self.tr): c.tip_link for c in chains}
             self.chain = self.gui.add_dropdown(
                 self.tr.gettext("Chain"),
                 tuple(labels),
-                initial_value=_chain_label(shown) if shown else next(iter(labels)),
+                initial_value=_chain_label(shown, self.tr) if shown else next(iter(labels)),
                 order=1.2,
                 hint=self.tr.gettext("The serial chain of the URDF shown: from its base link to a tip link."),
             )
@@ -321,7 +323,7 @@ TABS: tuple[Tab, ...] = (
         "derive",
         N_("Derive"),
         viser.Icon.STAIRS,
-        lambda c: DerivePanel(c.gui, c.dispatch, c.robot, order=100),
+        lambda c: DerivePanel(c.gui, c.dispatch, c.robot, order=100, tr=c.tr),
     ),
     Tab("about", N_("View"), viser.Icon.EYE, About),
     Tab("build", N_("Build"), viser.Icon.TOOL, None),
@@ -339,5 +341,6 @@ _ALWAYS_DRAWN = frozenset({"motion", "derive"})
 click applies, the step a click moves from)."""
 
 
-def _chain_label(chain: ChainInfo) -> str:
-    return f"{chain.base_link} → {chain.tip_link} ({chain.dof} joints)"
+def _chain_label(chain: ChainInfo, tr: Translator) -> str:
+    joints = tr.ngettext("{n} joint", "{n} joints", chain.dof).format(n=chain.dof)
+    return f"{chain.base_link} → {chain.tip_link} ({joints})"

@@ -15,11 +15,14 @@ import json
 import viser
 
 from ...core.commands import ClaimPresenter, Command, ExploreAlone, FollowPresenter, StopPresenting
-from ...core.i18n import Translator, translations
+from ...core.i18n import LANGUAGES, N_, Translator, translations
 from ...core.role import Role
 from .common import Dispatch, bind, sync_value
 
-__all__ = ["ClassroomPanel", "compact_title", "token_js"]
+__all__ = ["ClassroomPanel", "compact_title", "token_js", "classroom_words_js", "CLASSROOM"]
+
+CLASSROOM = N_("Classroom")
+"""The box's title; presenting or following, "<title> · <role>" (the layout script folds it)."""
 
 _TOKEN_JS = """(() => {
   const uuid = %s;
@@ -57,6 +60,13 @@ _TOKEN_JS = """(() => {
 })();"""
 
 
+def classroom_words_js() -> str:
+    """A page script naming the box's title in every language (the layout script folds the box whose
+    title starts "<title> ·"; a page speaks one language at a time, and may change)."""
+    words = sorted({translations(lang.code).gettext(CLASSROOM) for lang in LANGUAGES})
+    return f"window.__jacobianLabClassroomWords = {json.dumps(words)};"
+
+
 def token_js(uuid: str) -> str:
     """A page script masking the token input (DOM id ``uuid``) and filling it from the presenter link."""
     return _TOKEN_JS % json.dumps(uuid)
@@ -72,7 +82,7 @@ class ClassroomPanel:
         _ = tr.gettext
         self.role = Role()
         self._shown: Role | None = None
-        self.root = gui.add_folder(_("Classroom"), order=order)
+        self.root = gui.add_folder(_(CLASSROOM), order=order)
         with self.root:
             self.status = gui.add_html("")
             self.token = gui.add_text(
@@ -134,13 +144,13 @@ class ClassroomPanel:
 
 def compact_title(role: Role, tr: Translator | None = None) -> str:
     """The box's title: "Classroom", or one line saying the role once the tab presents or follows
-    ("Classroom · …": the page script folds a box whose title holds " · ", in any language)."""
+    ("<title> · <role>": the layout script folds the box on that separator)."""
     tr = tr or translations()
+    title = tr.gettext(CLASSROOM)
     if role.presenting:
         n = role.followers
-        return tr.ngettext(
-            "Classroom · presenting: {n} tab follows", "Classroom · presenting: {n} tabs follow", n
-        ).format(n=n)
+        what = tr.ngettext("presenting: {n} tab follows", "presenting: {n} tabs follow", n).format(n=n)
+        return f"{title} · {what}"
     if role.following:
-        return tr.gettext("Classroom · following the presenter (read-only)")
-    return tr.gettext("Classroom")
+        return f"{title} · " + tr.gettext("following the presenter (read-only)")
+    return title

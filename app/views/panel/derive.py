@@ -17,6 +17,7 @@ import viser
 from kinematics import Robot
 
 from ...core.actions import SetOption
+from ...core.i18n import Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .common import Dispatch, bind, option_widget, show_option, sync_value
@@ -28,14 +29,18 @@ __all__ = ["DerivePanel"]
 class DerivePanel:
     """The Derive tab's handles for one robot."""
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float) -> None:
+    def __init__(
+        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float, tr: Translator | None = None
+    ) -> None:
         self.robot = robot
         self.dispatch = dispatch
+        self.tr = tr = tr or translations()
+        _ = tr.gettext
         self._step = 0
         self._method = ""
-        self.method = option_widget(gui, dispatch, "derive", order=order)
+        self.method = option_widget(gui, dispatch, "derive", order=order, tr=tr)
         self.step = gui.add_slider(
-            "Joint i",
+            _("Joint i"),
             min=1,
             max=max(robot.dof, 2),
             step=1,
@@ -44,7 +49,8 @@ class DerivePanel:
             disabled=robot.dof < 2,
         )
         bind(self.step, dispatch, lambda v: SetOption("derive_step", int(round(v)) - 1))
-        self.buttons = gui.add_button_group("Step", ("◀ Previous", "Next ▶"), order=order + 3)
+        self._back = _("◀ Previous")
+        self.buttons = gui.add_button_group(_("Step"), (self._back, _("Next ▶")), order=order + 3)
         self.buttons.on_click(self._clicked)
         self.body = gui.add_html("", order=order + 4)
         self.formula = gui.add_html("", order=order + 6, visible=False)
@@ -62,7 +68,7 @@ class DerivePanel:
         ]
 
     def _clicked(self, event: viser.GuiEvent) -> None:
-        delta = -1 if str(event.target.value).startswith("◀") else 1
+        delta = -1 if str(event.target.value) == self._back else 1
         self.dispatch(SetOption("derive_step", self._step + delta))
 
     @property
@@ -75,27 +81,35 @@ class DerivePanel:
         self._step = options.derive_step
         self._method = options.derive
         walking = bool(options.derive)
-        self.table.content = dh_table_html(self.robot, snap.q, options.derive_step if walking else None)
-        show_option(self.method, "derive", options.derive)
+        self.table.content = dh_table_html(
+            self.robot, snap.q, options.derive_step if walking else None, self.tr
+        )
+        show_option(self.method, "derive", options.derive, self.tr)
         sync_value(self.step, float(options.derive_step + 1))
         self.step.visible = self.buttons.visible = walking
         self.body.visible = walking
         if snap.derive is not None:
-            self.body.content = step_html(self.robot, snap.derive, snap)
+            self.body.content = step_html(self.robot, snap.derive, snap, self.tr)
         self._walking = walking
         self._show_formula()
 
     def show_formulas(self, steps: tuple | None, note: str) -> None:
         """The steps of the derivation in symbols, (joint, key, caption HTML, MathML) each (from the
-        symbolic worker), or ``None`` with a note while they are worked out or when they cannot be."""
-        self._formulas, self._formula_note = steps, note
+        symbolic worker), or ``None`` with a note while they are worked out or when they cannot be (the
+        note in the tab's language when the catalogs have it: the waiting note; an error stays as it is)."""
+        self._formulas, self._formula_note = steps, self.tr.gettext(note) if note else note
         self._show_formula()
 
     def _show_formula(self) -> None:
         self.formula.visible = self._walking
         if self._walking:
             self.formula.content = formulas_html(
-                self._formulas, self._formula_note, self._method, self._step, self._step == self.robot.dof - 1
+                self._formulas,
+                self._formula_note,
+                self._method,
+                self._step,
+                self._step == self.robot.dof - 1,
+                self.tr,
             )
 
     def remove(self) -> None:

@@ -10,11 +10,13 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Callable
 
 import numpy as np
 
 from kinematics import Robot
 
+from ...core.i18n import Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.snapshot.derive import Derivation, sub
 from .. import fmt
@@ -25,8 +27,8 @@ from ..palette import joint_text_hex
 __all__ = ["dh_table_html", "step_html", "matrix4_html", "formulas_html"]
 
 
-def _angle(x: float, digits: int = 4) -> str:
-    return fmt.quantity(math.degrees(x), "°", digits)
+def _angle(x: float, digits: int = 4, tr: Translator | None = None) -> str:
+    return fmt.quantity(math.degrees(x), "°", digits, tr=tr)
 
 
 _DH_DIGITS = 6
@@ -34,33 +36,36 @@ _DH_DIGITS = 6
 d₃ = 0.15005 m, the value the formulas use), not 0.15."""
 
 
-def dh_table_html(robot: Robot, q: np.ndarray, selected: int | None) -> str:
+def dh_table_html(robot: Robot, q: np.ndarray, selected: int | None, tr: Translator | None = None) -> str:
     """The robot's DH table (degrees and metres) with the joint variable's current value highlighted.
 
-    ``selected``: the row (0-based joint) a walk-through is on (outlined), or ``None``.
+    ``selected``: the row (0-based joint) a walk-through is on (outlined), or ``None``; ``tr``: the
+    tab's language (its note's words, its numbers' decimal mark).
     """
+    tr = tr or translations()
     if robot.dh is None:
-        return (
-            '<div class="jl-note">This robot comes from a URDF: its joints are placed by the '
-            "&lt;origin&gt; of each joint, not by a DH table. Frame i is the URDF joint frame "
-            "of joint i; its z axis is the joint axis.</div>"
+        said = tr.gettext(
+            "This robot comes from a URDF: its joints are placed by the <origin> of each joint, not by a "
+            "DH table. Frame i is the URDF joint frame of joint i; its z axis is the joint axis."
         )
-    head, rows, tail = _dh_parts(robot)
+        return f'<div class="jl-note">{fmt.escape(said)}</div>'
+    head, rows, tail = _dh_parts(robot, tr)
     out = [head]
     for j, (row, (before, after)) in enumerate(zip(robot.dh, rows, strict=True)):
         if row.joint == "revolute":
-            value = _angle(q[j] + row.theta)
+            value = _angle(q[j] + row.theta, tr=tr)
         else:
-            value = fmt.quantity(q[j] + row.d, "m", 4)
+            value = fmt.quantity(q[j] + row.d, "m", 4, tr=tr)
         cls = ' class="sel"' if selected == j else ""
         out.append(f"<tr{cls}>{before}{value}{after}</tr>")
     return "".join(out) + tail
 
 
 @functools.lru_cache(maxsize=64)
-def _dh_parts(robot: Robot) -> tuple[str, tuple[tuple[str, str], ...], str]:
+def _dh_parts(robot: Robot, tr: Translator) -> tuple[str, tuple[tuple[str, str], ...], str]:
     """What the DH table of ``robot`` keeps whatever q is: the head, each row's cells before and after
-    the joint variable's value, the tail (built once per robot: the table is redrawn on every move)."""
+    the joint variable's value, the tail (built once per robot and language: the table is redrawn on
+    every move)."""
     standard = robot.convention == "standard"
     names = ("i", "θᵢ", "dᵢ", "aᵢ", "αᵢ") if standard else ("i", "αᵢ₋₁", "aᵢ₋₁", "θᵢ", "dᵢ")
     head = f'<table class="jl-dh"><tr>{"".join(f"<th>{h}</th>" for h in names)}</tr>'
@@ -71,44 +76,58 @@ def _dh_parts(robot: Robot) -> tuple[str, tuple[tuple[str, str], ...], str]:
         color = joint_text_hex(j)
         var = f"q{sub(j + 1)}"
         if row.joint == "revolute":
-            theta = f"{var} + {_angle(row.theta, _DH_DIGITS)}" if abs(row.theta) > 1e-12 else var
+            theta = f"{var} + {_angle(row.theta, _DH_DIGITS, tr)}" if abs(row.theta) > 1e-12 else var
             theta = f'<b style="color:{color}">{theta} = {mark}</b>'
-            d = fmt.quantity(row.d, "m", _DH_DIGITS)
+            d = fmt.quantity(row.d, "m", _DH_DIGITS, tr=tr)
         else:
-            d = f"{var} + {fmt.quantity(row.d, 'm', _DH_DIGITS)}" if abs(row.d) > 1e-12 else var
+            d = f"{var} + {fmt.quantity(row.d, 'm', _DH_DIGITS, tr=tr)}" if abs(row.d) > 1e-12 else var
             d = f'<b style="color:{color}">{d} = {mark}</b>'
-            theta = _angle(row.theta, _DH_DIGITS)
-        a, alpha = fmt.quantity(row.a, "m", _DH_DIGITS), _angle(row.alpha, _DH_DIGITS)
+            theta = _angle(row.theta, _DH_DIGITS, tr)
+        a, alpha = fmt.quantity(row.a, "m", _DH_DIGITS, tr=tr), _angle(row.alpha, _DH_DIGITS, tr)
         cells = (str(j + 1), theta, d, a, alpha) if standard else (str(j + 1), alpha, a, theta, d)
         before, after = "".join(f"<td>{c}</td>" for c in cells).split(mark)
         rows.append((before, after))
+    _ = tr.gettext
     rule = (
-        "Standard DH: Aᵢ = Rz(θᵢ) Tz(dᵢ) Tx(aᵢ) Rx(αᵢ); joint i turns about zᵢ₋₁."
+        _(
+            "Standard DH: {A} = Rz(θᵢ) Tz(dᵢ) Tx(aᵢ) Rx(αᵢ); joint i turns about {z}. The joint variable "
+            "is in its joint colour."
+        ).format(A="Aᵢ", z="zᵢ₋₁")
         if standard
-        else "Modified DH (Craig): Aᵢ = Rx(αᵢ₋₁) Tx(aᵢ₋₁) Rz(θᵢ) Tz(dᵢ); joint i turns about zᵢ."
+        else _(
+            "Modified DH (Craig): {A} = Rx(αᵢ₋₁) Tx(aᵢ₋₁) Rz(θᵢ) Tz(dᵢ); joint i turns about {z}. The joint "
+            "variable is in its joint colour."
+        ).format(A="Aᵢ", z="zᵢ")
     )
-    tail = f'</table><div class="jl-note">{rule} The joint variable is in its joint colour.</div>'
+    tail = f'</table><div class="jl-note">{fmt.escape(rule)}</div>'
     return head, tuple(rows), tail
 
 
-def step_html(robot: Robot, d: Derivation, snap: Snapshot) -> str:
+def step_html(robot: Robot, d: Derivation, snap: Snapshot, tr: Translator | None = None) -> str:
     """One step of the walk-through: what it computes, in the course's notation, with its numbers at q
-    (the method's record draws the body, :data:`app.views.methods.METHODS`)."""
+    (the method's record draws the body, :data:`app.views.methods.METHODS`), in ``tr``'s language."""
+    tr = tr or translations()
     i = d.joint + 1
-    name = fmt.escape(robot.joints[d.joint].name)
-    title = f"Step {i} of {robot.dof}: joint {i} ({name})"
-    head = f'<div class="jl-step-head" style="border-color:{joint_text_hex(d.joint)}">{title}</div>'
-    return head + METHODS[d.method].html(robot, d, snap)
+    name = robot.joints[d.joint].name
+    title = tr.gettext("Step {i} of {n}: joint {i} ({name})").format(i=i, n=robot.dof, name=name)
+    color = joint_text_hex(d.joint)
+    head = f'<div class="jl-step-head" style="border-color:{color}">{fmt.escape(title)}</div>'
+    return head + METHODS[d.method].html(robot, d, snap, tr)
 
 
-def formulas_html(steps: tuple | None, note: str, method: str, joint: int, last: bool = False) -> str:
+def formulas_html(
+    steps: tuple | None, note: str, method: str, joint: int, last: bool = False, tr: Translator | None = None
+) -> str:
     """The symbolic steps of ``method`` that belong to ``joint``, each caption over its MathML.
 
-    ``steps``: (joint, key, caption HTML, MathML) tuples from the symbolic worker (captions and
-    MathML are escaped there), or ``None`` (then ``note`` says why). At the ``last`` step the
+    ``steps``: (joint, key, caption HTML, MathML[, (catalog id, arguments)]) tuples from the symbolic
+    worker (captions and MathML are escaped there; a caption with a catalog id is shown in ``tr``'s
+    language), or ``None`` (then ``note`` says why). At the ``last`` step the
     assembled J and det J (factored, singular sets named) follow.
     """
-    head = '<div class="jl-t4-title" style="text-align:left">In symbols</div>'
+    _ = (tr or translations()).gettext
+    title = fmt.escape(_("In symbols"))
+    head = f'<div class="jl-t4-title" style="text-align:left">{title}</div>'
     if steps is None:
         return head + f'<div class="jl-note">{fmt.escape(note)}</div>'
     prefixes = METHODS[method].symbols if method in METHODS else ()
@@ -116,9 +135,19 @@ def formulas_html(steps: tuple | None, note: str, method: str, joint: int, last:
     if last and method in METHODS and METHODS[method].steps.column is not None:  # a method that builds J
         chosen += [s for s in steps if s[0] is None and s[1] in ("J", "detJ")]
     if not chosen:
-        return head + '<div class="jl-note">No symbolic step for this joint.</div>'
+        none = fmt.escape(_("No symbolic step for this joint."))
+        return head + f'<div class="jl-note">{none}</div>'
     body = "".join(
-        f'<div class="jl-note">{caption}</div><div class="jl-mathml">{ml}</div>'
-        for _, _, caption, ml in chosen
+        f'<div class="jl-note">{_caption(step, _)}</div><div class="jl-mathml">{step[3]}</div>'
+        for step in chosen
     )
     return head + body
+
+
+def _caption(step: tuple, _: Callable[[str], str]) -> str:
+    """A symbolic step's caption (HTML) in the tab's language: its catalog id translated and filled
+    with its arguments (symbols and numbers), escaped; the worker's English caption when it has none."""
+    if len(step) > 4 and step[4][0]:
+        msgid, args = step[4]
+        return fmt.escape(_(msgid).format(**dict(args)))
+    return str(step[2])

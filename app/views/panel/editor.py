@@ -33,6 +33,7 @@ from ...core.actions import EditRobot
 from ...core.commands import RequestDownload, UploadRobot
 from ...core.downloads import EXPORT_FORMATS
 from ...core.i18n import N_, Translator, translations
+from ...core.numbers import NumberError, parse_number
 from ...viser_adapter import MAX_UPLOAD_BYTES, is_removed, upload_too_large
 from .. import fmt
 from .common import Dispatch
@@ -40,11 +41,11 @@ from .common import Dispatch
 __all__ = ["EditorPanel", "EMPTY", "DOWNLOADS"]
 
 EMPTY = N_("empty table (one joint)")
-"""The "Start from" entry of a fresh one-row table."""
+"""The "Start from" entry of a fresh one-row table (English; shown in the tab's language)."""
 ROW_BUTTONS = (N_("+ Add"), N_("− Remove"), N_("↑ Up"), N_("↓ Down"))
-_KINDS = {"revolute": N_("revolute"), "prismatic": N_("prismatic")}
-_CONVENTIONS = {"standard": N_("standard"), "modified": N_("modified")}
 DOWNLOADS = {"TOML": "Robot file (TOML)", "URDF": "URDF", **{f"J {k}": k for k in EXPORT_FORMATS}}
+_KINDS = (N_("revolute"), N_("prismatic"))
+_CONVENTIONS = (N_("standard"), N_("modified"))
 """Download button → :class:`~app.core.actions.RequestDownload` label."""
 
 _CSS = """<style>
@@ -82,14 +83,12 @@ class EditorPanel:
         order: float,
         tr: Translator | None = None,
     ) -> None:
-        self.gui, self.dispatch = gui, dispatch
         self.tr = tr = tr or translations()
         _ = tr.gettext
-        self.empty = _(EMPTY)
-        # shown (translated) → the table's English value, for each menu and the row buttons
-        self._kinds = {_(label): key for key, label in _KINDS.items()}
-        self._conventions = {_(label): key for key, label in _CONVENTIONS.items()}
-        self._row_buttons = {_(label): label for label in ROW_BUTTONS}
+        # What the dropdowns and buttons show ↔ the values they stand for (English: the same).
+        self._shown = {k: _(k) for k in (EMPTY, *ROW_BUTTONS, *_KINDS, *_CONVENTIONS)}
+        self._value = {v: k for k, v in self._shown.items()}
+        self.gui, self.dispatch = gui, dispatch
         self.table = dt.empty()
         self.selected = 0
         self.error = ""
@@ -102,22 +101,22 @@ class EditorPanel:
         with self.root:
             self.start = gui.add_dropdown(
                 _("Start from"),
-                (self.empty, *library),
-                initial_value=self.empty,
+                (self._shown[EMPTY], *library),
+                initial_value=self._shown[EMPTY],
                 hint=_("Copy a library robot's DH table (its base and tool transforms kept), or one joint."),
             )
             self.convention = gui.add_dropdown(
                 _("Convention"),
-                tuple(self._conventions),
+                tuple(self._shown[c] for c in _CONVENTIONS),
                 hint=_(
                     "standard: A = Rz(θ) Tz(d) Tx(a) Rx(α); modified (Craig): A = Rx(α) Tx(a) Rz(θ) Tz(d)"
                 ),
             )
             self.summary = gui.add_html("")
             self.row = gui.add_dropdown(_("Edit row"), ("1",), hint=_("The row the inputs below edit."))
-            self.kind = gui.add_dropdown(_("Joint"), tuple(self._kinds))
-            # Text boxes, read by app.core.numbers in the tab's language: what is typed is kept ("1e-3",
-            # "0,15005"), and what is not a number is refused in words (a number box would mangle it).
+            self.kind = gui.add_dropdown(_("Joint"), tuple(self._shown[k] for k in _KINDS))
+            # Text boxes, read by app.core.numbers: what is typed is kept ("1e-3", "0.15005"), and
+            # what is not a number is refused in words (a number box would mangle it silently).
             self.a = gui.add_text("a [m]", "0", hint=_("Link length: along x(i)"))
             self.alpha = gui.add_text("α [°]", "0", hint=_("Link twist: about x(i)"))
             self.d = gui.add_text("d [m]", "0", hint=_("Link offset: along z(i-1)"))
@@ -125,7 +124,7 @@ class EditorPanel:
             self.lower = gui.add_text(_("Lower limit [°]"), "-180", hint=_("The joint's lower limit"))
             self.upper = gui.add_text(_("Upper limit [°]"), "180", hint=_("The joint's upper limit"))
             self.problem = gui.add_html("")  # the message again, in sight of the inputs
-            self.rows = gui.add_button_group(_("Rows"), tuple(self._row_buttons))
+            self.rows = gui.add_button_group(_("Rows"), tuple(self._shown[b] for b in ROW_BUTTONS))
             self.download = gui.add_button_group(_("Download"), tuple(DOWNLOADS))
             self.upload = gui.add_upload_button(
                 _("Upload a URDF (at most {size} MB)").format(size=MAX_UPLOAD_BYTES // (1024 * 1024)),
@@ -133,15 +132,14 @@ class EditorPanel:
                 mime_type=".urdf,.xml,application/xml,text/xml",
                 hint=_("Only this tab sees it; its meshes are not loaded (generated geometry is drawn)."),
             )
-        self._on(self.start, lambda v: self.start_from(str(v)))
-        self._on(self.convention, lambda v: self._edit(convention=self._conventions.get(str(v), str(v))))
+        value = lambda v: self._value.get(str(v), str(v))  # noqa: E731  (a shown label → its value)
+        self._on(self.start, lambda v: self.start_from(value(v)))
+        self._on(self.convention, lambda v: self._edit(convention=value(v)))
         self._on(self.row, lambda v: self.select(int(str(v)) - 1) if str(v).isdigit() else None)
-        self._on(self.kind, lambda v: self.set_field("joint", self._kinds.get(str(v), v)))
+        self._on(self.kind, lambda v: self.set_field("joint", value(v)))
         for field, handle in self._fields():
             self._on(handle, functools.partial(self.set_field, field))
-        self.rows.on_click(
-            lambda event: self._guarded(self.row_operation, self._row_buttons.get(str(event.target.value)))
-        )
+        self.rows.on_click(lambda event: self._guarded(self.row_operation, value(event.target.value)))
         self.download.on_click(lambda event: dispatch(RequestDownload(DOWNLOADS[str(event.target.value)])))
         self.upload.on_upload(lambda event: self._uploaded(event.target.value))
         with self._lock:
@@ -172,13 +170,14 @@ class EditorPanel:
 
     def start_from(self, name: str) -> None:
         """Replace the table by ``name``'s DH table (a library robot) or by :data:`EMPTY`'s one row."""
-        if name not in self.start.options:  # a library robot's name, never a path (checked again here)
-            self.error = self.tr.gettext("“Start from” takes one of its options: {name} is not one of them.")
-            self.error = self.error.format(name=repr(name[:60]))
+        if self._shown.get(name, name) not in self.start.options:  # a library robot's name, never a path
+            self.error = self.tr.gettext(
+                "“Start from” takes one of its options: {name} is not one of them."
+            ).format(name=repr(name[:60]))
             self._show_summary()
             return
         try:
-            table = dt.empty() if name == self.empty else dt.from_robot(robots.load(name))
+            table = dt.empty() if name == EMPTY else dt.from_robot(robots.load(name))
         except JacobianLabError as exc:
             self.error = str(exc)
             self._show_summary()
@@ -285,12 +284,12 @@ class EditorPanel:
             if self.row.options != options:
                 self.row.options = options
             _set(self.row, str(self.selected + 1))
-            _ = self.tr.gettext
-            _set(self.convention, _(_CONVENTIONS.get(self.table.convention, self.table.convention)))
-            _set(self.kind, _(_KINDS.get(row.joint, row.joint)))
+            _set(self.convention, self._shown.get(self.table.convention, self.table.convention))
+            _set(self.kind, self._shown.get(row.joint, row.joint))
             for field, handle in self._fields():
                 _set(handle, _typed(getattr(row, field), self.tr))
             revolute = row.joint == "revolute"
+            _ = self.tr.gettext
             self.lower.label = _("Lower limit [°]") if revolute else _("Lower limit [m]")
             self.upper.label = _("Upper limit [°]") if revolute else _("Upper limit [m]")
             self.theta.label = _("θ offset [°]") if revolute else "θ [°]"
@@ -299,8 +298,9 @@ class EditorPanel:
             self._quiet = False
 
     def _show_summary(self) -> None:
-        _, tr = self.tr.gettext, self.tr
-        limits = _("limits")
+        tr = self.tr
+        _ = tr.gettext
+        limits = fmt.escape(_("limits"))
         head = f"<tr><th>#</th><th></th><th>a</th><th>α°</th><th>d</th><th>θ°</th><th>{limits}</th></tr>"
         body = []
         for i, r in enumerate(self.table.rows):
@@ -325,31 +325,19 @@ class EditorPanel:
         if self.error:
             msg = f'<div class="jl-dh-msg bad" role="alert">⚠ {fmt.escape(self.error)}</div>'
         else:
-            msg = f'<div class="jl-dh-msg ok">{fmt.escape(self._what())}</div>'
+            n = len(self.table.rows)
+            convention = self._shown.get(self.table.convention, self.table.convention)
+            what = tr.ngettext("{n} joint, {convention} DH", "{n} joints, {convention} DH", n).format(
+                n=n, convention=convention
+            )
+            if self.table.source:
+                what += _(", from {robot} (its base and tool transforms kept)").format(
+                    robot=self.table.source
+                )
+            state = _("drawn live") if self.built is not None else _("edit a value to draw it")
+            msg = f'<div class="jl-dh-msg ok">{fmt.escape(what)}: {fmt.escape(state)}.</div>'
         self.summary.content = f'{_CSS}<table class="jl-dh">{head}{"".join(body)}</table>{msg}'
         self.problem.content = msg if self.error else ""
-
-    def _what(self) -> str:
-        """The table in words: its joints, convention and source, and whether the arm shows it."""
-        _, n = self.tr.gettext, len(self.table.rows)
-        joints = self.tr.ngettext("{n} joint", "{n} joints", n).format(n=n)
-        fields = {"joints": joints, "source": self.table.source}
-        if self.table.convention == "modified":
-            what = (
-                _("{joints}, modified DH")
-                if not self.table.source
-                else _("{joints}, modified DH, from {source} (its base and tool transforms kept)")
-            )
-        else:
-            what = (
-                _("{joints}, standard DH")
-                if not self.table.source
-                else _("{joints}, standard DH, from {source} (its base and tool transforms kept)")
-            )
-        what = what.format(**fields)
-        if self.built is not None:
-            return _("{table}: drawn live.").format(table=what)
-        return _("{table}: edit a value to draw it.").format(table=what)
 
     def remove(self) -> None:
         self.root.remove()
@@ -371,8 +359,13 @@ def _typed(value: object, tr: Translator) -> str:
 
 
 def _cell(value: object, tr: Translator) -> str:
-    """A table cell: a number in 4 significant figures (in ``tr``'s way), anything else (1e400, NaN,
-    a refused 0.3,5) as typed."""
+    """A table cell: a number in 4 significant figures, anything else (1e400, NaN, 0,3) as typed."""
+    typed = value
+    if isinstance(typed, str):
+        try:
+            value = parse_number(typed, tr=tr)  # "0,3" typed in Portuguese is 0.3
+        except NumberError:
+            return typed.strip()[:8]
     try:
         x = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError, OverflowError):

@@ -18,6 +18,7 @@ from kinematics import Robot
 from ...core.actions import GoTo, SetJoint
 from ...core.i18n import N_, Translator, translations
 from ...core.ranges import Range, from_display, joint_ranges, to_display
+from ...core.robot_texts import configuration_description
 from ...viser_adapter import handle_uuid
 from .. import fmt
 from .common import Dispatch, bind, sync_value
@@ -46,9 +47,8 @@ class JointsPanel:
     def __init__(
         self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float, tr: Translator | None = None
     ) -> None:
-        tr = tr or translations()
+        self.tr = tr = tr or translations()
         _ = tr.gettext
-        self.moved = _(MOVED)
         self.robot = robot
         self.ranges = joint_ranges(robot)
         self.root = gui.add_folder(None, order=order)
@@ -64,7 +64,15 @@ class JointsPanel:
                     step=r.step,
                     initial_value=round(value, 6),
                     marks=(),
-                    hint=_hint(joint.name, joint.kind, r, tr),
+                    hint=(
+                        _("{name}: revolute joint, {lo} to {hi} {unit}.")
+                        if joint.kind == "revolute"
+                        else _("{name}: prismatic joint, {lo} to {hi} {unit}.")
+                    ).format(
+                        name=joint.name, lo=fmt.number(r.lo, tr=tr), hi=fmt.number(r.hi, tr=tr), unit=r.unit
+                    )
+                    + " "
+                    + _("Arrow keys: 10 steps; Shift + arrow: one fine step."),
                 )
                 bind(slider, dispatch, functools.partial(_set_joint, i, r))
                 css.append(slider_css(handle_uuid(slider), i))
@@ -78,10 +86,11 @@ class JointsPanel:
                 else configuration_label(n)
                 for n in names
             }
+            self._moved = _(MOVED)
             by_label = {label: n for n, label in self._labels.items()}
             self.configuration = gui.add_dropdown(
                 _("Configuration"),
-                (self.moved, *self._labels.values()),
+                (self._moved, *self._labels.values()),
                 initial_value=self._labels["home"],
                 hint=_("Go to a named configuration; its description shows under the status."),
             )
@@ -89,7 +98,7 @@ class JointsPanel:
 
     def show(self, q: np.ndarray, configuration: str) -> None:
         """Put ``q`` on the sliders and the configuration's name in the dropdown (echoes are ignored)."""
-        sync_value(self.configuration, self._labels.get(configuration, self.moved))
+        sync_value(self.configuration, self._labels.get(configuration, self._moved))
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(min(max(to_display(r, q[i]), r.lo), r.hi), 6))
 
@@ -97,36 +106,20 @@ class JointsPanel:
         self.root.remove()
 
 
-def _hint(name: str, kind: str, r: Range, tr: Translator) -> str:
-    """A joint slider's hint: its kind and range, and the keys that move it."""
-    lo, hi = fmt.number(r.lo, tr=tr), fmt.number(r.hi, tr=tr)
-    if kind == "revolute":
-        text = tr.gettext(
-            "{name}: revolute joint, {lo} to {hi} {unit}. Arrow keys: 10 steps; Shift + arrow: one fine step."
-        )
-    else:
-        text = tr.gettext(
-            "{name}: prismatic joint, {lo} to {hi} {unit}. "
-            "Arrow keys: 10 steps; Shift + arrow: one fine step."
-        )
-    return text.format(name=name, lo=lo, hi=hi, unit=r.unit)
-
-
 def configurations_html(robot: Robot, tr: Translator | None = None) -> str:
     """Every named configuration with its description (singular ones marked)."""
-    _ = (tr or translations()).gettext
+    tr = tr or translations()
+    _ = tr.gettext
     singular = fmt.escape(_("(singular)"))
     items = "".join(
         f"<li><b>{fmt.escape(configuration_label(c.name))}</b>"
         + (f" <span class='jl-warn'>{singular}</span>" if c.singular else "")
-        + f": {fmt.escape(c.description)}</li>"
+        + f": {fmt.escape(configuration_description(c, tr))}</li>"
         for c in robot.configurations
         if c.description
     )
-    none = fmt.escape(_("none"))
-    title = fmt.escape(_("Named configurations"))
-    listing = f'<ul class="jl-conf">{items or f"<li>{none}</li>"}</ul>'
-    return f'<div class="jl"><b>{title}</b>{listing}</div>'
+    listing = f'<ul class="jl-conf">{items or "<li>" + fmt.escape(_("none")) + "</li>"}</ul>'
+    return f'<div class="jl"><b>{fmt.escape(_("Named configurations"))}</b>{listing}</div>'
 
 
 def _set_joint(i: int, r: Range, value: Any) -> SetJoint:

@@ -19,11 +19,8 @@ Colours here are chosen for at least 4.5:1 on their background (checked by the t
 
 from __future__ import annotations
 
-from ...core.i18n import N_, Translator
-
 __all__ = [
     "LAYOUT_CSS",
-    "more_css",
     "LAYOUT_JS",
     "PANEL_WIDTH",
     "COLUMN",
@@ -190,13 +187,14 @@ LAYOUT_JS = """
       root.classList.toggle("jl-more", more);
     }
   };
-  // The classroom box folds to its title line once the tab presents or follows (title "Classroom · …",
-  // in the tab's language: "Zajęcia · …"), once per role: one who opens it again keeps it open.
+  // The classroom box folds to its title line once the tab presents or follows (title "Classroom · …"),
+  // once per role: a teacher or student who opens it again keeps it open.
   const fold = () => {
     for (const head of document.querySelectorAll('[data-dock-region] div[style*="cursor: pointer"]')) {
       const title = head.textContent.trim();
       const role = title.split(":")[0];  // "Classroom · presenting", not the number of followers
-      if (!title.includes(" · ") || head.dataset.jlFolded === role) continue;
+      const words = window.__jacobianLabClassroomWords || ["Classroom"];
+      if (!words.some((w) => title.startsWith(w + " ·")) || head.dataset.jlFolded === role) continue;
       head.dataset.jlFolded = role;
       const body = head.nextElementSibling;
       if (body && body.getAttribute("aria-hidden") === "false") head.click();
@@ -230,15 +228,3 @@ LAYOUT_JS = """
 """
 for _key, _value in (("__ZOOM_MAX__", ZOOM_MAX), ("__TOP_MAX__", TOP_MAX), ("__COLUMN__", COLUMN)):
     LAYOUT_JS = LAYOUT_JS.replace(_key, str(_value))
-
-
-MORE = N_("▾ more below: scroll")
-"""The band's words (:data:`LAYOUT_CSS` says them in English; :func:`more_css` in the tab's language)."""
-
-
-def more_css(tr: Translator) -> str:
-    """A style block giving the "more below" band ``tr``'s words (a CSS string: quotes, backslashes and
-    "<" escaped, so no translation can end the string or the style block)."""
-    text = tr.gettext(MORE)
-    quoted = "".join(f"\\{ord(c):x} " if c in '"\\<>' or ord(c) < 32 else c for c in text)
-    return f'<style>.jl-more::after {{ content: "{quoted}"; }}</style>'

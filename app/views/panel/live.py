@@ -14,7 +14,7 @@ import numpy as np
 from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_HTML
 
-from ...core.i18n import N_, Translator, translations
+from ...core.i18n import Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.state import LabState
 from .. import fmt
@@ -22,18 +22,20 @@ from ..palette import joint_text_hex
 
 __all__ = ["live_html"]
 
-_DOING = {
-    "resolved_rate": N_("playing: holding v"),
-    "climb": N_("playing: climbing w"),
-    "path": N_("playing: to the nearest singularity"),
-    "joints": N_("playing: moving at q̇"),
-}
-"""What a playing motion does, in the foot line (English; shown in the tab's language)."""
+
+def _doing(kind: str, tr: Translator) -> str:
+    _ = tr.gettext
+    if kind == "resolved_rate":
+        return _("holding v")
+    if kind == "climb":
+        return _("climbing w")
+    if kind == "path":
+        return _("to the nearest singularity")
+    return _("moving at q̇") if kind == "joints" else ""
 
 
 def live_html(state: LabState, tr: Translator | None = None) -> str:
-    """Rates [°/s | m/s], κ, σmin, the motion's time and its pace, in ``tr``'s words and numbers; ""
-    when nothing is traced."""
+    """Rates [°/s | m/s], κ, σmin, the motion's time and its pace; "" when nothing is traced."""
     tr = tr or translations()
     _ = tr.gettext
     m = state.motion
@@ -51,15 +53,14 @@ def live_html(state: LabState, tr: Translator | None = None) -> str:
             f"<b>{fmt.fixed(value, 1 if revolute else 3, tr)}</b><small>{unit}</small></div>"
         )
     kappa = float(trace.kappa[-1])
-    if state.playing:
-        state_word = _(_DOING[m.kind]) if m.kind in _DOING else _("playing")
-    else:
-        state_word = _("paused") if not state.stopped else _("stopped")
-    pace = ""
-    if state.playing and m.kind == "resolved_rate" and m.pace < 0.95:
-        slowed = _("slowed ×{pace} near the singularity").format(pace=fmt.number(m.pace, 2, tr))
-        pace = f' · <span class="jl-live-slow">{slowed}</span>'
-
+    doing = _doing(m.kind, tr)
+    state_word = _("playing") if state.playing else _("paused") if not state.stopped else _("stopped")
+    slowed = _("slowed ×{factor} near the singularity").format(factor=fmt.number(m.pace, 2, tr))
+    pace = (
+        f' · <span class="jl-live-slow">{slowed}</span>'
+        if state.playing and m.kind == "resolved_rate" and m.pace < 0.95
+        else ""
+    )
     # The climb measures the rows it holds (the 3R planar arm: vx, vy), not the banner's task rows: say so.
     held = redundancy_rows(state.robot) if m.kind == "climb" else None
     rows = (
@@ -72,7 +73,8 @@ def live_html(state: LabState, tr: Translator | None = None) -> str:
         f"<span>σ<sub>min</sub> <b>{fmt.number(float(trace.sigma_min[-1]), tr=tr)}</b></span>"
         f"<span>t <b>{fmt.fixed(state.time, 2, tr)}</b> s</span></div>"
     )
-    foot = f'<div class="jl-live-foot">{state_word}{pace}</div>'
+    what = _("{state}: {doing}").format(state=state_word, doing=doing) if doing else state_word
+    foot = f'<div class="jl-live-foot">{what}{pace}</div>'
     return f'<div class="jl jl-live">{head}<div class="jl-live-rates">{"".join(cells)}</div>{foot}</div>'
 
 

@@ -21,6 +21,7 @@ from ...core.actions import GoToRepresentationSingularity, SetOption
 from ...core.commands import RequestDownload
 from ...core.downloads import EXPORT_FORMATS
 from ...core.i18n import Translator, translations
+from ...core.robot_texts import robot_title
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
@@ -206,9 +207,7 @@ class MatrixPanel:
                 self._open()
 
     def _open(self) -> None:
-        title = self.tr.gettext("Jacobian J(q) of the {robot}").format(
-            robot=self.robot.title or self.robot.name
-        )
+        title = self.tr.gettext("Jacobian J(q) of the {robot}").format(robot=robot_title(self.robot, self.tr))
         with self.gui.add_modal(title) as modal:
             self._modal = modal
             self._modal_html = self.gui.add_html(self._big())

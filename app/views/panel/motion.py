@@ -27,6 +27,7 @@ from ...core.i18n import N_, Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
 from ...core.refusals import say
+from ...core.robot_texts import motion_description
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
@@ -83,8 +84,8 @@ class MotionPanel:
     ) -> None:
         self.tr = tr = tr or translations()
         _ = tr.gettext
-        self.own_twist = _(OWN_TWIST)
-        self._buttons = {_(label): label for label in PLAY_BUTTONS}  # shown label → English key
+        self.own_twist = _(OWN_TWIST)  # the dropdown's entry in the tab's language
+        self._buttons = {_(b): b for b in PLAY_BUTTONS}  # a button's words → its English key
         self.robot = robot
         self.presets = {p.name: p for p in presets}
         self.root = gui.add_folder(None, order=order)
@@ -200,7 +201,7 @@ class MotionPanel:
         """Its sliders whose step the page honours."""
         return [self.speed] + ([self.self_slider] if self.self_slider is not None else [])
 
-    def _click(self, dispatch: Dispatch, label: str) -> None:
+    def _click(self, dispatch: Dispatch, label: str) -> None:  # label: the button's English key
         """Play or Step with a preset shown but not applied applies it first; then the button's action."""
         pending = self._pending
         if pending is not None and label in ("Play", "Step"):
@@ -224,9 +225,9 @@ class MotionPanel:
         sync_value(self.preset, shown)
         self._pending = self._apply(shown) if shown != m.preset else None
         for handle, name in ((self.frame, "twist_frame"), (self.speed, "speed"), (self.gizmo, "gizmo")):
-            show_option(handle, name, getattr(o, name))
-        show_option(self.method, "ik_method", o.ik_method)
-        show_option(self.mode, "ik_mode", o.ik_mode)
+            show_option(handle, name, getattr(o, name), self.tr)
+        show_option(self.method, "ik_method", o.ik_method, self.tr)
+        show_option(self.mode, "ik_mode", o.ik_mode, self.tr)
         if self.self_slider is not None:
             sync_value(self.self_slider, float(round(m.s, 6)))
         key = (
@@ -256,10 +257,8 @@ class MotionPanel:
 
     def _about(self, name: str) -> str:
         p = self.presets.get(name)
-        if not (p and p.description):
-            return ""
-        # the preset's words are the robot file's (English); a robot file's translations are trobots'
-        return f'<div class="jl-note">{fmt.escape(p.description)}</div>'
+        text = motion_description(p, self.tr) if p else ""
+        return f'<div class="jl-note">{fmt.escape(text)}</div>' if text else ""
 
     def _plot(self, trace: Trace) -> None:
         if len(trace) < 2:
@@ -306,36 +305,39 @@ def _redundancy_html(robot: Robot, rows: tuple[int, ...], tr: Translator) -> str
     ).format(joints=joints, rows=count, held=held)
 
 
-_DOING = {
-    "resolved_rate": N_("holding v"),
-    "climb": N_("climbing w of the held rows"),
-    "path": N_("descending to the nearest singularity"),
-    "joints": N_("moving at q̇"),
-}
-
-
 def _readout(state: LabState, snap: Snapshot, pending: bool = False, tr: Translator | None = None) -> str:
     tr = tr or translations()
     _ = tr.gettext
     if pending:
-        return '<div class="jl"><div class="jl-note">{}</div></div>'.format(
-            _(
-                "Press <b>Play</b>: the arm goes to the preset's start and its tool twist v is held "
-                "(q̇ = J⁻¹ v), slowed down near the singularity so it can be followed."
-            )
+        text = _(
+            "Press <b>Play</b>: the arm goes to the preset's start and its tool twist v is held (q̇ = J⁻¹ v), "
+            "slowed down near the singularity so it can be followed."
         )
+        return f'<div class="jl"><div class="jl-note">{text}</div></div>'
     rows = snap.rows
     v = [state.v_desired[r] if r < 3 else math.degrees(state.v_desired[r]) for r in rows]
-    sep = "; " if tr.decimal_symbol == "," else ", "  # numbers with decimal commas: semicolons
+    sep = "; " if tr.decimal_symbol == "," else ", "
     parts = sep.join(f"{ROW_TEXT[r]} {fmt.number(x, 5, tr)}" for r, x in zip(rows, v, strict=True))
-    if state.options.twist_frame == "tool":
-        held = _("v held: {values} (m/s, °/s; tool axes).").format(values=parts)
-    else:
-        held = _("v held: {values} (m/s, °/s; base axes).").format(values=parts)
+    kind = state.motion.kind
+    doing = (
+        _("holding v")
+        if kind == "resolved_rate"
+        else _("climbing w of the held rows")
+        if kind == "climb"
+        else _("descending to the nearest singularity")
+        if kind == "path"
+        else _("moving at q̇")
+        if kind == "joints"
+        else ""
+    )
+    held = (
+        _("v held: {values} (m/s, °/s; tool axes).")
+        if state.options.twist_frame == "tool"
+        else _("v held: {values} (m/s, °/s; base axes).")
+    ).format(values=parts)
     line = f'<div class="jl-note">{held}</div>'
     if state.playing:
-        doing = _(_DOING[state.motion.kind]) if state.motion.kind in _DOING else ""
-        line += '<div class="jl-note">{}</div>'.format(_("<b>Playing</b>: {doing}.").format(doing=doing))
+        line += '<div class="jl-note">' + _("<b>Playing</b>: {what}.").format(what=doing) + "</div>"
     elif state.stopped:
         line += f'<div class="jl-warn">{fmt.escape(say(state.stopped, tr))}</div>'
     return f'<div class="jl">{line}</div>'
@@ -346,26 +348,35 @@ def _ik_html(state: LabState, tr: Translator | None = None) -> str:
     _ = tr.gettext
     ik = state.motion.ik
     if not state.options.gizmo:
-        return '<div class="jl-note">{}</div>'.format(
-            _("Tick the box, then drag the handle at the tool: the arm follows.")
+        return (
+            '<div class="jl-note">'
+            + _("Tick the box, then drag the handle at the tool: the arm follows.")
+            + "</div>"
         )
     if ik is None:
-        return '<div class="jl-note">{}</div>'.format(_("Drag the handle at the tool."))
-    method = _("damped least squares") if ik.method == "dls" else _("Newton")
-    iterations = tr.ngettext("{n} iteration", "{n} iterations", ik.iterations).format(n=ik.iterations)
-    residual = fmt.number(ik.residual, tr=tr)
-    if ik.converged:
-        text = _("{method}: {iterations}, residual {residual}, converged.")
-    else:
-        text = _("{method}: {iterations}, residual {residual}, not converged.")
-    text = text.format(method=method, iterations=iterations, residual=residual)
+        return '<div class="jl-note">' + _("Drag the handle at the tool.") + "</div>"
+    method = _("damped least squares") if ik.method == "dls" else "Newton"
+    text = (
+        tr.ngettext(
+            "{method}: {n} iteration, residual {residual}, converged.",
+            "{method}: {n} iterations, residual {residual}, converged.",
+            ik.iterations,
+        )
+        if ik.converged
+        else tr.ngettext(
+            "{method}: {n} iteration, residual {residual}, not converged.",
+            "{method}: {n} iterations, residual {residual}, not converged.",
+            ik.iterations,
+        )
+    ).format(method=method, n=ik.iterations, residual=fmt.number(ik.residual, tr=tr))
     if ik.departure > 1e-3:
         short = fmt.quantity(ik.departure * 1000, "mm", tr=tr)
-        if ik.method == "dls":
-            stop = _("The tool stops {distance} short: damping keeps the rates bounded near the singularity.")
-        else:
-            stop = _("The tool stops {distance} short.")
-        text += f' <span class="jl-warn">{stop.format(distance=short)}</span>'
+        stops = (
+            _("The tool stops {distance} short: damping keeps the rates bounded near the singularity.")
+            if ik.method == "dls"
+            else _("The tool stops {distance} short.")
+        ).format(distance=short)
+        text += f' <span class="jl-warn">{stops}</span>'
     return f'<div class="jl"><div class="jl-note">{text}</div></div>'
 
 

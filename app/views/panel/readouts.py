@@ -12,6 +12,7 @@ from kinematics.conventions import ROW_HTML
 
 from ...core.i18n import N_, Translator, translations
 from ...core.refusals import say
+from ...core.robot_texts import configuration_description
 from ...core.snapshot import Loss, Snapshot
 from ...core.state import LabState
 from ...core.words import status_word, status_words
@@ -191,7 +192,7 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
         sub = fmt.escape(say(state.stopped, tr))
     elif state.configuration:
         conf = next((c for c in robot.configurations if c.name == state.configuration), None)
-        text = conf.description if conf is not None and conf.description else ""
+        text = configuration_description(conf, tr) if conf is not None else ""
         sub = f"<b>{fmt.escape(state.configuration.replace('_', ' '))}</b>" + (
             f": {fmt.escape(text)}" if text else ""
         )

@@ -15,7 +15,7 @@ from the state in ``update``.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 import numpy as np
@@ -23,6 +23,7 @@ import viser
 
 from kinematics import Robot
 
+from ...core.i18n import Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ..panel.common import Dispatch
@@ -47,6 +48,7 @@ class SceneContext:
         root: The scene path under which the glyph puts its nodes.
         joint_labels: Where the arm's joint labels are at the last update (k, 3) [m]: a glyph's own
             labels keep clear of them.
+        tr: The tab's language (the words a glyph writes in the 3-D view).
     """
 
     scene: viser.SceneApi
@@ -55,6 +57,7 @@ class SceneContext:
     dispatch: Dispatch
     root: str
     joint_labels: Callable[[], np.ndarray] = lambda: np.zeros((0, 3))
+    tr: Translator = field(default_factory=translations)
 
 
 class GlyphView(Protocol):
@@ -82,7 +85,7 @@ GLYPHS: tuple[Glyph, ...] = (
     Glyph(
         "overlays",
         lambda c: Overlays(
-            c.scene, c.geometry, c.robot.dof, c.robot.planar, f"{c.root}/jacobian", c.joint_labels
+            c.scene, c.geometry, c.robot.dof, c.robot.planar, f"{c.root}/jacobian", c.joint_labels, c.tr
         ),
     ),
     Glyph("accel", lambda c: AccelArrow(c.scene, c.geometry.size, f"{c.root}/jacobian")),
@@ -90,7 +93,10 @@ GLYPHS: tuple[Glyph, ...] = (
         "drive", lambda c: DriveView(c.scene, c.dispatch, c.geometry.size, c.robot.planar, f"{c.root}/drive")
     ),
     Glyph("path", lambda c: ToolPath(c.scene, f"{c.root}/motion")),
-    Glyph("derive", lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels)),
+    Glyph(
+        "derive",
+        lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels, c.tr),
+    ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
 J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step."""
@@ -110,12 +116,19 @@ class SceneView:
         robot: Robot,
         dispatch: Dispatch | None = None,
         root: str = "/lab",
+        tr: Translator | None = None,
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
         ignore: Dispatch = lambda action: None  # noqa: E731  (a recorded scene takes no input)
         arm = self.arm
         context = SceneContext(
-            client.scene, robot, arm.geometry, dispatch or ignore, root, lambda: arm.label_points
+            client.scene,
+            robot,
+            arm.geometry,
+            dispatch or ignore,
+            root,
+            lambda: arm.label_points,
+            tr or translations(),
         )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
 

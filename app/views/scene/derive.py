@@ -17,6 +17,7 @@ import viser
 
 from kinematics import Robot
 
+from ...core.i18n import Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.snapshot.derive import PATH_POINTS
 from ...core.state import LabState
@@ -43,8 +44,10 @@ class DeriveScene:
         geometry: ArmGeometry,
         root: str,
         joint_labels: Callable[[], np.ndarray] | None = None,
+        tr: Translator | None = None,
     ) -> None:
         self.robot = robot
+        self.tr = tr or translations()
         self.geometry = geometry
         self._joint_labels = joint_labels or (lambda: np.zeros((0, 3)))
         s = geometry.size
@@ -73,7 +76,7 @@ class DeriveScene:
             return
         unit = 0.2 * self.geometry.size * state.options.scale
         lin = LINEAR_SECONDS * state.options.scale
-        arrows, thin, lines, labels = METHODS[d.method].draw(self.robot, d, snap, unit, lin)
+        arrows, thin, lines, labels = METHODS[d.method].draw(self.robot, d, snap, unit, lin, self.tr)
         labels = labels[:_LABELS]
         self._set(self.arrows, arrows)
         self._set(self.thin, thin)

@@ -24,6 +24,7 @@ from collections.abc import Callable
 import numpy as np
 import viser
 
+from ...core.i18n import N_, Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ...viser_adapter import set_pose, update_props
@@ -69,13 +70,14 @@ GAP = 0.3
 FLAT_FLOOR = 0.03
 """At a singularity a flat ellipsoid axis is drawn this many robot sizes thick, so it can be seen."""
 _LABELS = {
-    ("arm", "v"): "arm: lost translation (wrist centre)",
-    ("wrist", "w"): "wrist: lost rotation axis",
-    ("tool", "v"): "lost translation",
-    ("tool", "w"): "lost rotation axis",
-    ("arm", "w"): "lost rotation axis",
-    ("wrist", "v"): "lost translation",
+    ("arm", "v"): N_("arm: lost translation (wrist centre)"),
+    ("wrist", "w"): N_("wrist: lost rotation axis"),
+    ("tool", "v"): N_("lost translation"),
+    ("tool", "w"): N_("lost rotation axis"),
+    ("arm", "w"): N_("lost rotation axis"),
+    ("wrist", "v"): N_("lost translation"),
 }
+"""The words at a lost direction (English msgids: shown in the tab's language)."""
 
 
 _NO_POINTS = np.zeros((0, 3))
@@ -190,7 +192,9 @@ class Overlays:
         planar: bool,
         root: str,
         joint_labels: Callable[[], np.ndarray] | None = None,
+        tr: Translator | None = None,
     ) -> None:
+        self.tr = tr or translations()
         self.geometry = geometry
         self._joint_labels = joint_labels or (lambda: np.zeros((0, 3)))
         self.planar = planar
@@ -336,6 +340,13 @@ class Overlays:
             else:
                 node.set(d.centre, e.axes, e.radii * scale, True, cap, floor)
 
+    def _words(self, label: str) -> str:
+        """A lost direction's words in the tab's language; longer than the English (which the camera
+        keeps in view), they break after their colon: "muñeca:\neje de giro perdido" (viser's labels
+        keep line breaks), so they do not run under the panel at 1280×720."""
+        text = self.tr.gettext(label)
+        return text.replace(": ", ":\n", 1) if len(text) > len(label) else text
+
     def _lost(self, snap: Snapshot, unit: float) -> None:
         """Every lost direction at its own point: an arrow for a translation (starting a little beyond
         the point, away from the arm), an axis with a ring for a rotation, each with its label."""
@@ -354,13 +365,13 @@ class Overlays:
                 starts.append(start)
                 vectors.append(u * size)
                 tips.append(start + u * (size + 0.1 * unit))
-                texts.append(_LABELS[loss.part, "v"])
+                texts.append(self._words(_LABELS[loss.part, "v"]))
             if show_w:
                 half = length * (np.sqrt(loss.rotation_share) if loss.part == "tool" else 0.75)
                 segments.append(np.array([[point - a * half, point + a * half]]))
                 segments.append(ring(point + a * 0.6 * half, a, 0.25 * half))
                 tips.append(point + a * (half + 0.1 * unit))
-                texts.append(_LABELS[loss.part, "w"])
+                texts.append(self._words(_LABELS[loss.part, "w"]))
         if starts:
             self.lost_v.set(np.array(starts), np.array(vectors), np.repeat(_LOST_COLORS, len(starts), axis=0))
         else:

@@ -15,6 +15,7 @@ from .content import HANDOUT_FORMATS, HANDOUT_METHODS, Example, Handout, Handout
 from .document import handout
 from .html import render_html
 from .tex import render_tex
+from .words import ENGLISH, Words
 
 __all__ = [
     "HANDOUT_FORMATS",
@@ -26,4 +27,6 @@ __all__ = [
     "build_handout",
     "render_html",
     "render_tex",
+    "Words",
+    "ENGLISH",
 ]

@@ -30,6 +30,7 @@ from ..steps import METHODS, derivation_steps, dh_rows
 from ..steps.methods import rate_symbols, wrench_symbols
 from ..steps.step import DHRow, Step
 from ..trig import Deadline
+from .words import ENGLISH, Words
 
 __all__ = [
     "HANDOUT_FORMATS",
@@ -108,6 +109,7 @@ class Handout:
     names: dict[sp.Symbol, str] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     same_J: bool = True
+    words: Words = ENGLISH
 
 
 def _example(robot: Robot, frame: str, configuration: str | None, rates: object, twist: object) -> Example:
@@ -153,6 +155,7 @@ def build_handout(
     twist: Sequence[float] | None = None,
     timeout: float | None = DEFAULT_TIMEOUT,
     progress: Callable[[str], None] | None = None,
+    words: Words = ENGLISH,
 ) -> Handout:
     """The content of a handout (see :func:`handout` for the arguments)."""
     if method not in HANDOUT_METHODS:
@@ -196,6 +199,7 @@ def build_handout(
         {**rate_names, **wrench_names},
         list(dict.fromkeys(n for n in notes if n)),
         same,
+        words,
     )
 
 

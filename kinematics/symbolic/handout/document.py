@@ -9,6 +9,7 @@ from ..core import DEFAULT_TIMEOUT
 from .content import HANDOUT_FORMATS, HandoutError, build_handout
 from .html import render_html
 from .tex import render_tex
+from .words import ENGLISH, Words
 
 __all__ = ["handout"]
 
@@ -25,6 +26,7 @@ def handout(
     twist: Sequence[float] | None = None,
     timeout: float | None = DEFAULT_TIMEOUT,
     progress: Callable[[str], None] | None = None,
+    words: Words = ENGLISH,
 ) -> str:
     """The derivation of ``robot``'s J as a complete document: ``fmt`` ``"html"`` (MathML, no script,
     no network) or ``"tex"`` (a LaTeX document, amsmath).
@@ -42,6 +44,8 @@ def handout(
         twist: A tool velocity [v; ω] (6,) [m/s; rad/s] for the example's q̇ = J⁻¹ v (task rows).
         timeout: Time budget [s] for the whole derivation; past it steps stay unsimplified (noted).
         progress: Called with short messages while the work goes on.
+        words: The handout's language (:class:`.words.Words`: the app's Translator): its words, its
+            decimal commas, the robot's texts in it (else English). Default: English.
 
     Raises:
         HandoutError: unknown format, method or configuration, wrong rates or twist.
@@ -59,5 +63,6 @@ def handout(
         twist=twist,
         timeout=timeout,
         progress=progress,
+        words=words,
     )
     return render_html(h) if fmt == "html" else render_tex(h)

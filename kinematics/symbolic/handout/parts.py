@@ -8,9 +8,11 @@ import numpy.typing as npt
 import sympy as sp
 
 from ..steps.step import Step, lhs_mathml, step_notation
+from ..typeset.escape import latex_text, xml_text
 from ..typeset.printing import Notation
 from ..typeset.render import KIND_TEXT
-from .content import ROW_NAMES, TITLES, Example, Handout, angle_parts, degrees_text
+from .content import ROW_NAMES, TITLES, Handout, angle_parts, degrees_text
+from .words import ENGLISH, Words, latex_number, list_separator, number, say, say_n
 
 __all__ = [
     "handout_title",
@@ -20,11 +22,19 @@ __all__ = [
     "contents_sentence",
     "RESULT_TITLE",
     "ASSEMBLED",
+    "SINGULAR_SETS",
+    "JOINT_COLUMN",
+    "NO_DH_TABLE",
+    "NOTATION",
+    "WHERE",
+    "NOTE",
     "example_lines",
     "example_math",
     "dh_cell",
     "singular_texts",
     "handout_notation",
+    "robot_text",
+    "kind_text",
 ]
 
 
@@ -37,102 +47,165 @@ def _digits(M: np.ndarray) -> int:
     return 3 if np.abs(M).max(initial=0.0) >= 1 else 4
 
 
+def robot_text(h: Handout, key: str) -> str:
+    """The robot's ``key`` text ("title", "description") in the handout's language, else English."""
+    return h.robot.translations.get(h.words.code, {}).get(key) or getattr(h.robot, key)
+
+
+def kind_text(w: Words, kind: str) -> str:
+    """A singularity's kind ("wrist") in words ("wrist singularity"), in ``w``'s language."""
+    return say(w, KIND_TEXT[kind])
+
+
 def handout_title(h: Handout) -> str:
-    r = h.robot
-    return f"The Jacobian of {r.title or r.name}, step by step"
+    return say(h.words, "The Jacobian of {robot}, step by step", robot=robot_text(h, "title") or h.robot.name)
 
 
 def intro(h: Handout) -> list[str]:
-    r = h.robot
-    axes = "base" if h.frame == "base" else "tool"
-    out = [
-        f"Robot {r.name}: {r.dof} joints ("
-        + ", ".join(
-            f"{i + 1} {'revolute' if k == 'revolute' else 'prismatic'}" for i, k in enumerate(r.joint_types)
+    r, w = h.robot, h.words
+    kinds = ", ".join(
+        say(w, "{i} revolute", i=i + 1) if k == "revolute" else say(w, "{i} prismatic", i=i + 1)
+        for i, k in enumerate(r.joint_types)
+    )
+    robot = say_n(
+        w,
+        "Robot {name}: {n} joint ({kinds}).",
+        "Robot {name}: {n} joints ({kinds}).",
+        r.dof,
+        name=r.name,
+        kinds=kinds,
+    )
+    rows = (
+        say(
+            w,
+            "J has rows [v; ω] in the base axes: v is the velocity of the tool origin [m/s], ω the angular "
+            "velocity [rad/s], per unit joint rate.",
         )
-        + f"). J has rows [v; ω] in the {axes} axes: v is the velocity of the tool origin [m/s], ω the "
-        "angular velocity [rad/s], per unit joint rate. Compact notation: cᵢ = cos θᵢ, sᵢ = sin θᵢ, "
-        "cᵢⱼ = cos(θᵢ + θⱼ), sᵢⱼ = sin(θᵢ + θⱼ).",
-    ]
+        if h.frame == "base"
+        else say(
+            w,
+            "J has rows [v; ω] in the tool axes: v is the velocity of the tool origin [m/s], ω the angular "
+            "velocity [rad/s], per unit joint rate.",
+        )
+    )
+    compact = say(w, "Compact notation: cᵢ = cos θᵢ, sᵢ = sin θᵢ, cᵢⱼ = cos(θᵢ + θⱼ), sᵢⱼ = sin(θᵢ + θⱼ).")
+    out = [" ".join((robot, rows, compact))]
     if h.symbolic_params:
         out.append(
-            "Link lengths and offsets are kept as symbols (their values are in the notation at the end)."
+            say(
+                w,
+                "Link lengths and offsets are kept as symbols (their values are in the notation at the end).",
+            )
         )
-    if r.description:
-        out.append(r.description)
+    description = robot_text(h, "description")
+    if description:
+        out.append(description)
     if r.source:
-        out.append(f"Source: {r.source}")
+        out.append(say(w, "Source: {source}", source=r.source))
     return out
 
 
 def jacobian_sentence(h: Handout) -> str:
     """What the result section says of J: how the derivation that follows reaches it."""
-    if len(h.methods) > 1:
-        agree = (
-            "give this same J (checked numerically at random configurations)" if h.same_J else "do NOT agree"
+    w, n = h.words, len(h.methods)
+    if n > 1:
+        if h.same_J:
+            return say_n(
+                w,
+                "The {n} method derived below gives this same J (checked numerically at random "
+                "configurations).",
+                "The {n} methods derived below give this same J (checked numerically at random "
+                "configurations).",
+                n,
+            )
+        return say_n(
+            w,
+            "The {n} method derived below does NOT agree.",
+            "The {n} methods derived below do NOT agree.",
+            n,
         )
-        return f"The {len(h.methods)} methods derived below {agree}."
-    return "Derived step by step below."
+    return say(w, "Derived step by step below.")
 
 
 def contents(h: Handout) -> list[tuple[int, str]]:
     """The handout's numbered sections after the result (§1): (number, title) of the derivation, then
     the worked example."""
-    out = [(2, "The Denavit–Hartenberg table"), (3, "Link transforms"), (4, "The frames in the base")]
-    out += [(5 + k, TITLES[m]) for k, m in enumerate(h.methods)]
-    out.append((5 + len(h.methods), "Worked example"))
+    w = h.words
+    out = [
+        (2, say(w, "The Denavit–Hartenberg table")),
+        (3, say(w, "Link transforms")),
+        (4, say(w, "The frames in the base")),
+    ]
+    out += [(5 + k, w.gettext(TITLES[m])) for k, m in enumerate(h.methods)]
+    out.append((5 + len(h.methods), say(w, "Worked example")))
     return out
 
 
 def contents_sentence(h: Handout) -> str:
     """The line under the result: where the derivation is."""
     parts = ", ".join(f"§{n} {title}" for n, title in contents(h))
-    return f"The derivation follows: {parts}."
+    return say(h.words, "The derivation follows: {sections}.", sections=parts)
 
 
 RESULT_TITLE = "1. The result: J(q) and det J"
 ASSEMBLED = "These steps give the J(q) of §1."
+SINGULAR_SETS = "Singular configurations (a factor of the determinant vanishes):"
+JOINT_COLUMN = "joint"
+NO_DH_TABLE = "This robot has no DH table (a URDF chain): its link and joint frames come from the URDF file."
+NOTATION = "Notation"
+WHERE = "where {items}"
+NOTE = "Note: {note}"
 
 
-def example_lines(ex: Example, robot_kinds: tuple[str, ...]) -> list[str]:
-    q = ", ".join(
-        f"{degrees_text(sp.Float(v))}°" if k == "revolute" else f"{_fmt(v, 3).rstrip('0').rstrip('.')} m"
-        for v, k in zip(ex.q, robot_kinds, strict=True)
+def example_lines(h: Handout) -> list[str]:
+    ex, w = h.example, h.words
+    q = list_separator(w).join(
+        f"{number(w, degrees_text(sp.Float(v)))}°"
+        if k == "revolute"
+        else f"{number(w, _fmt(v, 3).rstrip('0').rstrip('.'))} m"
+        for v, k in zip(ex.q, h.robot.joint_types, strict=True)
     )
-    where = f"the configuration “{ex.name}”" if ex.name else "the middle of the joint ranges"
-    out = [f"At {where}, q = ({q})." + (f" {ex.description}" if ex.description else "")]
+    if ex.name:
+        line = say(w, "At the configuration “{name}”, q = ({q}).", name=ex.name, q=q)
+    else:
+        line = say(w, "At the middle of the joint ranges, q = ({q}).", q=q)
+    named = next((c for c in h.robot.configurations if c.name == ex.name), None)
+    description = (named.translations.get(w.code, {}).get("description") if named else None) or ex.description
+    out = [line + (f" {description}" if description else "")]
     rows = ", ".join(ROW_NAMES[r] for r in ex.rows)
-    out.append(f"J(q), task rows ({rows}):")
+    out.append(say(w, "J(q), task rows ({rows}):", rows=rows))
     return out
 
 
-def _rate_text(v: float, kind: str, digits: int = 3) -> str:
+def _rate_text(w: Words, v: float, kind: str, digits: int = 3) -> str:
     if kind == "revolute":
-        return f"{_fmt(np.degrees(v), 2)}°/s"
-    return f"{_fmt(v, digits)} m/s"
+        return f"{number(w, _fmt(np.degrees(v), 2))}°/s"
+    return f"{number(w, _fmt(v, digits))} m/s"
 
 
 # ---------------------------------------------------------------------------------- numbers
-def _num_latex(M: np.ndarray, digits: int) -> str:
+def _num_latex(w: Words, M: np.ndarray, digits: int) -> str:
     M = np.atleast_2d(M)
     return (
         "\\begin{bmatrix}"
-        + "\\\\".join(" & ".join(_fmt(x, digits) for x in row) for row in M)
+        + "\\\\".join(" & ".join(latex_number(w, _fmt(x, digits)) for x in row) for row in M)
         + "\\end{bmatrix}"
     )
 
 
-def _num_mathml(M: np.ndarray, digits: int) -> str:
+def _num_mathml(w: Words, M: np.ndarray, digits: int) -> str:
     M = np.atleast_2d(M)
     rows = "".join(
-        "<mtr>" + "".join(f"<mtd><mn>{_fmt(x, digits).replace('-', '−')}</mn></mtd>" for x in row) + "</mtr>"
+        "<mtr>"
+        + "".join(f"<mtd><mn>{number(w, _fmt(x, digits)).replace('-', '−')}</mn></mtd>" for x in row)
+        + "</mtr>"
         for row in M
     )
     return f"<mrow><mo>[</mo><mtable>{rows}</mtable><mo>]</mo></mrow>"
 
 
-def _rates(v: np.ndarray, kinds: tuple[str, ...]) -> str:
-    return ", ".join(_rate_text(x, k) for x, k in zip(v, kinds, strict=True))
+def _rates(w: Words, v: np.ndarray, kinds: tuple[str, ...]) -> str:
+    return list_separator(w).join(_rate_text(w, x, k) for x, k in zip(v, kinds, strict=True))
 
 
 def _units(units: list[str], latex: bool) -> str:
@@ -151,9 +224,12 @@ def _row_units(rows: tuple[int, ...]) -> list[str]:
     return ["m/s" if r < 3 else "rad/s" for r in rows]
 
 
-def example_math(ex: Example, kinds: tuple[str, ...], latex: bool) -> list[tuple[str, str]]:
+def example_math(h: Handout, latex: bool) -> list[tuple[str, str]]:
     """(caption, formula) pairs of the worked example."""
-    num = _num_latex if latex else _num_mathml
+    ex, kinds, w = h.example, h.robot.joint_types, h.words
+
+    def num(M: np.ndarray, digits: int) -> str:
+        return _num_latex(w, M, digits) if latex else _num_mathml(w, M, digits)
 
     def col(v: npt.ArrayLike) -> np.ndarray:
         return np.asarray(v).reshape(-1, 1)
@@ -175,48 +251,52 @@ def example_math(ex: Example, kinds: tuple[str, ...], latex: bool) -> list[tuple
     )
     out = [("", f"{J_q}{eq}{num(ex.J, _digits(ex.J))}")]
     if ex.square:
-        out.append(("", f"{det_q}{eq}{_scalar(ex.det, latex)}"))
+        out.append(("", f"{det_q}{eq}{_scalar(w, ex.det, latex)}"))
     else:
-        out.append(("Manipulability √det(J Jᵀ):", f"{w_q}{eq}{_scalar(ex.det, latex)}"))
+        out.append((say(w, "Manipulability √det(J Jᵀ):"), f"{w_q}{eq}{_scalar(w, ex.det, latex)}"))
     joint_units, row_units = _units(_joint_units(kinds), latex), _units(_row_units(ex.rows), latex)
     if ex.rates is not None and ex.velocity is not None:
         out.append(
             (
-                f"With the joint rates q̇ = ({_rates(ex.rates, kinds)}):",
+                say(w, "With the joint rates q̇ = ({rates}):", rates=_rates(w, ex.rates, kinds)),
                 f"{qd}{eq}{num(col(ex.rates), 4)}{joint_units}",
             )
         )
-        out.append(("the tool velocity (task rows) is", f"{Jqd}{eq}{num(col(ex.velocity), 3)}{row_units}"))
+        out.append(
+            (say(w, "the tool velocity (task rows) is"), f"{Jqd}{eq}{num(col(ex.velocity), 3)}{row_units}")
+        )
     if ex.inverse is not None:
-        out.append(("J is square and regular here; its inverse:", f"{J_inv}{eq}{num(ex.inverse, 4)}"))
+        out.append((say(w, "J is square and regular here; its inverse:"), f"{J_inv}{eq}{num(ex.inverse, 4)}"))
     elif ex.square:
-        out.append(("J is singular here (det J = 0): it has no inverse.", ""))
+        out.append((say(w, "J is singular here (det J = 0): it has no inverse."), ""))
     if ex.twist is not None:
-        out.append(("For the tool velocity (task rows)", f"{v}{eq}{num(col(ex.twist), 3)}{row_units}"))
+        out.append(
+            (say(w, "For the tool velocity (task rows)"), f"{v}{eq}{num(col(ex.twist), 3)}{row_units}")
+        )
         if ex.solved is not None:
             out.append(
                 (
-                    f"the joints must move at q̇ = ({_rates(ex.solved, kinds)}):",
+                    say(w, "the joints must move at q̇ = ({rates}):", rates=_rates(w, ex.solved, kinds)),
                     f"{solved}{eq}{num(col(ex.solved), 4)}{joint_units}",
                 )
             )
     return out
 
 
-def _scalar(x: float, latex: bool) -> str:
+def _scalar(w: Words, x: float, latex: bool) -> str:
     text = f"{x:.6g}" if abs(x) >= 1e-4 or x == 0 else f"{x:.3e}"
-    return text if latex else f"<mn>{text.replace('-', '−')}</mn>"
+    return latex_number(w, text) if latex else f"<mn>{number(w, text).replace('-', '−')}</mn>"
 
 
 # ----------------------------------------------------------------------------------- DH table
-def dh_cell(N: Notation, e: sp.Expr, angle: bool, latex: bool) -> str:
+def dh_cell(N: Notation, e: sp.Expr, angle: bool, latex: bool, w: Words = ENGLISH) -> str:
     show = N.latex if latex else N.mathml
     if not angle:
         return show(e)
     var, const = angle_parts(e)
     if const == 0:
         return show(var) if var != 0 else ("0" if latex else "<mn>0</mn>")
-    deg = degrees_text(const)
+    deg = (latex_number if latex else number)(w, degrees_text(const))
     neg = deg.startswith("-")
     mag = deg.lstrip("-")
     c = f"{mag}^{{\\circ}}" if latex else f"<mn>{mag}°</mn>"
@@ -226,7 +306,7 @@ def dh_cell(N: Notation, e: sp.Expr, angle: bool, latex: bool) -> str:
     return f"{show(var)}{sign}{c}"
 
 
-def singular_texts(N: Notation, det: Step, latex: bool) -> list[str]:
+def singular_texts(N: Notation, det: Step, latex: bool, w: Words = ENGLISH) -> list[str]:
     show = N.latex if latex else N.mathml
     out = []
     for s in det.singular:
@@ -240,9 +320,9 @@ def singular_texts(N: Notation, det: Step, latex: bool) -> list[str]:
             )
         if s.kind:
             text += (
-                f" \\quad \\text{{({KIND_TEXT[s.kind]})}}"
+                f" \\quad \\text{{({latex_text(kind_text(w, s.kind), 120)})}}"
                 if latex
-                else f'<mspace width="1em"/><mtext>({KIND_TEXT[s.kind]})</mtext>'
+                else f'<mspace width="1em"/><mtext>({xml_text(kind_text(w, s.kind))})</mtext>'
             )
         out.append(text)
     return out

@@ -13,7 +13,13 @@ from ..typeset.printing import Notation
 from .content import INTRO, TITLES, Handout
 from .parts import (
     ASSEMBLED,
+    JOINT_COLUMN,
+    NO_DH_TABLE,
+    NOTATION,
+    NOTE,
     RESULT_TITLE,
+    SINGULAR_SETS,
+    contents,
     contents_sentence,
     dh_cell,
     example_lines,
@@ -24,6 +30,7 @@ from .parts import (
     jacobian_sentence,
     singular_texts,
 )
+from .words import Words, latex_decimals, say
 
 __all__ = ["render_tex", "tex_text", "TEX_MATH_CHARS"]
 
@@ -74,7 +81,8 @@ def tex_text(text: str, max_chars: int = NOTE_CHARS) -> str:
 
 def render_tex(h: Handout) -> str:
     """The handout as a complete LaTeX document; every formula is a ``\\[ … \\]`` display."""
-    N = handout_notation(h)
+    N, w = handout_notation(h), h.words
+    sections = dict(contents(h))
     out = [
         "\\documentclass[11pt,a4paper]{article}",
         "\\usepackage[utf8]{inputenc}",
@@ -92,67 +100,76 @@ def render_tex(h: Handout) -> str:
     ]
     out += [tex_text(t) + "\n" for t in intro(h)]
     # The result first (what a reader looks for), the derivation after it.
-    out.append(f"\\section*{{{tex_text(RESULT_TITLE)}}}")
+    out.append(f"\\section*{{{tex_text(say(w, RESULT_TITLE))}}}")
     for s in h.result:
-        out += _tex_steps([s], N)
+        out += _tex_steps([s], N, w)
         if s.key == "J":
             out.append(tex_text(jacobian_sentence(h)) + "\n")
         if s.key == "detJ" and s.singular:
-            out.append("Singular configurations (a factor of the determinant vanishes):")
-            for t in singular_texts(N, s, True):
-                out += ["\\[", t, "\\]"]
+            out.append(tex_text(say(w, SINGULAR_SETS)))
+            for t in singular_texts(N, s, True, w):
+                out += ["\\[", latex_decimals(w, t), "\\]"]
     out.append(tex_text(contents_sentence(h)) + "\n")
-    out.append("\\section*{2. The Denavit--Hartenberg table}")
+    out.append(f"\\section*{{2. {tex_text(sections[2])}}}")
     if h.table:
         heads = " & ".join(DH_COLUMNS[h.table[0].convention])
         rows = [
             f"{r.index} & "
-            + " & ".join(dh_cell(N, e, a, True) for e, a in zip(r.cells(), r.is_angle(), strict=True))
+            + " & ".join(
+                latex_decimals(w, dh_cell(N, e, a, True, w))
+                for e, a in zip(r.cells(), r.is_angle(), strict=True)
+            )
             + f" & \\text{{{latex_text(r.name, 120)}}}"
             for r in h.table
         ]
-        conv = "standard" if h.table[0].convention == "standard" else "modified (Craig's)"
-        out.append(f"Convention: {conv}. Lengths in metres, angles in degrees.")
+        conv = (
+            say(w, "Convention: standard. Lengths in metres, angles in degrees.")
+            if h.table[0].convention == "standard"
+            else say(w, "Convention: modified (Craig's). Lengths in metres, angles in degrees.")
+        )
+        out.append(tex_text(conv))
+        joint = latex_text(say(w, JOINT_COLUMN), 120)
         out += [
             "\\[",
-            f"\\begin{{array}}{{c|cccc|l}} i & {heads} & \\text{{joint}} \\\\ \\hline "
+            f"\\begin{{array}}{{c|cccc|l}} i & {heads} & \\text{{{joint}}} \\\\ \\hline "
             + " \\\\ ".join(rows)
             + " \\end{array}",
             "\\]",
         ]
     else:
-        out.append(
-            "This robot has no DH table (a URDF chain): its link and joint frames come from the URDF file.\n"
-        )
-    out.append("\\section*{3. Link transforms}")
-    out += _tex_steps([s for s in h.transforms if not s.key.startswith("T0_")], N)
-    out.append("\\section*{4. The frames in the base}")
-    out += _tex_steps([s for s in h.transforms if s.key.startswith("T0_")], N)
+        out.append(tex_text(say(w, NO_DH_TABLE)) + "\n")
+    out.append(f"\\section*{{3. {tex_text(sections[3])}}}")
+    out += _tex_steps([s for s in h.transforms if not s.key.startswith("T0_")], N, w)
+    out.append(f"\\section*{{4. {tex_text(sections[4])}}}")
+    out += _tex_steps([s for s in h.transforms if s.key.startswith("T0_")], N, w)
     number = 5
     for m in h.methods:
-        out += [f"\\section*{{{number}. {tex_text(TITLES[m])}}}", tex_text(INTRO[m]) + "\n"]
-        out += _tex_steps(h.method_steps[m], N)
-        out.append(tex_text(ASSEMBLED) + "\n")
+        out += [
+            f"\\section*{{{number}. {tex_text(w.gettext(TITLES[m]))}}}",
+            tex_text(w.gettext(INTRO[m])) + "\n",
+        ]
+        out += _tex_steps(h.method_steps[m], N, w)
+        out.append(tex_text(say(w, ASSEMBLED)) + "\n")
         number += 1
-    out.append(f"\\section*{{{number}. Worked example}}")
-    out += [tex_text(line) + "\n" for line in example_lines(h.example, h.robot.joint_types)]
-    for cap, formula in example_math(h.example, h.robot.joint_types, True):
+    out.append(f"\\section*{{{number}. {tex_text(sections[number])}}}")
+    out += [tex_text(line) + "\n" for line in example_lines(h)]
+    for cap, formula in example_math(h, True):
         if cap:
             out.append(tex_text(cap))
         if formula:
             out += ["\\[", formula, "\\]"]
-    out.append("\\section*{Notation}")
-    out += ["\\[", N.latex_legend(), "\\]"]
+    out.append(f"\\section*{{{tex_text(say(w, NOTATION))}}}")
+    out += ["\\[", latex_decimals(w, N.latex_legend()), "\\]"]
     notes = h.notes + ([OMITTED] if any("\\ast" in x for x in out) else [])
-    out += [f"Note: {tex_text(n)}\n" for n in notes]
+    out += [tex_text(say(w, NOTE, note=n)) + "\n" for n in notes]
     out.append("\\end{document}")
     return "\n".join(out) + "\n"
 
 
-def _tex_steps(steps: list[Step], N: Notation) -> list[str]:
+def _tex_steps(steps: list[Step], N: Notation, w: Words) -> list[str]:
     out = []
     for s in steps:
         out.append(tex_text(s.title))
         for block in s.latex_blocks(TEX_MATH_CHARS, N):
-            out += ["\\[", block, "\\]"]
+            out += ["\\[", latex_decimals(w, block), "\\]"]
     return out

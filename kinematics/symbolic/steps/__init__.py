@@ -41,6 +41,7 @@ from typing import Literal
 import sympy as sp
 
 from ...model import Robot
+from ...text import N_, words
 from ..chain import frames_within, multiply
 from ..core import DEFAULT_TIMEOUT, check_timeout
 from ..model import SymbolicError, build_model, check_frame
@@ -87,12 +88,16 @@ def _transform_steps(ctx: Context) -> list[Step]:
     m, F = ctx.model, ctx.F
     out: list[Step] = []
     dh = bool(m.dh)
-    what = "DH link transform" if dh else "link transform of the chain"
+    what = (
+        N_("{A} = {T}, the DH link transform of joint {joint}{formula}")
+        if dh
+        else N_("{A} = {T}, the link transform of the chain of joint {joint}{formula}")
+    )
     if not _is_identity(m.base):
         out.append(
             ctx.step(
                 "base",
-                "The robot's base transform: frame 0 seen from the base",
+                words(N_("The robot's base transform: frame 0 seen from the base")),
                 "T_{\\mathrm{base}}",
                 m.base,
                 None,
@@ -110,7 +115,7 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 f"A{k + 1}",
-                f"A{_sub(k + 1)} = {_sup(k)}T{_sub(k + 1)}, the {what} of joint {k + 1}{formula}",
+                words(what, A=f"A{_sub(k + 1)}", T=f"{_sup(k)}T{_sub(k + 1)}", joint=k + 1, formula=formula),
                 f"A_{{{k + 1}}}",
                 A,
                 m.axis_joint[k],
@@ -121,7 +126,7 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 "Atool",
-                f"The tool transform: the tool frame seen from frame {n}",
+                words(N_("The tool transform: the tool frame seen from frame {n}"), n=n),
                 f"{{}}^{{{n}}}T_{{\\mathrm{{tool}}}}",
                 m.tool,
                 None,
@@ -134,7 +139,7 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 f"T0_{k + 1}",
-                title + f": frame {k + 1} in the base frame",
+                words(N_("{T}: frame {i} in the base frame"), T=title, i=k + 1),
                 f"{{}}^{{0}}T_{{{k + 1}}}",
                 F.link[k],
                 m.axis_joint[k],
@@ -144,8 +149,12 @@ def _transform_steps(ctx: Context) -> list[Step]:
         out.append(
             ctx.step(
                 "T0_tool",
-                f"⁰T_tool = ⁰T{_sub(len(m.kinds))} · {_sup(len(m.kinds))}T_tool: the tool pose "
-                "(pₙ is its origin)",
+                words(
+                    N_("{T} = {product}: the tool pose ({p} is its origin)"),
+                    T="⁰T_tool",
+                    product=f"⁰T{_sub(len(m.kinds))} · {_sup(len(m.kinds))}T_tool",
+                    p="pₙ",
+                ),
                 "{}^{0}T_{\\mathrm{tool}}",
                 F.tool,
                 None,
@@ -214,20 +223,31 @@ def _build(
     own, J, axes = METHOD_STEPS[method](ctx)
     steps += own
     if axes != frame:  # Whitney and differentiation give J in the base axes, force propagation in the tool's
-        what = {"base": "the base axes: the columns side by side", "tool": "the tool axes"}[axes]
+        what = {
+            "base": N_("J in the base axes: the columns side by side"),
+            "tool": N_("J in the tool axes"),
+        }[axes]
         lhs = {"base": "J_{\\mathrm{base}}", "tool": "J_{\\mathrm{tool}}"}[axes]
-        steps.append(ctx.step(f"J_{axes}", f"J in {what}", lhs, J, None, "result"))
+        steps.append(ctx.step(f"J_{axes}", words(what), lhs, J, None, "result"))
         R = F.tool[:3, :3]
         J = rotate_rows(J, R.T if frame == "tool" else R)
     title = {
-        "base": "J: the columns side by side, rows [v; ω] in the base axes (v: velocity of the tool origin)",
-        "tool": "J in the tool axes: blockdiag(Rᵀ, Rᵀ) J_base, R the tool's rotation",
+        "base": N_(
+            "J: the columns side by side, rows [v; ω] in the base axes (v: velocity of the tool origin)"
+        ),
+        "tool": N_("J in the tool axes: blockdiag(Rᵀ, Rᵀ) J_base, R the tool's rotation"),
     }[frame]
     if method == "propagation":
-        title = "J: the coefficients of q̇ in [v; ω]" + (" (base axes)" if frame == "base" else " (tool axes)")
+        title = (
+            N_("J: the coefficients of q̇ in [v; ω] (base axes)")
+            if frame == "base"
+            else N_("J: the coefficients of q̇ in [v; ω] (tool axes)")
+        )
     if method == "force" and frame == "base":
-        title = "J = blockdiag(R, R) J_tool, R the tool's rotation: rows [v; ω] in the base axes"
-    steps.append(ctx.step("J", title, "J" if frame == "base" else "J_{\\mathrm{tool}}", J, None, "result"))
+        title = N_("J = blockdiag(R, R) J_tool, R the tool's rotation: rows [v; ω] in the base axes")
+    steps.append(
+        ctx.step("J", words(title), "J" if frame == "base" else "J_{\\mathrm{tool}}", J, None, "result")
+    )
     det = _det_step(ctx, robot, symbolic_params) if frame == "base" else None
     if det is not None:
         steps.append(det)

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from ...text import N_, words
 from ..chain import Frames
 from ..derivations import carry_inward, carry_outward, chain_elements
 from ..model import SymbolicModel
@@ -111,7 +112,7 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             i, W = lab[k], F.joint[k]
             zs = ctx.step(
                 f"whitney.z{k}",
-                f"z{_s(i)}: the axis of joint {k + 1}, in the base axes",
+                words(N_("{z}: the axis of joint {joint}, in the base axes"), z=f"z{_s(i)}", joint=k + 1),
                 f"z_{{{i}}}",
                 W[:3, 2],
                 j,
@@ -123,7 +124,11 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             if m.kinds[k] == "revolute":
                 p = ctx.step(
                     f"whitney.p{k}",
-                    f"p{_s(i)}: a point of joint {k + 1}'s axis (its frame's origin)",
+                    words(
+                        N_("{p}: a point of joint {joint}'s axis (its frame's origin)"),
+                        p=f"p{_s(i)}",
+                        joint=k + 1,
+                    ),
                     f"p_{{{i}}}",
                     W[:3, 3],
                     j,
@@ -131,7 +136,11 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
                 )
                 r = ctx.step(
                     f"whitney.r{k}",
-                    f"pₙ − p{_s(i)}: from joint {k + 1}'s axis to the tool origin",
+                    words(
+                        N_("{r}: from joint {joint}'s axis to the tool origin"),
+                        r=f"pₙ − p{_s(i)}",
+                        joint=k + 1,
+                    ),
                     f"p_{{n}} - p_{{{i}}}",
                     p_n - W[:3, 3],
                     j,
@@ -139,13 +148,17 @@ def whitney(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
                 )
                 out += [p, r]
                 col += rate * sp.Matrix.vstack(z.cross(r.expr), z)
-                formula = f"z{_s(i)} × (pₙ − p{_s(i)}), z{_s(i)}"
+                formula = words(
+                    N_("Column {j} = {formula}"), j=j + 1, formula=f"z{_s(i)} × (pₙ − p{_s(i)}), z{_s(i)}"
+                )
             else:
                 col += rate * sp.Matrix.vstack(z, sp.zeros(3, 1))
-                formula = f"z{_s(i)}, 0 (prismatic: the tool slides along the axis, no rotation)"
-        step = ctx.step(
-            f"whitney.col{j + 1}", f"Column {j + 1} = {formula}", f"J_{{{j + 1}}}", col, j, "whitney"
-        )
+                formula = words(
+                    N_("Column {j} = {z}, 0 (prismatic: the tool slides along the axis, no rotation)"),
+                    j=j + 1,
+                    z=f"z{_s(i)}",
+                )
+        step = ctx.step(f"whitney.col{j + 1}", formula, f"J_{{{j + 1}}}", col, j, "whitney")
         out.append(step)
         cols.append(step.expr)
     return out, sp.Matrix.hstack(*cols), "base"
@@ -161,7 +174,7 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         name = m.display[qj]
         dp = ctx.step(
             f"diff.dp{j + 1}",
-            f"∂p/∂q{_s(j + 1)}: the v part of column {j + 1}",
+            words(N_("{dp}: the v part of column {j}"), dp=f"∂p/∂q{_s(j + 1)}", j=j + 1),
             f"\\frac{{\\partial p}}{{\\partial {name}}}",
             p.diff(qj),
             j,
@@ -169,7 +182,11 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         )
         S = ctx.step(
             f"diff.S{j + 1}",
-            f"(∂R/∂q{_s(j + 1)}) Rᵀ = [ω]×: a skew matrix; the ω part of column {j + 1} is (S₃₂, S₁₃, S₂₁)",
+            words(
+                N_("{S} = [ω]×: a skew matrix; the ω part of column {j} is (S₃₂, S₁₃, S₂₁)"),
+                S=f"(∂R/∂q{_s(j + 1)}) Rᵀ",
+                j=j + 1,
+            ),
             f"\\frac{{\\partial R}}{{\\partial {name}}} R^{{T}}",
             R.diff(qj) * R.T,
             j,
@@ -178,7 +195,7 @@ def differentiation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         s = S.expr
         col = ctx.step(
             f"diff.col{j + 1}",
-            f"Column {j + 1} = ∂p/∂q{_s(j + 1)}, (S₃₂, S₁₃, S₂₁)",
+            words(N_("Column {j} = {dp}, (S₃₂, S₁₃, S₂₁)"), j=j + 1, dp=f"∂p/∂q{_s(j + 1)}"),
             f"J_{{{j + 1}}}",
             sp.Matrix([*dp.expr, s[2, 1], s[0, 2], s[1, 0]]),
             j,
@@ -206,19 +223,38 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         last_of_link = 0 <= k < len(m.kinds) and idx + 1 < len(chain) and chain[idx + 1][2] != k
         if last_of_link:
             j, i = m.axis_joint[k], k + 1
-            extra = " plus ḋ along the axis" if m.kinds[k] == "prismatic" else ""
             ws = mk(
                 f"prop.w{i}",
-                f"ω of link {i} in its own axes: link {i - 1}'s ω carried into frame {i}"
-                + (f", plus θ̇{_s(j + 1)} about joint {i}'s axis" if m.kinds[k] == "revolute" else ""),
+                words(
+                    N_(
+                        "ω of link {i} in its own axes: link {before}'s ω carried into frame {i}, plus "
+                        "{rate} about joint {i}'s axis"
+                    )
+                    if m.kinds[k] == "revolute"
+                    else N_("ω of link {i} in its own axes: link {before}'s ω carried into frame {i}"),
+                    i=i,
+                    before=i - 1,
+                    rate=f"θ̇{_s(j + 1)}",
+                ),
                 f"{{}}^{{{i}}}\\omega_{{{i}}}",
                 w,
                 j,
             )
             vs = mk(
                 f"prop.v{i}",
-                f"Velocity of link {i}'s origin in its own axes: link {i - 1}'s origin velocity plus "
-                f"ω × (the offset between the origins){extra}",
+                words(
+                    N_(
+                        "Velocity of link {i}'s origin in its own axes: link {before}'s origin velocity plus "
+                        "ω × (the offset between the origins) plus ḋ along the axis"
+                    )
+                    if m.kinds[k] == "prismatic"
+                    else N_(
+                        "Velocity of link {i}'s origin in its own axes: link {before}'s origin velocity plus "
+                        "ω × (the offset between the origins)"
+                    ),
+                    i=i,
+                    before=i - 1,
+                ),
                 f"{{}}^{{{i}}}v_{{{i}}}",
                 v,
                 j,
@@ -228,14 +264,14 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
     if m.tool != sp.eye(4):
         ws = mk(
             "prop.wtool",
-            "ω of the tool in the tool axes",
+            words(N_("ω of the tool in the tool axes")),
             "{}^{\\mathrm{tool}}\\omega_{\\mathrm{tool}}",
             w,
             None,
         )
         vs = mk(
             "prop.vtool",
-            "Velocity of the tool origin in the tool axes: v + ω × (the tool offset)",
+            words(N_("Velocity of the tool origin in the tool axes: v + ω × (the tool offset)")),
             "{}^{\\mathrm{tool}}v_{\\mathrm{tool}}",
             v,
             None,
@@ -247,14 +283,14 @@ def propagation(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
         end = "\\mathrm{tool}" if m.tool != sp.eye(4) else "n"
         ws = mk(
             "prop.w_base",
-            "ω of the tool rotated to the base axes: ⁰R_tool ω",
+            words(N_("ω of the tool rotated to the base axes: ⁰R_tool ω")),
             f"{{}}^{{0}}\\omega_{{{end}}}",
             R * w,
             None,
         )
         vs = mk(
             "prop.v_base",
-            "Velocity of the tool origin rotated to the base axes: ⁰R_tool v",
+            words(N_("Velocity of the tool origin rotated to the base axes: ⁰R_tool v")),
             f"{{}}^{{0}}v_{{{end}}}",
             R * v,
             None,
@@ -281,16 +317,28 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             j, i = m.axis_joint[k], k + 1
             fs = mk(
                 f"force.f{i}",
-                f"Force on link {i} at joint {i}, in the axes of joint {i}'s frame (z along its axis): "
-                f"link {i + 1}'s force carried inward",
+                words(
+                    N_(
+                        "Force on link {i} at joint {i}, in the axes of joint {i}'s frame (z along its "
+                        "axis): link {next}'s force carried inward"
+                    ),
+                    i=i,
+                    next=i + 1,
+                ),
                 f"f_{{{i}}}",
                 f,
                 j,
             )
             ns = mk(
                 f"force.n{i}",
-                f"Moment on link {i} about joint {i}'s frame origin: link {i + 1}'s moment carried inward "
-                "plus p × f",
+                words(
+                    N_(
+                        "Moment on link {i} about joint {i}'s frame origin: link {next}'s moment carried "
+                        "inward plus p × f"
+                    ),
+                    i=i,
+                    next=i + 1,
+                ),
                 f"n_{{{i}}}",
                 n,
                 j,
@@ -301,13 +349,13 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
             tau[j] = tau.get(j, sp.Integer(0)) + sp.diff(X, m.q[j]) * torque
             if k == min(_axes_of(m, j)):
                 what = (
-                    "n · z: the moment about the axis"
+                    N_("{tau} = n · z: the moment about the axis")
                     if kind == "revolute"
-                    else "f · z: the force along the axis"
+                    else N_("{tau} = f · z: the force along the axis")
                 )
                 taus[j] = mk(
                     f"force.tau{j + 1}",
-                    f"τ{_s(j + 1)} = {what}",
+                    words(what, tau=f"τ{_s(j + 1)}"),
                     f"\\tau_{{{j + 1}}}",
                     sp.Matrix([[tau[j]]]),
                     j,
@@ -315,7 +363,7 @@ def force(ctx: Context) -> tuple[list[Step], sp.Matrix, str]:
                 out.append(taus[j])
         f, n = carry_inward(kind, X, f, n)
     JT = sp.Matrix([taus[j].expr[0, 0] for j in range(m.dof)]).jacobian(sp.Matrix(W))
-    title = "Jᵀ in the tool axes: the coefficients of the tool wrench in τ (τ = Jᵀ [f; n])"
+    title = words(N_("Jᵀ in the tool axes: the coefficients of the tool wrench in τ (τ = Jᵀ [f; n])"))
     jt = ctx.step("force.JT", title, "J_{\\mathrm{tool}}^{T}", JT, None, "force")
     out.append(jt)
     return out, jt.expr.T, "tool"
