@@ -232,11 +232,8 @@ def meta(doc: dict[str, Any]) -> dict[str, Any]:
     """Title, description, source (one paragraph each), planar, task and the title's and description's
     translations of a checked document (what :func:`robots.info` tells besides the name and convention)."""
     words = {k: _text(doc[k]) for k in ("title", "description", "source")}
-    return words | {
-        "planar": doc.get("planar", False),
-        "task": doc.get("task", "auto"),
-        "translations": texts.read_translations(doc),
-    }
+    more = {"planar": doc.get("planar", False), "task": doc.get("task", "auto")}
+    return words | more | {"translations": texts.read_translations(doc)}
 
 
 def _text(s: str) -> str:
