@@ -184,7 +184,6 @@ def loads(text: str, file_name: str) -> RobotFile:
             doc["name"],
             configurations=confs,
             param_names=_symbols(doc, file_name),
-            translations=texts.read_translations(doc),
             **meta(doc),
         )
     except RobotDefinitionError as exc:
@@ -230,10 +229,11 @@ def _symbols(doc: dict[str, Any], file: str) -> dict[str, str]:
 
 
 def meta(doc: dict[str, Any]) -> dict[str, Any]:
-    """Title, description, source (one paragraph each), planar and task of a checked document
-    (what :func:`robots.info` tells besides the name and convention)."""
-    texts = {k: _text(doc[k]) for k in ("title", "description", "source")}
-    return texts | {"planar": doc.get("planar", False), "task": doc.get("task", "auto")}
+    """Title, description, source (one paragraph each), planar, task and the title's and description's
+    translations of a checked document (what :func:`robots.info` tells besides the name and convention)."""
+    words = {k: _text(doc[k]) for k in ("title", "description", "source")}
+    more = {"planar": doc.get("planar", False), "task": doc.get("task", "auto")}
+    return words | more | {"translations": texts.read_translations(doc)}
 
 
 def _text(s: str) -> str:

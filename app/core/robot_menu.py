@@ -17,14 +17,17 @@ import robots
 __all__ = ["RobotMenu", "robot_menu", "robot_label"]
 
 
-@functools.cache  # bounded: the library's names only
-def _title(name: str) -> str:
-    return str(robots.info(name).get("title") or "").strip()
+@functools.cache  # bounded: the library's names times the languages
+def _title(name: str, code: str) -> str:
+    info = robots.info(name)
+    translated = info.get("translations", {}).get(code, {}).get("title", "") if code != "en" else ""
+    return str(translated or info.get("title") or "").strip()
 
 
-def robot_label(name: str) -> str:
-    """``name``'s entry in the menu: "<title> (<name>)" for a library robot with a title, else ``name``."""
-    title = _title(name) if name in robots.names() else ""
+def robot_label(name: str, code: str = "en") -> str:
+    """``name``'s entry in the menu: "<title> (<name>)" for a library robot with a title (in language
+    ``code`` where its file translates it, else English), else ``name``."""
+    title = _title(name, code) if name in robots.names() else ""
     return f"{title} ({name})" if title else name
 
 
@@ -47,12 +50,13 @@ class RobotMenu:
         return text if text in self.names.values() else None
 
 
-def robot_menu(names: Sequence[str]) -> RobotMenu:
-    """The menu of the robots ``names`` (the tab's catalogue, its own robots first)."""
+def robot_menu(names: Sequence[str], code: str = "en") -> RobotMenu:
+    """The menu of the robots ``names`` (the tab's catalogue, its own robots first), its titles in
+    language ``code``."""
     labels: dict[str, str] = {}
     for name in names:
-        label, k = robot_label(name), 2
+        label, k = robot_label(name, code), 2
         while label in labels:  # a file robot named like a library robot's label
-            label, k = f"{robot_label(name)} [{k}]", k + 1
+            label, k = f"{robot_label(name, code)} [{k}]", k + 1
         labels[label] = name
     return RobotMenu(labels=tuple(labels), names=labels)

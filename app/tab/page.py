@@ -111,6 +111,10 @@ class PageLink:
         with self._lock:
             self._loaded = True
         self._languages(report.lang, report.browser)
+        if (
+            report.tab
+        ):  # an address may name the tab in another language (a shared link): open it in this one's
+            self.show_tab(self.tab)
         if report.resume and self.following is not None and self.following.resume(report.resume):
             return  # the presenter is back, with the state it showed
         if not self._restore(report):

@@ -134,3 +134,18 @@ def test_the_longer_phrases_are_whole_at_a_phones_width(tmp_path, locale, code):
         cut = [t["text"] for t in texts if t["cut"] and t["text"] != summary]
         assert not cut, f"cut off at 390 px: {cut}"
         assert not errors
+
+
+def test_a_link_naming_the_tab_in_another_language_opens_that_tab_in_the_browsers_language(tmp_path):
+    """A Spanish student's shared address (``?tab=Deducción``) opened by a Polish browser: the Derive tab
+    opens, under its Polish name, and the address then names it in Polish."""
+    out = _out(tmp_path)
+    polish = translations("pl").gettext("Derive")
+    lab = Lab(port=0, symbolic=FakeSymbolicService())
+    with app_page(lab, locale="pl-PL", path="?robot=trr&tab=Deducci%C3%B3n") as (page, session, errors):
+        poll(lambda: session.language == "pl", what="the tab speaks Polish")
+        selected = page.locator("[role=tab][aria-selected=true]")
+        poll(lambda: selected.first.inner_text().strip() == polish, what=f"the {polish!r} tab is open")
+        poll(lambda: "tab=Wyprowadzenie" in page.url, what="the address names the tab in Polish")
+        page.screenshot(path=str(out / "i18n_pl_derive_from_a_spanish_link_1280x720.png"))
+        assert not errors

@@ -260,3 +260,22 @@ def test_record_lang_pl_writes_the_demos_words_in_polish(tmp_path):
     lost = [_last(f["messages"], f"/demo/lab/jacobian/lost_label_{i}", "text") for i in range(3)]
     assert any(t and ("utracon" in t) for t in lost), lost
     assert main(["record", "ur5", "-o", str(out), "--lang", "fr"]) == 2
+
+
+def test_the_robot_menu_lists_the_library_robots_by_their_title_in_the_tabs_language():
+    """The Robot dropdown names each library robot by its file's title in the tab's language (the TRR is
+    'Robot TRR (przykład z wykładu) (trr)' in Polish), and a picked translated label loads that robot."""
+    import robots
+
+    with running_lab(robot="puma560") as (_lab, session, _ws):
+        english = set(session.panel.robot.options)
+        assert "TRR robot (course example) (trr)" in english
+        report(session, address="?lang=pl&robot=puma560")
+        options = session.panel.robot.options
+        for name in robots.names():
+            title = robots.info(name)["translations"]["pl"]["title"]
+            assert f"{title} ({name})" in options, name
+        assert "Robot TRR (przykład z wykładu) (trr)" in options
+        assert "TRR robot (course example) (trr)" not in options
+        session.panel.robot.value = "Robot TRR (przykład z wykładu) (trr)"
+        wait_until(lambda: session.state.robot_name == "trr")

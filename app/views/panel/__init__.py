@@ -104,7 +104,7 @@ class PanelView:
         bind(self.report, dispatch, lambda v: PageReport(str(v)) if str(v) else None)
         run_javascript(client, page_state_js(handle_uuid(self.report), _(LOST_WORDS), report))
         set_page_title(client, PAGE_TITLE)
-        self.menu = robot_menu(robot_names)
+        self.menu = robot_menu(robot_names, tr.code)
         self._menu_names = tuple(robot_names)
         self.robot = gui.add_dropdown(
             _("Robot"), self.menu.labels, initial_value=self.menu.label_of(state.robot_name), order=1
@@ -214,7 +214,7 @@ class PanelView:
         by its label (a library robot's title and name). The menu is worked out again only when the
         names changed (every redraw passes them; a label asks the library whether the name is its)."""
         if tuple(names) != self._menu_names:
-            self.menu, self._menu_names = robot_menu(names), tuple(names)
+            self.menu, self._menu_names = robot_menu(names, self.tr.code), tuple(names)
         if tuple(self.robot.options) != self.menu.labels:
             self.robot.options = self.menu.labels
 
