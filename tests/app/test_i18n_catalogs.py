@@ -82,6 +82,14 @@ def test_every_entry_is_translated_not_fuzzy_with_its_placeholders_and_plural_fo
 
 
 @pytest.mark.parametrize("lang", TRANSLATED, ids=lambda lang: lang.locale)
+def test_babels_own_checkers_find_nothing(lang):
+    """What `pybabel compile` checks (Babel's checkers: python-format placeholders, plural forms) finds
+    no error: a message with "% o" in it reads as a %-format and compiles with an error."""
+    errors = [(m.id, [str(e) for e in errs]) for m, errs in _catalog(lang.locale).check()]
+    assert not errors, errors
+
+
+@pytest.mark.parametrize("lang", TRANSLATED, ids=lambda lang: lang.locale)
 def test_the_compiled_catalog_is_the_written_one(lang):
     """The .mo files are committed (so `pip install -e .` and the wheel carry them): each must say what
     its .po says (`pybabel compile -d app/locale -D messages` after every edit)."""

@@ -262,16 +262,18 @@ class InversePanel:
             tr,
         )
         if wanted > 0 and lost > 1e-6 * max(wanted, 1.0):
-            share = fmt.number(100 * lost / wanted, tr=tr)
+            percent = (
+                fmt.number(100 * lost / wanted, tr=tr) + " %"
+            )  # whole, in the words (a "%" would read as a format)
             if snap.report.status == "singular" and lam == 0:
                 why = _(
-                    "{share} % of v is not produced: the arm is singular: J⁺ drops the direction it has lost."
+                    "{percent} of v is not produced: the arm is singular: J⁺ drops the direction it has lost."
                 )
             elif lam > 0:
-                why = _("{share} % of v is not produced: damping trades accuracy for bounded joint rates.")
+                why = _("{percent} of v is not produced: damping trades accuracy for bounded joint rates.")
             else:
-                why = _("{share} % of v is not produced: this twist is outside what the joints can produce.")
-            table += f'<div class="jl-warn">{why.format(share=share)}</div>'
+                why = _("{percent} of v is not produced: this twist is outside what the joints can produce.")
+            table += f'<div class="jl-warn">{why.format(percent=percent)}</div>'
         self.result.content = table
 
     def remove(self) -> None:
