@@ -30,6 +30,7 @@ import numpy.typing as npt
 
 from .conventions import FloatArray
 from .errors import ArrayError
+from .method_texts import INTROS, TITLES
 from .model import Robot
 from .numeric import as_configuration, chain_frames, fk, link_frames
 from .parts import JointType
@@ -345,10 +346,8 @@ METHODS: dict[str, StepMethod] = {
         StepMethod(
             "whitney",
             N_("Whitney: Jᵢ = zᵢ₋₁ × (pₙ − pᵢ₋₁)"),
-            "Whitney's method: the columns of J",
-            "Whitney's method (course 000, section 4): column i of J is [zᵢ₋₁ × (pₙ − pᵢ₋₁); zᵢ₋₁] for a "
-            "revolute joint and [zᵢ₋₁; 0] for a prismatic one, where zᵢ₋₁ is the axis of joint i and pᵢ₋₁ a "
-            "point on it (the third column and the origin of ⁰Tᵢ₋₁), and pₙ the tool origin.",
+            TITLES["whitney"],
+            INTROS["whitney"],
             "",
             lambda robot, q, j, inputs, reach: whitney(robot, q),
             _whitney_column,
@@ -357,10 +356,8 @@ METHODS: dict[str, StepMethod] = {
         StepMethod(
             "differentiation",
             N_("Differentiation: ∂p/∂qᵢ"),
-            "Differentiating the forward kinematics",
-            "Differentiating the forward kinematics (course 001, method 1; course 004): the v part of "
-            "column i is ∂p/∂qᵢ of the tool position p; the ω part comes from S = (∂R/∂qᵢ) Rᵀ, a skew matrix "
-            "[ω]×, as ω = (S₃₂, S₁₃, S₂₁).",
+            TITLES["differentiation"],
+            INTROS["differentiation"],
             "",
             lambda robot, q, j, inputs, reach: _sweep_step(robot, q, j, reach),
             lambda robot, q, j: differentiation(robot, q, joints=(j,))[0].column,
@@ -369,11 +366,8 @@ METHODS: dict[str, StepMethod] = {
         StepMethod(
             "propagation",
             N_("Velocity propagation: ωᵢ, vᵢ"),
-            "Velocity propagation, link by link",
-            "Velocity propagation (course 000, section 3; course 001, method 2; Craig's outward iteration): "
-            "from the base outward, each link's angular velocity ω and the velocity v of its origin, in the "
-            "link's own axes: ω' = Rᵀ(ω + θ̇ ẑ), v' = Rᵀ(v + ω × p) (plus ḋ ẑ for a prismatic joint). J holds "
-            "the coefficients of the joint rates q̇ in the tool's [v; ω].",
+            TITLES["propagation"],
+            INTROS["propagation"],
             "rates",
             lambda robot, q, j, inputs, reach: propagation(robot, q, inputs),
             _propagated_column,
@@ -382,11 +376,8 @@ METHODS: dict[str, StepMethod] = {
         StepMethod(
             "force",
             N_("Force propagation: τ = Jᵀ F"),
-            "Force propagation: τ = Jᵀ F",
-            "Force propagation (course 001, method 3; course 000, section 6; Craig's inward iteration): a "
-            "wrench [f; n] on the tool, in the tool axes, carried inward link by link (f = R f', "
-            "n = R n' + p × f); joint i's torque is the component along its axis. Since τ = Jᵀ F, the "
-            "coefficients of the wrench are Jᵀ: the transpose view of the same J.",
+            TITLES["force"],
+            INTROS["force"],
             "wrench",
             lambda robot, q, j, inputs, reach: force_propagation(robot, q, inputs),
             _force_column,

@@ -6,6 +6,7 @@ and asks the catalogs only for words the app lists for them."""
 from __future__ import annotations
 
 import ast
+import html as html_lib
 import importlib
 import re
 import xml.etree.ElementTree as ET
@@ -21,6 +22,8 @@ from app.core import handout_words
 from app.core.i18n import translations
 from kinematics.symbolic.handout import ENGLISH, handout
 from kinematics.symbolic.typeset.render import KIND_TEXT
+from kinematics.text import N_, translated
+from kinematics.text import words as caption_words
 
 HANDOUT = Path(importlib.import_module("kinematics.symbolic.handout").__file__).parent
 SHOTS = Path("/work/notes/shots/s27/trobots")
@@ -128,8 +131,8 @@ class Hostile:
     code = "xx"
     EVIL = '</p><script>alert(1)</script> \\input{/etc/passwd} % $ & # _ ^ { } ~ "'
 
-    def gettext(self, message: str) -> str:
-        return message
+    def gettext(self, message: str) -> str:  # the steps' captions, the methods' titles, the legend
+        return message + " " + self.EVIL
 
     def pgettext(self, context: str, message: str) -> str:
         return message + " " + self.EVIL
@@ -147,6 +150,7 @@ def test_translated_captions_are_escaped_in_html_and_latex(katex):  # noqa: F811
     assert "<script" not in html and "&lt;script&gt;" in html
     for math in re.findall(r"<math.*?</math>", html, flags=re.S):
         ET.fromstring(math)
+    assert html.count("&lt;script&gt;") > len(re.findall('<p class="cap">', html))  # every caption too
     tex = handout(robot, "tex", "whitney", words=Hostile())
     assert "\\input{" not in tex and "\\textbackslash{}input\\{/etc/passwd\\}" in tex
     assert "\\%" in tex and "\\$" in tex and "\\&" in tex
@@ -209,3 +213,76 @@ def test_every_number_of_the_derivation_has_the_decimal_comma():
     assert [f[:80] for f in formulas if re.search(r"\d\.\d", f)] == []
     english = handout(robot, "html", "whitney")
     assert "<mn>0.4318</mn>" in english and "0,4318" not in english
+
+
+# --------------------------------------------------------------- no English left in the derivation
+CATALOG = Path(importlib.import_module("app").__file__).parent / "locale" / "messages.pot"
+
+
+def english_runs() -> set[str]:
+    """Every run of three or more English words (letters only) of every message of the catalogs: what
+    a handout in another language must not show (placeholders, symbols and numbers split the runs)."""
+    from babel.messages.pofile import read_po
+
+    with CATALOG.open("rb") as f:
+        catalog = read_po(f)
+    runs: set[str] = set()
+    for message in catalog:
+        for text in message.id if isinstance(message.id, tuple) else (message.id,):
+            runs.update(re.findall(r"[A-Za-z]+(?: [A-Za-z]+){2,}", re.sub(r"\{\w+\}", "\0", text)))
+    return runs - {""}
+
+
+def prose(document: str, fmt: str) -> str:
+    """A handout's text without its maths, markup or LaTeX commands, one space between words."""
+    if fmt == "html":
+        text = re.sub(r"<(math|style|title)\b.*?</\1>", " ", document, flags=re.S)
+        text = html_lib.unescape(re.sub(r"<[^>]+>", " ", text))
+    else:
+        text = document[document.index("\\maketitle") :]
+        text = re.sub(r"\\\[.*?\\\]", " ", text, flags=re.S)
+        text = re.sub(r"\\(textsubscript|textsuperscript|ensuremath)\{[^{}]*\}", " ", text)
+        text = re.sub(r"^%.*$", " ", text, flags=re.M)
+        text = re.sub(r"\\[A-Za-z]+\*?|[{}]", " ", text)
+    return " ".join(text.split())
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["trr", "puma560"])
+def test_no_english_message_is_left_in_a_translated_handout(name):
+    """The derivation's captions (the steps', J's and det J's), the methods' titles and introductions
+    and the legend in the handout's language: no run of English words of any catalog message is left in
+    its text (maths aside; the robot file's source, a bibliographic reference, may stay English)."""
+    robot = robots.load(name)
+    runs = english_runs()
+    assert "the DH link transform of joint" in runs and "Whitney" not in runs  # what is looked for
+    english = {fmt: prose(handout(robot, fmt, "all"), fmt) for fmt in ("html", "tex")}
+    assert "the DH link transform of joint" in english["html"] and "Whitney's method" in english["tex"]
+    left = {}
+    for code in ("pt", "es", "pl"):
+        for fmt in ("html", "tex"):
+            text = prose(handout(robot, fmt, "all", words=translations(code)), fmt)
+            text = text.replace(" ".join(robot.source.split()), " ")
+            found = sorted(r for r in runs if re.search(rf"\b{re.escape(r)}\b", text))
+            if found:
+                left[code, fmt] = found
+    assert left == {}
+
+
+class Comma:
+    """A language that marks what it translates and writes a decimal comma."""
+
+    def gettext(self, message: str) -> str:
+        return "«" + message + "»"
+
+    def decimal(self, text: str) -> str:
+        return text.replace(".", ",")
+
+
+def test_a_caption_is_translated_with_its_numbers_in_the_language():
+    caption = caption_words(
+        N_("{z}: the axis of joint {joint}, in the base axes"), z="a₂ = 0.4318 {x}", joint=2
+    )
+    assert caption == "a₂ = 0.4318 {x}: the axis of joint 2, in the base axes"
+    assert translated(caption, Comma()) == "«a₂ = 0,4318 {x}: the axis of joint 2, in the base axes»"
+    assert translated("Whitney's method: the columns of J", Comma()) == "«Whitney's method: the columns of J»"

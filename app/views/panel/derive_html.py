@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable
 
 import numpy as np
 
 from kinematics import Robot
+from kinematics.text import translated, words
 
 from ...core.i18n import Translator, translations
 from ...core.snapshot import Snapshot
@@ -125,7 +125,8 @@ def formulas_html(
     language), or ``None`` (then ``note`` says why). At the ``last`` step the
     assembled J and det J (factored, singular sets named) follow.
     """
-    _ = (tr or translations()).gettext
+    tr = tr or translations()
+    _ = tr.gettext
     title = fmt.escape(_("In symbols"))
     head = f'<div class="jl-t4-title" style="text-align:left">{title}</div>'
     if steps is None:
@@ -138,16 +139,16 @@ def formulas_html(
         none = fmt.escape(_("No symbolic step for this joint."))
         return head + f'<div class="jl-note">{none}</div>'
     body = "".join(
-        f'<div class="jl-note">{_caption(step, _)}</div><div class="jl-mathml">{step[3]}</div>'
+        f'<div class="jl-note">{_caption(step, tr)}</div><div class="jl-mathml">{step[3]}</div>'
         for step in chosen
     )
     return head + body
 
 
-def _caption(step: tuple, _: Callable[[str], str]) -> str:
+def _caption(step: tuple, tr: Translator) -> str:
     """A symbolic step's caption (HTML) in the tab's language: its catalog id translated and filled
     with its arguments (symbols and numbers), escaped; the worker's English caption when it has none."""
     if len(step) > 4 and step[4][0]:
         msgid, args = step[4]
-        return fmt.escape(_(msgid).format(**dict(args)))
+        return fmt.escape(translated(words(msgid, **dict(args)), tr))
     return str(step[2])

@@ -4,6 +4,7 @@ network) or one complete LaTeX document. Every name from the robot file is escap
 
 from __future__ import annotations
 
+from ...text import translated
 from ..steps.layout import OMITTED
 from ..steps.step import DH_COLUMNS, Step, lhs_mathml
 from ..typeset.escape import NOTE_CHARS, xml_text
@@ -127,7 +128,7 @@ def render_html(h: Handout) -> str:
         if formula:
             out.append(_mblock(formula))
     out.append(f"<h2>{xml_text(say(w, NOTATION))}</h2>")
-    items = N.mathml_legend_items()
+    items = N.mathml_legend_items(w)
     if items:
         before, _, after = xml_text(say(w, WHERE)).partition("{items}")
         legend = ", ".join(f"<math>{mathml_decimals(w, i)}</math>" for i in items)
@@ -146,6 +147,6 @@ def render_html(h: Handout) -> str:
 def _html_steps(steps: list[Step], N: Notation, w: Words) -> list[str]:
     out = []
     for s in steps:
-        out.append(f'<p class="cap">{s.title_html()}</p>')
+        out.append(f'<p class="cap">{xml_text(translated(s.title, w), 2000)}</p>')
         out.append(mathml_decimals(w, s.mathml(HTML_MATH_PX, N)))
     return out

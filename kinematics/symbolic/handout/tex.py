@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import re
 
+from ...text import translated
 from ..steps.layout import OMITTED
 from ..steps.step import DH_COLUMNS, Step
 from ..typeset.escape import NOTE_CHARS, latex_text
-from ..typeset.printing import Notation
+from ..typeset.printing import Notation, latex_around
 from .content import INTRO, TITLES, Handout
 from .parts import (
     ASSEMBLED,
@@ -19,6 +20,7 @@ from .parts import (
     NOTE,
     RESULT_TITLE,
     SINGULAR_SETS,
+    WHERE,
     contents,
     contents_sentence,
     dh_cell,
@@ -159,7 +161,10 @@ def render_tex(h: Handout) -> str:
         if formula:
             out += ["\\[", formula, "\\]"]
     out.append(f"\\section*{{{tex_text(say(w, NOTATION))}}}")
-    out += ["\\[", latex_decimals(w, N.latex_legend()), "\\]"]
+    items = N.latex_legend_items(w)
+    if items:
+        legend = latex_around(say(w, WHERE), "items", ", \\quad ".join(items))
+        out += ["\\[", latex_decimals(w, legend), "\\]"]
     notes = h.notes + ([OMITTED] if any("\\ast" in x for x in out) else [])
     out += [tex_text(say(w, NOTE, note=n)) + "\n" for n in notes]
     out.append("\\end{document}")
@@ -169,7 +174,7 @@ def render_tex(h: Handout) -> str:
 def _tex_steps(steps: list[Step], N: Notation, w: Words) -> list[str]:
     out = []
     for s in steps:
-        out.append(tex_text(s.title))
+        out.append(tex_text(translated(s.title, w)))
         for block in s.latex_blocks(TEX_MATH_CHARS, N):
             out += ["\\[", latex_decimals(w, block), "\\]"]
     return out

@@ -16,6 +16,8 @@ from __future__ import annotations
 import re
 from typing import Protocol
 
+from ...text import fill
+
 __all__ = [
     "Words",
     "ENGLISH",
@@ -77,16 +79,6 @@ def say_n(words: Words, singular: str, plural: str, n: int, **values: object) ->
     """The form of a handout phrase with a count ``n`` (Polish has three), ``{n}`` and the other
     placeholders filled (:func:`fill`)."""
     return fill(words.npgettext(CONTEXT, singular, plural, n), n=n, **values)
-
-
-_PLACEHOLDER = re.compile(r"\{(\w+)\}")
-
-
-def fill(template: str, **values: object) -> str:
-    """``template`` (a translated msgid) with its named placeholders (``{robot}``) replaced by
-    ``values``; any other brace is text (a catalog's words are data: never a format string that a
-    stray ``{`` could break, and a value is never read as a template again)."""
-    return _PLACEHOLDER.sub(lambda m: str(values[m[1]]) if m[1] in values else m[0], template)
 
 
 _E_NOTATION = re.compile(r"([-+]?[0-9.]+)e([-+]?[0-9]+)")

@@ -181,18 +181,32 @@ def _sup(i: int) -> str:
     return str(i).translate(_SUP)
 
 
+_DET_TITLES = {
+    ("all", True): N_("{det} of all six rows, factored: J is singular where a factor vanishes"),
+    ("all", False): N_("{det} of all six rows, factored: never zero: J never loses rank"),
+    ("position", True): N_("{det} of the position rows, factored: J is singular where a factor vanishes"),
+    ("position", False): N_("{det} of the position rows, factored: never zero: J never loses rank"),
+    ("orientation", True): N_(
+        "{det} of the orientation rows, factored: J is singular where a factor vanishes"
+    ),
+    ("orientation", False): N_("{det} of the orientation rows, factored: never zero: J never loses rank"),
+    ("task", True): N_("{det} of the task rows, factored: J is singular where a factor vanishes"),
+    ("task", False): N_("{det} of the task rows, factored: never zero: J never loses rank"),
+}
+"""det J's caption by the rows it is of and whether J has singular sets (whole sentences for the catalogs)."""
+
+
 def _det_step(ctx: Context, robot: Robot, symbolic_params: bool) -> Step | None:
     det = determinant(robot, symbolic_params=symbolic_params, deadline=ctx.deadline)
     if det.expr is None:
         ctx.notes.extend(det.notes or ("det J was not computed within the time limit",))
         return None
-    names: dict[tuple[int, ...], str] = {(0, 1, 2): "the position rows", (3, 4, 5): "the orientation rows"}
-    rows = "all six rows" if len(det.rows) == 6 else names.get(det.rows, "the task rows")
     kind = "det(J Jᵀ)" if det.gram else "det J"
+    named: dict[tuple[int, ...], str] = {(0, 1, 2): "position", (3, 4, 5): "orientation"}
+    rows = "all" if len(det.rows) == 6 else named.get(det.rows, "task")
     # The sets themselves are typeset under the formula (Step.singular: the handouts and the Derive tab
     # show "s₂ = 0 ⇒ θ₂ ∈ {0, π}" in the joints' notation), not repeated here as SymPy text.
-    tail = "J is singular where a factor vanishes" if det.singular_sets else "never zero: J never loses rank"
-    title = f"{kind} of {rows}, factored: {tail}"
+    title = words(_DET_TITLES[rows, bool(det.singular_sets)], det=kind)
     return Step(
         "detJ",
         title,

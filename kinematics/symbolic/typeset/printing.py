@@ -20,6 +20,7 @@ from sympy.printing.latex import LatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
 from sympy.printing.precedence import PRECEDENCE, precedence
 
+from ...text import N_, Translating
 from .escape import latex_text, xml_text
 
 __all__ = ["Notation", "decimal_text"]
@@ -116,6 +117,11 @@ class Notation:
 
     def latex_legend(self) -> str:
         """LaTeX legend of the abbreviations used so far and of the parameters (a ``\\text`` line)."""
+        return "\\text{where } " + ", \\quad ".join(self.latex_legend_items())
+
+    def latex_legend_items(self, tr: Translating | None = None) -> list[str]:
+        """The LaTeX legend's items, its words in ``tr``'s language (English without it), escaped."""
+        say = (lambda m: m) if tr is None else tr.gettext
         patterns, kinds, params = self._legend()
         out = []
         for sub in patterns:
@@ -127,8 +133,8 @@ class Notation:
             )
             out.append(f"c_{{{sub}}} = \\cos {arg}, \\; s_{{{sub}}} = \\sin {arg}")
         joint = {
-            "revolute": "\\theta_{i}\\text{: angle of revolute joint } i \\ [\\mathrm{rad}]",
-            "prismatic": "d_{i}\\text{: extension of prismatic joint } i \\ [\\mathrm{m}]",
+            "revolute": f"\\theta_{{i}}\\text{{: {latex_text(say(JOINT_LEGEND['revolute']))}}}",
+            "prismatic": f"d_{{i}}\\text{{: {latex_text(say(JOINT_LEGEND['prismatic']))}}}",
         }
         out += [joint[k] for k in kinds]
         out += [f"{self.display[s]} = {self.params[s]:.6g}\\,\\mathrm{{{self._unit(s)}}}" for s in params]
@@ -137,8 +143,8 @@ class Notation:
                 f"{self.display[q]}\\text{{: {latex_text(n)}}}"
                 for q, n in zip(self.q, self.joint_names, strict=True)
             )
-            out.append(f"\\text{{joints: }} {names}")
-        return "\\text{where } " + ", \\quad ".join(out)
+            out.append(latex_around(say(JOINTS_LEGEND), "names", names))
+        return out
 
     # ----------------------------------------------------------------- MathML
     def mathml(self, expr: sp.Basic) -> str:
@@ -157,8 +163,10 @@ class Notation:
         sep = '<mo separator="true">,</mo><mspace width="1em"/>'
         return "<mrow><mtext>where&#xa0;</mtext>" + sep.join(out) + "</mrow>"
 
-    def mathml_legend_items(self) -> list[str]:
-        """The legend's items, each a MathML fragment (the joint names escaped), for wrapping text."""
+    def mathml_legend_items(self, tr: Translating | None = None) -> list[str]:
+        """The legend's items, each a MathML fragment (the joint names escaped), for wrapping text; its
+        words in ``tr``'s language (English without it)."""
+        say = (lambda m: m) if tr is None else tr.gettext
         patterns, kinds, params = self._legend()
 
         def theta(i: str) -> str:
@@ -176,9 +184,9 @@ class Notation:
                 for ab, fn in (("c", "cos"), ("s", "sin"))
             ]
         joint = {
-            "revolute": f"{theta('i')}<mtext>: angle of revolute joint i [rad]</mtext>",
+            "revolute": f"{theta('i')}<mtext>: {xml_text(say(JOINT_LEGEND['revolute']))}</mtext>",
             "prismatic": "<msub><mi>d</mi><mi>i</mi></msub>"
-            "<mtext>: extension of prismatic joint i [m]</mtext>",
+            f"<mtext>: {xml_text(say(JOINT_LEGEND['prismatic']))}</mtext>",
         }
         out += [joint[k] for k in kinds]
         out += [
@@ -192,6 +200,24 @@ class Notation:
                 for q, n in zip(self.q, self.joint_names, strict=True)
             ]
         return out
+
+
+JOINT_LEGEND = {
+    "revolute": N_("angle of revolute joint i [rad]"),
+    "prismatic": N_("extension of prismatic joint i [m]"),
+}
+"""The legend's words for a joint variable (θᵢ, dᵢ), marked for the catalogs."""
+JOINTS_LEGEND = N_("joints: {names}")
+"""The legend's line of joint names (``{names}``: the joints' symbols and names)."""
+
+
+def latex_around(sentence: str, key: str, maths: str) -> str:
+    """LaTeX maths of a (translated) ``sentence`` whose placeholder ``{key}`` stands for ``maths``: its
+    words escaped in ``\\text{}`` on either side, a space kept between words and maths."""
+    before, _, after = sentence.partition(f"{{{key}}}")
+    head = f"\\text{{{latex_text(before)}}}\\ " if before.strip() else ""
+    tail = f"\\ \\text{{{latex_text(after)}}}" if after.strip() else ""
+    return f"{head}{maths}{tail}"
 
 
 def _natural(name: str) -> tuple[Any, ...]:
