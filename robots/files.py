@@ -288,7 +288,7 @@ def validated(doc: object, f: str) -> dict[str, Any]:
         where = f"{f}, motions entry {i + 1}"
         check_table(m, _MOTION, _MOTION_OPTIONAL, where)
         one_of(m["start"], tuple(seen), f"{where}, key 'start' (a configuration name)")
-        texts.check_translations(m, texts.ENTRY_KEYS, where)
+        texts.check_translations(m, texts.MOTION_KEYS, where)
         check_numbers(m["twist"], 6, f"{where}, key 'twist' (vx vy vz in m/s, ωx ωy ωz in deg/s)")
         one_of(m.get("frame", "base"), FRAMES, f"{where}, key 'frame'")
         if "rates" in m:

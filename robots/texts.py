@@ -28,6 +28,7 @@ __all__ = [
     "TEXT_LANGUAGES",
     "TOP_KEYS",
     "ENTRY_KEYS",
+    "MOTION_KEYS",
     "check_translations",
     "read_translations",
     "translation_tables",
@@ -39,7 +40,9 @@ TEXT_LANGUAGES = ("pt", "es", "pl")
 TOP_KEYS = ("title", "description")
 """The texts a top-level ``[translations.<language>]`` table may give."""
 ENTRY_KEYS = ("description",)
-"""The texts a configuration's or a motion's ``translations.<language>`` may give."""
+"""The texts a configuration's ``translations.<language>`` may give (its name is an identifier)."""
+MOTION_KEYS = ("name", "description")
+"""The texts a motion's ``translations.<language>`` may give (its name is a phrase the menu shows)."""
 
 
 def check_translations(table: dict[str, Any], keys: tuple[str, ...], where: str) -> None:

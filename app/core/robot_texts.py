@@ -15,7 +15,14 @@ from robots import MotionPreset
 
 from .i18n import Translator
 
-__all__ = ["text_in", "robot_title", "robot_description", "configuration_description", "motion_description"]
+__all__ = [
+    "text_in",
+    "robot_title",
+    "robot_description",
+    "configuration_description",
+    "motion_name",
+    "motion_description",
+]
 
 
 def text_in(translations: Mapping[str, Mapping[str, str]], key: str, english: str, code: str) -> str:
@@ -37,6 +44,11 @@ def robot_description(robot: Robot, tr: Translator) -> str:
 def configuration_description(conf: NamedConfiguration, tr: Translator) -> str:
     """A named configuration's description in ``tr``'s language (else English)."""
     return text_in(conf.translations, "description", conf.description, tr.code)
+
+
+def motion_name(motion: MotionPreset, tr: Translator) -> str:
+    """A motion preset's name in ``tr``'s language (else its own, English)."""
+    return text_in(motion.translations, "name", motion.name, tr.code)
 
 
 def motion_description(motion: MotionPreset, tr: Translator) -> str:

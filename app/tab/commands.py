@@ -268,7 +268,7 @@ class CommandRunner:
             except SymbolicUnavailable as exc:
                 self.notices.notify(self.notices.tr.gettext("Download not available"), str(exc))
             except Exception as exc:
-                words = told("download", exc, robot.dof, label)
+                words = told("download", exc, robot.dof, label, self.notices.tr)
                 if words is not None:  # stopped at a limit of the server's, or not attempted
                     self.notices.notify(*words)
                 else:

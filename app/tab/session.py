@@ -111,7 +111,7 @@ class ClientSession:
         self.language = self._wanted_language = self._decide_language()
         self.page.tr = self.notices.tr = translations(self.language)
         self.page.following, self.following.page = self.following, self.page
-        self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify)
+        self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify, lambda: self.notices.tr)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
             client, self.catalog, symbolic, self.recorder, self.following, self.notices,

@@ -9,57 +9,58 @@ a catalogue can translate it whole.
 
 from __future__ import annotations
 
+from ..core.i18n import N_, Translator, translations
 from ..services.symbolic_requests import SymbolicNotAttempted, SymbolicStopped
 
 __all__ = ["SENTENCES", "TITLES", "told"]
 
 SENTENCES: dict[tuple[str, str], str] = {
-    ("matrix", "time"): (
+    ("matrix", "time"): N_(
         "The symbolic J of this {joints}-joint arm did not finish within {seconds} s and was stopped; "
         "the numeric J above is live."
     ),
-    ("matrix", "memory"): (
+    ("matrix", "memory"): N_(
         "The symbolic J of this {joints}-joint arm needed more than {megabytes} MB of the server's "
         "memory and was stopped; the numeric J above is live."
     ),
-    ("matrix", "not attempted"): (
+    ("matrix", "not attempted"): N_(
         "The symbolic J of this {joints}-joint arm is not worked out: the server works out arms of up to "
         "{most} joints in symbols, as larger ones do not finish within its limits. "
         "The numeric J above is live."
     ),
-    ("inverse", "time"): (
+    ("inverse", "time"): N_(
         "The symbolic J⁻¹ of this {joints}-joint arm did not finish within {seconds} s and was stopped; "
         "the numeric J above is live."
     ),
-    ("inverse", "memory"): (
+    ("inverse", "memory"): N_(
         "The symbolic J⁻¹ of this {joints}-joint arm needed more than {megabytes} MB of the server's "
         "memory and was stopped; the numeric J above is live."
     ),
-    ("inverse", "not attempted"): (
+    ("inverse", "not attempted"): N_(
         "The symbolic J⁻¹ of this {joints}-joint arm is not worked out: the server works out arms of up to "
         "{most} joints in symbols. The numeric J above is live."
     ),
-    ("derive", "time"): (
+    ("derive", "time"): N_(
         "The steps in symbols for this {joints}-joint arm did not finish within {seconds} s and were "
         "stopped; the numbers above are live."
     ),
-    ("derive", "memory"): (
+    ("derive", "memory"): N_(
         "The steps in symbols for this {joints}-joint arm needed more than {megabytes} MB of the server's "
         "memory and were stopped; the numbers above are live."
     ),
-    ("derive", "not attempted"): (
+    ("derive", "not attempted"): N_(
         "The steps in symbols for this {joints}-joint arm are not worked out: the server works out arms of "
         "up to {most} joints in symbols. The numbers above are live."
     ),
-    ("download", "time"): (
+    ("download", "time"): N_(
         "J(q) of this {joints}-joint arm as {label} did not finish within {seconds} s and was stopped; "
         "nothing was downloaded."
     ),
-    ("download", "memory"): (
+    ("download", "memory"): N_(
         "J(q) of this {joints}-joint arm as {label} needed more than {megabytes} MB of the server's memory "
         "and was stopped; nothing was downloaded."
     ),
-    ("download", "not attempted"): (
+    ("download", "not attempted"): N_(
         "J(q) of this {joints}-joint arm is not exported as {label}: the server works out arms of up to "
         "{most} joints in symbols."
     ),
@@ -67,21 +68,24 @@ SENTENCES: dict[tuple[str, str], str] = {
 """The sentence for each (part of the tab, what happened)."""
 
 TITLES: dict[str, str] = {
-    "time": "Symbolic form stopped",
-    "memory": "Symbolic form stopped",
-    "not attempted": "Symbolic form not attempted",
+    "time": N_("Symbolic form stopped"),
+    "memory": N_("Symbolic form stopped"),
+    "not attempted": N_("Symbolic form not attempted"),
 }
 """The title of the notice for each outcome."""
 
 
-def told(part: str, exc: BaseException, joints: int, label: str = "") -> tuple[str, str] | None:
-    """(title, sentence) for ``exc`` if it is a limit of the server's (else None).
+def told(
+    part: str, exc: BaseException, joints: int, label: str = "", tr: Translator | None = None
+) -> tuple[str, str] | None:
+    """(title, sentence) for ``exc`` if it is a limit of the server's (else None), in ``tr``'s language.
 
     Args:
         part: ``"matrix"``, ``"inverse"``, ``"derive"`` or ``"download"``.
         exc: The error the computation's future failed with.
         joints: The arm's joints.
         label: The download's format ("LaTeX", "Python" …).
+        tr: The tab's language (default English).
     """
     if isinstance(exc, SymbolicStopped):
         outcome = exc.limit
@@ -93,4 +97,5 @@ def told(part: str, exc: BaseException, joints: int, label: str = "") -> tuple[s
     sentence = SENTENCES.get((part, outcome))
     if sentence is None:
         return None
-    return TITLES[outcome], sentence.format(joints=joints, label=label, **figures)
+    _ = (tr or translations()).gettext
+    return _(TITLES[outcome]), _(sentence).format(joints=joints, label=label, **figures)

@@ -18,7 +18,7 @@ from concurrent.futures import Future
 from typing import Any
 
 from ..core.commands import Message, SymbolicResult
-from ..core.i18n import N_
+from ..core.i18n import N_, Translator, translations
 from ..core.state import LabState
 from ..services.symbolic_service import (
     WORKER_RESTARTED,
@@ -61,9 +61,10 @@ class Wanted:
         release: Callable[..., None],
         dispatch: Callable[[Message], None],
         notify: Notify | None = None,
+        language: Callable[[], Translator] = translations,
     ) -> None:
         self.part, self._ask, self._release, self._dispatch = part, ask, release, dispatch
-        self._notify = notify
+        self._notify, self._language = notify, language
         self.key: tuple | None = None
         self.shown: Shown | None = None
 
@@ -98,7 +99,7 @@ class Wanted:
         if future.cancelled() or future.exception() is None:
             return None
         exc = future.exception()
-        words = told(self.part, exc, joints)  # type: ignore[arg-type]
+        words = told(self.part, exc, joints, tr=self._language())  # type: ignore[arg-type]
         if words is None:
             return None
         once = self.part == "matrix" or not isinstance(exc, SymbolicNotAttempted)
@@ -129,22 +130,28 @@ class TabSymbols:
         notify: Shows the tab a notice (a computation stopped at a limit; once per tab, an arm too large
             to be attempted: a Build table grown row by row past the rule is told once, its panel at
             every row).
+        language: The tab's language now (the notices and the panel's lines are in it).
     """
 
     def __init__(
-        self, service: SymbolicService, dispatch: Callable[[Message], None], notify: Notify | None = None
+        self,
+        service: SymbolicService,
+        dispatch: Callable[[Message], None],
+        notify: Notify | None = None,
+        language: Callable[[], Translator] = translations,
     ) -> None:
         self._told: set[str] = set()
+        self._language = language
         if notify is not None:
             notify = self._once_not_attempted(notify)
-        self.jacobian = Wanted("matrix", service.mathml, service.release, dispatch, notify)
-        self.inverse = Wanted("inverse", service.inverse, service.release_inverse, dispatch, notify)
-        self.steps = Wanted("derive", service.steps, service.release_steps, dispatch, notify)
+        self.jacobian = Wanted("matrix", service.mathml, service.release, dispatch, notify, language)
+        self.inverse = Wanted("inverse", service.inverse, service.release_inverse, dispatch, notify, language)
+        self.steps = Wanted("derive", service.steps, service.release_steps, dispatch, notify, language)
         self._changed: set[str] = set()
 
     def _once_not_attempted(self, notify: Notify) -> Notify:
         def told(title: str, body: str) -> None:
-            if title == TITLES["not attempted"]:
+            if title == self._language().gettext(TITLES["not attempted"]):
                 if title in self._told:
                     return
                 self._told.add(title)

@@ -149,3 +149,42 @@ def test_a_link_naming_the_tab_in_another_language_opens_that_tab_in_the_browser
         poll(lambda: "tab=Wyprowadzenie" in page.url, what="the address names the tab in Polish")
         page.screenshot(path=str(out / "i18n_pl_derive_from_a_spanish_link_1280x720.png"))
         assert not errors
+
+
+_NOTICE = """() => [...document.querySelectorAll('.mantine-Notification-root, .mantine-Notifications-root [role=alert]')]
+  .filter(e => e.offsetParent !== null || getComputedStyle(e).position === 'fixed')
+  .map(e => { const r = e.getBoundingClientRect();
+    const cut = [...e.querySelectorAll('*')].some(c => getComputedStyle(c).textOverflow === 'ellipsis' && c.scrollWidth > c.clientWidth + 1);
+    return {text: e.innerText, cut, right: r.right, bottom: r.bottom}; })"""
+
+
+@pytest.mark.parametrize(
+    ("locale", "code", "title"),
+    [
+        ("pt-BR", "pt", "Nada foi gravado"),
+        ("es-AR", "es", "No se grabó nada"),
+        ("pl-PL", "pl", "Nic nie nagrano"),
+    ],
+)
+def test_a_refusal_notice_is_in_the_browsers_language_and_whole(tmp_path, locale, code, title):
+    """A recording stopped with nothing moved is refused in a notice: in Chromium its title and body are
+    the browser's language (no English message of the catalogs), whole and inside the window."""
+    from app.core.commands import ToggleRecording
+
+    out = _out(tmp_path)
+    with app_page(Lab(port=0, symbolic=FakeSymbolicService()), locale=locale) as (page, session, errors):
+        poll(lambda: session.language == code, what=f"the tab speaks {code}")
+        # The notices shown again (app_page hides the start-up toasts)
+        page.add_style_tag(content=".mantine-Notifications-root { display: block !important; }")
+        session.dispatch(ToggleRecording())
+        session.settle()
+        session.dispatch(ToggleRecording())  # nothing moved: nothing recorded, refused in words
+        session.settle()
+        notices = poll(lambda: [n for n in page.evaluate(_NOTICE) if title in n["text"]], what="the notice")
+        page.screenshot(path=str(out / f"i18n_{code}_refusal_notice_1280x720.png"))
+        notice = notices[0]
+        english = _english_only(code)
+        lines = {line.strip() for line in notice["text"].splitlines() if line.strip()}
+        assert not lines & english, f"English in the {code} notice: {lines & english}"
+        assert not notice["cut"] and notice["right"] <= 1280 and notice["bottom"] <= 720, notice
+        assert not errors

@@ -1,5 +1,5 @@
-"""The Derive tab's Whitney walk in Portuguese (issue 27), in a real headless Chromium whose locale is
-pt-BR: the tab, the menu, the buttons and every step in course 000's words with decimal commas, no
+"""The Derive tab's Whitney walk in Portuguese, Spanish and Polish (issue 27), in a real headless Chromium
+whose locale is the course's: the tab, the menu, the buttons and every step in the course's words with decimal commas, no
 English word left on screen (names, symbols and numbers aside) and nothing cut off or wider than the
 panel, at 1280×720. Screenshots: ``$APP_SCREENSHOT_DIR`` (default: pytest's
 temporary directory)."""
@@ -30,7 +30,7 @@ _SHOWN = """(head) => {
   for (let n = walk.nextNode(); n; n = walk.nextNode()) {
     const text = n.textContent.trim();
     const e = n.parentElement;
-    if (!text || !e || e.closest('script,style,[aria-hidden=true],.mantine-Notifications-root')) continue;
+    if (!text || !e || e.closest('script,style,math,[aria-hidden=true],.mantine-Notifications-root')) continue;  // formulas: symbols
     const box = e.getBoundingClientRect();
     if (box.width === 0 || box.height === 0 || getComputedStyle(e).visibility === 'hidden') continue;
     if (e.offsetParent === null && getComputedStyle(e).position !== 'fixed') continue;
@@ -46,16 +46,19 @@ _WIDEST = (
 )
 
 
-def test_the_whitney_walk_speaks_portuguese_in_chromium(tmp_path, width=1280, height=720):
+@pytest.mark.parametrize(("locale", "code"), [("pt-BR", "pt"), ("es-AR", "es"), ("pl-PL", "pl")])
+def test_the_whitney_walk_speaks_the_browsers_language_in_chromium(
+    tmp_path, locale, code, width=1280, height=720
+):
     out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out.mkdir(parents=True, exist_ok=True)
-    tr = translations("pt")
+    tr = translations(code)
     _ = tr.gettext
-    english = english_only("pt")
+    english = english_only(code)
     lab = Lab(robot="puma560", port=0, symbolic=FakeSymbolicService())
     viewport = {"width": width, "height": height}
-    with app_page(lab, viewport=viewport, locale="pt-BR") as (page, session, errors):
-        poll(lambda: session.language == "pt", what="the tab speaks Portuguese")
+    with app_page(lab, viewport=viewport, locale=locale) as (page, session, errors):
+        poll(lambda: session.language == code, what=f"the tab speaks {code}")
         robot = session.state.robot
         names = words(" ".join([robot.name, *(j.name for j in robot.joints)]))
         page.get_by_role("tab", name=_("Derive"), exact=True).click()
@@ -81,7 +84,8 @@ def test_the_whitney_walk_speaks_portuguese_in_chromium(tmp_path, width=1280, he
             texts = " ".join(t["text"] for t in shown if not t["text"].startswith("fake "))
             assert head in texts and _("Walk through") in texts
             left = sorted((words(texts) - names) & english)
-            assert not left, f"step {step + 1}: English on the Portuguese screen: {left}"
+            where = [t["text"] for t in shown if set(left) & words(t["text"])]
+            assert not left, f"step {step + 1}: English on the {code} screen: {left} in {where}"
             numbers = re.findall(r"\d+[.,]\d+", texts)
             assert numbers and not [x for x in numbers if "." in x], numbers
             cut = [t["text"] for t in shown if t["cut"]]
@@ -89,6 +93,6 @@ def test_the_whitney_walk_speaks_portuguese_in_chromium(tmp_path, width=1280, he
             widest = page.evaluate(_WIDEST)
             assert widest <= 1, f"step {step + 1}: a Derive table overflows by {widest} px"
             if step in (0, robot.dof - 1):
-                page.screenshot(path=str(out / f"derive_whitney_pt_step{step + 1}_{width}x{height}.png"))
+                page.screenshot(path=str(out / f"derive_whitney_{code}_step{step + 1}_{width}x{height}.png"))
     assert not errors, errors
     assert session.errors == 0

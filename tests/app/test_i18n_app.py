@@ -279,3 +279,23 @@ def test_the_robot_menu_lists_the_library_robots_by_their_title_in_the_tabs_lang
         assert "TRR robot (course example) (trr)" not in options
         session.panel.robot.value = "Robot TRR (przykład z wykładu) (trr)"
         wait_until(lambda: session.state.robot_name == "trr")
+
+
+def test_the_motion_presets_are_named_in_the_tabs_language_and_a_translated_name_plays_the_preset():
+    """The Puma's preset menu in Polish lists 'ruch po prostej do osobliwości nadgarstka' (the robot
+    file's translations.pl.name), and picking it applies the preset whose name is the English one."""
+    import robots
+
+    preset = robots.motions("puma560")[0]
+    polish = preset.translations["pl"]["name"]
+    with running_lab(robot="puma560") as (_lab, session, _ws):
+        report(session, address="?lang=pl&robot=puma560")
+        menu = session.panel.motion.preset
+        assert polish in menu.options and preset.name not in menu.options
+        assert menu.value == polish  # the robot's first preset is shown first, by its Polish name
+        from app.views.panel.motion import OWN_TWIST
+
+        session.panel.motion.preset.value = translations("pl").gettext(OWN_TWIST)
+        wait_until(lambda: session.panel.motion.preset.value != polish)
+        session.panel.motion.preset.value = polish
+        wait_until(lambda: session.state.motion.preset == preset.name)

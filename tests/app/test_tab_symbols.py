@@ -137,3 +137,36 @@ def test_an_arm_too_large_is_told_at_once_and_the_notice_given_once_per_tab():
         assert panel.matrix.shown[-1][1].startswith("The symbolic J of this 2-joint arm is not worked out")
     assert sent == []  # said before anything started: no message from a worker
     assert [title for title, _ in notices] == ["Symbolic form not attempted"]
+
+
+def test_a_polish_tab_is_told_of_a_stopped_or_unattempted_symbolic_j_in_polish_once():
+    """The limits' sentences go through the catalogs: a Polish tab reads them in Polish (with the
+    figures in place), and the 'not attempted' notice is still given once, whatever its language."""
+    from app.core.i18n import translations
+    from app.services.symbolic_requests import MAX_SYMBOLIC_JOINTS, SymbolicNotAttempted, SymbolicStopped
+
+    polish = translations("pl")
+    service, sent, panel, notices = FakeService(), [], FakePanel(), []
+    symbols = TabSymbols(
+        service, sent.append, lambda title, body: notices.append((title, body)), lambda: polish
+    )
+    state = _state()
+    symbols.update(state, None)
+    service.asked[(state.robot, "base", False)].set_exception(SymbolicStopped("time", 75.0, 110.0))
+    assert notices == [
+        (
+            "Obliczenia symboliczne przerwane",
+            "Symboliczny jakobian J tego ramienia o 2 przegubach nie został obliczony w ciągu 75 s i przerwano "
+            "obliczenia; numeryczny J powyżej jest aktualny.",
+        )
+    ]
+    for frame in ("tool", "base"):
+        state = _state(frame)
+        service.asked[(state.robot, frame, False)] = failed = Future()
+        failed.set_exception(SymbolicNotAttempted(9, MAX_SYMBOLIC_JOINTS))
+        symbols.update(state, None)
+        symbols.draw(panel, everything=True)
+        assert panel.matrix.shown[-1][1].startswith(
+            "Symboliczny jakobian J tego ramienia o 2 przegubach nie jest"
+        )
+    assert [title for title, _ in notices][1:] == ["Postać symboliczna nie jest obliczana"]

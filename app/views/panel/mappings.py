@@ -35,6 +35,7 @@ from ...core.actions import (
 from ...core.i18n import Translator, translations
 from ...core.ranges import Range, from_display, rate_ranges, to_display, twist_ranges, wrench_ranges
 from ...core.refusals import say
+from ...core.robot_texts import motion_name
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ...viser_adapter import handle_uuid
@@ -161,7 +162,7 @@ class InversePanel:
                 label = (
                     _("Course example")
                     if p.rates is not None
-                    else _("Example: {name}").format(name=p.name)[:60]
+                    else _("Example: {name}").format(name=motion_name(p, tr))[:60]
                 )
                 self.example_button = gui.add_button(label, icon=viser.Icon.SCHOOL)
                 bind_click(

@@ -27,7 +27,7 @@ from ...core.i18n import N_, Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
 from ...core.refusals import say
-from ...core.robot_texts import motion_description
+from ...core.robot_texts import motion_description, motion_name
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
@@ -88,6 +88,8 @@ class MotionPanel:
         self._buttons = {_(b): b for b in PLAY_BUTTONS}  # a button's words → its English key
         self.robot = robot
         self.presets = {p.name: p for p in presets}
+        self._labels = {name: motion_name(p, tr) for name, p in self.presets.items()}  # name → shown
+        self._names = {label: name for name, label in self._labels.items()}  # shown → name
         self.root = gui.add_folder(None, order=order)
         self._trace: Trace | None = None
         self._shown: tuple | None = None
@@ -98,8 +100,8 @@ class MotionPanel:
                 # start), instead of refusing "your own v" = 0.
                 self.preset = gui.add_dropdown(
                     _("Preset"),
-                    (*self.presets, self.own_twist),
-                    initial_value=next(iter(self.presets), self.own_twist),
+                    (*self._labels.values(), self.own_twist),
+                    initial_value=next(iter(self._labels.values()), self.own_twist),
                     hint=_("A start and a tool twist."),
                 )
                 bind(self.preset, dispatch, self._preset)
@@ -187,8 +189,9 @@ class MotionPanel:
             nearest.on_click(lambda _: dispatch(FindSingularity()))
 
     def _preset(self, value: Any) -> ApplyPreset | None:
-        self._own = str(value) not in self.presets
-        return self._apply(str(value))
+        name = self._names.get(str(value), "")  # a label the menu offers, in the tab's language
+        self._own = name not in self.presets
+        return self._apply(name)
 
     def _apply(self, name: str) -> ApplyPreset | None:
         p = self.presets.get(name)
@@ -222,7 +225,7 @@ class MotionPanel:
     def draw(self, state: LabState, snap: Snapshot) -> None:
         o, m = state.options, state.motion
         shown = self.shown_preset(state)
-        sync_value(self.preset, shown)
+        sync_value(self.preset, self._labels.get(shown, shown))
         self._pending = self._apply(shown) if shown != m.preset else None
         for handle, name in ((self.frame, "twist_frame"), (self.speed, "speed"), (self.gizmo, "gizmo")):
             show_option(handle, name, getattr(o, name), self.tr)
