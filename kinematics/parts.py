@@ -48,6 +48,7 @@ __all__ = [
 ]
 
 _S = TypeVar("_S", bound=str)
+_V = TypeVar("_V")
 JointType = Literal["revolute", "prismatic"]
 Convention = Literal["standard", "modified"]
 JOINT_TYPES: tuple[JointType, ...] = ("revolute", "prismatic")
@@ -210,15 +211,16 @@ _PARAM_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]{0,15}")
 _RESERVED = re.compile(r"q[0-9]+|pi|E|I|oo|nan|zoo")
 
 
-class FrozenNames(Mapping[str, str]):
-    """A read-only, picklable mapping of names (robots travel to the symbolic worker process)."""
+class FrozenNames(Mapping[str, _V]):
+    """A read-only, picklable mapping by name (of names, or a language's texts by its code): robots
+    travel to the symbolic worker process."""
 
     __slots__ = ("_items",)
 
-    def __init__(self, items: Mapping[str, str]) -> None:
+    def __init__(self, items: Mapping[str, _V]) -> None:
         self._items = dict(items)
 
-    def __getitem__(self, key: str) -> str:
+    def __getitem__(self, key: str) -> _V:
         return self._items[key]
 
     def __iter__(self) -> Iterator[str]:
@@ -228,7 +230,7 @@ class FrozenNames(Mapping[str, str]):
         return len(self._items)
 
     def __repr__(self) -> str:
-        return f"FrozenNames({self._items!r})"
+        return f"{type(self).__name__}({self._items!r})"
 
 
 def param_names(value: object, name: str) -> Mapping[str, str]:
@@ -268,7 +270,7 @@ def translations(value: object, keys: Sequence[str], where: str) -> Mapping[str,
     """
     if not isinstance(value, Mapping):
         raise RobotDefinitionError(f"{where}: expected a mapping of language codes, got {show(value)}")
-    out: dict[str, FrozenNames] = {}
+    out: dict[str, Mapping[str, str]] = {}
     for code, texts in value.items():
         if not isinstance(code, str) or not _LANGUAGE_CODE.fullmatch(code):
             raise RobotDefinitionError(
@@ -282,25 +284,4 @@ def translations(value: object, keys: Sequence[str], where: str) -> Mapping[str,
                 raise RobotDefinitionError(f"{where}, {code!r}: unknown key {show(key)}; allowed: {allowed}")
             _text(text, f"{where}, {code!r}, {key!r}")
         out[code] = FrozenNames(texts)
-    return _FrozenTexts(out)
-
-
-class _FrozenTexts(Mapping[str, Mapping[str, str]]):
-    """A read-only, picklable mapping language code → texts."""
-
-    __slots__ = ("_items",)
-
-    def __init__(self, items: Mapping[str, Mapping[str, str]]) -> None:
-        self._items = dict(items)
-
-    def __getitem__(self, key: str) -> Mapping[str, str]:
-        return self._items[key]
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._items)
-
-    def __len__(self) -> int:
-        return len(self._items)
-
-    def __repr__(self) -> str:
-        return f"Translations({self._items!r})"
+    return FrozenNames(out)
