@@ -10,7 +10,12 @@ from babel.messages.pofile import read_po
 
 from app.core.i18n import LOCALE_DIR, language_of
 
-__all__ = ["words", "plain", "english_only"]
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
+
+__all__ = ["words", "plain", "english_only", "GLOSSARY", "glossary_problems"]
 
 _WORD = re.compile(r"[^\W\d_]{3,}")
 
@@ -38,3 +43,26 @@ def english_only(code: str) -> frozenset[str]:
     english = set().union(*(words(" ".join(i) if isinstance(i, tuple) else i) for i in ids))
     own = set().union(*(words(" ".join(s) if isinstance(s, tuple) else s) for s in strings))
     return frozenset(english - own)
+
+
+GLOSSARY = tomllib.loads((LOCALE_DIR / "glossary.toml").read_text(encoding="utf-8"))
+"""app/locale/glossary.toml: each term in the words of each course."""
+
+
+def glossary_problems(code: str, english: str, text: str, context: str | None = None) -> list[str]:
+    """Where ``text`` (language ``code``'s translation of ``english``) breaks the glossary: a term the
+    English names without the course's word, or a word the course does not use (``context``: the
+    message's, for terms that mean something else there)."""
+    out = []
+    for name, term in GLOSSARY.items():
+        entry = term[code]
+        if context in term.get("other_contexts", ()):
+            continue
+        if re.search(term["match"], english, re.IGNORECASE) and not re.search(
+            entry["use"], text, re.IGNORECASE
+        ):
+            out.append(f"{name}: {english!r} → {text!r} lacks «{entry['word']}»")
+        for avoided in entry["avoid"]:
+            if re.search(avoided, text, re.IGNORECASE):
+                out.append(f"{name}: {text!r} says {avoided!r}, not «{entry['word']}»")
+    return out

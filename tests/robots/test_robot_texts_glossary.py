@@ -6,20 +6,13 @@ translated languages are the app's."""
 from __future__ import annotations
 
 import re
-import sys
 
 import pytest
+from i18n_words import glossary_problems
 
 import robots
-from app.core.i18n import CODES, LOCALE_DIR
+from app.core.i18n import CODES
 from robots.texts import TEXT_LANGUAGES
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
-GLOSSARY = tomllib.loads((LOCALE_DIR / "glossary.toml").read_text(encoding="utf-8"))
 
 
 def pairs(name: str, code: str) -> list[tuple[str, str, str]]:
@@ -42,16 +35,7 @@ def pairs(name: str, code: str) -> list[tuple[str, str, str]]:
 
 
 def problems_of(code: str, where: str, english: str, text: str) -> list[str]:
-    out = []
-    for term_name, term in GLOSSARY.items():
-        entry = term[code]
-        if re.search(term["match"], english, re.IGNORECASE) and not re.search(
-            entry["use"], text, re.IGNORECASE
-        ):
-            out.append(f"{where}: {term_name} in English, but no «{entry['word']}» in {text!r}")
-        for avoided in entry["avoid"]:
-            if re.search(avoided, text, re.IGNORECASE):
-                out.append(f"{where}: says {avoided!r}, not «{entry['word']}»: {text!r}")
+    out = [f"{where}: {problem}" for problem in glossary_problems(code, english, text)]
     if re.search(r"\d\.\d", text):
         out.append(f"{where}: a decimal point where {code} writes a comma: {text!r}")
     return out
