@@ -72,6 +72,8 @@ class Lab:
         listen_socket: A listening socket to accept on instead of binding ``host`` and ``port``
             (shared by the worker processes of ``jacobian-lab serve --workers N``).
         xacro_args: ``NAME -> VALUE`` arguments of a ``.xacro`` file given as ``urdf`` or ``robot``.
+        package_dirs, package_path: ROS packages of that file by name (``--package NAME=DIR``) and
+            folders holding packages (``--package-path DIR``), see :func:`robots.load`.
         room_pipe: A worker's end of its pipe to the parent of ``serve --workers N --presenter``: classroom
             mode whose token, presenter and follower count the parent keeps for every worker
             (:mod:`app.services.classroom_relay`); ``presenter_token`` is then not given.
@@ -101,6 +103,8 @@ class Lab:
         room_pipe: object = None,
         language: str = "",
         trusted_proxy: Sequence[str] = (),
+        package_dirs: Mapping[str, str] | None = None,
+        package_path: Sequence[str] = (),
     ) -> None:
         if language and not is_language(language):  # before anything starts
             raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
@@ -109,7 +113,14 @@ class Lab:
         if robot and _is_path(robot):
             files.append(robot)
             robot = None
-        self.catalog = RobotCatalog(files, base_link=base_link, tip_link=tip_link, xacro_args=xacro_args)
+        self.catalog = RobotCatalog(
+            files,
+            base_link=base_link,
+            tip_link=tip_link,
+            xacro_args=xacro_args,
+            package_dirs=package_dirs,
+            package_path=package_path,
+        )
         self.default_robot = robot or self.catalog.default()
         self.catalog.load(self.default_robot)  # fail before starting the server
         if listen_socket is None:
@@ -276,6 +287,8 @@ def serve(
     xacro_args: Mapping[str, str] | None = None,
     language: str = "",
     trusted_proxy: Sequence[str] = (),
+    package_dirs: Mapping[str, str] | None = None,
+    package_path: Sequence[str] = (),
 ) -> Lab:
     """Start the browser app and print its URL.
 
@@ -290,6 +303,8 @@ def serve(
         allow_origin: Origins of pages that may embed the lab (see :class:`Lab`).
         language: The room's language (see :class:`Lab`).
         trusted_proxy: Reverse proxies whose ``X-Forwarded-For`` is read (see :class:`Lab`).
+        xacro_args, package_dirs, package_path: A xacro file's arguments and the packages of the
+            URDF or xacro file (see :class:`Lab`).
 
     From a script of your own, call it under ``if __name__ == "__main__":`` (the symbolic
     worker process imports the main script, as every "spawn" worker does).
@@ -317,6 +332,8 @@ def serve(
         xacro_args=xacro_args,
         language=language,
         trusted_proxy=trusted_proxy,
+        package_dirs=package_dirs,
+        package_path=package_path,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:

@@ -7,7 +7,7 @@ a path. Robot files are read by :mod:`robots.files`; URDF and xacro files by :mo
 from __future__ import annotations
 
 import functools
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -47,6 +47,8 @@ def load(
     tip_link: str | None = None,
     *,
     xacro_args: Mapping[str, str] | None = None,
+    package_dirs: Mapping[str, str | Path] | None = None,
+    package_path: Sequence[str | Path] = (),
 ) -> Robot:
     """A robot by library name (``"puma560"``), or from a ``.toml`` robot file, a ``.urdf`` file or a
     ``.xacro`` file (expanded to a URDF with ``xacro_args``, :mod:`kinematics.urdf.expand`).
@@ -55,7 +57,11 @@ def load(
         name_or_path: Library name or file path.
         base_link, tip_link: For a URDF, the ends of the chain (default: see
             :mod:`kinematics.urdf`); a robot file or library robot has no links to choose.
-        xacro_args: ``NAME -> VALUE`` arguments of a xacro file.
+        xacro_args: ``NAME -> VALUE`` arguments of a xacro file (one it does not declare is refused).
+        package_dirs: ROS packages of a URDF or xacro file by name, ``{"kuka_kr6_support": DIR}``
+            (``--package NAME=DIR``), for ``$(find NAME)`` and ``package://NAME`` meshes.
+        package_path: Folders that are packages or hold packages (``--package-path``), searched like
+            ``ROS_PACKAGE_PATH``.
 
     Raises:
         UnknownRobotError: not a library name (nor a file path); the message lists the names.
@@ -65,7 +71,9 @@ def load(
     if path.parent == DATA_DIR and path.suffix == ".toml":
         _no_links(path, base_link, tip_link)
         return _load_library(path.stem)
-    return load_file(path, base_link, tip_link, xacro_args=xacro_args)
+    return load_file(
+        path, base_link, tip_link, xacro_args=xacro_args, package_dirs=package_dirs, package_path=package_path
+    )
 
 
 def _no_links(path: Path, base_link: str | None, tip_link: str | None) -> None:
@@ -97,12 +105,21 @@ def load_file(
     tip_link: str | None = None,
     *,
     xacro_args: Mapping[str, str] | None = None,
+    package_dirs: Mapping[str, str | Path] | None = None,
+    package_path: Sequence[str | Path] = (),
 ) -> Robot:
     """Build a robot from a ``.toml`` robot file, a ``.urdf`` file or a ``.xacro`` file (base and tip
-    links: URDF and xacro only; ``xacro_args``: xacro only)."""
+    links and packages: URDF and xacro only; ``xacro_args``: xacro only; see :func:`load`)."""
     path = Path(path)
     if path.suffix.lower() in (".urdf", ".xacro"):
-        return robot_from_urdf(str(path), base_link=base_link, tip_link=tip_link, xacro_args=xacro_args)
+        return robot_from_urdf(
+            str(path),
+            base_link=base_link,
+            tip_link=tip_link,
+            xacro_args=xacro_args,
+            package_dirs=package_dirs,
+            package_path=package_path,
+        )
     if path.suffix.lower() != ".toml":
         raise RobotDefinitionError(
             f"{path.name}: expected a .toml robot file, a .urdf file or a .xacro file (e.g. arm.urdf.xacro)"

@@ -26,6 +26,7 @@ from kinematics.symbolic.typeset.export import FORMATS, ExportError, export, exp
 from kinematics.urdf import parse_xacro_args
 
 from .args import MAX_TIMEOUT, bounded
+from .packages import add_package_arguments, package_options
 
 __all__ = ["main", "add_chain_arguments", "load_robot", "xacro_arguments", "StderrProgress", "write_output"]
 
@@ -54,7 +55,13 @@ def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
 def load_robot(args: argparse.Namespace) -> Robot:
     """The robot the command line names: ``args.robot`` with ``--base``, ``--tip`` and ``--xacro-arg``
     (see :func:`add_chain_arguments`)."""
-    return robots.load(args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro_arguments(args))
+    return robots.load(
+        args.robot,
+        base_link=args.base,
+        tip_link=args.tip,
+        xacro_args=xacro_arguments(args),
+        **package_options(args),
+    )
 
 
 def xacro_arguments(args: argparse.Namespace) -> dict[str, str] | None:
@@ -129,6 +136,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
     add_chain_arguments(p)
+    add_package_arguments(p)
     p.add_argument(
         "--timeout",
         type=bounded(0.0, MAX_TIMEOUT, "s"),

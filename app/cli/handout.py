@@ -29,6 +29,7 @@ from kinematics.symbolic.handout import HANDOUT_METHODS, handout
 
 from .args import MAX_TIMEOUT, bounded
 from .export import StderrProgress, add_chain_arguments, load_robot, write_output
+from .packages import add_package_arguments
 
 __all__ = ["main"]
 
@@ -80,6 +81,7 @@ def _parser() -> argparse.ArgumentParser:
         help="language of the handout: its words, the robot's texts and decimal commas (default: en)",
     )
     add_chain_arguments(p)
+    add_package_arguments(p)
     p.add_argument(
         "--timeout",
         type=bounded(0.0, MAX_TIMEOUT, "s"),

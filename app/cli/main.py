@@ -22,6 +22,7 @@ import sys
 from app.core.i18n import CODES
 
 from .export import add_chain_arguments, xacro_arguments
+from .packages import add_package_arguments, package_options
 
 __all__ = ["main"]
 
@@ -47,6 +48,7 @@ def _build_parser() -> argparse.ArgumentParser:
     which.add_argument("--robot", help="library robot to show first (see 'jacobian-lab robots')")
     which.add_argument("--urdf", help="path to a URDF file to show first")
     add_chain_arguments(serve)
+    add_package_arguments(serve)
     serve.add_argument("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1)")
     serve.add_argument("--port", type=_port, default=8080, help="port (default 8080; 0 picks a free one)")
     serve.add_argument(
@@ -163,13 +165,16 @@ def _serve(args: argparse.Namespace) -> int:
 
     workers = args.workers if args.workers is not None else default_workers()
     try:  # fail before the server starts (and before viser is imported)
-        xacro = xacro_arguments(args)
+        xacro, packages = xacro_arguments(args), package_options(args)
         if args.urdf or args.robot:
-            robots.load(args.urdf or args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro)
+            robots.load(
+                args.urdf or args.robot, base_link=args.base, tip_link=args.tip, xacro_args=xacro, **packages
+            )
         if workers > 1:
             options = {"robot": args.robot, "urdf": args.urdf, "base_link": args.base, "tip_link": args.tip}
             options["allow_origin"], options["trusted_proxy"] = args.allow_origin, args.trusted_proxy
             options["xacro_args"] = xacro
+            options.update(packages)  # plain strings: the worker processes are spawned
             options["language"] = args.lang
             return serve_workers(workers, options, host=args.host, port=args.port, presenter_token=token)
         from app.server import serve
@@ -187,6 +192,7 @@ def _serve(args: argparse.Namespace) -> int:
             xacro_args=xacro,
             language=args.lang,
             trusted_proxy=args.trusted_proxy,
+            **packages,
         )
     except (JacobianLabError, ValueError, RuntimeError) as exc:
         return _fail(str(exc))

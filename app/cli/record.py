@@ -21,6 +21,7 @@ from ..core.i18n import CODES, translations
 from ..demo.record import DEFAULT_FPS, DEFAULT_SECONDS, UnknownPreset, check_preset, record, write_demo
 from .args import MAX_FPS, MAX_SECONDS, bounded
 from .export import add_chain_arguments, load_robot
+from .packages import add_package_arguments
 
 __all__ = ["main"]
 
@@ -63,6 +64,7 @@ def _parser() -> argparse.ArgumentParser:
         help="the language of the demo's words (its title, status and 3-D labels; default: en)",
     )
     add_chain_arguments(p)
+    add_package_arguments(p)
     return p
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import threading
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 import robots
 from kinematics import Robot
@@ -30,6 +31,9 @@ class RobotCatalog:
             (with a suffix if that name is taken).
         base_link, tip_link: The chain taken from each URDF in ``files`` (default: the URDF
             reader's choice, see :mod:`kinematics.urdf`).
+        xacro_args: The arguments of the ``.xacro`` files in ``files``.
+        package_dirs, package_path: The ROS packages of the URDF and xacro files (``--package NAME=DIR``,
+            ``--package-path DIR``; see :func:`robots.load`).
     """
 
     def __init__(
@@ -38,8 +42,11 @@ class RobotCatalog:
         base_link: str | None = None,
         tip_link: str | None = None,
         xacro_args: Mapping[str, str] | None = None,
+        package_dirs: Mapping[str, str | Path] | None = None,
+        package_path: Sequence[str | Path] = (),
     ) -> None:
         self._xacro_args = dict(xacro_args) if xacro_args else None
+        self._packages: dict[str, Any] = {"package_dirs": package_dirs, "package_path": tuple(package_path)}
         self._files: dict[str, Path] = {}
         self._chains: dict[str, tuple[str | None, str | None]] = {}
         self._cache: dict[str, Robot] = {}
@@ -56,11 +63,7 @@ class RobotCatalog:
         path = Path(path)
         urdf = _is_urdf(path)
         # A URDF is listed under its <robot name> (read now, so a broken file fails at once).
-        stem = (
-            robots.load_file(path, base_link, tip_link, xacro_args=self._xacro(path)).name
-            if urdf
-            else path.stem
-        )
+        stem = robots.load_file(path, base_link, tip_link, **self._xacro(path)).name if urdf else path.stem
         with self._lock:
             name = stem or path.stem
             while name in robots.names() or name in self._files:
@@ -69,8 +72,9 @@ class RobotCatalog:
             self._chains[name] = (base_link, tip_link) if urdf else (None, None)
         return name
 
-    def _xacro(self, path: Path) -> Mapping[str, str] | None:
-        return self._xacro_args if path.suffix.lower() == ".xacro" else None
+    def _xacro(self, path: Path) -> dict[str, Any]:
+        """The keyword arguments of a URDF's or xacro file's loading: its xacro arguments, its packages."""
+        return {"xacro_args": self._xacro_args if path.suffix.lower() == ".xacro" else None, **self._packages}
 
     def names(self) -> list[str]:
         """Dropdown entries: the files given first, then the library robots."""
@@ -91,7 +95,7 @@ class RobotCatalog:
         with self._lock:
             if name in self._chain_lists:
                 return self._chain_lists[name]
-        found = urdf_chains(path, self._chains[name][0], xacro_args=self._xacro(path))
+        found = urdf_chains(path, self._chains[name][0], **self._xacro(path))
         with self._lock:
             self._chain_lists[name] = found
         return found
@@ -110,7 +114,7 @@ class RobotCatalog:
             if key in self._cache:
                 return self._cache[key]
         path = self._files[name]
-        robot = robots.load_file(path, self._chains[name][0], tip_link, xacro_args=self._xacro(path))
+        robot = robots.load_file(path, self._chains[name][0], tip_link, **self._xacro(path))
         with self._lock:
             self._cache[key] = robot
         return robot
@@ -142,7 +146,7 @@ class RobotCatalog:
         if name in self._files:
             base_link, tip_link = self._chains[name]
             path = self._files[name]
-            robot = robots.load_file(path, base_link, tip_link, xacro_args=self._xacro(path))
+            robot = robots.load_file(path, base_link, tip_link, **self._xacro(path))
         elif name in robots.names():
             robot = robots.load(name)
         else:

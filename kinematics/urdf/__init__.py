@@ -19,7 +19,7 @@ folder tree and its packages.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from xml.sax.saxutils import escape
 
@@ -29,7 +29,7 @@ from ..files import decode_utf8
 from ..model import Robot
 from ..transforms import matrix_to_rpy, rot_z, trans
 from .build import build_robot, hold_fixed_ranges, limit_notes, with_home
-from .expand import expand_xacro, is_xacro, parse_xacro_args, read_description
+from .expand import expand_xacro, is_xacro, parse_xacro_args, read_description, xacro_leftover
 from .mesh import mesh_filename_handler, mesh_report, resolve_mesh
 from .tree import ChainInfo, Tree
 from .xml import MAX_LINKS, parse_urdf
@@ -51,8 +51,28 @@ __all__ = [
 ]
 
 
-def _read(path: str | Path, xacro_args: Mapping[str, str] | None = None) -> bytes:
-    return read_description(path, xacro_args)
+def _read(
+    path: str | Path,
+    xacro_args: Mapping[str, str] | None = None,
+    package_dirs: Mapping[str, str | Path] | None = None,
+    package_path: Sequence[str | Path] = (),
+) -> bytes:
+    return read_description(path, xacro_args, package_path, package_dirs)
+
+
+def _leftover(exc: UrdfError, data: bytes, file: str) -> UrdfError:
+    """``exc``, or, when the URDF's text still holds xacro, a message that says so and what to do."""
+    left = xacro_leftover(data)
+    if left is None:
+        return exc
+    stem = file.split(".")[0] or "robot"
+    where = f"{file} is" if file else "this URDF is"
+    return UrdfError(
+        f"{where} not expanded xacro: it still holds {left!r}, which only xacro replaces, hence: {exc}. "
+        f"Open the .xacro file it was made from (jacobian-lab serve --urdf {stem}.urdf.xacro, with "
+        f"--xacro-arg NAME:=VALUE and --package NAME=DIR as it needs), or expand it first "
+        f"(xacro {stem}.urdf.xacro > {stem}.urdf)"
+    )
 
 
 def _as_bytes(text: str | bytes) -> bytes:
@@ -69,6 +89,8 @@ def robot_from_urdf(
     tip_link: str | None = None,
     *,
     xacro_args: Mapping[str, str] | None = None,
+    package_dirs: Mapping[str, str | Path] | None = None,
+    package_path: Sequence[str | Path] = (),
 ) -> Robot:
     """Build a :class:`Robot` from the URDF file at ``path``.
 
@@ -78,6 +100,11 @@ def robot_from_urdf(
         base_link: Link whose frame is the robot's base frame (default: the root, or the link
             below the last floating/planar joint above the tip).
         tip_link: Link whose frame is the tool frame (default: see :mod:`kinematics.urdf.tree`).
+        xacro_args: A xacro file's arguments (``NAME -> VALUE``; one it does not declare is refused).
+        package_dirs: ROS packages by name, ``{NAME: DIR}`` (``--package NAME=DIR``), for ``$(find NAME)``
+            and ``package://NAME`` meshes; looked at before anything else.
+        package_path: Folders that are packages or hold packages (``--package-path``), searched like
+            ``ROS_PACKAGE_PATH``.
 
     Raises:
         UrdfError: the file is unreadable (missing, not a regular file, too large, not UTF-8),
@@ -87,18 +114,33 @@ def robot_from_urdf(
     """
     p = Path(path)
     stem = p.name.split(".")[0] or p.stem
-    return _robot(_read(p, xacro_args), base_link, tip_link, stem, str(p.resolve()), p.name)
+    data = _read(p, xacro_args, package_dirs, package_path)
+    try:
+        return _robot(data, base_link, tip_link, stem, str(p.resolve()), p.name)
+    except UrdfError as exc:
+        if is_xacro(p):
+            raise
+        raise _leftover(exc, data, p.name) from None
 
 
 def robot_from_urdf_string(
     text: str | bytes, base_link: str | None = None, tip_link: str | None = None, name: str = "urdf"
 ) -> Robot:
     """Like :func:`robot_from_urdf`, from the URDF's XML text (``name``: used when ``<robot>`` has none)."""
-    return _robot(_as_bytes(text), base_link, tip_link, name, None, "")
+    data = _as_bytes(text)
+    try:
+        return _robot(data, base_link, tip_link, name, None, "")
+    except UrdfError as exc:
+        raise _leftover(exc, data, "") from None
 
 
 def chains(
-    path: str | Path, base_link: str | None = None, *, xacro_args: Mapping[str, str] | None = None
+    path: str | Path,
+    base_link: str | None = None,
+    *,
+    xacro_args: Mapping[str, str] | None = None,
+    package_dirs: Mapping[str, str | Path] | None = None,
+    package_path: Sequence[str | Path] = (),
 ) -> list[ChainInfo]:
     """The serial chains of the URDF at ``path``, for a chain picker.
 
@@ -106,7 +148,13 @@ def chains(
     first with ``is_default=True``, then one chain per leaf link (and, for a leaf
     below a gripper jaw, the chain cut above the jaw), each with a moving joint.
     """
-    return Tree(hold_fixed_ranges(parse_urdf(_read(path, xacro_args)))).chains(base_link)
+    data = _read(path, xacro_args, package_dirs, package_path)
+    try:
+        return Tree(hold_fixed_ranges(parse_urdf(data))).chains(base_link)
+    except UrdfError as exc:
+        if is_xacro(path):
+            raise
+        raise _leftover(exc, data, Path(path).name) from None
 
 
 def _robot(

@@ -7,7 +7,8 @@ name, as ``package://PKG/rest``), then the ``package_dirs`` given, the
 ``ROS_PACKAGE_PATH`` entries (a package, or a folder of packages) and
 ``AMENT_PREFIX_PATH`` entries (``PREFIX/share/PKG``). Any other file name is
 relative to the URDF's folder (``file://`` URIs and absolute paths too, but
-only when they point inside it), or, when it is not there and its first part is
+only when they point inside it, or inside a package folder that a xacro file's
+``$(find PKG)`` resolved to), or, when it is not there and its first part is
 the name of that folder or of an ancestor (a path from the package's top, as
 pybullet writes them), relative to that folder's parent, inside that folder.
 
@@ -26,7 +27,7 @@ from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
 from .expand import read_description
-from .packages import ANCESTOR_LEVELS, package_name, package_roots
+from .packages import ANCESTOR_LEVELS, found_packages, package_name, package_roots
 from .xml import parse_urdf
 
 __all__ = [
@@ -99,6 +100,11 @@ def resolve_mesh(
     elif "://" in uri:
         return None  # http:// and other schemes are never fetched
     found = _contained_file(here, uri)
+    if found is None and Path(uri).is_absolute():
+        # $(find PKG)/meshes/x.stl of a xacro file: absolute once expanded, inside the package folder found
+        for root in found_packages(urdf_path):
+            if _inside(Path(uri), root):
+                return _contained_file(root, str(Path(uri).relative_to(root)))
     if found is None and not Path(uri).is_absolute():
         # A path from the package's top (pybullet_data's differential/diff_ring.stl, written in
         # differential/x.urdf): its first part names the URDF's folder or an ancestor, inside which it

@@ -151,6 +151,8 @@ def test_serve_passes_the_chain_to_the_app(monkeypatch, forked):
             "xacro_args": None,
             "language": "",
             "trusted_proxy": ["127.0.0.1"],
+            "package_dirs": None,
+            "package_path": [],
         }
     ]
 
