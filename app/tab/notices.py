@@ -11,6 +11,8 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
+from kinematics.text import fill
+
 from ..core.i18n import Translator, translations
 
 __all__ = ["Notices"]
@@ -53,7 +55,7 @@ class Notices:
         with contextlib.suppress(Exception):
             self.client.add_notification(
                 self.tr.gettext("That did not work"),
-                f"{type(exc).__name__}: {str(exc)[:_LONGEST]}",
+                f"{type(exc).__name__}: {_said(exc, self.tr)[:_LONGEST]}",
                 color="red",
                 auto_close_seconds=10.0,
             )
@@ -67,3 +69,14 @@ class Notices:
                 note.remove()
 
         return remove
+
+
+def _said(exc: BaseException, tr: Translator) -> str:
+    """``exc``'s message in ``tr``'s language when it is a :func:`kinematics.text.words` sentence (one of
+    the catalogs'), else as it is (the library's English details). Its arguments are file names and
+    pieces of a file, written as they are (no decimal comma put into ``$(optenv X 0.1)``)."""
+    text = exc.args[0] if len(exc.args) == 1 else None
+    msgid = getattr(text, "msgid", None)
+    if not msgid:
+        return str(exc)
+    return fill(tr.gettext(msgid), **dict(getattr(text, "args", ())))

@@ -23,9 +23,12 @@ from pathlib import Path
 import robots
 from kinematics import Robot
 from kinematics.errors import UnknownRobotError, UrdfError
+from kinematics.text import words
 from kinematics.urdf import ChainInfo, robot_from_urdf_string
+from kinematics.urdf.expand import xacro_leftover
 
 from ..core.build_table import BUILT_NAME, robot_toml
+from ..core.i18n import N_
 from ..services.catalog import RobotCatalog
 from ..viser_adapter import MAX_UPLOAD_BYTES
 
@@ -42,6 +45,11 @@ __all__ = [
 # on the websocket before any part is buffered, and again here.
 MAX_PRIVATE_ROBOTS = 8
 MAX_UPLOAD_JOINTS = 200
+_UNEXPANDED = N_(
+    "{file} is unexpanded xacro (it holds {piece}). Expand it first (xacro {stem}.urdf.xacro > {stem}.urdf) "
+    "and upload the .urdf, or start the lab with --urdf {stem}.urdf.xacro."
+)
+"""An uploaded .urdf with xacro left in it that does not parse (pybullet's husky.urdf: ``$(optenv …)``)."""
 """Most ``<joint>`` elements an uploaded URDF may have (real arms with hands have a few dozen)."""
 MAX_UPLOAD_DOF = 24
 """Most moving joints of an uploaded robot's chain (each costs a slider and scene nodes per redraw)."""
@@ -140,6 +148,9 @@ class TabCatalog:
         try:
             robot = robot_from_urdf_string(bytes(content), name=stem)
         except UrdfError as exc:
+            left = xacro_leftover(bytes(content))
+            if left is not None:  # said in the tab's language (Notices.error)
+                raise UrdfError(words(_UNEXPANDED, file=shown, piece=left, stem=stem.split(".")[0])) from None
             raise UrdfError(f"upload {shown!r}: {exc}") from None
         except RecursionError:
             raise UrdfError(f"upload {shown!r}: the XML is nested too deeply") from None
