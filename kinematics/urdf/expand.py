@@ -219,13 +219,18 @@ def _macros_only(path: Path) -> str:
 
 
 def _includers(path: Path, limit: int = 3) -> list[str]:
-    """Up to ``limit`` .xacro files in the package (the file's folder, its parent and their sub-folders,
-    400 files at most) that name ``path``'s file: the robot files that include it."""
+    """Up to ``limit`` .xacro files in the package (the file's folder, its parent and their sub-folders:
+    200 folders and 400 files at most, hidden folders left out) that name ``path``'s file: the robot
+    files that include it."""
     here = path.resolve().parent
     found: list[str] = []
-    seen = 0
+    seen = folders = 0
     for top in (here, here.parent):
-        for folder, _, names in os.walk(top):
+        for folder, subs, names in os.walk(top):
+            subs[:] = sorted(d for d in subs if not d.startswith("."))
+            folders += 1
+            if folders > 200:
+                return found
             for n in sorted(names):
                 if not n.endswith(XACRO_SUFFIX) or n == path.name:
                     continue
@@ -236,7 +241,7 @@ def _includers(path: Path, limit: int = 3) -> list[str]:
                         shown = os.path.relpath(f, Path.cwd())
                         if shown not in found:
                             found.append(shown)
-                except OSError:
+                except (OSError, ValueError):  # ValueError: relpath across Windows drives
                     continue
                 if len(found) >= limit or seen >= 400:
                     return found
