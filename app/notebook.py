@@ -12,9 +12,11 @@ Example (one cell)::
 process (stopped with the kernel, or by :meth:`NotebookLab.stop`) and displays it in an ``<iframe>``.
 The framed page is the lab's own (``http://127.0.0.1:PORT``), so its websocket passes the Host and
 Origin checks of :mod:`app.viser_adapter.handshake` unchanged: the notebook's page never connects to
-the lab itself. When the notebook reaches the lab through a proxy (JupyterHub, a remote VS Code),
-give the address the browser uses as ``url`` and the notebook's origin as ``allow_origin``: that
-origin is then allowed explicitly, and every other page still refused.
+the lab itself. Under JupyterHub (``JUPYTERHUB_SERVICE_PREFIX`` set) the cell frames the lab through
+``jupyter-server-proxy`` at ``{prefix}proxy/{port}/`` on the notebook's own origin (:func:`proxied_url`).
+When the notebook reaches the lab through another proxy (a remote VS Code), give the address the
+browser uses as ``url`` and the notebook's origin as ``allow_origin``: that origin is then allowed
+explicitly, and every other page still refused.
 
 :func:`show_recording` embeds a recorded demo (:func:`app.demo.record.record`) in a cell: viser's
 client page with the recording inside, in an ``<iframe srcdoc>`` (no server behind it).
@@ -24,8 +26,10 @@ from __future__ import annotations
 
 import atexit
 import html
+import os
 import threading
 from collections.abc import Mapping, Sequence
+from urllib.parse import urlsplit
 
 import numpy as np
 
@@ -39,7 +43,15 @@ from .demo.record import Recording, embedded_page, quiet
 from .server import Lab
 from .tab.session import ClientSession
 
-__all__ = ["NotebookLab", "show", "show_recording", "RecordingView", "DEFAULT_HEIGHT"]
+__all__ = [
+    "NotebookLab",
+    "show",
+    "show_recording",
+    "RecordingView",
+    "DEFAULT_HEIGHT",
+    "proxied_url",
+    "hub_origin",
+]
 
 DEFAULT_HEIGHT = 620
 """Height of the cell's view [px]: the panel and the 3-D view side by side at a notebook's width."""
@@ -158,6 +170,28 @@ class NotebookLab:
             self.lab.stop()
 
 
+def proxied_url(port: int, environ: Mapping[str, str] | None = None) -> str | None:
+    """The lab's address as a browser behind JupyterHub reaches it: ``jupyter-server-proxy``'s
+    ``{JUPYTERHUB_SERVICE_PREFIX}proxy/{port}/``, a path on the notebook's own origin (None outside
+    JupyterHub). The proxy passes the browser's ``Host`` and ``Origin`` on, and its websocket too."""
+    env = os.environ if environ is None else environ
+    prefix = env.get("JUPYTERHUB_SERVICE_PREFIX", "").strip()
+    if not prefix:
+        return None
+    prefix = "/" + prefix.strip("/") + "/" if prefix.strip("/") else "/"
+    return f"{prefix}proxy/{int(port)}/"
+
+
+def hub_origin(environ: Mapping[str, str] | None = None) -> str | None:
+    """The origin of JupyterHub's public address (``JUPYTERHUB_PUBLIC_URL``, set by JupyterHub ≥ 4
+    when it knows it), whose pages a proxied lab must accept; None when not set or not a web address."""
+    env = os.environ if environ is None else environ
+    parts = urlsplit(env.get("JUPYTERHUB_PUBLIC_URL", "").strip())
+    if parts.scheme not in ("http", "https") or not parts.netloc:
+        return None
+    return f"{parts.scheme}://{parts.netloc}"
+
+
 def show(
     robot: str | None = None,
     urdf: str | None = None,
@@ -177,9 +211,12 @@ def show(
     Args:
         height: Height of the cell's view [px].
         port: Port on 127.0.0.1 (0: a free one).
-        url: The lab's address as the notebook's browser reaches it (default ``http://127.0.0.1:PORT/``).
+        url: The lab's address as the notebook's browser reaches it (default: under JupyterHub
+            ``{JUPYTERHUB_SERVICE_PREFIX}proxy/PORT/`` through ``jupyter-server-proxy``, else
+            ``http://127.0.0.1:PORT/``).
         allow_origin: Origins of pages allowed to connect besides the lab's own (a notebook behind a
-            proxy: its own origin), as ``jacobian-lab serve --allow-origin``.
+            proxy: its own origin; under JupyterHub ``JUPYTERHUB_PUBLIC_URL``'s is added), as
+            ``jacobian-lab serve --allow-origin``.
         base_link, tip_link, xacro_args: The chain of a URDF and a xacro file's arguments.
         lang: The language of the cell's panel (``"en"``, ``"pt"``, ``"es"``, ``"pl"``; default: the
             notebook browser's): the lab's room language, and the cell's address says it
@@ -189,6 +226,9 @@ def show(
         UnknownRobotError, RobotDefinitionError: the robot cannot be loaded.
         ValueError: ``lang`` is not one of the app's languages (the message lists them).
     """
+    hub = hub_origin() if url is None and proxied_url(port) is not None else None
+    if hub is not None:
+        allow_origin = (*allow_origin, hub)
     with quiet():  # viser's banner: the cell shows the lab instead
         lab = Lab(
             robot=robot,
@@ -201,7 +241,7 @@ def show(
             xacro_args=xacro_args,
             language=lang,
         )
-    address = url or f"http://127.0.0.1:{lab.port}/"
+    address = url or proxied_url(lab.port) or f"http://127.0.0.1:{lab.port}/"
     if lang:
         address += ("&" if "?" in address else "?") + f"lang={lang}"
     return NotebookLab(lab, height=height, url=address)
