@@ -29,6 +29,7 @@ import html
 import os
 import threading
 from collections.abc import Mapping, Sequence
+from typing import Any
 from urllib.parse import urlsplit
 
 import numpy as np
@@ -40,6 +41,7 @@ from .core.reducer import reduce
 from .core.snapshot import Snapshot, compute
 from .core.state import LabState
 from .demo.record import Recording, embedded_page, quiet
+from .notebook_frame import cell_html, jpeg
 from .server import Lab
 from .tab.session import ClientSession
 
@@ -65,10 +67,16 @@ class NotebookLab:
     :meth:`set_q` moves every tab of the lab (and any tab that connects later starts there).
     """
 
-    def __init__(self, lab: Lab, height: int = DEFAULT_HEIGHT, url: str | None = None) -> None:
+    def __init__(
+        self, lab: Lab, height: int = DEFAULT_HEIGHT, url: str | None = None, lang: str = ""
+    ) -> None:
         self.lab = lab
         self.height = int(height)
         self.url = url or f"http://127.0.0.1:{lab.port}/"
+        self.lang = lang
+        self.picture: bytes | None = None
+        """The 3-D view as the cell's browser last rendered it (JPEG): the dead frame's still picture."""
+        self._display: Any = None  # IPython's handle of the cell's output, updated with each picture
         name = lab.default_robot
         self._lock = threading.Lock()
         self._state = LabState.initial(name, lab.catalog.load(name))
@@ -133,7 +141,25 @@ class NotebookLab:
                 session.settle(wait)
             except TimeoutError:
                 pass  # a slow tab draws it later; the notebook's state already says it
+        self.capture(wait)
         return self.q
+
+    def capture(self, wait: float = 10.0) -> bytes | None:
+        """Keep the 3-D view as an open tab renders it now as the cell's still picture (and update the
+        cell's output with it); returns it (None: no tab answered within ``wait`` seconds)."""
+        for session in self.lab.open_sessions():
+            try:
+                rgb = session.client.get_render(self.height, int(self.height * 16 / 9), timeout=wait)
+            except Exception:  # a tab that closed or never rendered: the next one, or none
+                continue
+            picture = jpeg(rgb)
+            if picture is None:
+                return None
+            self.picture = picture
+            if self._display is not None:
+                self._display.update(self._bundle(), raw=True)
+            return picture
+        return None
 
     def _follow(self, session: ClientSession) -> None:
         """A tab connected: it starts at the notebook's q (if set), and what it draws becomes the state."""
@@ -142,6 +168,15 @@ class NotebookLab:
         if start is not None:
             session.dispatch(SetConfiguration(tuple(float(v) for v in start)))
         session.subscribe(self._drawn)
+        threading.Thread(target=self._first_picture, args=(session,), daemon=True).start()
+
+    def _first_picture(self, session: ClientSession) -> None:
+        try:
+            session.settle(10.0)
+        except TimeoutError:
+            pass
+        if not self._stopped:
+            self.capture()
 
     def _drawn(self, state: LabState, snapshot: Snapshot) -> None:
         with self._lock:
@@ -149,12 +184,19 @@ class NotebookLab:
 
     # ------------------------------------------------------------------ the cell
     def _repr_html_(self) -> str:
-        src = html.escape(self.url, quote=True)
-        return (
-            f'<iframe src="{src}" width="100%" height="{self.height}" '
-            'style="border:1px solid #ddd;display:block" '
-            f'title="Jacobian Lab: {html.escape(self.state.robot.name)}"></iframe>'
-        )
+        """The lab's iframe, swapped in when the lab answers; else the still picture and how to start
+        it again (:mod:`app.notebook_frame`)."""
+        title = f"Jacobian Lab: {self.state.robot.name}"
+        return cell_html(self.url, title, self.height, self.picture, self.lang)
+
+    def _ipython_display_(self) -> None:
+        """Shown in a notebook: an output with a display id, so that each new picture updates it."""
+        from IPython.display import display
+
+        self._display = display(self._bundle(), raw=True, display_id=True)
+
+    def _bundle(self) -> dict[str, str]:
+        return {"text/html": self._repr_html_(), "text/plain": repr(self)}
 
     def __repr__(self) -> str:
         state = "stopped" if self._stopped else f"serving {self.url}"
@@ -164,6 +206,7 @@ class NotebookLab:
         """Stop the server and its symbolic workers (the cell's view then says it lost its server)."""
         if self._stopped:
             return
+        self.capture()  # the last picture of what the cell showed, kept in its output
         self._stopped = True
         atexit.unregister(self.stop)
         with quiet():  # viser's "Server stopped"
@@ -244,7 +287,7 @@ def show(
     address = url or proxied_url(lab.port) or f"http://127.0.0.1:{lab.port}/"
     if lang:
         address += ("&" if "?" in address else "?") + f"lang={lang}"
-    return NotebookLab(lab, height=height, url=address)
+    return NotebookLab(lab, height=height, url=address, lang=lang)
 
 
 class RecordingView:

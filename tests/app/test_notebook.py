@@ -78,7 +78,7 @@ def test_the_cell_frames_the_labs_own_page_and_the_origin_check_still_holds():
     try:
         port = nb.lab.port
         frame = nb._repr_html_()
-        assert re.search(rf'<iframe src="http://127\.0\.0\.1:{port}/"', frame), frame
+        assert re.search(rf'<iframe data-src="http://127\.0\.0\.1:{port}/"', frame), frame
         url, proto = f"ws://127.0.0.1:{port}", [f"viser-v{__import__('viser').__version__}"]
         # the framed page is the lab's own: its websocket says the lab's origin, and is accepted
         with websockets.sync.client.connect(url, origin=f"http://127.0.0.1:{port}", subprotocols=proto):
