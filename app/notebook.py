@@ -141,7 +141,9 @@ class NotebookLab:
                 session.settle(wait)
             except TimeoutError:
                 pass  # a slow tab draws it later; the notebook's state already says it
-        self.capture(wait)
+        # the cell's picture follows, in the background: a tab that is not rendering (hidden) cannot hold
+        # set_q up
+        threading.Thread(target=self.capture, args=(wait,), daemon=True).start()
         return self.q
 
     def capture(self, wait: float = 10.0) -> bytes | None:
@@ -202,11 +204,13 @@ class NotebookLab:
         state = "stopped" if self._stopped else f"serving {self.url}"
         return f"<Jacobian Lab: {self.state.robot.name}, {state}>"
 
-    def stop(self) -> None:
-        """Stop the server and its symbolic workers (the cell's view then says it lost its server)."""
+    def stop(self, wait: float = 5.0) -> None:
+        """Stop the server and its symbolic workers; first keep the cell's last picture (waiting up to
+        ``wait`` seconds for an open tab to render it): the cell then shows that picture and how to start
+        the lab again."""
         if self._stopped:
             return
-        self.capture()  # the last picture of what the cell showed, kept in its output
+        self.capture(wait)  # the last picture of what the cell showed, kept in its output
         self._stopped = True
         atexit.unregister(self.stop)
         with quiet():  # viser's "Server stopped"
