@@ -18,6 +18,10 @@ When the notebook reaches the lab through another proxy (a remote VS Code), give
 browser uses as ``url`` and the notebook's origin as ``allow_origin``: that origin is then allowed
 explicitly, and every other page still refused.
 
+The cell keeps a still picture of its 3-D view (:meth:`NotebookLab.capture`) and frames the lab only
+once it answers: a saved or reopened notebook with no lab shows that picture and a line on how to
+start it again (:mod:`app.notebook_frame`).
+
 :func:`show_recording` embeds a recorded demo (:func:`app.demo.record.record`) in a cell: viser's
 client page with the recording inside, in an ``<iframe srcdoc>`` (no server behind it).
 """

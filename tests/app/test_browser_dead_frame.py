@@ -45,7 +45,7 @@ def test_a_saved_notebook_shows_the_cells_last_picture_and_how_to_start_it_again
             'from app.notebook import show\nlab = show("planar2", height=420, lang="es")\nlab'
         ),
         nbformat.v4.new_code_cell("lab.set_q([0.9, -1.2]);"),
-        nbformat.v4.new_code_cell("lab.stop(wait=120)"),  # a busy machine renders slowly,
+        nbformat.v4.new_code_cell("lab.stop(wait=120)"),  # a busy machine renders slowly
     ]
     client = nbclient.NotebookClient(
         nb, timeout=300, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}
