@@ -12,9 +12,15 @@ Example (one cell)::
 process (stopped with the kernel, or by :meth:`NotebookLab.stop`) and displays it in an ``<iframe>``.
 The framed page is the lab's own (``http://127.0.0.1:PORT``), so its websocket passes the Host and
 Origin checks of :mod:`app.viser_adapter.handshake` unchanged: the notebook's page never connects to
-the lab itself. When the notebook reaches the lab through a proxy (JupyterHub, a remote VS Code),
-give the address the browser uses as ``url`` and the notebook's origin as ``allow_origin``: that
-origin is then allowed explicitly, and every other page still refused.
+the lab itself. Under JupyterHub (``JUPYTERHUB_SERVICE_PREFIX`` set) the cell frames the lab through
+``jupyter-server-proxy`` at ``{prefix}proxy/{port}/`` on the notebook's own origin (:func:`proxied_url`).
+When the notebook reaches the lab through another proxy (a remote VS Code), give the address the
+browser uses as ``url`` and the notebook's origin as ``allow_origin``: that origin is then allowed
+explicitly, and every other page still refused.
+
+The cell keeps a still picture of its 3-D view (:meth:`NotebookLab.capture`) and frames the lab only
+once it answers: a saved or reopened notebook with no lab shows that picture and a line on how to
+start it again (:mod:`app.notebook_frame`).
 
 :func:`show_recording` embeds a recorded demo (:func:`app.demo.record.record`) in a cell: viser's
 client page with the recording inside, in an ``<iframe srcdoc>`` (no server behind it).
@@ -24,8 +30,11 @@ from __future__ import annotations
 
 import atexit
 import html
+import os
 import threading
 from collections.abc import Mapping, Sequence
+from typing import Any
+from urllib.parse import urlsplit
 
 import numpy as np
 
@@ -36,10 +45,19 @@ from .core.reducer import reduce
 from .core.snapshot import Snapshot, compute
 from .core.state import LabState
 from .demo.record import Recording, embedded_page, quiet
+from .notebook_frame import cell_html, jpeg
 from .server import Lab
 from .tab.session import ClientSession
 
-__all__ = ["NotebookLab", "show", "show_recording", "RecordingView", "DEFAULT_HEIGHT"]
+__all__ = [
+    "NotebookLab",
+    "show",
+    "show_recording",
+    "RecordingView",
+    "DEFAULT_HEIGHT",
+    "proxied_url",
+    "hub_origin",
+]
 
 DEFAULT_HEIGHT = 620
 """Height of the cell's view [px]: the panel and the 3-D view side by side at a notebook's width."""
@@ -53,10 +71,16 @@ class NotebookLab:
     :meth:`set_q` moves every tab of the lab (and any tab that connects later starts there).
     """
 
-    def __init__(self, lab: Lab, height: int = DEFAULT_HEIGHT, url: str | None = None) -> None:
+    def __init__(
+        self, lab: Lab, height: int = DEFAULT_HEIGHT, url: str | None = None, lang: str = ""
+    ) -> None:
         self.lab = lab
         self.height = int(height)
         self.url = url or f"http://127.0.0.1:{lab.port}/"
+        self.lang = lang
+        self.picture: bytes | None = None
+        """The 3-D view as the cell's browser last rendered it (JPEG): the dead frame's still picture."""
+        self._display: Any = None  # IPython's handle of the cell's output, updated with each picture
         name = lab.default_robot
         self._lock = threading.Lock()
         self._state = LabState.initial(name, lab.catalog.load(name))
@@ -121,7 +145,27 @@ class NotebookLab:
                 session.settle(wait)
             except TimeoutError:
                 pass  # a slow tab draws it later; the notebook's state already says it
+        # the cell's picture follows, in the background: a tab that is not rendering (hidden) cannot hold
+        # set_q up
+        threading.Thread(target=self.capture, args=(wait,), daemon=True).start()
         return self.q
+
+    def capture(self, wait: float = 10.0) -> bytes | None:
+        """Keep the 3-D view as an open tab renders it now as the cell's still picture (and update the
+        cell's output with it); returns it (None: no tab answered within ``wait`` seconds)."""
+        for session in self.lab.open_sessions():
+            try:
+                rgb = session.client.get_render(self.height, int(self.height * 16 / 9), timeout=wait)
+            except Exception:  # a tab that closed or never rendered: the next one, or none
+                continue
+            picture = jpeg(rgb)
+            if picture is None:
+                return None
+            self.picture = picture
+            if self._display is not None:
+                self._display.update(self._bundle(), raw=True)
+            return picture
+        return None
 
     def _follow(self, session: ClientSession) -> None:
         """A tab connected: it starts at the notebook's q (if set), and what it draws becomes the state."""
@@ -130,6 +174,15 @@ class NotebookLab:
         if start is not None:
             session.dispatch(SetConfiguration(tuple(float(v) for v in start)))
         session.subscribe(self._drawn)
+        threading.Thread(target=self._first_picture, args=(session,), daemon=True).start()
+
+    def _first_picture(self, session: ClientSession) -> None:
+        try:
+            session.settle(10.0)
+        except TimeoutError:
+            pass
+        if not self._stopped:
+            self.capture()
 
     def _drawn(self, state: LabState, snapshot: Snapshot) -> None:
         with self._lock:
@@ -137,25 +190,57 @@ class NotebookLab:
 
     # ------------------------------------------------------------------ the cell
     def _repr_html_(self) -> str:
-        src = html.escape(self.url, quote=True)
-        return (
-            f'<iframe src="{src}" width="100%" height="{self.height}" '
-            'style="border:1px solid #ddd;display:block" '
-            f'title="Jacobian Lab: {html.escape(self.state.robot.name)}"></iframe>'
-        )
+        """The lab's iframe, swapped in when the lab answers; else the still picture and how to start
+        it again (:mod:`app.notebook_frame`)."""
+        title = f"Jacobian Lab: {self.state.robot.name}"
+        return cell_html(self.url, title, self.height, self.picture, self.lang)
+
+    def _ipython_display_(self) -> None:
+        """Shown in a notebook: an output with a display id, so that each new picture updates it."""
+        from IPython.display import display
+
+        self._display = display(self._bundle(), raw=True, display_id=True)
+
+    def _bundle(self) -> dict[str, str]:
+        return {"text/html": self._repr_html_(), "text/plain": repr(self)}
 
     def __repr__(self) -> str:
         state = "stopped" if self._stopped else f"serving {self.url}"
         return f"<Jacobian Lab: {self.state.robot.name}, {state}>"
 
-    def stop(self) -> None:
-        """Stop the server and its symbolic workers (the cell's view then says it lost its server)."""
+    def stop(self, wait: float = 5.0) -> None:
+        """Stop the server and its symbolic workers; first keep the cell's last picture (waiting up to
+        ``wait`` seconds for an open tab to render it): the cell then shows that picture and how to start
+        the lab again."""
         if self._stopped:
             return
+        self.capture(wait)  # the last picture of what the cell showed, kept in its output
         self._stopped = True
         atexit.unregister(self.stop)
         with quiet():  # viser's "Server stopped"
             self.lab.stop()
+
+
+def proxied_url(port: int, environ: Mapping[str, str] | None = None) -> str | None:
+    """The lab's address as a browser behind JupyterHub reaches it: ``jupyter-server-proxy``'s
+    ``{JUPYTERHUB_SERVICE_PREFIX}proxy/{port}/``, a path on the notebook's own origin (None outside
+    JupyterHub). The proxy passes the browser's ``Host`` and ``Origin`` on, and its websocket too."""
+    env = os.environ if environ is None else environ
+    prefix = env.get("JUPYTERHUB_SERVICE_PREFIX", "").strip()
+    if not prefix:
+        return None
+    prefix = "/" + prefix.strip("/") + "/" if prefix.strip("/") else "/"
+    return f"{prefix}proxy/{int(port)}/"
+
+
+def hub_origin(environ: Mapping[str, str] | None = None) -> str | None:
+    """The origin of JupyterHub's public address (``JUPYTERHUB_PUBLIC_URL``, set by JupyterHub ≥ 4
+    when it knows it), whose pages a proxied lab must accept; None when not set or not a web address."""
+    env = os.environ if environ is None else environ
+    parts = urlsplit(env.get("JUPYTERHUB_PUBLIC_URL", "").strip())
+    if parts.scheme not in ("http", "https") or not parts.netloc:
+        return None
+    return f"{parts.scheme}://{parts.netloc}"
 
 
 def show(
@@ -177,9 +262,12 @@ def show(
     Args:
         height: Height of the cell's view [px].
         port: Port on 127.0.0.1 (0: a free one).
-        url: The lab's address as the notebook's browser reaches it (default ``http://127.0.0.1:PORT/``).
+        url: The lab's address as the notebook's browser reaches it (default: under JupyterHub
+            ``{JUPYTERHUB_SERVICE_PREFIX}proxy/PORT/`` through ``jupyter-server-proxy``, else
+            ``http://127.0.0.1:PORT/``).
         allow_origin: Origins of pages allowed to connect besides the lab's own (a notebook behind a
-            proxy: its own origin), as ``jacobian-lab serve --allow-origin``.
+            proxy: its own origin; under JupyterHub ``JUPYTERHUB_PUBLIC_URL``'s is added), as
+            ``jacobian-lab serve --allow-origin``.
         base_link, tip_link, xacro_args: The chain of a URDF and a xacro file's arguments.
         lang: The language of the cell's panel (``"en"``, ``"pt"``, ``"es"``, ``"pl"``; default: the
             notebook browser's): the lab's room language, and the cell's address says it
@@ -189,6 +277,9 @@ def show(
         UnknownRobotError, RobotDefinitionError: the robot cannot be loaded.
         ValueError: ``lang`` is not one of the app's languages (the message lists them).
     """
+    hub = hub_origin() if url is None and proxied_url(port) is not None else None
+    if hub is not None:
+        allow_origin = (*allow_origin, hub)
     with quiet():  # viser's banner: the cell shows the lab instead
         lab = Lab(
             robot=robot,
@@ -201,10 +292,10 @@ def show(
             xacro_args=xacro_args,
             language=lang,
         )
-    address = url or f"http://127.0.0.1:{lab.port}/"
+    address = url or proxied_url(lab.port) or f"http://127.0.0.1:{lab.port}/"
     if lang:
         address += ("&" if "?" in address else "?") + f"lang={lang}"
-    return NotebookLab(lab, height=height, url=address)
+    return NotebookLab(lab, height=height, url=address, lang=lang)
 
 
 class RecordingView:

@@ -135,7 +135,7 @@ def test_the_puma_singularities_swept(tmp_path, monkeypatch):
 
 def test_the_live_app_and_a_recorded_demo_in_cells(tmp_path, monkeypatch):
     out = _run("04_live_app_and_a_recorded_demo.ipynb", tmp_path, monkeypatch)
-    assert re.search(r'<iframe src="http://127\.0\.0\.1:\d+/"', out["_html"])
+    assert re.search(r'<iframe data-src="http://127\.0\.0\.1:\d+/"', out["_html"])
     assert "serving http://127.0.0.1:" in out["live"]
     np.testing.assert_allclose(_numbers(out["set-q"].split("\n")[0]), [0, 0.4, -0.2, 0, 0, 0])
     assert "singular: wrist" in out["set-q"] and "rank J = 5" in out["set-q"]

@@ -48,7 +48,7 @@ def test_a_notebook_page_frames_the_live_app_and_a_recorded_demo(tmp_path):
                 page.goto(f"http://localhost:{pages.server_address[1]}/")
                 poll(lambda: len(nb.lab.sessions) == 1)  # the framed app passed the Origin check
                 session = nb.lab.session()
-                live = page.frame_locator("iframe[src]")
+                live = page.frame_locator("iframe[data-src]")
                 live.locator("[role=slider]").first.wait_for()
                 nb.set_q([0.5, -1.0])
                 assert np.allclose(session.state.q, [0.5, -1.0])

@@ -10,6 +10,7 @@ import socket
 
 import numpy as np
 import pytest
+import viser
 import websockets.sync.client
 from fakes import FakeSymbolicService, poll
 from websockets.exceptions import InvalidStatus
@@ -18,7 +19,7 @@ from wsclient import ViserWsClient
 import robots
 from app.core.actions import SetJoint
 from app.demo.record import record
-from app.notebook import NotebookLab, show, show_recording
+from app.notebook import NotebookLab, hub_origin, proxied_url, show, show_recording
 from app.server import Lab
 from kinematics import jacobian
 
@@ -77,7 +78,7 @@ def test_the_cell_frames_the_labs_own_page_and_the_origin_check_still_holds():
     try:
         port = nb.lab.port
         frame = nb._repr_html_()
-        assert re.search(rf'<iframe src="http://127\.0\.0\.1:{port}/"', frame), frame
+        assert re.search(rf'<iframe data-src="http://127\.0\.0\.1:{port}/"', frame), frame
         url, proto = f"ws://127.0.0.1:{port}", [f"viser-v{__import__('viser').__version__}"]
         # the framed page is the lab's own: its websocket says the lab's origin, and is accepted
         with websockets.sync.client.connect(url, origin=f"http://127.0.0.1:{port}", subprotocols=proto):
@@ -174,3 +175,53 @@ def test_show_with_lang_speaks_that_language_in_the_cell(monkeypatch):
     finally:
         nb.stop()
     assert show.__kwdefaults__["lang"] == ""  # default: the notebook browser's own language
+
+
+def test_under_jupyterhub_show_frames_the_lab_through_the_proxy_and_accepts_the_hubs_pages(monkeypatch):
+    monkeypatch.setattr("app.server.SymbolicService", FakeSymbolicService)
+    monkeypatch.setenv("JUPYTERHUB_SERVICE_PREFIX", "/user/ana/")
+    monkeypatch.setenv("JUPYTERHUB_PUBLIC_URL", "https://hub.example.org/")
+    nb = show("planar2", lang="pl")
+    try:
+        port = nb.lab.port
+        assert nb.url == f"/user/ana/proxy/{port}/?lang=pl"  # a path on the notebook's own origin
+        assert f'src="/user/ana/proxy/{port}/?lang=pl"' in nb._repr_html_()
+        proto = ["viser-v" + viser.__version__]
+
+        def through_the_proxy(origin: str) -> None:
+            # jupyter-server-proxy passes the browser's Host and Origin on to 127.0.0.1:port
+            sock = socket.create_connection(("127.0.0.1", port), timeout=10)
+            with websockets.sync.client.connect(
+                "ws://hub.example.org/", sock=sock, origin=origin, subprotocols=proto
+            ):
+                pass
+
+        through_the_proxy("https://hub.example.org")  # the hub's page is accepted ...
+        with pytest.raises(InvalidStatus):
+            through_the_proxy("https://evil.example.org")  # ... and any other site's still refused
+    finally:
+        nb.stop()
+
+
+def test_proxied_url_and_hub_origin_read_jupyterhubs_environment():
+    assert proxied_url(8765, {}) is None  # not under JupyterHub: the lab's own address is used
+    assert proxied_url(8765, {"JUPYTERHUB_SERVICE_PREFIX": "/user/me/"}) == "/user/me/proxy/8765/"
+    assert proxied_url(8765, {"JUPYTERHUB_SERVICE_PREFIX": "user/me"}) == "/user/me/proxy/8765/"
+    assert (
+        hub_origin({"JUPYTERHUB_PUBLIC_URL": "https://hub.example.org:8443/hub/"})
+        == "https://hub.example.org:8443"
+    )
+    assert hub_origin({"JUPYTERHUB_PUBLIC_URL": ""}) is None and hub_origin({}) is None
+
+
+def test_the_notebook_tools_are_an_extra_of_their_own_and_the_test_extra_holds_them():
+    from pathlib import Path
+
+    import tomllib
+
+    extras = tomllib.loads((Path(__file__).parents[2] / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"
+    ]
+    names = {re.split(r"[<>=\[ ]", d)[0] for d in extras["notebook"]}
+    assert {"ipykernel", "nbformat", "nbclient", "jupyter-server-proxy"} <= names
+    assert set(extras["notebook"]) <= set(extras["test"])  # the suite runs the notebook tests
