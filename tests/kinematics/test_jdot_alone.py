@@ -1,0 +1,62 @@
+"""000's per-joint J̇ᵢ (kinematics.jacobian_dot_alone) against the course's formula written out joint by
+joint, against finite differences of J with one joint moving, and its limit with several moving."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kinematics
+import robots
+
+H = 1e-6
+NAMES = ["planar2", "elbow3r", "trr", "scara", "puma560", "stanford", "ur5"]
+
+
+def _course(robot: kinematics.Robot, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
+    """000, §7, written out: revolute J̇ᵢ = [z_{i−1} × (z_{i−1} × (pₙ − p_{i−1})) q̇ᵢ; 0], prismatic 0."""
+    W = kinematics.joint_frames(robot, q)
+    p_n = kinematics.fk(robot, q)[:3, 3]
+    cols = []
+    for i, kind in enumerate(robot.joint_types):
+        z, p = W[i][:3, 2], W[i][:3, 3]
+        top = np.cross(z, np.cross(z, p_n - p)) * qd[i] if kind == "revolute" else np.zeros(3)
+        cols.append(np.concatenate([top, np.zeros(3)]))
+    return np.column_stack(cols)
+
+
+def _fd(robot: kinematics.Robot, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
+    return (kinematics.jacobian(robot, q + H * qd) - kinematics.jacobian(robot, q - H * qd)) / (2 * H)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_per_joint_jdot_is_the_course_formula_and_agrees_when_one_joint_moves(name):
+    robot = robots.load(name)
+    rng = np.random.default_rng(11)
+    q = rng.uniform(-1.2, 1.2, robot.dof)
+    qd_all = rng.uniform(0.3, 0.9, robot.dof)
+    assert np.allclose(kinematics.jacobian_dot_alone(robot, q, qd_all), _course(robot, q, qd_all), atol=1e-12)
+    for i in range(robot.dof):
+        qd = np.zeros(robot.dof)
+        qd[i] = qd_all[i]
+        alone = kinematics.jacobian_dot_alone(robot, q, qd)
+        assert np.allclose(alone[:, i], _fd(robot, q, qd)[:, i], atol=1e-5)  # column i: the true one
+        # Σⱼ J̇ⱼ q̇ⱼ = J̇ᵢ q̇ᵢ = J̇ q̇: the course's acceleration term is right for one joint alone
+        assert np.allclose(alone @ qd, _fd(robot, q, qd) @ qd, atol=1e-5)
+
+
+@pytest.mark.parametrize("name", ["elbow3r", "puma560", "trr"])
+def test_per_joint_jdot_misses_the_coupling_when_several_joints_move(name):
+    robot = robots.load(name)
+    q = np.random.default_rng(3).uniform(-1.2, 1.2, robot.dof)
+    qd = np.full(robot.dof, 0.7)
+    true = _fd(robot, q, qd)
+    alone = kinematics.jacobian_dot_alone(robot, q, qd)
+    assert np.linalg.norm(true @ qd - alone @ qd) > 0.05  # the accelerations differ
+    assert np.allclose(kinematics.jacobian_dot(robot, q, qd), true, atol=1e-5)
+
+
+def test_prismatic_columns_are_zero():
+    robot = robots.load("trr")  # joint 1 slides
+    J = kinematics.jacobian_dot_alone(robot, np.array([1.0, 0.4, -0.3]), np.array([2.0, 0.5, 0.5]))
+    assert np.all(J[:, 0] == 0) and np.all(J[3:] == 0)
