@@ -214,24 +214,3 @@ def analytic_html(
         text = _("J<sub>A</sub> = diag(I, M(φ)<sup>−1</sup>) J, rows [v; φ̇] (base axes):")
         parts.append(f'<div class="jl-note">{text}</div>' + grid_html(view.J_A, row_heads, cols, 3, tr))
     return f'<div class="jl jl-analytic">{"".join(parts)}</div>'
-
-
-def accel_html(jdot_qd: np.ndarray | None, tr: Translator | None = None) -> str:
-    """J̇ q̇ (6,) as the tool's acceleration at constant joint rates: the course's ẍ = J q̈ + J̇ q̇, q̈ = 0."""
-    if jdot_qd is None:
-        return ""
-    tr = tr or translations()
-    head = "".join(f"<th>{n}̇<sub>{a}</sub></th>" for n in ("v", "ω") for a in "xyz")
-    shown = fmt.cleaned([jdot_qd[r] if r < 3 else math.degrees(jdot_qd[r]) for r in range(6)])
-    cells = "".join(f"<td>{fmt.number(x, tr=tr)}</td>" for x in shown)
-    note = tr.gettext(
-        "ẍ = J q̈ + J̇ q̇; here q̈ = 0 (constant rates), so ẍ = J̇ q̇: the tool accelerates although every "
-        "joint turns steadily. v̇ in m/s², ω̇ in °/s², base axes; violet arrow at the tool (drawn {scale} "
-        "per m/s²)."
-    ).format(scale=fmt.quantity(0.5, "m", tr=tr))
-    return (
-        f'<div class="jl"><table class="jl-vec"><tr><th></th>{head}</tr>'
-        f'<tr class="accel"><th class="rowname">J̇ q̇</th>{cells}</tr></table>'
-        f'<div class="jl-note">{note}</div>'
-        f"{erratum_html('jdot', tr)}</div>"
-    )
