@@ -32,7 +32,7 @@ from kinematics.singularity.lost import LostDirection, lost_direction
 
 from ..ranges import reach
 from ..state import LabState
-from .course import AnalyticView, InverseView, analytic_view, inverse_view
+from .course import AnalyticView, InverseView, analytic_view, inverse_view, with_closed_form
 from .derive import Derivation, derivation
 from .losses import Loss, block_ellipsoids, losses
 from .maps import Cloud, JointMap, joint_map, workspace_cloud
@@ -207,7 +207,9 @@ def compute(state: LabState) -> Snapshot:
         joint_map=_map(state),
         cloud=workspace_cloud(robot) if state.options.workspace else None,
         derive=derivation(state, L),
-        inverse=inverse_view(J_twist, rank_task),
+        inverse=with_closed_form(
+            inverse_view(J_twist, rank_task), robot, q, state.options.twist_frame == "base"
+        ),
         analytic=analytic_view(L[-1], J, representation) if representation != "geometric" else None,
         jdot_qd=Jdot @ state.qd,
         jdot=Jdot,

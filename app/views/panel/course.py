@@ -86,7 +86,7 @@ def inverse_html(
             "{inverse} does not exist (det J = 0): the arm is singular and no joint rates produce the "
             "lost direction."
         ).format(inverse=J_INV)
-        return f'<div class="jl"><div class="jl-warn">{text}</div></div>'
+        return f'<div class="jl"><div class="jl-warn">{text}</div>{_closed_html(view, robot, cols, tr)}</div>'
     name = J_INV if view.kind == "inverse" else J_PLUS
     assert view.matrix is not None
     table = grid_html(view.matrix, _joint_heads(robot), cols, tr=tr)
@@ -114,7 +114,38 @@ def inverse_html(
         note += " " + _("The rates above use damped least squares (λ = {lam}), not {name}.").format(
             lam=lam, name=name
         )
-    return f'<div class="jl"><div>{head}</div>{table}<div class="jl-note">{note}</div></div>'
+    closed = _closed_html(view, robot, cols, tr)
+    return f'<div class="jl"><div>{head}</div>{table}<div class="jl-note">{note}</div>{closed}</div>'
+
+
+def _closed_html(view: InverseView, robot: Robot, cols: list[str], tr: Translator) -> str:
+    """002's third way: J⁻¹ = ∂q/∂x from the closed-form inverse kinematics q = g(x), beside J⁻¹."""
+    if not view.closed:
+        return ""
+    _ = tr.gettext
+    if view.closed_form is None:
+        if view.kind == "none":
+            text = _(
+                "The closed-form inverse kinematics gives no {inverse} here either: its derivative divides "
+                "by sin q{joint} = 0."
+            ).format(inverse=J_INV, joint=robot.dof)
+        else:
+            text = _("{inverse} from the closed-form inverse kinematics is shown in base axes only.").format(
+                inverse=J_INV
+            )
+        return f'<div class="jl-note">{text}</div>'
+    head = _(
+        "<b>{inverse}</b> from the closed-form inverse kinematics (course 002, the third way): "
+        "q = g(x), so {inverse} = ∂g/∂x (base axes)"
+    ).format(inverse=J_INV)
+    table = grid_html(view.closed_form, _joint_heads(robot), cols, tr=tr)
+    if view.closed_gap is not None:
+        note = _("The same matrix as the inverse of J above: the largest difference is {gap}.").format(
+            gap=fmt.number(view.closed_gap, 2, tr)
+        )
+    else:
+        note = ""
+    return f'<div class="jl-closed"><div>{head}</div>{table}<div class="jl-note">{note}</div></div>'
 
 
 def _vector(values: np.ndarray, units: list[str], tr: Translator, digits: int = 4) -> str:
