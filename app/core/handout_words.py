@@ -57,6 +57,7 @@ MESSAGES = frozenset(
         ),
         pgettext("handout", "J is singular here (det J = 0): it has no inverse."),
         pgettext("handout", "J is square and regular here; its inverse:"),
+        pgettext("handout", "From the closed-form inverse kinematics q = g(x) (course 002, the third way):"),
         pgettext("handout", "J(q), task rows ({rows}):"),
         pgettext(
             "handout",

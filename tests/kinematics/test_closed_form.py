@@ -66,3 +66,18 @@ def test_no_closed_form_inverse_at_a_singularity_or_for_other_arms():
         closed_form_inverse_jacobian(robots.load("puma560"), np.zeros(6))
     with pytest.raises(ConfigurationError, match="out of reach"):
         closed_form_ik(robots.load("planar2"), [3.0, 0.0, 0.0])
+
+
+def test_the_handout_carries_the_closed_form_jinv_in_each_language():
+    from app.core.i18n import translations
+    from kinematics.symbolic.handout import handout
+
+    trr = robots.load("trr")  # its home is the course's q = (5 m, 60°, −15°)
+    english = handout(trr, "html", "whitney")
+    part = english[english.index("the third way") :]
+    for figure in ("−0.5464", "0.9647", "0.7879"):
+        assert figure in part, figure
+    assert "the third way" in handout(trr, "tex", "whitney")
+    polish = handout(trr, "html", "whitney", words=translations("pl"))
+    assert "trzeci sposób" in polish and "0,9647" in polish[polish.index("trzeci sposób") :]
+    assert "the third way" not in handout(robots.load("puma560"), "html", "whitney")

@@ -21,6 +21,7 @@ from ...analysis import task_rows
 from ...conventions import ROW_TEXT
 from ...errors import JacobianLabError
 from ...model import Robot
+from ...motion.closed_form import closed_form, closed_form_inverse_jacobian
 from ...numeric import as_configuration
 from ...numeric import jacobian as numeric_jacobian
 from ...steps import METHODS as STEP_METHODS
@@ -76,6 +77,9 @@ class Example:
         velocity: J q̇ (task rows), or None.
         twist: The given task velocity (task rows), or None.
         inverse: J⁻¹ when square and regular, else None.
+        closed_form: J⁻¹ = ∂g/∂x from the closed-form inverse kinematics q = g(x) (course 002's third
+            way) when the robot has one (:mod:`kinematics.motion.closed_form`), the frame is the base and
+            it exists here, else None.
         solved: J⁻¹ · twist, or None.
     """
 
@@ -90,6 +94,7 @@ class Example:
     velocity: np.ndarray | None = None
     twist: np.ndarray | None = None
     inverse: np.ndarray | None = None
+    closed_form: np.ndarray | None = None
     solved: np.ndarray | None = None
 
 
@@ -134,6 +139,8 @@ def _example(robot: Robot, frame: str, configuration: str | None, rates: object,
         ex.rates, ex.velocity = qd, J @ qd
     if square and abs(det) > 1e-9 * max(1.0, float(np.abs(J).max()) ** J.shape[0]):
         ex.inverse = np.linalg.inv(J)
+    if frame == "base" and closed_form(robot) is not None:
+        ex.closed_form = closed_form_inverse_jacobian(robot, q)
     if twist is not None:
         t = np.asarray(twist, dtype=float).reshape(-1)
         if t.shape != (6,) or not np.isfinite(t).all():

@@ -236,6 +236,7 @@ def example_math(h: Handout, latex: bool) -> list[tuple[str, str]]:
 
     lhs = (lambda t: t) if latex else lhs_mathml
     eq = " = " if latex else "<mo>=</mo>"
+    dg = "\\frac{\\partial g}{\\partial x}"
     J_q, det_q, w_q, qd, Jqd, J_inv, v, solved = (
         lhs(t)
         for t in (
@@ -269,6 +270,9 @@ def example_math(h: Handout, latex: bool) -> list[tuple[str, str]]:
         out.append((say(w, "J is square and regular here; its inverse:"), f"{J_inv}{eq}{num(ex.inverse, 4)}"))
     elif ex.square:
         out.append((say(w, "J is singular here (det J = 0): it has no inverse."), ""))
+    if ex.closed_form is not None:
+        caption = say(w, "From the closed-form inverse kinematics q = g(x) (course 002, the third way):")
+        out.append((caption, f"{J_inv}{eq}{lhs(dg)}{eq}{num(ex.closed_form, 4)}"))
     if ex.twist is not None:
         out.append(
             (say(w, "For the tool velocity (task rows)"), f"{v}{eq}{num(col(ex.twist), 3)}{row_units}")
