@@ -240,11 +240,14 @@ def _option(options: Options, name: str, value: object, n: int) -> Options:
     elif row.kind == "step":  # the Derive tab's previous/next buttons: clamped, never refused
         if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
             raise InvalidAction(f"{name} is a joint index (an integer), got {value!r}")
-        value = min(max(int(value), 0), n - 1)
+        last = n if options.derive == "dh" else n - 1  # the DH walk ends with the tool frame's row
+        value = min(max(int(value), 0), last)
     elif row.kind == "choice":
         if value not in row.choices:
             raise InvalidAction(f"{name} must be one of {row.choices}, got {value!r}")
     elif not isinstance(value, bool):
         raise InvalidAction(f"{name} is on or off (a bool), got {value!r}")
     changes: dict[str, Any] = {name: value}
+    if name == "derive" and value != "dh" and options.derive_step > n - 1:
+        changes["derive_step"] = n - 1  # off the DH walk's tool step: back on the last joint
     return dataclasses.replace(options, **changes)
