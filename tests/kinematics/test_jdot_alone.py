@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_export_latex import display_formulas, katex  # noqa: F401  (katex is a fixture)
 
 import kinematics
 import robots
@@ -60,3 +61,39 @@ def test_prismatic_columns_are_zero():
     robot = robots.load("trr")  # joint 1 slides
     J = kinematics.jacobian_dot_alone(robot, np.array([1.0, 0.4, -0.3]), np.array([2.0, 0.5, 0.5]))
     assert np.all(J[:, 0] == 0) and np.all(J[3:] == 0)
+
+
+def _column(html: str, after: str) -> list[float]:
+    """The first column vector printed after the caption ``after`` (MathML numbers, real minus signs)."""
+    import re
+
+    part = html[html.index(after) :]
+    block = part[: part.index("</mtable>")]
+    return [float(x.replace("−", "-").replace(",", ".")) for x in re.findall(r"<mn>([^<]+)</mn>", block)]
+
+
+def test_the_handout_prints_jdot_qd_and_the_per_joint_sum_with_the_rates():
+    from kinematics.symbolic.handout import handout
+
+    robot = robots.load("elbow3r")
+    q = robot.home
+    for rates_deg, agree in (([0.0, 40.0, 0.0], True), ([30.0, 40.0, -35.0], False)):
+        qd = np.radians(rates_deg)
+        html = handout(robot, "html", "whitney", rates=qd)  # SI: the CLI takes °/s
+        jdot = _column(html, "the tool accelerates")
+        alone = _column(html, "per-joint J̇ᵢ holds")
+        np.testing.assert_allclose(jdot, (_fd(robot, q, qd) @ qd)[:3], atol=1e-3)  # 3 significant digits
+        np.testing.assert_allclose(alone, (_course(robot, q, qd) @ qd)[:3], atol=1e-3)
+        assert np.allclose(jdot, alone, atol=1e-3) == agree
+    tex = handout(robot, "tex", "whitney", rates=np.radians([30.0, 40.0, -35.0]))
+    assert "\\sum_i \\dot{J}_i \\dot{q}_i" in tex and "\\dot{J} \\dot{q}" in tex
+
+
+def test_the_new_handout_formulas_typeset_in_katex(katex):  # noqa: F811 (a fixture)
+    from kinematics.symbolic.handout import handout
+
+    formulas = display_formulas(handout(robots.load("elbow3r"), "tex", "whitney", rates=[0.5, 0.7, -0.6]))
+    formulas += display_formulas(handout(robots.load("trr"), "tex", "whitney"))  # ∂g/∂x: item 4
+    new = [f for f in formulas if "\\sum_i" in f or "\\dot{J} \\dot{q}" in f or "\\partial g" in f]
+    assert len(new) == 3
+    assert katex(new) == [None] * 3
