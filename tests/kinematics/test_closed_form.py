@@ -81,3 +81,28 @@ def test_the_handout_carries_the_closed_form_jinv_in_each_language():
     polish = handout(trr, "html", "whitney", words=translations("pl"))
     assert "trzeci sposób" in polish and "0,9647" in polish[polish.index("trzeci sposób") :]
     assert "the third way" not in handout(robots.load("puma560"), "html", "whitney")
+
+
+@pytest.mark.parametrize("name", ["planar2", "trr"])
+def test_the_symbolic_derivative_of_the_closed_form_is_the_numeric_one(name):
+    import sympy as sp
+
+    from kinematics.symbolic.closed_form import TOOL_POINT, closed_form_symbols
+
+    robot = robots.load(name)
+    rows = list(task_rows(robot))
+    rng = np.random.default_rng(3)
+    for elbow in (1, -1):
+        g, dg = closed_form_symbols(robot, elbow)
+        G = sp.lambdify(TOOL_POINT, g, "numpy")
+        DG = sp.lambdify(TOOL_POINT, dg, "numpy")
+        for _ in range(10):
+            q = rng.uniform(-2.5, 2.5, robot.dof)
+            q[-1] = elbow * rng.uniform(0.3, 2.8)  # on this branch, away from sin q = 0
+            x = fk(robot, q)[:3, 3]
+            back = np.asarray(G(*x), float).ravel()
+            np.testing.assert_allclose(np.cos(back - q), 1.0, atol=1e-9)  # g(f(q)) = q (mod 2π)
+            np.testing.assert_allclose(
+                np.asarray(DG(*x), float), closed_form_inverse_jacobian(robot, q), atol=1e-9
+            )
+            assert np.asarray(DG(*x), float).shape == (len(rows), len(rows))
