@@ -97,3 +97,28 @@ def test_the_new_handout_formulas_typeset_in_katex(katex):  # noqa: F811 (a fixt
     new = [f for f in formulas if "\\sum_i" in f or "\\dot{J} \\dot{q}" in f or "\\partial g" in f]
     assert len(new) == 3
     assert katex(new) == [None] * 3
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["planar2", "elbow3r", "trr"])
+def test_the_symbolic_per_joint_jdot_is_the_one_joint_derivative_and_the_numeric_one(name):
+    import sympy as sp
+
+    from kinematics.symbolic import jacobian as symbolic_jacobian
+    from kinematics.symbolic import joint_symbols
+    from kinematics.symbolic.jdot import jacobian_dot_alone_symbolic, rate_symbols_of
+
+    robot = robots.load(name)
+    q, qd = joint_symbols(robot), rate_symbols_of(robot)
+    course = jacobian_dot_alone_symbolic(robot)
+    J = symbolic_jacobian(robot, "base")
+    for i in range(robot.dof):  # 000's J̇ᵢ is ∂Jᵢ/∂qᵢ q̇ᵢ: column i's rate with joint i alone moving
+        alone = J[:, i].diff(q[i]) * qd[i]
+        assert sp.simplify(course[:, i] - alone) == sp.zeros(6, 1), i
+    f = sp.lambdify([q, qd], course, "numpy")
+    rng = np.random.default_rng(1)
+    for _ in range(5):
+        qv, qdv = rng.uniform(-1.5, 1.5, robot.dof), rng.uniform(-1, 1, robot.dof)
+        np.testing.assert_allclose(
+            np.asarray(f(qv, qdv), float), kinematics.jacobian_dot_alone(robot, qv, qdv), atol=1e-12
+        )
