@@ -63,7 +63,16 @@ from .errors import (
 )
 from .inverse import dls, nullspace_projector, pinv, solve_rates
 from .model import Axis, DHRow, Joint, NamedConfiguration, Robot
-from .numeric import as_configuration, chain_frames, fk, jacobian, jacobian_dot, joint_frames, link_frames
+from .numeric import (
+    as_configuration,
+    chain_frames,
+    fk,
+    jacobian,
+    jacobian_dot,
+    jacobian_dot_alone,
+    joint_frames,
+    link_frames,
+)
 from .singularity import SingularityReport, assess
 from .urdf import robot_from_urdf, to_urdf
 
@@ -76,6 +85,7 @@ __all__ = [
     "fk",
     "jacobian",
     "jacobian_dot",
+    "jacobian_dot_alone",
     "batch",
     "Batch",
     "joint_frames",

@@ -38,6 +38,7 @@ __all__ = [
     "chain_frames",
     "frames_and_jacobian",
     "jacobian",
+    "jacobian_dot_alone",
     "jacobian_dot",
     "as_configuration",
     "check_frame",
@@ -296,6 +297,37 @@ def jacobian_dot(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike, frame: Frame
     if c.compiled is not None:
         return c.compiled.single_rates(q, qd)[2]
     return _jacobian_dot_scan(c, q, qd)
+
+
+def jacobian_dot_alone(robot: Robot, q: npt.ArrayLike, qd: npt.ArrayLike) -> FloatArray:
+    """The course's per-joint J̇ᵢ (000, §7), column by column, shape (6, n) [m/s; rad/s per rad].
+
+    Column i is what 000 derives for joint i moving alone: for a revolute joint
+    J̇ᵢ = [⁰Rᵢ₋₁(ⁱ⁻¹ẑᵢ₋₁ × (ⁱ⁻¹ẑᵢ₋₁ × ⁱ⁻¹Pₙ)) q̇ᵢ; 0] = [zᵢ₋₁ × (zᵢ₋₁ × (pₙ − pᵢ₋₁)) q̇ᵢ; 0]
+    in base axes, and 0 for a prismatic joint. It leaves out that zᵢ₋₁ turns and pₙ − pᵢ₋₁
+    changes with the other joints, so it equals column i of :func:`jacobian_dot` when joint i is
+    the only one moving, and Σᵢ J̇ᵢ q̇ᵢ = J̇ q̇ then; with several joints moving they differ.
+    A joint driving several axes (coupled joints) sums the formula over its axes.
+
+    Args:
+        robot: The robot.
+        q: One configuration (n,) [rad | m].
+        qd: Joint rates (n,) [rad/s | m/s].
+    """
+    c = kernel(robot)
+    q = _configuration(robot, c, q)
+    qd = _configuration(robot, c, qd, "qd")
+    if q.ndim != 1 or qd.ndim != 1:
+        raise ConfigurationError(
+            f"jacobian_dot_alone takes q (n,) and qd (n,); got q {q.shape} and qd {qd.shape}"
+        )
+    W, T = chain_single(c, q)
+    z, p = W[:, :3, 2], W[:, :3, 3]
+    rate = (c.multiplier * qd[c.index] * c.revolute)[:, None]  # rate of every revolute axis
+    Jd = np.zeros((6, len(z)))
+    Jd[:3] = (np.cross(z, np.cross(z, T[:3, 3] - p)) * rate).T
+    out: FloatArray = Jd if c.simple else Jd @ c.selection
+    return out
 
 
 def _jacobian_dot_scan(c: Kernel, q: FloatArray, qd: FloatArray) -> FloatArray:

@@ -25,6 +25,7 @@ __all__ = [
     "GoTo",
     "SetRate",
     "StopRates",
+    "SetAcceleration",
     "SetDesired",
     "SetWrench",
     "ClearWrench",
@@ -79,6 +80,14 @@ class SetRate:
 @dataclass(frozen=True)
 class StopRates:
     """Set every joint rate to zero (and stop moving)."""
+
+
+@dataclass(frozen=True)
+class SetAcceleration:
+    """Set joint acceleration q̈ᵢ [rad/s² | m/s²] of the acceleration map ẍ = J q̈ + J̇ q̇."""
+
+    index: int
+    value: float
 
 
 @dataclass(frozen=True)
@@ -228,6 +237,7 @@ Action = (
     | GoTo
     | SetRate
     | StopRates
+    | SetAcceleration
     | SetDesired
     | SetWrench
     | ClearWrench

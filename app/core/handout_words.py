@@ -57,6 +57,13 @@ MESSAGES = frozenset(
         ),
         pgettext("handout", "J is singular here (det J = 0): it has no inverse."),
         pgettext("handout", "J is square and regular here; its inverse:"),
+        pgettext("handout", "From the closed-form inverse kinematics q = g(x) (course 002, the third way):"),
+        pgettext("handout", "and at constant rates (q̈ = 0) the tool accelerates: ẍ = J q̈ + J̇ q̇ = J̇ q̇ ="),
+        pgettext(
+            "handout",
+            "Course 000's per-joint J̇ᵢ holds for joint i moving alone; the sum of its terms "
+            "(equal to J̇ q̇ only when one joint moves):",
+        ),
         pgettext("handout", "J(q), task rows ({rows}):"),
         pgettext(
             "handout",

@@ -158,8 +158,11 @@ OPTIONS: tuple[Option, ...] = (
         "jdot_arrow",
         "bool",
         True,
-        N_("J̇ q̇ arrow at the tool"),
-        N_("The tool's acceleration when the joints turn at constant rate (ẍ = J̇ q̇ when q̈ = 0)"),
+        N_("Acceleration arrows at the tool (J q̈, J̇ q̇)"),
+        N_(
+            "The two terms of the tool's acceleration ẍ = J q̈ + J̇ q̇: "
+            "from the joint accelerations and from the rates"
+        ),
         "forward",
     ),
     # q̇ = J⁺ v
@@ -284,7 +287,7 @@ class Options:
         derive_step: Its step: joint i (0-based), row i + 1 of the DH table.
         representation: What the J(q) tab shows: "geometric" J, or the analytic J_A with
             roll-pitch-yaw ("zyx") or Euler ZYZ ("zyz") angles.
-        jdot_arrow: Draw J̇ q̇ (the tool's acceleration when the joints turn at constant rate) at the
+        jdot_arrow: Draw J q̈ and J̇ q̇ (the terms of the tool's acceleration ẍ = J q̈ + J̇ q̇) at the
             tool while joint rates are set.
         course_letters: Write the symbolic J, det J and J⁻¹ with the DH parameters as letters (l₁, a₂, d₄ …).
         symbolic_inverse: Show the symbolic J⁻¹ = adj(J) / det J (asked for with a button: it takes seconds).

@@ -24,6 +24,7 @@ __all__ = [
     "Range",
     "joint_ranges",
     "rate_ranges",
+    "accel_ranges",
     "twist_ranges",
     "wrench_ranges",
     "snap_joint",
@@ -129,6 +130,19 @@ def rate_ranges(robot: Robot) -> tuple[Range, ...]:
         else:
             span = max(abs(r.lo), abs(r.hi), 1.0)
             out.append(Range(-span, span, r.step, "m/s", False))
+    return tuple(out)
+
+
+@functools.lru_cache(maxsize=64)  # bounded: every edit of a DH table makes a new robot
+def accel_ranges(robot: Robot) -> tuple[Range, ...]:
+    """Joint-acceleration sliders q̈: ±360 °/s² for revolute joints, ±(rate span) per second for
+    prismatic ones (a rate slider's whole span gained in one second)."""
+    out = []
+    for r in rate_ranges(robot):
+        if r.degrees:
+            out.append(Range(-360.0, 360.0, 1.0, "°/s²", True))
+        else:
+            out.append(Range(r.lo, r.hi, r.step, "m/s²", False))
     return tuple(out)
 
 

@@ -35,6 +35,7 @@ from .actions import (
     ReplaceState,
     ResetMotion,
     SelfMove,
+    SetAcceleration,
     SetConfiguration,
     SetDesired,
     SetJoint,
@@ -50,7 +51,7 @@ from .actions import (
 from .build_table import edited_state
 from .motion_rules import FRAME_DT, MotionRefused
 from .options import OPTION
-from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
+from .ranges import accel_ranges, joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
 from .state import LabState, Options, default_options, frozen
 
 __all__ = ["reduce", "InvalidAction", "named_configuration_at"]
@@ -145,6 +146,10 @@ def _reduce(state: LabState, action: Action) -> LabState:
             i = _index(i, n, "joint rate")
             x = rate_ranges(robot)[i].clamp_si(_finite(value, f"rate of {robot.joints[i].name}"))
             return state.replace(qd=_with(state.qd, i, x))
+        case SetAcceleration(index=i, value=value):
+            i = _index(i, n, "joint acceleration")
+            x = accel_ranges(robot)[i].clamp_si(_finite(value, f"acceleration of {robot.joints[i].name}"))
+            return state.replace(qdd=_with(state.qdd, i, x))
         case StopRates():
             return state.replace(qd=frozen(np.zeros(n)), playing=False)
         case SetDesired(row=r, value=value):
@@ -235,11 +240,14 @@ def _option(options: Options, name: str, value: object, n: int) -> Options:
     elif row.kind == "step":  # the Derive tab's previous/next buttons: clamped, never refused
         if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
             raise InvalidAction(f"{name} is a joint index (an integer), got {value!r}")
-        value = min(max(int(value), 0), n - 1)
+        last = n if options.derive == "dh" else n - 1  # the DH walk ends with the tool frame's row
+        value = min(max(int(value), 0), last)
     elif row.kind == "choice":
         if value not in row.choices:
             raise InvalidAction(f"{name} must be one of {row.choices}, got {value!r}")
     elif not isinstance(value, bool):
         raise InvalidAction(f"{name} is on or off (a bool), got {value!r}")
     changes: dict[str, Any] = {name: value}
+    if name == "derive" and value != "dh" and options.derive_step > n - 1:
+        changes["derive_step"] = n - 1  # off the DH walk's tool step: back on the last joint
     return dataclasses.replace(options, **changes)

@@ -67,6 +67,9 @@ class LabState:
         robot: The immutable robot model.
         q: Joint values (n,) [rad | m], read-only.
         qd: Joint rates of the forward view v = J q̇ (n,) [rad/s | m/s], read-only.
+        qdd: Joint accelerations q̈ (n,) [rad/s² | m/s²] of the acceleration map ẍ = J q̈ + J̇ q̇,
+            read-only (given empty, as by an older presenter's state: zeros). Play does not
+            integrate them: they are the instant's accelerations, as q̇ is the instant's rates.
         v_desired: Desired tool twist (6,) [m/s; rad/s], base axes, rows [v; ω];
             only the robot's task rows are used. Read-only.
         wrench: Force and moment applied at the tool point (6,) [N; N·m], base axes. Read-only.
@@ -86,6 +89,7 @@ class LabState:
     robot: Robot
     q: np.ndarray
     qd: np.ndarray
+    qdd: np.ndarray = field(default_factory=lambda: frozen(np.zeros(0)))
     v_desired: np.ndarray = field(default_factory=lambda: frozen(np.zeros(6)))
     wrench: np.ndarray = field(default_factory=lambda: frozen(np.zeros(6)))
     options: Options = field(default_factory=Options)
@@ -99,7 +103,9 @@ class LabState:
 
     def __post_init__(self) -> None:
         n = self.robot.dof
-        for name, length in (("q", n), ("qd", n), ("v_desired", 6), ("wrench", 6)):
+        if np.size(self.qdd) == 0:
+            object.__setattr__(self, "qdd", frozen(np.zeros(n)))
+        for name, length in (("q", n), ("qd", n), ("qdd", n), ("v_desired", 6), ("wrench", 6)):
             value = getattr(self, name)
             if not (isinstance(value, np.ndarray) and not value.flags.writeable and value.shape == (length,)):
                 object.__setattr__(self, name, frozen(value, length))

@@ -29,6 +29,7 @@ __all__ = [
     "DESIRED_RGB",
     "FORCE_RGB",
     "ACCEL_RGB",
+    "JQDD_RGB",
     "PATH_RGB",
     "ROTATION_ELLIPSOID_RGB",
     "FORCE_ELLIPSOID_RGB",
@@ -65,6 +66,7 @@ DESIRED_RGB = (200, 204, 212)  # the desired tool velocity: light grey (what J q
 FORCE_RGB = (0, 45, 98)  # the applied force and moment: navy
 PATH_RGB = (0, 95, 115)  # the tool's traced path: dark teal (no joint, status or glyph uses it)
 ACCEL_RGB = (180, 0, 255)  # J̇ q̇, the tool's acceleration at constant joint rates: violet
+JQDD_RGB = (200, 0, 110)  # J q̈, the tool's acceleration from the joint accelerations: magenta
 ROTATION_ELLIPSOID_RGB = (0, 120, 90)
 FORCE_ELLIPSOID_RGB = (90, 20, 120)
 GLYPH_RGB = {
@@ -74,6 +76,7 @@ GLYPH_RGB = {
     "desired v": DESIRED_RGB,
     "force": FORCE_RGB,
     "acceleration J̇ q̇": ACCEL_RGB,
+    "acceleration J q̈": JQDD_RGB,
 }
 
 

@@ -77,15 +77,20 @@ def test_every_step_of_the_walk_speaks_the_tabs_language(code, method):
         _open(session, code)
         robot = session.state.robot
         names = words(" ".join([robot.name, *(j.name for j in robot.joints)]))
-        for step in range(robot.dof):
+        steps = robot.dof + 1 if method == "dh" else robot.dof  # the DH walk ends with the tool frame's row
+        for step in range(steps):
             _walk(session, code, method, step)
             shown = _shown(session)
             left = sorted((words(shown) - names) & english)
             assert not left, f"{method} step {step + 1} in {code}: English left {left}\n{shown}"
-            head = tr.gettext("Step {i} of {n}: joint {i} ({name})").format(
-                i=step + 1, n=robot.dof, name=robot.joints[step].name
-            )
-            assert head in shown and head != f"Step {step + 1} of {robot.dof}"
+            if step == robot.dof:
+                head = tr.gettext("Step {i} of {n}: the tool frame, row {i} of the DH table")
+                head = head.format(i=step + 1, n=steps)
+            else:
+                head = tr.gettext("Step {i} of {n}: joint {i} ({name})").format(
+                    i=step + 1, n=steps, name=robot.joints[step].name
+                )
+            assert head in shown and head != f"Step {step + 1} of {steps}"
             numbers = _numbers(shown)
             assert numbers and all("," in x for x in numbers), numbers  # the DH table's and the step's
             body = plain(session.panel.derive.body.content)
@@ -93,8 +98,10 @@ def test_every_step_of_the_walk_speaks_the_tabs_language(code, method):
                 assert tr.gettext("equals column {i} of J(q)").format(i=step + 1) in body
                 # a vector's components parted by semicolons where the decimal mark is a comma
                 assert re.search(r"\(−?\d+,\d{3}; −?\d+,\d{3}; −?\d+,\d{3}\)", body), body
-            else:
+            elif step < robot.dof:
                 assert tr.gettext("{A} = {T} at q").split("{")[-1].split("}")[-1] in body
+            else:
+                assert tr.gettext("{T} = the tool transform (constant)").split("}")[-1] in body
 
 
 @pytest.mark.parametrize("code", LANGUAGES)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinematics import jacobian, jacobian_dot
+from kinematics import jacobian, jacobian_dot, jacobian_dot_alone
 from kinematics.analysis import (
     Ellipsoid,
     condition_number,
@@ -32,7 +32,7 @@ from kinematics.singularity.lost import LostDirection, lost_direction
 
 from ..ranges import reach
 from ..state import LabState
-from .course import AnalyticView, InverseView, analytic_view, inverse_view
+from .course import AnalyticView, InverseView, analytic_view, inverse_view, with_closed_form
 from .derive import Derivation, derivation
 from .losses import Loss, block_ellipsoids, losses
 from .maps import Cloud, JointMap, joint_map, workspace_cloud
@@ -79,6 +79,13 @@ class Snapshot:
         analytic: φ, M(φ) and J_A when the J(q) tab shows an analytic Jacobian, else ``None``.
         jdot_qd: J̇ q̇ (6,) [m/s²; rad/s²], base axes: the tool's acceleration at constant joint rates
             (zero when q̇ = 0).
+        jdot: J̇ (6, n) [m/s; rad/s per rad or m], base axes, every moving joint counted (zero when q̇ = 0).
+        jdot_alone: 000's per-joint J̇ᵢ as columns (6, n): column i for joint i moving alone.
+        jdot_terms: 000's per-joint terms J̇ᵢ q̇ᵢ (6, n) [m/s²; rad/s²], column i with the course's J̇ᵢ
+            (joint i moving alone); their sum equals J̇ q̇ only when one joint moves.
+        j_qdd: J q̈ (6,) [m/s²; rad/s²], base axes: the acceleration map's other term.
+        tool_accel: ẍ = J q̈ + J̇ q̇ (6,) [m/s²; rad/s²], base axes: the tool's acceleration.
+        jdot_gap: J̇ q̇ − Σᵢ J̇ᵢ q̇ᵢ (6,): what 000's per-joint terms miss (zero when one joint moves).
         decoupling: J at the wrist centre in arm and wrist blocks (a spherical wrist), else ``None``.
         losses: Every lost direction, each at its own point (none when regular).
         arm_ellipsoid, wrist_ellipsoid: The decoupled blocks' ellipsoids at the wrist centre (the
@@ -116,6 +123,12 @@ class Snapshot:
     inverse: InverseView | None = None
     analytic: AnalyticView | None = None
     jdot_qd: np.ndarray | None = None
+    jdot: np.ndarray | None = None
+    jdot_alone: np.ndarray | None = None
+    jdot_terms: np.ndarray | None = None
+    j_qdd: np.ndarray | None = None
+    tool_accel: np.ndarray | None = None
+    jdot_gap: np.ndarray | None = None
     decoupling: Decoupling | None = None
     losses: tuple[Loss, ...] = ()
     arm_ellipsoid: Ellipsoid | None = None
@@ -163,6 +176,8 @@ def compute(state: LabState) -> Snapshot:
     # The blocks' ellipsoids are drawn only where a block loses a direction (two SVDs spared otherwise).
     blocks = {loss.part for loss in every_loss} & {"arm", "wrist"}
     arm_e, wrist_e = block_ellipsoids(decoupled) if blocks else (None, None)
+    Jdot = jacobian_dot(robot, q, state.qd) if moving else np.zeros((6, n))
+    Jdot_alone = jacobian_dot_alone(robot, q, state.qd) if moving else np.zeros((6, n))
     return Snapshot(
         q=np.array(q),
         link_frames=L,
@@ -192,9 +207,17 @@ def compute(state: LabState) -> Snapshot:
         joint_map=_map(state),
         cloud=workspace_cloud(robot) if state.options.workspace else None,
         derive=derivation(state, L),
-        inverse=inverse_view(J_twist, rank_task),
+        inverse=with_closed_form(
+            inverse_view(J_twist, rank_task), robot, q, state.options.twist_frame == "base"
+        ),
         analytic=analytic_view(L[-1], J, representation) if representation != "geometric" else None,
-        jdot_qd=jacobian_dot(robot, q, state.qd) @ state.qd if moving else np.zeros(6),
+        jdot_qd=Jdot @ state.qd,
+        jdot=Jdot,
+        jdot_alone=Jdot_alone,
+        jdot_terms=Jdot_alone * state.qd,
+        j_qdd=J @ state.qdd,
+        tool_accel=J @ state.qdd + Jdot @ state.qd,
+        jdot_gap=Jdot @ state.qd - Jdot_alone @ state.qd,
         decoupling=decoupled,
         losses=every_loss,
         arm_ellipsoid=arm_e,

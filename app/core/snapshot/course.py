@@ -13,13 +13,16 @@ reducer), cheap enough for every redraw:
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
+from kinematics import Robot
 from kinematics.analytic_jacobian import analytic_parts
 from kinematics.inverse import pinv
+from kinematics.motion.closed_form import closed_form, closed_form_inverse_jacobian
 
 from ..options import OPTION
 
@@ -28,6 +31,7 @@ __all__ = [
     "AnalyticView",
     "REPRESENTATIONS",
     "inverse_view",
+    "with_closed_form",
     "analytic_view",
 ]
 
@@ -44,11 +48,18 @@ class InverseView:
             "pseudo" (not square: J⁺, the Moore–Penrose pseudo-inverse).
         matrix: J⁻¹ or J⁺ (n, rows) [units inverse to J's], ``None`` when kind is "none".
         det: det J (square), else ``None``.
+        closed: Whether the robot has a closed-form IK (the planar 2R, the TRR): 002's third way.
+        closed_form: J⁻¹ = ∂q/∂x of that closed-form IK (n, rows), base axes; ``None`` where it does
+            not exist (singular), without a closed form, or with the twist in tool axes.
+        closed_gap: max |J⁻¹ − ∂q/∂x| when both exist, else ``None``.
     """
 
     kind: Literal["inverse", "pseudo", "none"]
     matrix: np.ndarray | None
     det: float | None
+    closed: bool = False
+    closed_form: np.ndarray | None = None
+    closed_gap: float | None = None
 
 
 def inverse_view(J_task: np.ndarray, rank: int) -> InverseView:
@@ -67,6 +78,18 @@ def inverse_view(J_task: np.ndarray, rank: int) -> InverseView:
     if not np.isfinite(inv).all():
         return InverseView("none", None, 0.0)
     return InverseView("inverse", inv, det)
+
+
+def with_closed_form(view: InverseView, robot: Robot, q: np.ndarray, base_axes: bool) -> InverseView:
+    """``view`` with 002's third J⁻¹, from the closed-form inverse kinematics, when ``robot`` has one
+    (compared with J⁻¹ when both exist; computed in base axes only)."""
+    if closed_form(robot) is None:
+        return view
+    closed = closed_form_inverse_jacobian(robot, q) if base_axes else None
+    gap = None
+    if closed is not None and view.kind == "inverse" and view.matrix is not None:
+        gap = float(np.abs(view.matrix - closed).max())
+    return dataclasses.replace(view, closed=True, closed_form=closed, closed_gap=gap)
 
 
 @dataclass(frozen=True, eq=False)

@@ -78,6 +78,8 @@ class Derivation:
         numbers: What the method's ``step`` gives (``None`` for the DH frames).
         inputs: The joint rates (n,) or wrench (6,) the method used (empty when it needs none).
         assumed: The rates or wrench are the unit example (the tab's were all zero).
+        tool: The DH walk's last step: the tool frame as row n + 1 of the DH table (001's frame 4 of
+            the 3R), ``A`` = ⁿTₙ₊₁ (the tool transform), ``T0`` = ⁰Tₙ₊₁, ``joint`` = n.
     """
 
     method: Method
@@ -89,6 +91,7 @@ class Derivation:
     numbers: Any = None
     inputs: np.ndarray = field(default_factory=lambda: np.zeros(0))
     assumed: bool = False
+    tool: bool = False
 
 
 def _inputs(state: LabState, kind: str) -> tuple[np.ndarray, bool]:
@@ -109,6 +112,16 @@ def derivation(state: LabState, L: np.ndarray) -> Derivation | None:
         return None
     method = STEP_METHODS[state.options.derive]
     robot, q = state.robot, np.array(state.q)
+    if method.key == "dh" and state.options.derive_step >= robot.dof:  # the tool frame's row
+        return Derivation(
+            method=method.key,
+            joint=robot.dof,
+            axes=(),
+            T0=np.linalg.inv(L[0]) @ L[-1],
+            A=np.linalg.inv(L[-2]) @ L[-1],
+            frames=L[[-2, -1]],
+            tool=True,
+        )
     j = min(state.options.derive_step, robot.dof - 1)
     axes = tuple(k for k, ax in enumerate(robot.axes) if ax.joint_index == j)
     k = axes[0]  # the step's link frame is k + 1, the one before it k

@@ -86,7 +86,7 @@ def inverse_html(
             "{inverse} does not exist (det J = 0): the arm is singular and no joint rates produce the "
             "lost direction."
         ).format(inverse=J_INV)
-        return f'<div class="jl"><div class="jl-warn">{text}</div></div>'
+        return f'<div class="jl"><div class="jl-warn">{text}</div>{_closed_html(view, robot, cols, tr)}</div>'
     name = J_INV if view.kind == "inverse" else J_PLUS
     assert view.matrix is not None
     table = grid_html(view.matrix, _joint_heads(robot), cols, tr=tr)
@@ -114,7 +114,38 @@ def inverse_html(
         note += " " + _("The rates above use damped least squares (λ = {lam}), not {name}.").format(
             lam=lam, name=name
         )
-    return f'<div class="jl"><div>{head}</div>{table}<div class="jl-note">{note}</div></div>'
+    closed = _closed_html(view, robot, cols, tr)
+    return f'<div class="jl"><div>{head}</div>{table}<div class="jl-note">{note}</div>{closed}</div>'
+
+
+def _closed_html(view: InverseView, robot: Robot, cols: list[str], tr: Translator) -> str:
+    """002's third way: J⁻¹ = ∂q/∂x from the closed-form inverse kinematics q = g(x), beside J⁻¹."""
+    if not view.closed:
+        return ""
+    _ = tr.gettext
+    if view.closed_form is None:
+        if view.kind == "none":
+            text = _(
+                "The closed-form inverse kinematics gives no {inverse} here either: its derivative divides "
+                "by sin q{joint} = 0."
+            ).format(inverse=J_INV, joint=robot.dof)
+        else:
+            text = _("{inverse} from the closed-form inverse kinematics is shown in base axes only.").format(
+                inverse=J_INV
+            )
+        return f'<div class="jl-note">{text}</div>'
+    head = _(
+        "<b>{inverse}</b> from the closed-form inverse kinematics (course 002, the third way): "
+        "q = g(x), so {inverse} = ∂g/∂x (base axes)"
+    ).format(inverse=J_INV)
+    table = grid_html(view.closed_form, _joint_heads(robot), cols, tr=tr)
+    if view.closed_gap is not None:
+        note = _("The same matrix as the inverse of J above: the largest difference is {gap}.").format(
+            gap=fmt.number(view.closed_gap, 2, tr)
+        )
+    else:
+        note = ""
+    return f'<div class="jl-closed"><div>{head}</div>{table}<div class="jl-note">{note}</div></div>'
 
 
 def _vector(values: np.ndarray, units: list[str], tr: Translator, digits: int = 4) -> str:
@@ -214,24 +245,3 @@ def analytic_html(
         text = _("J<sub>A</sub> = diag(I, M(φ)<sup>−1</sup>) J, rows [v; φ̇] (base axes):")
         parts.append(f'<div class="jl-note">{text}</div>' + grid_html(view.J_A, row_heads, cols, 3, tr))
     return f'<div class="jl jl-analytic">{"".join(parts)}</div>'
-
-
-def accel_html(jdot_qd: np.ndarray | None, tr: Translator | None = None) -> str:
-    """J̇ q̇ (6,) as the tool's acceleration at constant joint rates: the course's ẍ = J q̈ + J̇ q̇, q̈ = 0."""
-    if jdot_qd is None:
-        return ""
-    tr = tr or translations()
-    head = "".join(f"<th>{n}̇<sub>{a}</sub></th>" for n in ("v", "ω") for a in "xyz")
-    shown = fmt.cleaned([jdot_qd[r] if r < 3 else math.degrees(jdot_qd[r]) for r in range(6)])
-    cells = "".join(f"<td>{fmt.number(x, tr=tr)}</td>" for x in shown)
-    note = tr.gettext(
-        "ẍ = J q̈ + J̇ q̇; here q̈ = 0 (constant rates), so ẍ = J̇ q̇: the tool accelerates although every "
-        "joint turns steadily. v̇ in m/s², ω̇ in °/s², base axes; violet arrow at the tool (drawn {scale} "
-        "per m/s²)."
-    ).format(scale=fmt.quantity(0.5, "m", tr=tr))
-    return (
-        f'<div class="jl"><table class="jl-vec"><tr><th></th>{head}</tr>'
-        f'<tr class="accel"><th class="rowname">J̇ q̇</th>{cells}</tr></table>'
-        f'<div class="jl-note">{note}</div>'
-        f"{erratum_html('jdot', tr)}</div>"
-    )

@@ -85,6 +85,9 @@ class DerivePanel:
             self.robot, snap.q, options.derive_step if walking else None, self.tr
         )
         show_option(self.method, "derive", options.derive, self.tr)
+        top = max(self.robot.dof + (1 if options.derive == "dh" else 0), 2)  # DH: the tool frame's row
+        if self.step.max != top:
+            self.step.max = top
         sync_value(self.step, float(options.derive_step + 1))
         self.step.visible = self.buttons.visible = walking
         self.body.visible = walking
@@ -110,6 +113,7 @@ class DerivePanel:
                 self._step,
                 self._step == self.robot.dof - 1,
                 self.tr,
+                tool=self._method == "dh" and self._step >= self.robot.dof,
             )
 
     def remove(self) -> None:

@@ -108,22 +108,34 @@ def step_html(robot: Robot, d: Derivation, snap: Snapshot, tr: Translator | None
     (the method's record draws the body, :data:`app.views.methods.METHODS`), in ``tr``'s language."""
     tr = tr or translations()
     i = d.joint + 1
-    name = robot.joints[d.joint].name
-    title = tr.gettext("Step {i} of {n}: joint {i} ({name})").format(i=i, n=robot.dof, name=name)
-    color = joint_text_hex(d.joint)
+    steps = robot.dof + 1 if d.method == "dh" else robot.dof  # the DH walk ends with the tool frame
+    if d.tool:
+        title = tr.gettext("Step {i} of {n}: the tool frame, row {i} of the DH table").format(i=i, n=steps)
+        color = "#3d434b"
+    else:
+        name = robot.joints[d.joint].name
+        title = tr.gettext("Step {i} of {n}: joint {i} ({name})").format(i=i, n=steps, name=name)
+        color = joint_text_hex(d.joint)
     head = f'<div class="jl-step-head" style="border-color:{color}">{fmt.escape(title)}</div>'
     return head + METHODS[d.method].html(robot, d, snap, tr)
 
 
 def formulas_html(
-    steps: tuple | None, note: str, method: str, joint: int, last: bool = False, tr: Translator | None = None
+    steps: tuple | None,
+    note: str,
+    method: str,
+    joint: int,
+    last: bool = False,
+    tr: Translator | None = None,
+    tool: bool = False,
 ) -> str:
     """The symbolic steps of ``method`` that belong to ``joint``, each caption over its MathML.
 
     ``steps``: (joint, key, caption HTML, MathML[, (catalog id, arguments)]) tuples from the symbolic
     worker (captions and MathML are escaped there; a caption with a catalog id is shown in ``tr``'s
     language), or ``None`` (then ``note`` says why). At the ``last`` step the
-    assembled J and det J (factored, singular sets named) follow.
+    assembled J and det J (factored, singular sets named) follow; at the DH walk's ``tool`` step, the
+    tool transform ⁿT_tool and the tool pose ⁰T_tool.
     """
     tr = tr or translations()
     _ = tr.gettext
@@ -133,6 +145,11 @@ def formulas_html(
         return head + f'<div class="jl-note">{fmt.escape(note)}</div>'
     prefixes = METHODS[method].symbols if method in METHODS else ()
     chosen = [s for s in steps if s[0] == joint and s[1].startswith(prefixes)]
+    if tool:
+        chosen = [s for s in steps if s[0] is None and s[1] in ("Atool", "T0_tool")]
+        if not chosen:
+            said = _("The tool frame is frame {n} itself: its transform is the identity.").format(n=joint)
+            return head + f'<div class="jl-note">{fmt.escape(said)}</div>'
     if last and method in METHODS and METHODS[method].steps.column is not None:  # a method that builds J
         chosen += [s for s in steps if s[0] is None and s[1] in ("J", "detJ")]
     if not chosen:

@@ -26,6 +26,7 @@ from ...core.actions import (
     ApplyPreset,
     ClearWrench,
     Play,
+    SetAcceleration,
     SetDesired,
     SetOption,
     SetRate,
@@ -33,15 +34,24 @@ from ...core.actions import (
     StopRates,
 )
 from ...core.i18n import Translator, translations
-from ...core.ranges import Range, from_display, rate_ranges, to_display, twist_ranges, wrench_ranges
+from ...core.ranges import (
+    Range,
+    accel_ranges,
+    from_display,
+    rate_ranges,
+    to_display,
+    twist_ranges,
+    wrench_ranges,
+)
 from ...core.refusals import say
 from ...core.robot_texts import motion_name
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ...viser_adapter import handle_uuid
 from .. import fmt
+from .accel import accel_html
 from .common import Dispatch, bind, bind_click, option_widget, show_option, sync_value
-from .course import accel_html, example_html, inverse_html
+from .course import example_html, inverse_html
 from .errata import erratum_html
 from .style import slider_css
 from .vectors import _display, _slider, bars_html, vector_table_html
@@ -76,7 +86,6 @@ class ForwardPanel:
                 bind(slider, dispatch, functools.partial(_set_rate, i, r))
                 css.append(slider_css(handle_uuid(slider), i))
                 self.sliders.append(slider)
-            gui.add_html(f"<style>{''.join(css)}</style>")
             self._shown: tuple | None = None
             self.play = gui.add_button(_("Play: move at these rates"), icon=viser.Icon.PLAYER_PLAY)
             self._playing = False
@@ -84,11 +93,21 @@ class ForwardPanel:
             stop = gui.add_button(_("Stop (q̇ = 0)"), icon=viser.Icon.PLAYER_STOP)
             bind_click(stop, dispatch, StopRates)
             self.jdot = option_widget(gui, dispatch, "jdot_arrow", tr=tr)
+            self.accel_ranges = accel_ranges(robot)
+            self.accel_sliders = []
+            with gui.add_folder(_("Joint accelerations q̈ (ẍ = J q̈ + J̇ q̇)"), expand_by_default=False):
+                for i, (joint, r) in enumerate(zip(robot.joints, self.accel_ranges, strict=True)):
+                    hint = _("acceleration of {joint}").format(joint=joint.name)
+                    slider = _slider(gui, f"q̈{i + 1}", r, hint)
+                    bind(slider, dispatch, functools.partial(_set_accel, i, r))
+                    css.append(slider_css(handle_uuid(slider), i))
+                    self.accel_sliders.append(slider)
+            gui.add_html(f"<style>{''.join(css)}</style>")
 
     @property
     def stepped(self) -> list[Any]:
         """Its sliders whose step the page honours."""
-        return list(self.sliders)
+        return [*self.sliders, *self.accel_sliders]
 
     def draw(self, state: LabState, snap: Snapshot) -> None:
         self.show(state)
@@ -97,6 +116,8 @@ class ForwardPanel:
     def show(self, state: LabState) -> None:
         for i, (slider, r) in enumerate(zip(self.sliders, self.ranges, strict=True)):
             sync_value(slider, round(to_display(r, state.qd[i]), 6))
+        for i, (slider, r) in enumerate(zip(self.accel_sliders, self.accel_ranges, strict=True)):
+            sync_value(slider, round(to_display(r, state.qdd[i]), 6))
         show_option(self.jdot, "jdot_arrow", state.options.jdot_arrow, self.tr)
         if self._playing != state.playing:
             self._playing = state.playing
@@ -105,11 +126,12 @@ class ForwardPanel:
             self.play.icon = viser.Icon.PLAYER_PAUSE if state.playing else viser.Icon.PLAYER_PLAY
 
     def update(self, snap: Snapshot, state: LabState) -> None:
-        idle = ("idle", state.stopped) if not state.qd.any() else None  # nothing moves: nothing to redo
+        still = not (state.qd.any() or state.qdd.any())
+        idle = ("idle", state.stopped) if still else None  # nothing moves: nothing to redo
         if idle is not None and idle == self._shown:
             return
         self._shown = idle
-        self.accel.content = accel_html(snap.jdot_qd, self.tr) if idle is None else ""
+        self.accel.content = accel_html(snap, state, self.tr)
         note = (
             f'<div class="jl-warn">{fmt.escape(say(state.stopped, self.tr))}</div>' if state.stopped else ""
         )
@@ -344,6 +366,10 @@ class ForcePanel:
 
 def _set_rate(i: int, r: Range, value: Any) -> SetRate:
     return SetRate(i, from_display(r, float(value)))
+
+
+def _set_accel(i: int, r: Range, value: Any) -> SetAcceleration:
+    return SetAcceleration(i, from_display(r, float(value)))
 
 
 def _set_desired(row: int, r: Range, value: Any) -> SetDesired:

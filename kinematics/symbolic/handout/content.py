@@ -21,7 +21,8 @@ from ...analysis import task_rows
 from ...conventions import ROW_TEXT
 from ...errors import JacobianLabError
 from ...model import Robot
-from ...numeric import as_configuration
+from ...motion.closed_form import closed_form, closed_form_inverse_jacobian
+from ...numeric import as_configuration, jacobian_dot, jacobian_dot_alone
 from ...numeric import jacobian as numeric_jacobian
 from ...steps import METHODS as STEP_METHODS
 from ..core import DEFAULT_TIMEOUT, check_timeout
@@ -76,7 +77,13 @@ class Example:
         velocity: J q̇ (task rows), or None.
         twist: The given task velocity (task rows), or None.
         inverse: J⁻¹ when square and regular, else None.
+        closed_form: J⁻¹ = ∂g/∂x from the closed-form inverse kinematics q = g(x) (course 002's third
+            way) when the robot has one (:mod:`kinematics.motion.closed_form`), the frame is the base and
+            it exists here, else None.
         solved: J⁻¹ · twist, or None.
+        jdot_qd: J̇ q̇ (task rows) [m/s², rad/s²] for the given rates in base axes, the tool's acceleration
+            ẍ = J q̈ + J̇ q̇ at q̈ = 0, or None.
+        jdot_alone_qd: Σᵢ J̇ᵢ q̇ᵢ with course 000's per-joint J̇ᵢ (task rows), or None.
     """
 
     name: str
@@ -90,7 +97,10 @@ class Example:
     velocity: np.ndarray | None = None
     twist: np.ndarray | None = None
     inverse: np.ndarray | None = None
+    closed_form: np.ndarray | None = None
     solved: np.ndarray | None = None
+    jdot_qd: np.ndarray | None = None
+    jdot_alone_qd: np.ndarray | None = None
 
 
 @dataclass
@@ -132,8 +142,13 @@ def _example(robot: Robot, frame: str, configuration: str | None, rates: object,
         if qd.ndim != 1:
             raise HandoutError(f"rates: one value per joint expected, got shape {qd.shape}")
         ex.rates, ex.velocity = qd, J @ qd
+        if frame == "base":
+            ex.jdot_qd = (jacobian_dot(robot, q, qd) @ qd)[list(rows)]
+            ex.jdot_alone_qd = (jacobian_dot_alone(robot, q, qd) @ qd)[list(rows)]
     if square and abs(det) > 1e-9 * max(1.0, float(np.abs(J).max()) ** J.shape[0]):
         ex.inverse = np.linalg.inv(J)
+    if frame == "base" and closed_form(robot) is not None:
+        ex.closed_form = closed_form_inverse_jacobian(robot, q)
     if twist is not None:
         t = np.asarray(twist, dtype=float).reshape(-1)
         if t.shape != (6,) or not np.isfinite(t).all():

@@ -211,7 +211,8 @@ def _rates(w: Words, v: np.ndarray, kinds: tuple[str, ...]) -> str:
 def _units(units: list[str], latex: bool) -> str:
     """A column of units, set beside a column vector (one per row: a joint's rad/s or m/s)."""
     if latex:
-        return r"\;\begin{matrix}" + r"\\".join(rf"\text{{{u}}}" for u in units) + r"\end{matrix}"
+        cells = (rf"\text{{{u[:-1]}}}^{{2}}" if u.endswith("²") else rf"\text{{{u}}}" for u in units)
+        return r"\;\begin{matrix}" + r"\\".join(cells) + r"\end{matrix}"
     rows = "".join(f"<mtr><mtd><mtext>{u}</mtext></mtd></mtr>" for u in units)
     return f'<mspace width="0.4em"/><mtable columnalign="left">{rows}</mtable>'
 
@@ -236,6 +237,8 @@ def example_math(h: Handout, latex: bool) -> list[tuple[str, str]]:
 
     lhs = (lambda t: t) if latex else lhs_mathml
     eq = " = " if latex else "<mo>=</mo>"
+    dg = "\\frac{\\partial g}{\\partial x}"
+    jdot, alone = "\\dot{J} \\dot{q}", "\\sum_i \\dot{J}_i \\dot{q}_i"
     J_q, det_q, w_q, qd, Jqd, J_inv, v, solved = (
         lhs(t)
         for t in (
@@ -265,10 +268,23 @@ def example_math(h: Handout, latex: bool) -> list[tuple[str, str]]:
         out.append(
             (say(w, "the tool velocity (task rows) is"), f"{Jqd}{eq}{num(col(ex.velocity), 3)}{row_units}")
         )
+    if ex.jdot_qd is not None and ex.jdot_alone_qd is not None:
+        acc_units = _units([u + "²" for u in _row_units(ex.rows)], latex)
+        caption = say(w, "and at constant rates (q̈ = 0) the tool accelerates: ẍ = J q̈ + J̇ q̇ = J̇ q̇ =")
+        out.append((caption, f"{lhs(jdot)}{eq}{num(col(ex.jdot_qd), 3)}{acc_units}"))
+        caption = say(
+            w,
+            "Course 000's per-joint J̇ᵢ holds for joint i moving alone; the sum of its terms "
+            "(equal to J̇ q̇ only when one joint moves):",
+        )
+        out.append((caption, f"{lhs(alone)}{eq}{num(col(ex.jdot_alone_qd), 3)}{acc_units}"))
     if ex.inverse is not None:
         out.append((say(w, "J is square and regular here; its inverse:"), f"{J_inv}{eq}{num(ex.inverse, 4)}"))
     elif ex.square:
         out.append((say(w, "J is singular here (det J = 0): it has no inverse."), ""))
+    if ex.closed_form is not None:
+        caption = say(w, "From the closed-form inverse kinematics q = g(x) (course 002, the third way):")
+        out.append((caption, f"{J_inv}{eq}{lhs(dg)}{eq}{num(ex.closed_form, 4)}"))
     if ex.twist is not None:
         out.append(
             (say(w, "For the tool velocity (task rows)"), f"{v}{eq}{num(col(ex.twist), 3)}{row_units}")

@@ -206,6 +206,7 @@ _LHS_MML = {
     "\\tau": "<mi>τ</mi>",
     "\\det": "<mi>det</mi><mo>&#x2061;</mo>",
     "\\partial": "<mo>∂</mo>",
+    "\\sum": "<mo>∑</mo>",
     "\\mathrm{tool}": "<mtext>tool</mtext>",
     "\\mathrm{base}": "<mtext>base</mtext>",
     "\\theta": "<mi>θ</mi>",
