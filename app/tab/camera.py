@@ -20,7 +20,22 @@ import numpy as np
 from ..core.actions import Action, GoTo, ReplaceState, SetConfiguration, SetJoint
 from ..core.build_table import BUILT_NAME
 from ..core.state import LabState
-from ..views.camera import FROM_ABOVE, View, across, facing, framing, lost_axes, needs_framing, step_axes
+from ..views.camera import (
+    ACROSS_DEGREES,
+    ARM_DEGREES,
+    FROM_ABOVE,
+    PAIR_DEGREES,
+    STEP_DEGREES,
+    View,
+    across,
+    arm_axis,
+    facing,
+    framing,
+    label_pairs,
+    lost_axes,
+    needs_framing,
+    step_axes,
+)
 
 __all__ = ["CameraMove", "TabCamera", "is_jump", "JUMP"]
 
@@ -43,6 +58,25 @@ def _new_step(state: LabState, old: LabState) -> bool:
     """The Derive tab moved to another method or step."""
     o, p = state.options, old.options
     return bool(o.derive) and (o.derive, o.derive_step) != (p.derive, p.derive_step)
+
+
+def across_of(scene: Any, snap: Any) -> tuple[np.ndarray, np.ndarray, int, int]:
+    """The directions (k, 3) the view must see across and each one's least angle (k,) [°]: the lost
+    directions of a singular configuration, the open Derive step's vectors, the arm's long axis, the
+    lines through two joint labels apart; then how many are lost directions and how many the step's."""
+    none = np.zeros((0, 3))
+    if snap is None:
+        return none, np.zeros(0), 0, 0
+    derive_open = getattr(scene, "open_tab", "") in ("", "derive")  # its glyphs are drawn
+    steps = step_axes(snap.derive) if derive_open else none
+    lost = lost_axes(snap.losses)
+    arm = arm_axis(snap.link_frames[:, :3, 3])
+    step_degrees = STEP_DEGREES.get(snap.derive.method, ACROSS_DEGREES) if len(steps) else 0.0
+    arm_labels = getattr(getattr(scene, "arm", None), "label_points", none)
+    pairs = label_pairs(arm_labels, 0.1 * scene.size)
+    degrees = [ACROSS_DEGREES] * len(lost) + [step_degrees] * len(steps) + [ARM_DEGREES] * len(arm)
+    degrees += [PAIR_DEGREES] * len(pairs)
+    return np.vstack([lost, steps, arm, pairs]), np.array(degrees), len(lost), len(steps)
 
 
 class CameraMove:
@@ -151,18 +185,12 @@ class TabCamera:
         view, a new Derive step so its vectors do."""
         pad = PAD * scene.size
         edited = state.robot_name == old.robot_name == BUILT_NAME  # the Build tab: keep the user's view
-        steps = step_axes(snap.derive) if snap is not None else np.zeros((0, 3))
-        lost = lost_axes(snap.losses) if snap is not None else np.zeros((0, 3))
+        axes, degrees, lost, steps = across_of(scene, snap)
         if rebuild and not edited:
             direction = FROM_ABOVE if state.robot.planar else facing(scene.extent)
-            across_of = steps if len(steps) else lost
-            if len(across_of):
-                direction = across(direction, across_of)
-            self.frame(scene.extent, pad, direction, glide=False)
-        elif jump and len(lost):
-            self.frame_across(scene.extent, pad, lost)
-        elif len(steps) and _new_step(state, old):
-            self.frame_across(scene.extent, pad, steps)
+            self.frame(scene.extent, pad, across(direction, axes, degrees), glide=False)
+        elif (jump and lost) or (steps and _new_step(state, old)):
+            self.frame_across(scene.extent, pad, axes, degrees)
         elif jump or edited:
             self.frame_if_needed(scene.extent, pad)
 
@@ -172,13 +200,16 @@ class TabCamera:
             direction = FROM_ABOVE if state.robot.planar else facing(scene.extent)
             self.frame(scene.extent, PAD * scene.size, direction, glide=False)
 
-    def frame_across(self, points: np.ndarray, pad: float, axes: np.ndarray) -> None:
-        """At a singular configuration: glide so that ``axes`` (k, 3), the lost directions, lie across
-        the view (:func:`~app.views.camera.across`), or only re-frame if they already do."""
+    def frame_across(
+        self, points: np.ndarray, pad: float, axes: np.ndarray, degrees: float | np.ndarray = ACROSS_DEGREES
+    ) -> None:
+        """At a singular configuration or a new Derive step: glide so that ``axes`` (k, 3), the lost
+        directions and the step's vectors, lie across the view, at least ``degrees`` from it
+        (:func:`~app.views.camera.across`), or only re-frame if they already do."""
         view = self.view()
         current = view.position - view.look_at if view is not None else facing(points)
         current = current / max(float(np.linalg.norm(current)), 1e-12)
-        direction = across(current, axes)
+        direction = across(current, axes, degrees)
         if view is None or not np.allclose(direction, current):
             self.frame(points, pad, direction)
         else:

@@ -103,6 +103,7 @@ class Screen:
                         self.scene.remove()
                     self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
                     self._foreign = False
+                self.scene.open_tab = self.panel.open_name  # a tab's own glyphs only while it is open
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())
             self.panel.draw(state, snap)

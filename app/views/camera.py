@@ -16,13 +16,19 @@ import numpy as np
 __all__ = [
     "View",
     "in_view",
+    "project",
     "needs_framing",
     "framing",
     "facing",
     "across",
     "lost_axes",
     "step_axes",
+    "arm_axis",
+    "label_pairs",
+    "PAIR_DEGREES",
     "ACROSS_DEGREES",
+    "STEP_DEGREES",
+    "ARM_DEGREES",
     "THREE_QUARTER",
     "FROM_ABOVE",
 ]
@@ -71,6 +77,22 @@ def in_view(view: View, points: np.ndarray, margin: float = 0.92) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         ok = (z > 1e-6) & (np.abs(d @ up) <= tan_v * z) & (np.abs(d @ right) <= tan_h * z)
     return ok
+
+
+def project(view: View, points: np.ndarray, width: float, height: float) -> np.ndarray:
+    """Where ``points`` (N, 3) [m] fall on a ``width`` × ``height`` [px] canvas (N, 2) [px], from its
+    top left corner, x to the right and y down (NaN behind the camera): the pinhole of three.js's
+    perspective camera, whose ``fov`` is vertical."""
+    forward, right, up = _basis(view)
+    d = np.asarray(points, float).reshape(-1, 3) - view.position
+    z = d @ forward
+    f = height / 2 / np.tan(view.fov / 2)  # [px] per unit of tangent
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = width / 2 + f * (d @ right) / z
+        y = height / 2 - f * (d @ up) / z
+    out = np.stack([x, y], axis=1)
+    out[z <= 1e-9] = np.nan
+    return out
 
 
 def needs_framing(view: View, points: np.ndarray) -> bool:
@@ -148,13 +170,59 @@ def lost_axes(losses) -> np.ndarray:
 
 def step_axes(derivation) -> np.ndarray:
     """The directions (k, 3) a Derive step draws and must not be seen end-on: for Whitney's method the
-    step's axis zᵢ₋₁, its lever pₙ − pᵢ₋₁ and its column Jᵢ (none for the other methods)."""
-    if derivation is None or derivation.method != "whitney" or not derivation.numbers:
+    step's axis zᵢ₋₁, its lever pₙ − pᵢ₋₁ and its column Jᵢ; for velocity propagation every vₖ and ωₖ
+    drawn up to the step's frame (none for the other methods)."""
+    if derivation is None or not derivation.numbers:
         return np.zeros((0, 3))
-    columns = derivation.numbers  # kinematics.steps.whitney: one column per axis
-    vectors = [v for c in columns if c.joint == derivation.joint for v in (c.z, c.r, c.linear)]
+    if derivation.method == "whitney":
+        columns = derivation.numbers  # kinematics.steps.whitney: one column per axis
+        vectors = [v for c in columns if c.joint == derivation.joint for v in (c.z, c.r, c.linear)]
+    elif derivation.method == "propagation":  # kinematics.steps.propagation: one link per frame
+        links = derivation.numbers[: derivation.axes[-1] + 1]
+        vectors = [v for link in links for v in (link.v, link.omega)]
+    else:
+        return np.zeros((0, 3))
     out = [v / np.linalg.norm(v) for v in vectors if np.linalg.norm(v) > 1e-9]
     return np.array(out).reshape(-1, 3)
+
+
+STEP_DEGREES = {"whitney": 75.0, "propagation": 45.0}
+"""How far from the view a Derive step's directions are kept (:func:`step_axes`): Whitney's three
+vectors like a lost direction; velocity propagation's many vₖ and ωₖ (ω along z, v across it on the
+TRR) at 45°, which a view half-way up allows for both."""
+ARM_DEGREES = 35.0
+"""The arm's long axis (:func:`arm_axis`) is kept at least this far from the view: an upright boom
+seen from above is a dot with its joint labels in one spot."""
+
+
+PAIR_DEGREES = 20.0
+"""Two joint labels apart in space are seen at least this far off the line of sight through both: not
+one over the other (0.1 of a 500 px arm stays ≥ 17 px apart)."""
+
+
+def label_pairs(points: np.ndarray, apart: float) -> np.ndarray:
+    """The directions (k, 3) between the labels of joints i and i + 1 (N, 3) at least ``apart`` [m] from
+    each other (next joints are the ones a view along a link stacks)."""
+    pts = np.asarray(points, float).reshape(-1, 3)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    d = pts[1:] - pts[:-1]
+    n = np.linalg.norm(d, axis=1)
+    keep = n >= apart
+    return (d[keep] / n[keep, None]).reshape(-1, 3)
+
+
+def arm_axis(points: np.ndarray) -> np.ndarray:
+    """The direction (1, 3) along which the arm's joint points (N, 3) spread most, when they spread
+    along one (the largest spread at least twice the next); else none (0, 3)."""
+    pts = np.asarray(points, float).reshape(-1, 3)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    if len(pts) < 2:
+        return np.zeros((0, 3))
+    values, vectors = np.linalg.eigh(np.cov((pts - pts.mean(axis=0)).T))
+    spread = np.sqrt(np.clip(values, 0.0, None))
+    if spread[2] <= 1e-9 or spread[2] < 2.0 * spread[1]:
+        return np.zeros((0, 3))
+    return vectors[:, 2].reshape(1, 3)
 
 
 def _sphere(count: int = 600) -> np.ndarray:
@@ -169,23 +237,26 @@ def _sphere(count: int = 600) -> np.ndarray:
 _CANDIDATES = _sphere()
 
 
-def across(direction: np.ndarray, axes: np.ndarray, degrees: float = ACROSS_DEGREES) -> np.ndarray:
+def across(
+    direction: np.ndarray, axes: np.ndarray, degrees: float | np.ndarray = ACROSS_DEGREES
+) -> np.ndarray:
     """A viewing direction (from the target to the camera) close to ``direction`` that sees every one of
-    ``axes`` (k, 3) across the view: at least ``degrees`` from each (or as far as it can when no view
-    does, e.g. three orthogonal axes allow 54.7° at most). ``direction`` itself when it already does."""
+    ``axes`` (k, 3) across the view: at least ``degrees`` (one angle, or one per axis) from each, or,
+    when no view does (three orthogonal axes allow 54.7° at most), the one that falls least short of
+    its angles. ``direction`` itself when it already does."""
     d = np.asarray(direction, float)
     d = d / max(float(np.linalg.norm(d)), 1e-12)
     A = np.asarray(axes, float).reshape(-1, 3)
     if not len(A):
         return d
-    limit = np.cos(np.radians(degrees))
+    limit = np.cos(np.radians(np.broadcast_to(np.asarray(degrees, float), (len(A),))))
 
     def worst(v: np.ndarray) -> np.ndarray:
-        return np.abs(v @ A.T).max(axis=-1)  # cos of the smallest angle to an axis
+        return (np.abs(v @ A.T) - limit).max(axis=-1)  # > 0: some axis closer to the view than its angle
 
-    if worst(d) <= limit:
+    if worst(d) <= 0:
         return d
     w = worst(_CANDIDATES)
-    ok = w <= max(limit, float(w.min()) + 1e-9)
+    ok = w <= max(0.0, float(w.min()) + 1e-9)
     candidates = _CANDIDATES[ok]
     return candidates[int(np.argmax(candidates @ d))]

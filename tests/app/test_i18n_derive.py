@@ -36,6 +36,8 @@ def _open(session, code: str, robot: str = "puma560") -> None:
 
 
 def _walk(session, code: str, method: str, step: int) -> None:
+    if session.page.tab != "Derive":  # the user opens the tab first: its step is drawn only then
+        _report(session, kind="tab", tab="Derive")
     derive = session.panel.derive
     derive.method.value = translations(code).gettext(METHODS[method])  # as the user picks it
     session.settle()

@@ -67,10 +67,16 @@ def html(robot: Robot, d: Derivation, snap: Snapshot, tr: Translator) -> str:
     return out
 
 
+FLOOR = 0.15
+"""The shortest drawn vₖ or ωₖ, as a fraction of the arm's size: a 5 m/s v₂ beside a 21 m/s v₃ on the
+TRR (0.085 at one scale) was a stub."""
+
+
 def draw(robot: Robot, d: Derivation, snap: Snapshot, unit: float, lin: float, tr: Translator) -> Drawn:
-    """Every link's vₖ and ωₖ up to frame i, each readable: the longest of each kind drawn 0.35 × the
-    arm's size and none shorter than 0.08 × (a 0.5 m/s slide beside 26 m/s on the TRR's 24 m arm stays
-    visible); a label at every vₖ's tip and at ωᵢ's."""
+    """Every link's vₖ and ωₖ up to frame i, each seen: the longest of each kind drawn 0.35 × the arm's
+    size, the others to that scale but none shorter than :data:`FLOOR` × (a 0.5 m/s slide beside
+    26 m/s on the TRR's 24 m arm stays visible). The scale is stated on the arrows: the label at
+    every vₖ's tip, and at ωᵢ's, gives its size ("v₃ = 26.5 m/s", in the tab's numbers)."""
     last = d.axes[-1]
     links = d.numbers[: last + 1]
     size = unit / 0.2  # the arm's size × the glyph scale
@@ -83,17 +89,23 @@ def draw(robot: Robot, d: Derivation, snap: Snapshot, unit: float, lin: float, t
         target = thick if k == last else thin
         if v is not None:
             target.append((link.origin, v, TWIST_RGB))
-            labels.append((f"v{sub(k + 1)}", link.origin + v))
+            labels.append((_named(f"v{sub(k + 1)}", link.v, "m/s", tr), link.origin + v))
         if w is not None:
             target.append((link.origin, w, TWIST_ANGULAR_RGB))
     if w_draw[last] is not None:
-        labels.append((f"ω{sub(last + 1)}", d.numbers[last].origin + w_draw[last]))
+        link = d.numbers[last]
+        labels.append((_named(f"ω{sub(last + 1)}", link.omega, "rad/s", tr), link.origin + w_draw[last]))
     return thick, thin, [], labels[-6:]
 
 
+def _named(name: str, vector: np.ndarray, unit: str, tr: Translator) -> str:
+    """ "v₃ = 26.5 m/s": a drawn vector's name and size, in ``tr``'s numbers."""
+    return f"{name} = {fmt.quantity(float(np.linalg.norm(vector)), unit, tr=tr)}"
+
+
 def _readable(vectors: list, size: float) -> list[np.ndarray | None]:
-    """Drawn vectors of one kind: the longest 0.35 × ``size``, none shorter than 0.08 × ``size``
-    (direction kept), a zero vector not drawn (``None``)."""
+    """Drawn vectors of one kind: the longest 0.35 × ``size``, none shorter than :data:`FLOOR` ×
+    ``size`` (direction kept), a zero vector not drawn (``None``)."""
     norms = [float(np.linalg.norm(v)) for v in vectors]
     top = max(norms, default=0.0)
     if not math.isfinite(top) or top <= 1e-12:
@@ -103,7 +115,7 @@ def _readable(vectors: list, size: float) -> list[np.ndarray | None]:
         if n <= 1e-9 * top:
             out.append(None)
             continue
-        out.append(np.asarray(v, float) / n * max(0.35 * size * n / top, 0.08 * size))
+        out.append(np.asarray(v, float) / n * max(0.35 * size * n / top, FLOOR * size))
     return out
 
 

@@ -155,6 +155,11 @@ class PanelView:
         A redraw fills only that tab's readouts (and the tabs whose buttons keep what they show);
         the session redraws when the page reports another tab opened."""
 
+    @property
+    def open_name(self) -> str:
+        """The name of the tab the page has open ("derive", "maps" …; "" when not known)."""
+        return next((name for name, label in _LABELS.items() if label == self.open_tab), "")
+
     def __getattr__(self, name: str) -> Any:
         """``panel.matrix``, ``panel.derive`` …: the view of tab ``name`` (``None`` before a robot)."""
         if name in _TAB_NAMES:

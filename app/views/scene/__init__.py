@@ -49,6 +49,8 @@ class SceneContext:
         joint_labels: Where the arm's joint labels are at the last update (k, 3) [m]: a glyph's own
             labels keep clear of them.
         tr: The tab's language (the words a glyph writes in the 3-D view).
+        open_tab: The name of the panel tab the page has open at the update ("derive" …; "" when not
+            known): a tab's own glyphs (the Derive tab's step) are drawn only while it is open.
     """
 
     scene: viser.SceneApi
@@ -58,6 +60,7 @@ class SceneContext:
     root: str
     joint_labels: Callable[[], np.ndarray] = lambda: np.zeros((0, 3))
     tr: Translator = field(default_factory=translations)
+    open_tab: Callable[[], str] = lambda: ""
 
 
 class GlyphView(Protocol):
@@ -95,7 +98,9 @@ GLYPHS: tuple[Glyph, ...] = (
     Glyph("path", lambda c: ToolPath(c.scene, f"{c.root}/motion")),
     Glyph(
         "derive",
-        lambda c: DeriveScene(c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels, c.tr),
+        lambda c: DeriveScene(
+            c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels, c.tr, c.open_tab
+        ),
     ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
@@ -119,6 +124,8 @@ class SceneView:
         tr: Translator | None = None,
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
+        self.open_tab = ""
+        """The name of the panel tab the page has open ("" when not known: every glyph is drawn)."""
         ignore: Dispatch = lambda action: None  # noqa: E731  (a recorded scene takes no input)
         arm = self.arm
         context = SceneContext(
@@ -129,6 +136,7 @@ class SceneView:
             root,
             lambda: arm.label_points,
             tr or translations(),
+            lambda: self.open_tab,
         )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
 

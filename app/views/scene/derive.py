@@ -4,7 +4,8 @@ What each method draws is its record's ``draw`` (:data:`app.views.methods.METHOD
 i−1 and i; Whitney's axis, lever and column; the tool's path and its tangent; ω and v of the
 link frames; the force, the lever and the axis turned by τᵢ.
 
-Nothing is drawn when the tab walks through nothing. One arrows node, one line node and a
+Nothing is drawn when the tab walks through nothing, nor while another panel tab is open (the
+option keeps the walk for when the Derive tab is opened again). One arrows node, one line node and a
 few labels, so a step costs a handful of messages.
 """
 
@@ -45,8 +46,10 @@ class DeriveScene:
         root: str,
         joint_labels: Callable[[], np.ndarray] | None = None,
         tr: Translator | None = None,
+        open_tab: Callable[[], str] | None = None,
     ) -> None:
         self.robot = robot
+        self._open_tab = open_tab or (lambda: "")
         self.tr = tr or translations()
         self.geometry = geometry
         self._joint_labels = joint_labels or (lambda: np.zeros((0, 3)))
@@ -71,7 +74,7 @@ class DeriveScene:
 
     def update(self, snap: Snapshot, state: LabState) -> None:
         d = snap.derive
-        if d is None:
+        if d is None or self._open_tab() not in ("", "derive"):  # the step is drawn on its own tab only
             self._hide()
             return
         unit = 0.2 * self.geometry.size * state.options.scale

@@ -77,8 +77,9 @@ _LABELS = {
     ("arm", "w"): N_("lost rotation axis"),
     ("wrist", "v"): N_("lost translation"),
 }
-"""The words at a lost direction (English msgids: shown in the tab's language)."""
-
+"""The words at a lost direction (English msgids: shown in the tab's language); ``_SECOND``: at a second
+of the same kind (the iiwa's candle loses z and y of its wrist centre)."""
+_SECOND = {_LABELS["arm", "v"]: N_("arm: second lost translation (wrist centre)")}
 
 _NO_POINTS = np.zeros((0, 3))
 _EYE, _ZERO3 = np.eye(3), np.zeros(3)
@@ -365,7 +366,8 @@ class Overlays:
                 starts.append(start)
                 vectors.append(u * size)
                 tips.append(start + u * (size + 0.1 * unit))
-                texts.append(self._words(_LABELS[loss.part, "v"]))
+                words = _LABELS[loss.part, "v"]
+                texts.append(self._words(_SECOND.get(words, words) if self._words(words) in texts else words))
             if show_w:
                 half = length * (np.sqrt(loss.rotation_share) if loss.part == "tool" else 0.75)
                 segments.append(np.array([[point - a * half, point + a * half]]))
@@ -382,7 +384,7 @@ class Overlays:
         taken = self._joint_labels()
         gap = LABEL_CLEARANCE * self.geometry.size
         for i, label in enumerate(self.lost_labels):
-            shown = i < len(texts) and texts[i] not in texts[:i]  # two arm arrows (iiwa candle): one label
+            shown = i < len(texts) and texts[i] not in texts[:i]  # never the same words twice
             set_if_changed(label, "visible", shown)
             if shown:
                 if texts[i] != self._label_texts[i]:

@@ -1,0 +1,137 @@
+"""Labels placed in screen space (pure geometry): no two overlap, none leaves the visible view.
+
+Issue 28, stumble 2. The 3-D labels (joints, lost directions, a Derive step's names) are anchored at
+points of the scene; where they land on the screen depends on the camera. :func:`place` takes the
+anchors already projected (:func:`app.views.camera.project`), each label's size in px
+(:func:`label_size`) and the part of the canvas the panel leaves free (:func:`visible_rect`), and
+returns each label's box: near its anchor, inside the rectangle, apart from the others.
+:func:`lift` gives the 3-D point at the anchor's depth that projects to a placed spot, so the scene's
+label can be put there.
+
+Not yet wired to the scene (the server would re-place on each camera message, throttled): see the
+branch's report.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..camera import View, _basis
+
+__all__ = ["visible_rect", "label_size", "wrap", "place", "lift", "overlaps", "CHAR_EM", "LINE_EM"]
+
+CHAR_EM = 0.62
+"""Estimated width of one character of a label, in font sizes (a wide average: not yet calibrated
+against Chromium's boxes)."""
+LINE_EM = 1.3
+"""Height of one line of a label, in font sizes."""
+PAD_PX = 4.0
+"""Padding around a label's text [px] (viser draws labels on a small rounded box)."""
+
+
+def visible_rect(width: float, height: float, panel: float = 400.0) -> tuple[float, float, float, float]:
+    """The part (x0, y0, x1, y1) [px] of a ``width`` × ``height`` canvas that the panel leaves visible:
+    the canvas minus the docked panel's width on the right at 800 px wide or more, the upper 55 %
+    on narrower (phone) screens. One function, to be swapped for the phone layout's own."""
+    if width >= 800:
+        return 0.0, 0.0, float(width - panel), float(height)
+    return 0.0, 0.0, float(width), 0.55 * float(height)
+
+
+def label_size(text: str, font_px: float) -> tuple[float, float]:
+    """Estimated (width, height) [px] of a label showing ``text`` (its lines) at ``font_px``."""
+    lines = text.split("\n") or [""]
+    width = max(len(line) for line in lines) * CHAR_EM * font_px + 2 * PAD_PX
+    return width, len(lines) * LINE_EM * font_px + 2 * PAD_PX
+
+
+def wrap(text: str, font_px: float, max_px: float) -> str:
+    """``text`` with its lines broken at spaces so that each fits ``max_px`` [px] (by
+    :func:`label_size`'s estimate; a single word longer than that stays whole): a phone's view is
+    narrower than "traslación perdida (centro de la muñeca)"."""
+    most = max(1, int((max_px - 2 * PAD_PX) / (CHAR_EM * font_px)))
+    out: list[str] = []
+    for line in text.split("\n"):
+        current = ""
+        for word in line.split(" "):
+            if current and len(current) + 1 + len(word) > most:
+                out.append(current)
+                current = word
+            else:
+                current = f"{current} {word}" if current else word
+        out.append(current)
+    return "\n".join(out)
+
+
+def overlaps(boxes: np.ndarray) -> list[tuple[int, int]]:
+    """The pairs (i, j) of boxes (N, 4: x0, y0, x1, y1) [px] that overlap."""
+    b = np.asarray(boxes, float).reshape(-1, 4)
+    out = []
+    for i in range(len(b)):
+        for j in range(i + 1, len(b)):
+            if b[i, 0] < b[j, 2] and b[j, 0] < b[i, 2] and b[i, 1] < b[j, 3] and b[j, 1] < b[i, 3]:
+                out.append((i, j))
+    return out
+
+
+def _candidates(anchor: np.ndarray, size: np.ndarray, step: float, rings: int) -> np.ndarray:
+    """Top-left corners (K, 2) around ``anchor``: right above it first, then around it, ring by ring."""
+    w, h = size
+    out = [anchor + (0.0, -h)]  # bottom-left corner on the anchor, as viser's labels are anchored
+    for r in range(1, rings + 1):
+        d = r * step
+        for dx, dy in ((1, 0), (0, -1), (-1, 0), (0, 1), (1, -1), (-1, -1), (-1, 1), (1, 1)):
+            out.append(anchor + (dx * d, dy * d - h) + ((-w if dx < 0 else 0.0), 0.0))
+    return np.array(out)
+
+
+def place(
+    anchors: np.ndarray, sizes: np.ndarray, rect: tuple[float, float, float, float], rings: int = 40
+) -> np.ndarray:
+    """Boxes (N, 4: x0, y0, x1, y1) [px] for labels of ``sizes`` (N, 2) [px] at ``anchors`` (N, 2) [px].
+
+    In order (the first labels get the spots nearest their anchors): each label takes the first spot,
+    on rings around its anchor, that lies inside ``rect`` and overlaps no label placed before; an
+    anchor outside ``rect`` (or not finite) is first moved to its nearest point inside. When no spot is
+    free (more text than the view holds) the label takes the spot inside that overlaps least.
+    """
+    A = np.asarray(anchors, float).reshape(-1, 2)
+    S = np.asarray(sizes, float).reshape(-1, 2)
+    x0, y0, x1, y1 = rect
+    step = max(4.0, float(S[:, 1].min()) / 2) if len(S) else 4.0
+    placed: list[np.ndarray] = []
+    for anchor, (w, h) in zip(A, S, strict=True):
+        a = np.where(np.isfinite(anchor), anchor, ((x0 + x1) / 2, (y0 + y1) / 2))
+        a = np.clip(a, (x0, y0), (x1, y1))
+        corners = _candidates(a, np.array([w, h]), step, rings)
+        corners[:, 0] = np.clip(corners[:, 0], x0, max(x0, x1 - w))
+        corners[:, 1] = np.clip(corners[:, 1], y0, max(y0, y1 - h))
+        boxes = np.column_stack([corners, corners + (w, h)])
+        if placed:
+            P = np.array(placed)
+            ox = np.clip(
+                np.minimum(boxes[:, None, 2], P[None, :, 2]) - np.maximum(boxes[:, None, 0], P[None, :, 0]),
+                0,
+                None,
+            )
+            oy = np.clip(
+                np.minimum(boxes[:, None, 3], P[None, :, 3]) - np.maximum(boxes[:, None, 1], P[None, :, 1]),
+                0,
+                None,
+            )
+            cost = (ox * oy).sum(axis=1)
+        else:
+            cost = np.zeros(len(boxes))
+        free = np.flatnonzero(cost <= 0)
+        placed.append(boxes[free[0]] if len(free) else boxes[int(np.argmin(cost))])
+    return np.array(placed).reshape(-1, 4)
+
+
+def lift(view: View, spot: np.ndarray, anchor: np.ndarray, width: float, height: float) -> np.ndarray:
+    """The 3-D point [m] at ``anchor``'s depth that projects to ``spot`` (2,) [px] on a ``width`` ×
+    ``height`` canvas (the inverse of :func:`app.views.camera.project` at one depth)."""
+    forward, right, up = _basis(view)
+    z = float((np.asarray(anchor, float) - view.position) @ forward)
+    f = height / 2 / np.tan(view.fov / 2)
+    x, y = (spot[0] - width / 2) / f * z, (height / 2 - spot[1]) / f * z
+    return view.position + forward * z + right * x + up * y
