@@ -253,7 +253,8 @@ class ClientSession:
         batch, then run the effects. ``scene``: the presenter's scene messages to replay instead of
         drawing the scene (a follower's scene then shows the presenter's nodes)."""
         old, following = self.state, self.following.following
-        snap = snap if isinstance(snap, Snapshot) else compute(state)
+        if not isinstance(snap, Snapshot):  # a forced redraw of the state shown (a role change) reuses it
+            snap = self.snapshot if state is self.state and self.snapshot is not None else compute(state)
         if state.robot_name == BUILT_NAME and not following:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
         if self._wanted_language != self.language:  # the whole page again, in the tab's new language

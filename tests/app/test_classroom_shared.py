@@ -1,0 +1,93 @@
+"""A room of followers drawn from one computation: the presenter's snapshot computed once, its readouts
+formatted once (app/views/shared.py), whoever shows them; a follower that explores on its own computes
+and formats its own. Counted by wrapping compute() and the J readout's formatter of a running lab."""
+
+from __future__ import annotations
+
+import pytest
+from fakes import poll
+from test_classroom import room
+
+import app.tab.session as session_module
+import app.views.panel.matrix as matrix_module
+from app.core.actions import SetJoint
+from app.core.commands import ExploreAlone
+
+
+class Counted:
+    """A function that counts its calls (and which snapshot's J it formatted)."""
+
+    def __init__(self, fn):
+        self.fn, self.calls, self.args = fn, 0, []
+
+    def __call__(self, *args, **kwargs):
+        self.calls += 1
+        self.args.append(args)
+        return self.fn(*args, **kwargs)
+
+    def of(self, first) -> int:
+        """Calls whose first argument was ``first`` (that very object: one snapshot's J)."""
+        return sum(args[0] is first for args in self.args)
+
+
+@pytest.fixture
+def counted(monkeypatch):
+    compute, matrix_html = Counted(session_module.compute), Counted(matrix_module.matrix_html)
+    monkeypatch.setattr(session_module, "compute", compute)
+    monkeypatch.setattr(matrix_module, "matrix_html", matrix_html)
+    return compute, matrix_html
+
+
+def open_matrix(*sessions):
+    for s in sessions:  # the J tab's readouts are filled (a tab fills only the one it has open)
+        s.panel.open_tab = ""
+
+
+def test_followers_of_one_state_share_one_computation_and_one_formatting(counted):
+    compute, matrix_html = counted
+    with room(3) as (lab, presenter, followers):
+        poll(lambda: all(f.role.following for f in followers))
+        for s in (presenter, *followers):
+            s.settle()
+        before_compute, shown = compute.calls, []
+        for value in (-0.6, 0.2, 0.5):
+            presenter.dispatch(SetJoint(2, value))
+            presenter.settle()
+            assert presenter.state.q[2] == pytest.approx(value)
+            poll(lambda: all(f.state is presenter.state for f in followers))
+            for f in followers:
+                f.settle()
+            for f in followers:  # what each follower shows is the presenter's, to the character
+                assert f.snapshot is presenter.snapshot
+                assert (
+                    f.panel.parts["matrix"].numeric.content == presenter.panel.parts["matrix"].numeric.content
+                )
+            shown.append(presenter.snapshot)
+        # Three moves, four tabs: three snapshots, and each one's J readout made once, not four times.
+        assert compute.calls - before_compute == 3
+        assert [matrix_html.of(snap.J_shown) for snap in shown] == [1, 1, 1]
+
+
+def test_a_follower_that_explores_draws_its_own(counted):
+    compute, matrix_html = counted
+    with room(2) as (lab, presenter, (alone, follower)):
+        poll(lambda: alone.role.following and follower.role.following)
+        alone.dispatch(ExploreAlone())
+        alone.settle()
+        poll(lambda: not alone.role.following)
+        before_compute = compute.calls
+        alone.dispatch(SetJoint(1, 0.4))
+        alone.settle()
+        # Its own state, its own snapshot (a redraw the role change forced may compute it again); nobody
+        # else computed anything.
+        assert compute.of(alone.state) >= 1
+        assert all(args[0] is alone.state for args in compute.args[before_compute:])
+        assert alone.snapshot is not presenter.snapshot
+        assert matrix_html.of(alone.snapshot.J_shown) == 1  # and its own readout
+        assert alone.panel.parts["matrix"].numeric.content != presenter.panel.parts["matrix"].numeric.content
+        presenter.dispatch(SetJoint(1, -0.3))  # the room moves on; the explorer stays where it is
+        presenter.settle()
+        poll(lambda: follower.state is presenter.state)
+        follower.settle()
+        assert follower.snapshot is presenter.snapshot
+        assert alone.state.q[1] == pytest.approx(0.4)
