@@ -4,9 +4,12 @@ and formats its own. Counted by wrapping compute() and the J readout's formatter
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
+from app_helpers import running_lab, scene_node
 from fakes import poll
 from test_classroom import room
+from wsclient import ViserWsClient
 
 import app.tab.session as session_module
 import app.views.panel.matrix as matrix_module
@@ -91,3 +94,57 @@ def test_a_follower_that_explores_draws_its_own(counted):
         follower.settle()
         assert follower.snapshot is presenter.snapshot
         assert alone.state.q[1] == pytest.approx(0.4)
+
+
+def test_a_relayed_state_s_scene_is_drawn_by_one_follower_and_replayed_to_the_others(monkeypatch):
+    """In a worker without the presenter (serve --workers N), a state arrives as data with one SceneSlot:
+    the first follower to draw it draws the scene, the others (showing the same state before) replay its
+    messages; every browser gets the arm where the drawing put it."""
+    import app.views.scene as scene_module
+    from app.core.reducer import reduce
+    from app.core.snapshot import compute
+    from app.services.scene_slot import SceneSlot
+
+    updates = Counted(scene_module.SceneView.update)
+    monkeypatch.setattr(scene_module.SceneView, "update", lambda self, *a: updates(self, *a))
+    with running_lab(presenter_token="a-long-enough-token-for-the-room") as (lab, first, first_ws):
+        others = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(2)]
+        try:
+            for c in others:
+                c.start()
+            poll(lambda: len(lab.sessions) == 3)
+            tabs = list(lab.sessions.values())
+            sockets = [first_ws, *others]
+            state = tabs[0].state
+            for round_, value in enumerate((0.3, -0.5, 0.6)):
+                state = reduce(state, SetJoint(1, value))
+                snap, slot = compute(state), SceneSlot()
+                before, marks = updates.calls, [ws.mark() for ws in sockets]
+                for tab in tabs:
+                    tab.following.mirror(state, snap, (), slot)
+                poll(lambda state=state: all(t.state is state for t in tabs))
+                for tab in tabs:
+                    tab.settle()
+                drawn = updates.calls - before
+                # The first round: each tab showed its own state before, so each draws its own scene.
+                assert drawn == (3 if round_ == 0 else 1)
+                want = None
+                for tab in tabs:
+                    if tab.screen.scene is not None and not tab.screen._foreign:
+                        want = np.asarray(scene_node(tab, "/lab/arm/cylinders").batched_positions).ravel()
+                assert want is not None
+                for ws, mark in zip(sockets, marks, strict=True):
+
+                    def got(m, want=want):
+                        positions = m.get("updates", {}).get("batched_positions")
+                        return (
+                            m["type"] == "SceneNodeUpdateMessage"
+                            and m["name"] == "/lab/arm/cylinders"
+                            and positions is not None
+                            and np.allclose(np.asarray(positions, dtype=np.float32).ravel(), want, atol=1e-6)
+                        )
+
+                    ws.wait_for(got, after=mark)
+        finally:
+            for c in others:
+                c.close()
