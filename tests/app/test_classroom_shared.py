@@ -4,12 +4,16 @@ and formats its own. Counted by wrapping compute() and the J readout's formatter
 
 from __future__ import annotations
 
+import asyncio
+import socket
+
 import numpy as np
 import pytest
+import websockets
 from app_helpers import running_lab, scene_node
 from fakes import poll
 from test_classroom import room
-from wsclient import ViserWsClient
+from wsclient import ViserWsClient, decode_frame
 
 import app.tab.session as session_module
 import app.views.panel.matrix as matrix_module
@@ -148,3 +152,58 @@ def test_a_relayed_state_s_scene_is_drawn_by_one_follower_and_replayed_to_the_ot
         finally:
             for c in others:
                 c.close()
+
+
+class StalledClient(ViserWsClient):
+    """A follower whose page has stopped reading its websocket (a phone asleep, a saturated link): it
+    reads the first frame, then nothing, through a 4 KiB receive window. (On loopback the kernel and
+    viser's buffers still absorb 40 moves: the server's send to it has not been seen to block here.)"""
+
+    async def _connect(self) -> None:
+        real = websockets.connect
+
+        def small_window(url, **kwargs):  # a receive window of 4 KiB: the server's writes back up at once
+            sock = socket.socket()
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+            sock.connect(("127.0.0.1", int(url.rsplit(":", 1)[1])))
+            return real(url, sock=sock, max_queue=1, **kwargs)
+
+        websockets.connect = small_window
+        try:
+            await super()._connect()
+        finally:
+            websockets.connect = real
+
+    async def _receive(self) -> None:
+        frame = await self._ws.recv()
+        with self._cond:
+            self.messages.extend((0.0, m) for m in decode_frame(frame))
+            self._cond.notify_all()
+        await asyncio.Event().wait()  # never reads again
+
+
+def test_a_follower_that_stops_reading_holds_nobody_back():
+    with room(1) as (lab, presenter, (follower,)):
+        stalled = StalledClient(f"ws://127.0.0.1:{lab.port}")
+        try:
+            stalled.start()
+            poll(lambda: len(lab.sessions) == 3)
+            slow = next(s for s in lab.sessions.values() if s not in (presenter, follower))
+            poll(lambda: slow.role.following and follower.role.following)
+            watcher = ViserWsClient(f"ws://127.0.0.1:{lab.port}")  # a third follower that reads
+            with watcher:
+                poll(lambda: len(lab.sessions) == 4)
+                for i in range(40):
+                    mark = watcher.mark()
+                    presenter.dispatch(SetJoint(1, -0.5 + 0.02 * i))
+                    presenter.settle()
+                    want = presenter.state
+
+                    def arm(m):
+                        return m["type"] == "SceneNodeUpdateMessage" and m["name"] == "/lab/arm/cylinders"
+
+                    watcher.wait_for(arm, after=mark)  # the reading follower gets every move
+                    poll(lambda want=want: slow.state is want)  # the stalled one's session keeps up too
+                    slow.settle()
+        finally:
+            stalled.close()
