@@ -16,8 +16,14 @@ Usage::
     python bench/bench_classroom.py                   # 30 and 60 followers, Panda
     python bench/bench_classroom.py --followers 10 30 --moves 40
     python bench/bench_classroom.py --followers 60 --workers 1 2   # one process and two, side by side
+    python bench/bench_classroom.py --followers 60 150 300 --workers 2 --app-root /tmp/base   # before/after
 
-Target: p95 < 150 ms with 60 followers on a 2-core machine, none missed.
+``--app-root DIR`` adds, for every run, the same run against the app of another checkout (a baseline), one
+after the other, so the two are measured on the same machine at nearly the same load. Each row also gives
+the server's CPU per move divided by the followers (the cost one follower adds), and the memory (PSS) of
+the server's process tree once the room has joined.
+
+Targets (issue 32): 300 followers at p95 ≤ 200 ms, none missed; ≤ 0.2 ms of server CPU per follower per move.
 """
 
 from __future__ import annotations
@@ -37,14 +43,17 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
 
-from bench.common import cpu_seconds  # noqa: E402
+from bench.common import cpu_seconds, memory  # noqa: E402
 
 ARM_NODE = "/lab/arm/cylinders"
 TOKEN = "bench-token"
 
 
-def start_server(robot: str, workers: int | None, log: Path) -> tuple[subprocess.Popen, int]:
-    """The app with a presenter token: one process (``workers`` None) or ``serve --workers N``."""
+def start_server(
+    robot: str, workers: int | None, log: Path, app_root: Path = ROOT
+) -> tuple[subprocess.Popen, int]:
+    """The app (of ``app_root``) with a presenter token: one process (``workers`` None) or
+    ``serve --workers N``."""
     code = f"from app.server import serve; serve(robot={robot!r}, port=0, presenter_token={TOKEN!r})"
     command = ["-c", code]
     if workers is not None:
@@ -55,8 +64,8 @@ def start_server(robot: str, workers: int | None, log: Path) -> tuple[subprocess
         stdout=subprocess.PIPE,
         stderr=log.open("w"),
         text=True,
-        cwd=str(ROOT),
-        env=dict(os.environ, PYTHONUNBUFFERED="1"),
+        cwd=str(app_root),
+        env=dict(os.environ, PYTHONUNBUFFERED="1", PYTHONPATH=str(app_root)),
     )
     end = time.monotonic() + 60
     assert proc.stdout is not None
@@ -91,8 +100,10 @@ def spread(log: Path) -> list[int]:
     return sorted(collections.Counter(pids).values(), reverse=True)
 
 
-def run(robot: str, followers: int, moves: int, period: float, workers: int | None, log: Path) -> dict:
-    proc, port = start_server(robot, workers, log)
+def run(
+    robot: str, followers: int, moves: int, period: float, workers: int | None, log: Path, app_root: Path
+) -> dict:
+    proc, port = start_server(robot, workers, log, app_root)
     url = f"ws://127.0.0.1:{port}"
     clients: list[ViserWsClient] = []
     try:
@@ -116,6 +127,7 @@ def run(robot: str, followers: int, moves: int, period: float, workers: int | No
         for c in room:  # each follower has drawn the presenter's arm once
             c.wait_for(is_arm_update, timeout=120)
         time.sleep(1.0)  # let the joining burst settle
+        pss, _rss, _count = memory(proc.pid)
         samples, missed = [], 0
         cpu0, own0, t0 = cpu_seconds(proc.pid), time.process_time(), time.perf_counter()
         for i in range(moves):
@@ -137,6 +149,7 @@ def run(robot: str, followers: int, moves: int, period: float, workers: int | No
             "cpu": cpu / wall * 100,
             "client": (time.process_time() - own0) / wall * 100,
             "spread": spread(log),
+            "pss": pss,
         }
     finally:
         for c in clients:
@@ -161,23 +174,31 @@ def main() -> int:
         default=None,
         help="serve with `jacobian-lab serve --workers N` for each N (default: one process)",
     )
+    parser.add_argument(
+        "--app-root", type=Path, default=None, help="also run the app of this checkout (a baseline) beside it"
+    )
     parser.add_argument("--log", type=Path, default=Path("/tmp/bench-classroom.log"), help="the server's log")
     args = parser.parse_args()
     print(f"robot {args.robot}; presenter moves q2 every {args.period:g} s; {os.cpu_count()} CPUs")
     print(f"load average before: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     print(
-        "workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move  client %"
-        "   (presenter slider → each follower's redrawn arm; CPU: the server's process tree)"
+        "app       workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move"
+        "  ms/follower/move  tree MB  client %"
+        "   (presenter slider → each follower's redrawn arm; CPU and memory (PSS): the server's process tree)"
     )
-    for n, workers in [(n, w) for n in args.followers for w in (args.workers or [None])]:
-        r = run(args.robot, n, args.moves, args.period, workers, args.log)
+    roots = [("this", ROOT)] + ([("baseline", args.app_root.resolve())] if args.app_root else [])
+    runs = [(n, w, a) for n in args.followers for w in (args.workers or [None]) for a in roots]
+    for n, workers, (app, root) in runs:
+        r = run(args.robot, n, args.moves, args.period, workers, args.log, root)
         s = r["samples"]
         p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)
         mx = s.max() if len(s) else np.nan
         spread_ = "+".join(str(k) for k in r["spread"])
         print(
-            f"{workers or '-':>7} {n:9d} {spread_:>7} {p50:8.1f} {p95:8.1f} {mx:8.1f} "
-            f"{r['missed']:7d} {r['cpu']:6.0f} {r['cpu_per_move']:8.1f} {r['client']:9.0f}"
+            f"{app:9} {workers or '-':>7} {n:9d} {spread_:>7} {p50:8.1f} {p95:8.1f} {mx:8.1f} "
+            f"{r['missed']:7d} {r['cpu']:6.0f} {r['cpu_per_move']:8.1f} {r['cpu_per_move'] / n:17.3f} "
+            f"{r['pss']:8.0f} {r['client']:9.0f}",
+            flush=True,
         )
     print(f"load average after: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     return 0

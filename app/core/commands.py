@@ -94,11 +94,13 @@ class Mirror:
     """Draw the presenter's ``state`` with the ``snapshot`` already computed for it (a follower's
     session takes it as it is: one computation per presenter change, not one per follower); ``scene``:
     the scene messages of the presenter's redraw, replayed instead of drawing the scene again (empty:
-    the follower draws its own)."""
+    the follower draws its own); ``shared``: a worker's :class:`~app.services.scene_slot.SceneSlot` for a
+    relayed state (the first follower to draw it fills it, the others replay it)."""
 
     state: LabState
     snapshot: object
     scene: tuple = ()
+    shared: object = None
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,9 @@ JSON, never pickles):
   scene messages) and sends the state to the hub (:mod:`app.services.state_codec`: robots the presenter
   built or uploaded as their file's text); every other worker computes the snapshot of each state it
   receives **once** and hands it to all its followers (one computation per presenter change per
-  worker), dropping states a newer one already replaced;
+  worker), dropping states a newer one already replaced, and the first follower to draw it leaves its
+  scene messages for the others to replay (:class:`~app.services.scene_slot.SceneSlot`: the scene drawn
+  once per change per worker);
 * the presenter's camera and open tab go the same way; each worker tells the hub how many of its tabs
   follow, and the presenter is shown the room's count.
 """
@@ -31,6 +33,7 @@ from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
 from .catalog import RobotCatalog
 from .classroom import MAX_TOKEN_LENGTH, PRESENTER_AWAY, TAKEN_OVER, Classroom, Member
+from .scene_slot import SceneSlot
 from .state_codec import RobotWire, decode_state, dumps, encode_state, loads
 
 __all__ = ["RoomChannel", "RelayedClassroom", "ANSWER_TIMEOUT"]
@@ -321,6 +324,7 @@ class RelayedClassroom(Classroom):
                 return
             self._remote_last = (state, snapshot)
             targets = [self._members[k] for k in self._following_keys()]
+        slot = SceneSlot()  # the first follower to draw it draws the scene; the others replay it
         for member in targets:
-            member.mirror(state, snapshot)
+            member.mirror(state, snapshot, (), slot)
             self.relayed += 1

@@ -15,6 +15,7 @@ from ..core.actions import Action, DriveTool
 from ..core.commands import Message, Mirror
 from ..core.reducer import reduce
 from ..core.state import LabState
+from ..services.scene_slot import SceneSlot
 from .camera import is_jump
 
 __all__ = ["Batch", "coalesced", "VisitPace", "MAX_REDRAWS_PER_SECOND"]
@@ -34,17 +35,25 @@ class Batch:
         self.state, self.jump, self.force, self.symbolic = state, False, False, False
         self._mirror: Mirror | None = None  # the presenter's last state, drawn as it is
         self._replay: list | None = []  # the presenter's scene messages, in order (None: draw our own)
+        self.lead: SceneSlot | None = None  # a relayed state's slot this tab's own drawing fills
 
     def take(self, action: Action) -> None:
         """Reduce ``action``."""
         before, self.state = self.state, reduce(self.state, action)
         self.jump = self.jump or is_jump(before, self.state, action)
 
-    def take_mirror(self, mirror: Mirror, has_scene: bool) -> None:
-        """Take the presenter's state (``has_scene``: this tab has a scene to replay messages into)."""
+    def take_mirror(self, mirror: Mirror, has_scene: bool, language: str = "") -> None:
+        """Take the presenter's state (``has_scene``: this tab has a scene to replay messages into;
+        ``language``: the tab's, for a relayed state's shared scene)."""
+        before = self.state
         self.state, self._mirror, self.jump = mirror.state, mirror, False  # the camera is the presenter's
-        if self._replay is not None and mirror.scene and has_scene:
-            self._replay.extend(mirror.scene)
+        scene, self.lead = mirror.scene, None
+        if not scene and isinstance(mirror.shared, SceneSlot):
+            scene = mirror.shared.get(language, before)  # drawn by another follower over what we show
+            if not scene and mirror.shared.wanted(language):
+                self.lead = mirror.shared  # nobody has: our own drawing is left for the others
+        if self._replay is not None and scene and has_scene:
+            self._replay.extend(scene)
         else:
             self._replay = None
 

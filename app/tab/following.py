@@ -122,10 +122,11 @@ class Following:
         """The scene messages of this tab's last redraw (collected only while it presents)."""
         return self._scene_messages()
 
-    def mirror(self, state: LabState, snapshot: Snapshot, scene: tuple = ()) -> None:
+    def mirror(self, state: LabState, snapshot: Snapshot, scene: tuple = (), shared: object = None) -> None:
         """Draw the presenter's state (queued like any message; the latest of a burst wins; the scene
-        messages of every one are replayed, in order)."""
-        self._dispatch(Mirror(state, snapshot, scene))
+        messages of every one are replayed, in order; ``shared``: the worker's slot for a relayed state's
+        scene)."""
+        self._dispatch(Mirror(state, snapshot, scene, shared))
 
     def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None:
         """Look where the presenter looks."""

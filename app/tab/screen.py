@@ -82,10 +82,12 @@ class Screen:
         role: Role,
         recording: bool,
         symbols: TabSymbols,
+        capture: bool = False,
     ) -> None:
-        """Draw ``state`` and ``snap`` (``replay``: the presenter's scene messages instead of our scene)."""
+        """Draw ``state`` and ``snap`` (``replay``: the presenter's scene messages instead of our scene;
+        ``capture``: keep our scene messages for others, as a presenter's are)."""
         capturing: contextlib.AbstractContextManager[list] = (
-            capture_scene(self.client) if role.presenting else contextlib.nullcontext([])
+            capture_scene(self.client) if role.presenting or capture else contextlib.nullcontext([])
         )
         with self.client.atomic(), capturing as captured:
             if rebuild or self.scene is None:

@@ -43,6 +43,7 @@ from ..core.state import LabState
 from ..services.catalog import RobotCatalog
 from ..services.classroom import Classroom
 from ..services.renderer import Renderer
+from ..services.scene_slot import SceneSlot
 from ..services.symbolic_service import SymbolicService
 from ..views.panel import TAB_LABELS, PanelView
 from ..views.scene import SceneView
@@ -194,7 +195,8 @@ class ClientSession:
                     if batch.state is not self.state or batch.force:
                         snap, scene = batch.mirrored()
                         rebuild = batch.state.robot is not self.state.robot
-                        self._commit(batch.state, rebuild, batch.jump, snap, scene)
+                        lead = batch.lead if scene is None and snap is not None else None
+                        self._commit(batch.state, rebuild, batch.jump, snap, scene, lead)
                     elif batch.symbolic:
                         self.screen.draw_symbols(self.symbols)
                 except Exception as exc:  # the tab keeps its last good state on screen
@@ -213,7 +215,7 @@ class ClientSession:
                 message = Mirror(message.state, message.snapshot)  # its words are not ours: draw our own
             if message.state.robot is not self.state.robot:  # only then may it be unknown here
                 self.catalog.keep_shown(message.state.robot_name, message.state.robot)
-            batch.take_mirror(message, self.screen.scene is not None)
+            batch.take_mirror(message, self.screen.scene is not None, self.language)
         elif isinstance(message, Redraw):
             batch.force = True
         elif isinstance(message, SymbolicResult):
@@ -247,13 +249,21 @@ class ClientSession:
 
     # ------------------------------------------------------------------ commit
     def _commit(
-        self, state: LabState, rebuild: bool, jump: bool, snap: object = None, scene: list | None = None
+        self,
+        state: LabState,
+        rebuild: bool,
+        jump: bool,
+        snap: object = None,
+        scene: list | None = None,
+        lead: SceneSlot | None = None,
     ) -> None:
         """Take ``state``: compute its snapshot once (unless given: the presenter's), draw in one
         batch, then run the effects. ``scene``: the presenter's scene messages to replay instead of
-        drawing the scene (a follower's scene then shows the presenter's nodes)."""
+        drawing the scene (a follower's scene then shows the presenter's nodes); ``lead``: a relayed
+        state's slot, filled with the scene messages of this drawing for the worker's other followers."""
         old, following = self.state, self.following.following
-        snap = snap if isinstance(snap, Snapshot) else compute(state)
+        if not isinstance(snap, Snapshot):  # a forced redraw of the state shown (a role change) reuses it
+            snap = self.snapshot if state is self.state and self.snapshot is not None else compute(state)
         if state.robot_name == BUILT_NAME and not following:
             self.catalog.remember_built(state.robot)  # the dropdown can go back to the Build tab's robot
         if self._wanted_language != self.language:  # the whole page again, in the tab's new language
@@ -268,13 +278,17 @@ class ClientSession:
             self._drawing.active = True
             try:
                 recording = self.recorder.recording
-                self.screen.draw(state, snap, rebuild, scene, self.role, recording, self.symbols)
+                self.screen.draw(
+                    state, snap, rebuild, scene, self.role, recording, self.symbols, lead is not None
+                )
             finally:
                 self._drawing.active = False
             if self._tab_to_open:  # after its readouts, in the same frame: never shown stale
                 self.page.show_tab(self._tab_to_open)
                 self._tab_to_open = ""
             self.page.update(state)  # a reload or a server restart comes back to this robot and q
+        if lead is not None and not rebuild:  # what our browser showed before is the others' base
+            lead.fill(self.language, old, self.screen.scene_messages)
         self.state, self.snapshot = state, snap
         self.redraws += 1
         self.pace.redrawn()

@@ -55,7 +55,7 @@ class Tab:
         for fn in list(self._listeners):
             fn(self.state, self.snapshot)
 
-    def mirror(self, state, snapshot, scene=()):
+    def mirror(self, state, snapshot, scene=(), shared=None):
         # In this order: a test that sees the new state (it polls for it) sees the rest too.
         self.mirrored.append((state, snapshot))
         self.snapshot = snapshot

@@ -40,6 +40,7 @@ from ...core.snapshot import Snapshot
 from ...core.state import LabState, Options
 from ...viser_adapter import handle_uuid, run_javascript, set_page_title
 from .. import fmt
+from ..shared import once
 from .classroom import ClassroomPanel, classroom_words_js, token_js
 from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
@@ -243,7 +244,7 @@ class PanelView:
         sync_value(self.robot, self.menu.label_of(state.robot_name))
         self.joints.show(state.q, state.configuration)
         self._show_options(state.options)
-        self.status.content = status_html(snap, state, self.tr)
+        self.status.content = once(snap, status_html, snap, state, self.tr)
         for name, part in self.parts.items():
             if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)

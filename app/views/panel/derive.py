@@ -20,6 +20,7 @@ from ...core.actions import SetOption
 from ...core.i18n import Translator, translations
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
+from ..shared import once
 from .common import Dispatch, bind, option_widget, show_option, sync_value
 from .derive_html import dh_table_html, formulas_html, step_html
 
@@ -81,8 +82,8 @@ class DerivePanel:
         self._step = options.derive_step
         self._method = options.derive
         walking = bool(options.derive)
-        self.table.content = dh_table_html(
-            self.robot, snap.q, options.derive_step if walking else None, self.tr
+        self.table.content = once(
+            snap, dh_table_html, self.robot, snap.q, options.derive_step if walking else None, self.tr
         )
         show_option(self.method, "derive", options.derive, self.tr)
         top = max(self.robot.dof + (1 if options.derive == "dh" else 0), 2)  # DH: the tool frame's row
@@ -92,7 +93,7 @@ class DerivePanel:
         self.step.visible = self.buttons.visible = walking
         self.body.visible = walking
         if snap.derive is not None:
-            self.body.content = step_html(self.robot, snap.derive, snap, self.tr)
+            self.body.content = once(snap, step_html, self.robot, snap.derive, snap, self.tr)
         self._walking = walking
         self._show_formula()
 

@@ -49,6 +49,7 @@ from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ...viser_adapter import handle_uuid
 from .. import fmt
+from ..shared import once
 from .accel import accel_html
 from .common import Dispatch, bind, bind_click, option_widget, show_option, sync_value
 from .course import example_html, inverse_html
@@ -247,8 +248,8 @@ class InversePanel:
     def update(self, snap: Snapshot, state: LabState) -> None:
         tr = self.tr
         _ = tr.gettext
-        self.inverse.content = inverse_html(
-            snap.inverse, self.robot, snap.rows, state, snap.report.status, tr
+        self.inverse.content = once(
+            snap, inverse_html, snap.inverse, self.robot, snap.rows, state, snap.report.status, tr
         )
         p = self.example
         if p is not None:

@@ -26,6 +26,7 @@ from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
 from ..palette import joint_hex, joint_text_hex
+from ..shared import once
 from .common import Dispatch, bind_click, option_widget, show_option
 from .course import analytic_html
 from .readouts import ROW_NAMES, measures_html, status_html
@@ -143,8 +144,9 @@ class MatrixPanel:
         frame = state.options.jacobian_frame
         self.show(frame)
         self.show_course(state, snap)
-        status, measures = status_html(snap, state, self.tr), measures_html(snap, state.robot, self.tr)
-        self.update(snap.J_shown, snap.rows, frame, status, measures)
+        status = once(snap, status_html, snap, state, self.tr)
+        measures = once(snap, measures_html, snap, state.robot, self.tr)
+        self.update(snap.J_shown, snap.rows, frame, status, measures, snap)
 
     def show(self, frame: str) -> None:
         show_option(self.frame, "jacobian_frame", frame, self.tr)
@@ -157,7 +159,9 @@ class MatrixPanel:
             self._convention = o.representation
         if self.letters is not None:
             show_option(self.letters, "course_letters", o.course_letters, self.tr)
-        self.analytic.content = analytic_html(snap.analytic, self.robot, snap.rank, snap.rows, self.tr)
+        self.analytic.content = once(
+            snap, analytic_html, snap.analytic, self.robot, snap.rank, snap.rows, self.tr
+        )
         instead = snap.analytic.regular_instead if snap.analytic is not None else ""
         if instead:
             self._instead = instead
@@ -168,9 +172,22 @@ class MatrixPanel:
         if self.use_instead.visible != bool(instead):
             self.use_instead.visible = bool(instead)
 
-    def update(self, J: np.ndarray, rows: tuple[int, ...], frame: str, status: str, measures: str) -> None:
-        """Show the numeric J and measures, and in the enlarged view (if open) J under the status."""
-        self.numeric.content = matrix_html(J, self.robot, rows, frame, head=self._head, tr=self.tr)
+    def update(
+        self,
+        J: np.ndarray,
+        rows: tuple[int, ...],
+        frame: str,
+        status: str,
+        measures: str,
+        snap: object = None,
+    ) -> None:
+        """Show the numeric J and measures, and in the enlarged view (if open) J under the status
+        (``snap``: the snapshot J comes from, whose other viewers share the HTML)."""
+        self.numeric.content = (
+            once(snap, matrix_html, J, self.robot, rows, frame, head=self._head, tr=self.tr)
+            if snap is not None
+            else matrix_html(J, self.robot, rows, frame, head=self._head, tr=self.tr)
+        )
         self.measures.content = measures
         with self._lock:
             self._last_args = (J, rows, frame, status)

@@ -1,0 +1,76 @@
+"""Issue 32: followers in Chromium show the presenter's readouts and arm, drawn once per worker. The
+server starts as the docs print it (``jacobian-lab serve --presenter``: the default workers, one per core),
+the presenter opens the printed link and moves q1 with the keyboard; three followers (the kernel
+spreads them over the workers; which one each lands on is not asserted) show the very J the presenter
+shows, before and after the move. Screenshots go to ``$APP_SCREENSHOT_DIR``
+(default: pytest's temporary directory)."""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+import pytest
+from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
+from fakes import poll
+from server_process import Server
+
+pytestmark = [pytest.mark.browser, pytest.mark.slow]
+
+FIRST_TABLE = """() => {
+  const t = Array.from(document.querySelectorAll('table')).find((e) => e.offsetParent !== null);
+  return t ? t.innerText : '';
+}"""
+
+
+def test_followers_show_the_presenters_readouts_after_a_move(tmp_path):
+    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    sync_playwright = require_browser()
+    server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
+    try:
+        said = poll(
+            lambda: next(
+                (m for line in list(server.out) if (m := re.search(r"open (\S+) in the tab", line))), None
+            ),
+            what="the presenter link printed",
+        )
+        link = said.group(1)
+        base = link.split("?", 1)[0]
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            try:
+                presenter = new_page(browser)
+                presenter.goto(link)
+                title = presenter.get_by_text("Classroom · presenting", exact=False)
+                poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
+                followers = []
+                for _ in range(3):
+                    page = new_page(browser)
+                    page.goto(base)
+                    page.wait_for_selector("[role=slider]", state="attached")
+                    followers.append(page)
+                before = presenter.evaluate(FIRST_TABLE)
+                assert before
+                poll(
+                    lambda: all(f.evaluate(FIRST_TABLE) == before for f in followers), what="followers agree"
+                )
+                thumb = presenter.locator("[role=slider]").first
+                thumb.focus()
+                for _ in range(8):
+                    thumb.press("ArrowRight")
+                poll(lambda: presenter.evaluate(FIRST_TABLE) != before, what="the presenter's J moved")
+                poll(
+                    lambda: all(
+                        f.evaluate(FIRST_TABLE) == presenter.evaluate(FIRST_TABLE) for f in followers
+                    ),
+                    what="every follower shows the presenter's J",
+                )
+                presenter.screenshot(path=str(out / "hall_presenter.png"))
+                followers[0].screenshot(path=str(out / "hall_follower.png"))
+                followers[2].screenshot(path=str(out / "hall_follower_2.png"))
+            finally:
+                browser.close()
+    finally:
+        server.cleanup()
