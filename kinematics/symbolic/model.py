@@ -128,7 +128,7 @@ class SymbolicModel:
 
     def exact_values(self) -> dict[sp.Symbol, sp.Expr]:
         """Parameter symbols → their exact values (what the model holds with ``symbolic_params=False``)."""
-        S = Snapper()  # the values the model would hold, without recording them again
+        S = Snapper(0.0 if self.exact else SNAP_TOL)  # the values the model holds, not recorded again
         return {s: S.angle(v, "") if _is_angle(s) else S.length(v, "") for s, v in self.params.items()}
 
     def numeric_values(self) -> dict[sp.Symbol, sp.Float]:
