@@ -1,9 +1,11 @@
-"""The exported C Jacobian's time per call, side by side with Pinocchio and our NumPy kernel.
+"""The exported C functions' time per call, side by side with Pinocchio and our NumPy kernel.
 
 For the Puma 560 and the Panda, in one run on this machine:
 
-* the C function of ``jacobian-lab export ROBOT --format c``, compiled with ``cc -O2`` and timed in C
-  (a loop of calls over varying configurations, ``clock_gettime``), so no Python call overhead counts;
+* the C functions of ``jacobian-lab export ROBOT --format c`` (``NAME_jacobian``, and ``NAME_fk`` and
+  ``NAME_jacobian_dot`` beside ``kinematics.fk`` and ``kinematics.jacobian_dot``), compiled with
+  ``cc -O2`` and timed in C (a loop of calls over varying configurations, ``clock_gettime``), so no
+  Python call overhead counts;
 * Pinocchio's ``computeFrameJacobian(..., LOCAL_WORLD_ALIGNED)`` on the URDF our robot exports (the
   same chain), timed from Python (its call overhead included: that is how a Python user calls it);
 * ``kinematics.jacobian`` for one configuration.
@@ -26,7 +28,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import robots  # noqa: E402
-from kinematics import jacobian, to_urdf  # noqa: E402
+from kinematics import fk, jacobian, jacobian_dot, to_urdf  # noqa: E402
 from kinematics.symbolic.typeset.ccode import c_identifier  # noqa: E402
 from kinematics.symbolic.typeset.export import export_c  # noqa: E402
 
@@ -35,17 +37,18 @@ HARNESS = r"""
 #include <time.h>
 #include "arm.h"
 int main(void) {
-    double q[%(n)d], J[%(size)d], sink = 0.0;
+    double q[%(n)d], qd[%(n)d], J[%(size)d], sink = 0.0;
     struct timespec t0, t1;
     long calls = %(calls)dL;
-    for (int k = 0; k < %(n)d; ++k) q[k] = 0.1 * (k + 1);
-    %(function)s(q, J);
-    for (int r = 0; r < 6; ++r) { for (int c = 0; c < %(n)d; ++c) printf("%%.17g ", J[r * %(n)d + c]); }
+    for (int k = 0; k < %(n)d; ++k) { q[k] = 0.1 * (k + 1); qd[k] = 0.3 - 0.1 * k; }
+    %(call)s;
+    for (int r = 0; r < %(size)d; ++r) printf("%%.17g ", J[r]);
+    (void)qd;
     printf("\n");
     double best = 1e30;
     for (int rep = 0; rep < 5; ++rep) {
         clock_gettime(CLOCK_MONOTONIC, &t0);
-        for (long i = 0; i < calls; ++i) { q[i %% %(n)d] += 1e-9; %(function)s(q, J); sink += J[0]; }
+        for (long i = 0; i < calls; ++i) { q[i %% %(n)d] += 1e-9; %(call)s; sink += J[0]; }
         clock_gettime(CLOCK_MONOTONIC, &t1);
         double s = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
         if (s < best) best = s;
@@ -63,23 +66,27 @@ def per_call(fn, min_time: float = 0.3) -> float:
     return min(timeit.repeat(fn, number=number, repeat=5)) / number
 
 
-def time_c(robot, folder: Path) -> tuple[float, np.ndarray]:
+def time_c(robot, folder: Path, what: str = "jacobian") -> tuple[float, np.ndarray]:
+    """Seconds per call of the exported C function ``NAME_<what>`` (timed in C) and its result at
+    q = 0.1, 0.2, …, q̇ = 0.3, 0.2, … (J, T or J̇, flattened row-major)."""
     cc = shutil.which("cc")
     if cc is None:
         raise SystemExit("no C compiler: python tests/install_test_deps.py installs one")
     header, source = export_c(robot, "arm")
     (folder / "arm.h").write_text(header)
     (folder / "arm.c").write_text(source)
-    function = c_identifier(f"{robot.name}_jacobian")
-    values = {"n": robot.dof, "size": 6 * robot.dof, "calls": 2_000_000, "function": function}
+    function = c_identifier(robot.name, reserved=frozenset()) + "_" + what
+    size = {"fk": 16}.get(what, 6 * robot.dof)
+    call = f"{function}(q, qd, J)" if what == "jacobian_dot" else f"{function}(q, J)"
+    values = {"n": robot.dof, "size": size, "calls": 2_000_000, "call": call}
     (folder / "main.c").write_text(HARNESS % values)
     exe = folder / "bench"
     subprocess.run(
         [cc, "-O2", "-o", str(exe), str(folder / "main.c"), str(folder / "arm.c"), "-lm"], check=True
     )
     out = subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout.split("\n")
-    J = np.array([float(v) for v in out[0].split()]).reshape(6, robot.dof)
-    return float(out[1].split()[0]), J
+    M = np.array([float(v) for v in out[0].split()])
+    return float(out[1].split()[0]), M
 
 
 def pinocchio_time(pin, robot, q: np.ndarray) -> tuple[float, np.ndarray]:
@@ -95,6 +102,7 @@ def bench_robot(name: str, pin) -> None:
     q = 0.1 * np.arange(1, robot.dof + 1)
     with tempfile.TemporaryDirectory() as tmp:
         c_time, J_c = time_c(robot, Path(tmp))
+    J_c = J_c.reshape(6, robot.dof)
     ours = per_call(lambda: jacobian(robot, q))
     print(f"\n{name}: {robot.dof} joints; max |J_C − J_numpy| = {np.abs(J_c - jacobian(robot, q)).max():.1e}")
     print(f"  exported C function (timed in C)          {c_time * 1e9:9.1f} ns")
@@ -107,6 +115,23 @@ def bench_robot(name: str, pin) -> None:
         )
         print(f"  ratio Pinocchio / exported C              {pin_time / c_time:9.2f}")
     print(f"  ratio kinematics.jacobian / exported C    {ours / c_time:9.2f}")
+    qd = 0.3 - 0.1 * np.arange(robot.dof)
+    for what, numpy_name, reference in (
+        ("fk", "kinematics.fk", lambda: fk(robot, q)),
+        ("jacobian_dot", "kinematics.jacobian_dot", lambda: jacobian_dot(robot, q, qd)),
+    ):
+        with tempfile.TemporaryDirectory() as tmp:
+            seconds, M = time_c(robot, Path(tmp), what)
+        numpy_time = per_call(reference)
+        error = np.abs(M - reference().ravel()).max()
+        print(
+            f"  exported {what:13s} (timed in C)          {seconds * 1e9:9.1f} ns"
+            f"   (max |C − numpy| = {error:.1e})"
+        )
+        print(
+            f"  {numpy_name:24s} one configuration {numpy_time * 1e9:9.1f} ns"
+            f"   ratio numpy / C {numpy_time / seconds:7.2f}"
+        )
 
 
 def main() -> None:

@@ -1,15 +1,18 @@
-"""``jacobian-lab export``: the symbolic Jacobian of a robot as LaTeX, MathML, Python or JSON.
+"""``jacobian-lab export``: the symbolic Jacobian of a robot as LaTeX, MathML or JSON, and a controller's
+kinematics (T_base_tool, J, J̇, optionally ∂J/∂q) as Python/NumPy, C or MATLAB/Octave code.
 
 ``jacobian-lab export ROBOT --format latex|mathml|python|numpy|json|c|matlab [--frame base|tool]
 [--symbolic-params] [--base LINK] [--tip LINK] [-o FILE]``, with ROBOT a library name or a
-path to a robot file (.toml) or URDF. Output goes to stdout unless ``-o`` is given; progress is
-shown on stderr for any step that takes more than a second. The work is done by
-:func:`kinematics.symbolic.typeset.export.export`.
+path to a robot file (.toml) or URDF (also ``--robot NAME`` or ``--urdf FILE``, as ``serve`` spells
+them); the code formats also take ``--exact``, ``--dJdq`` and ``--name NAME``. Output goes to stdout
+unless ``-o`` is given; progress is shown on stderr for any step that takes more than a second. The
+work is done by :func:`kinematics.symbolic.typeset.export.export`.
 """
 
 from __future__ import annotations
 
 import argparse
+import difflib
 import sys
 import threading
 import time
@@ -18,17 +21,33 @@ from pathlib import Path
 import robots
 from kinematics import Robot
 from kinematics.conventions import FRAMES
-from kinematics.errors import JacobianLabError
+from kinematics.errors import JacobianLabError, UnknownRobotError
 from kinematics.files import write_user_file
 from kinematics.symbolic.core import DEFAULT_TIMEOUT
-from kinematics.symbolic.typeset.ccode import c_identifier
-from kinematics.symbolic.typeset.export import FORMATS, ExportError, export, export_c, export_matlab
+from kinematics.symbolic.typeset.ccode import c_identifier, header_name
+from kinematics.symbolic.typeset.export import (
+    CODE_FORMATS,
+    FORMATS,
+    ExportError,
+    export,
+    export_c,
+    export_matlab,
+)
 from kinematics.urdf import parse_xacro_args
 
 from .args import MAX_TIMEOUT, bounded
 from .packages import add_package_arguments, package_options
 
-__all__ = ["main", "add_chain_arguments", "load_robot", "xacro_arguments", "StderrProgress", "write_output"]
+__all__ = [
+    "main",
+    "add_chain_arguments",
+    "add_robot_choice",
+    "chosen_robot",
+    "load_robot",
+    "xacro_arguments",
+    "StderrProgress",
+    "write_output",
+]
 
 
 def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
@@ -55,13 +74,19 @@ def add_chain_arguments(parser: argparse.ArgumentParser) -> None:
 def load_robot(args: argparse.Namespace) -> Robot:
     """The robot the command line names: ``args.robot`` with ``--base``, ``--tip`` and ``--xacro-arg``
     (see :func:`add_chain_arguments`)."""
-    return robots.load(
-        args.robot,
-        base_link=args.base,
-        tip_link=args.tip,
-        xacro_args=xacro_arguments(args),
-        **package_options(args),
-    )
+    try:
+        return robots.load(
+            args.robot,
+            base_link=args.base,
+            tip_link=args.tip,
+            xacro_args=xacro_arguments(args),
+            **package_options(args),
+        )
+    except UnknownRobotError as exc:
+        close = difflib.get_close_matches(str(args.robot).lower(), robots.names(), n=3, cutoff=0.6)
+        if not close:
+            raise
+        raise UnknownRobotError(f"{exc} (did you mean {' or '.join(close)}?)") from None
 
 
 def xacro_arguments(args: argparse.Namespace) -> dict[str, str] | None:
@@ -120,13 +145,32 @@ class StderrProgress:
 _StderrProgress = StderrProgress  # the name the tests use
 
 
+def add_robot_choice(parser: argparse.ArgumentParser) -> None:
+    """The robot of ``export``: ``ROBOT`` (a name or a file), or ``--robot NAME`` / ``--urdf FILE`` as
+    ``serve`` spells them (:func:`chosen_robot` checks that exactly one is given)."""
+    parser.add_argument(
+        "robot", nargs="?", help="library robot name (e.g. puma560) or path to a robot .toml or .urdf file"
+    )
+    parser.add_argument(
+        "--robot", dest="robot_option", metavar="NAME", help="a library robot (as serve takes it)"
+    )
+    parser.add_argument("--urdf", metavar="FILE", help="a URDF (or .xacro) file (as serve takes it)")
+
+
+def chosen_robot(args: argparse.Namespace) -> str | None:
+    """The one robot given (ROBOT, ``--robot`` or ``--urdf``); None if none or several."""
+    given = [x for x in (args.robot, args.robot_option, args.urdf) if x is not None]
+    return given[0] if len(given) == 1 else None
+
+
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="jacobian-lab export",
-        description="Export a robot's symbolic Jacobian J(q) as LaTeX, MathML, a Python/NumPy module, JSON, "
-        "C (with -o FILE.c, also FILE.h) or a MATLAB/Octave function file.",
+        description="Export a robot's symbolic Jacobian J(q) as LaTeX, MathML or JSON, or a controller's "
+        "kinematics (T_base_tool, J, Jdot, optionally dJ/dq) as a Python/NumPy module, C (with -o FILE.c, "
+        "also FILE.h) or a MATLAB/Octave function file.",
     )
-    p.add_argument("robot", help="library robot name (e.g. puma560) or path to a robot .toml or .urdf file")
+    add_robot_choice(p)
     p.add_argument("--format", "-f", choices=FORMATS, default="latex", help="output format (default: latex)")
     p.add_argument("--frame", choices=FRAMES, default="base", help="axes of J's rows (default: base)")
     p.add_argument(
@@ -135,6 +179,23 @@ def _parser() -> argparse.ArgumentParser:
         help="keep DH lengths and offsets as symbols (a2, d4, ...) instead of numbers",
     )
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
+    code = ", ".join(CODE_FORMATS)
+    p.add_argument(
+        "--exact",
+        action="store_true",
+        help=f"{code}: keep every number of the robot file as written (default: angles within 5e-4 rad "
+        "of a multiple of 15 degrees, e.g. 1.5708, are snapped to it for a readable formula; the header "
+        "says which)",
+    )
+    p.add_argument(
+        "--dJdq", action="store_true", help=f"{code}: also write dJ/dq, the derivative of J by each joint"
+    )
+    p.add_argument(
+        "--name",
+        metavar="NAME",
+        help="c: prefix of the C names (NAME_fk, NAME_jacobian, NAME_jacobian_dot, ...); matlab: the "
+        "function's name (default: the output file's stem, else the robot's name; made an identifier)",
+    )
     add_chain_arguments(p)
     add_package_arguments(p)
     p.add_argument(
@@ -157,15 +218,32 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # -h or a usage error (already printed by argparse)
         return int(exc.code or 0)
+    robot_arg = chosen_robot(args)
+    if robot_arg is None:
+        parser.print_usage(sys.stderr)
+        print(
+            "jacobian-lab export: error: give one robot: ROBOT, --robot NAME or --urdf FILE", file=sys.stderr
+        )
+        return 2
+    args.robot = robot_arg
+    if args.format not in CODE_FORMATS and (args.exact or args.dJdq or args.name is not None):
+        parser.print_usage(sys.stderr)
+        formats = ", ".join(CODE_FORMATS)
+        print(f"jacobian-lab export: error: --exact, --dJdq and --name are for {formats}", file=sys.stderr)
+        return 2
     files: list[tuple[str, str | None]] = []
     try:
         robot = load_robot(args)
         options = (args.frame, args.symbolic_params)
+        code = {"exact": args.exact, "dJdq": args.dJdq}
         with StderrProgress() as progress:
-            if args.output and args.format == "c":  # FILE.c and its header FILE.h
+            if args.output and args.format == "c":  # FILE.c and its header FILE.h; names from --name or FILE
                 out = Path(args.output)
-                header, source = export_c(robot, out.stem, *options, progress, timeout=args.timeout)
-                files = [(header, str(out.with_suffix(".h"))), (source, args.output)]
+                name = args.name if args.name is not None else out.stem
+                header, source = export_c(
+                    robot, out.stem, *options, progress, timeout=args.timeout, name=name, **code
+                )
+                files = [(header, str(out.with_name(header_name(out.stem)))), (source, args.output)]
             elif args.output and args.format == "matlab":  # MATLAB wants the function named as its file
                 stem = Path(args.output).stem
                 if c_identifier(stem) != stem:
@@ -173,10 +251,18 @@ def main(argv: list[str] | None = None) -> int:
                         f"a MATLAB function file is named after its function: {stem!r} is not a valid "
                         "name (letters, digits and _, starting with a letter), e.g. -o puma_jacobian.m"
                     )
-                _, text = export_matlab(robot, *options, progress, function=stem, timeout=args.timeout)
+                if args.name is not None and args.name != stem:
+                    raise ExportError(
+                        f"a MATLAB function file is named after its function: --name {args.name} needs "
+                        f"-o {c_identifier(args.name)}.m (or leave --name out)"
+                    )
+                _, text = export_matlab(
+                    robot, *options, progress, function=stem, timeout=args.timeout, **code
+                )
                 files = [(text, args.output)]
             else:
-                text = export(robot, args.format, *options, progress, timeout=args.timeout)
+                extra = {**code, "name": args.name} if args.format in CODE_FORMATS else {}
+                text = export(robot, args.format, *options, progress, timeout=args.timeout, **extra)
                 files = [(text, args.output)]
     except JacobianLabError as exc:
         print(f"jacobian-lab export: error: {exc}", file=sys.stderr)

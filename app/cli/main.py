@@ -97,7 +97,12 @@ def _build_parser() -> argparse.ArgumentParser:
         "ignored (repeatable)",
     )
     sub.add_parser("robots", help="list the library robots")
-    sub.add_parser("export", help="export J(q) as LaTeX, MathML, Python or JSON", add_help=False)
+    sub.add_parser(
+        "export",
+        help="export J(q) as LaTeX, MathML or JSON, or a controller's T, J, Jdot (and dJ/dq) as "
+        "Python/NumPy, C or MATLAB/Octave code",
+        add_help=False,
+    )
     sub.add_parser(
         "handout",
         help="the derivation of J step by step, as an HTML page or a LaTeX document",

@@ -99,6 +99,7 @@ def derive(
     use_cache: bool = True,
     progress: Progress | None = None,
     deadline: Deadline | None = None,
+    exact: bool = False,
 ) -> Derivation:
     """Derive, simplify and cache J(q) and T_base_tool(q) of ``robot``.
 
@@ -114,6 +115,7 @@ def derive(
             and resumed (only its unsimplified entries) for a larger one.
         progress: Called with short progress messages.
         deadline: A deadline shared with other steps (an export); replaces ``timeout``.
+        exact: Keep the robot file's numbers as written (no snapping; see :func:`.build_model`).
 
     Raises:
         SymbolicError: unknown frame, bad timeout, or symbolic parameters for a non-DH robot.
@@ -122,7 +124,7 @@ def derive(
     timeout = check_timeout(timeout)
     deadline = deadline if deadline is not None else Deadline(timeout)
     budget = deadline.seconds  # the request's whole budget (an export's), not what is left of it
-    model = build_model(robot, symbolic_params)
+    model = build_model(robot, symbolic_params, exact)
     key = f"derive|{model.cache_key()}|{frame}"
     loaded = cache.load(key) if use_cache else None
     hit: dict[str, Any] | None = loaded if isinstance(loaded, dict) else None
@@ -144,7 +146,7 @@ def derive(
         earlier = float(hit["seconds"])
     else:
         limit = None if deadline.seconds is None else deadline  # no limit: the cached frames
-        J_raw = jacobian_whitney(robot, frame, symbolic_params, limit)
+        J_raw = jacobian_whitney(robot, frame, symbolic_params, limit, exact)
         T_raw = frames_within(model, limit)[0].tool
         earlier = 0.0
     sJ = simplify_matrix(J_raw, model.q, deadline, progress, "J", shift, only=only_J, values=values)

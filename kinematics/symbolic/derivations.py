@@ -85,15 +85,20 @@ def whitney_columns(model: SymbolicModel, F: Frames, point: sp.Matrix) -> sp.Mat
 
 
 def jacobian_whitney(
-    robot: Robot, frame: str = "base", symbolic_params: bool = False, deadline: Deadline | None = None
+    robot: Robot,
+    frame: str = "base",
+    symbolic_params: bool = False,
+    deadline: Deadline | None = None,
+    exact: bool = False,
 ) -> sp.Matrix:
     """Whitney's geometric columns: [zᵢ₋₁ × (pₙ − pᵢ₋₁); zᵢ₋₁] or [zᵢ₋₁; 0], exact, unsimplified.
 
     With a ``deadline``, the chain's products stop being expanded once it has passed
-    (:func:`.chain.frames_within`): the result is exact either way.
+    (:func:`.chain.frames_within`): the result is exact either way. ``exact``: the robot file's
+    numbers as written, nothing snapped (:func:`.build_model`).
     """
     frame = check_frame(frame)
-    model = build_model(robot, symbolic_params)
+    model = build_model(robot, symbolic_params, exact)
     F, _ = frames_within(model, deadline)
     J = whitney_columns(model, F, F.tool[:3, 3])
     return J if frame == "base" else _rotate(J, F.tool[:3, :3].T)

@@ -69,6 +69,7 @@ class SymbolicModel:
         snaps: Rounded values of the robot replaced by exact ones (:mod:`.snap`).
         dh: (θ, d, a, α) of each DH row as the model holds them (θ or d includes the joint
             symbol); empty for a robot without a DH table.
+        exact: Every number as the robot file gives it (nothing snapped to π/12 multiples or 0).
     """
 
     robot: Robot
@@ -85,6 +86,7 @@ class SymbolicModel:
     symbolic_params: bool = False
     snaps: tuple[Snap, ...] = ()
     dh: tuple[tuple[sp.Expr, sp.Expr, sp.Expr, sp.Expr], ...] = ()
+    exact: bool = False
 
     @property
     def snap_note(self) -> str:
@@ -104,7 +106,8 @@ class SymbolicModel:
     def cache_key(self) -> str:
         """Text identifying the model for caches: fingerprint, option and parameter names."""
         names = ",".join(sorted(str(s) for s in self.params))
-        return f"{self.robot.fingerprint()}|params={self.symbolic_params}|{names}|snap={SNAP_TOL}"
+        tol = "none (exact)" if self.exact else SNAP_TOL
+        return f"{self.robot.fingerprint()}|params={self.symbolic_params}|{names}|snap={tol}"
 
     def angle_offsets(self) -> dict[sp.Symbol, sp.Expr]:
         """Joint symbol → constant offset of its revolute axis, for offsets that are not multiples of π/2.
@@ -125,7 +128,7 @@ class SymbolicModel:
 
     def exact_values(self) -> dict[sp.Symbol, sp.Expr]:
         """Parameter symbols → their exact values (what the model holds with ``symbolic_params=False``)."""
-        S = Snapper()  # the values the model would hold, without recording them again
+        S = Snapper(0.0 if self.exact else SNAP_TOL)  # the values the model holds, not recorded again
         return {s: S.angle(v, "") if _is_angle(s) else S.length(v, "") for s, v in self.params.items()}
 
     def numeric_values(self) -> dict[sp.Symbol, sp.Float]:
@@ -136,13 +139,13 @@ class SymbolicModel:
 class _Params:
     """Collects parameter symbols while a model is built."""
 
-    def __init__(self, robot: Robot, enabled: bool) -> None:
+    def __init__(self, robot: Robot, enabled: bool, exact: bool = False) -> None:
         self.enabled = enabled
         # Course names from the robot (Robot.param_names, checked there). Default names are the DH
         # ones (a{i}, alpha{i}, d{i}, theta{i}; for the modified convention a and alpha of row i are
         # Craig's a_{i-1}, alpha_{i-1}), d{i}0 / theta{i}0 for the constant offset of a joint
         # variable, and xt, yt, zt / xb, yb, zb for the tool / base translation.
-        self.snap = Snapper()
+        self.snap = Snapper(0.0 if exact else SNAP_TOL)
         self.rename = dict(robot.param_names)
         self.values: dict[sp.Symbol, float] = {}
         self.display: dict[sp.Symbol, str] = {}
@@ -241,12 +244,14 @@ def _numeric_mismatch(model: SymbolicModel) -> bool:
 
 
 @functools.lru_cache(maxsize=64)
-def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
+def build_model(robot: Robot, symbolic_params: bool = False, exact: bool = False) -> SymbolicModel:
     """The :class:`SymbolicModel` of ``robot`` (cached per robot object and option).
 
     Args:
         robot: Any robot (DH or URDF chain).
         symbolic_params: Keep DH lengths and offsets, and base/tool translations, as symbols.
+        exact: Keep every number of the robot file as written (no snapping of 1.5708 to π/2): what a
+            controller wants, at the cost of longer formulas.
 
     Raises:
         SymbolicError: ``symbolic_params`` for a robot that has no DH table.
@@ -255,7 +260,7 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
         raise SymbolicError(f"expected a kinematics.Robot, got {type(robot).__name__}")
     if not isinstance(symbolic_params, bool):
         raise SymbolicError(f"symbolic_params must be True or False, got {symbolic_params!r}")
-    P = _Params(robot, symbolic_params)
+    P = _Params(robot, symbolic_params, exact)
     n = robot.dof
     q = tuple(sp.Symbol(f"q{i + 1}", real=True) for i in range(n))
     kinds = tuple(ax.kind for ax in robot.axes)
@@ -308,6 +313,7 @@ def build_model(robot: Robot, symbolic_params: bool = False) -> SymbolicModel:
         symbolic_params,
         tuple(P.snap.snaps),
         table,
+        exact,
     )
     if dh is not None and _numeric_mismatch(model):  # a DH table that does not describe the axes
         raise SymbolicError(f"robot {robot.name!r}: its DH table does not reproduce its axes")

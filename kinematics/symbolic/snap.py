@@ -132,7 +132,7 @@ class Snapper:
     def length(self, x: float, where: str, noise: float = LENGTH_NOISE) -> sp.Expr:
         """An exact length for ``x`` [m]: 0 if ``|x| <= noise``, else :func:`exact_number`."""
         x = float(x)
-        if abs(x) <= max(noise, LENGTH_NOISE):
+        if abs(x) <= (max(noise, LENGTH_NOISE) if self.tol > 0 else _QUIET):  # tol 0: the file's numbers
             if abs(x) > _QUIET:
                 self.snaps.append(Snap(where, _num(x), "0", abs(x), "m"))
             return sp.Integer(0)

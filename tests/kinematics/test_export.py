@@ -50,7 +50,9 @@ def test_python_module_matches_numeric_jacobian(tmp_path, name, frame, params):
 
 def test_python_module_shares_subexpressions():
     text = ex.export(robots.load("panda"), "python")
-    assert text.count("numpy.sin(q1)") == 1 and "x0 = " in text
+    functions = text.split("\ndef ")[1:]  # J, T and Jdot: each computes sin q1 once
+    assert [f.split("(")[0] for f in functions] == ["J", "T", "Jdot"]
+    assert all(f.count("numpy.sin(q1)") == 1 for f in functions) and "x0 = " in text
 
 
 def test_json_export():

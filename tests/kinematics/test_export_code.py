@@ -70,10 +70,16 @@ def configurations(robot, count=5, seed=11):
     return np.vstack([qs, np.zeros(robot.dof)])
 
 
-def compile_c(tmp_path, robot, stem, symbolic_params=False, frame="base"):
-    """The exported C of ``robot`` built into a shared library: (the function, header, source)."""
-    cc = _needs("cc")
-    header, source = ex.export_c(robot, stem, frame, symbolic_params)
+def c_prefix(robot, name=None):
+    """The prefix of the exported C names: ``name``, else the robot's name, made an identifier."""
+    return c_identifier(robot.name if name is None else name, reserved=frozenset())
+
+
+def compile_c(tmp_path, robot, stem, symbolic_params=False, frame="base", **options):
+    """The exported C of ``robot`` built into a shared library with ``gcc -Wall -Wextra -Werror``:
+    (its J function, header, source); the library is ``compile_c.lib``."""
+    cc = _needs("gcc")
+    header, source = ex.export_c(robot, stem, frame, symbolic_params, **options)
     (tmp_path / f"{stem}.h").write_text(header, encoding="utf-8")
     (tmp_path / f"{stem}.c").write_text(source, encoding="utf-8")
     lib = tmp_path / f"lib{stem}.so"
@@ -84,7 +90,8 @@ def compile_c(tmp_path, robot, stem, symbolic_params=False, frame="base"):
         capture_output=True,
         timeout=120,
     )
-    fn = getattr(ctypes.CDLL(str(lib)), c_identifier(f"{robot.name}_jacobian"))
+    compile_c.lib = ctypes.CDLL(str(lib))
+    fn = getattr(compile_c.lib, c_prefix(robot, options.get("name")) + "_jacobian")
     fn.restype = None
     return fn, header, source
 
@@ -210,7 +217,7 @@ def test_hostile_names_stay_comments_and_identifiers(tmp_path):
     for text in (header, source):
         assert text.count("/*") == text.count("*/")  # a name can never close our comment early
         code = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
-        name = c_identifier(f"{robot.name}_jacobian")  # the robot's name, reduced to [A-Za-z0-9_]
+        name = c_prefix(robot)  # the robot's name, reduced to [A-Za-z0-9_]: every function's prefix
         assert re.fullmatch(r"[A-Za-z_]\w*", name)
         code = code.replace(name, "FUNCTION").replace(name.upper(), "FUNCTION")
         assert "system" not in code and "MARKER" not in code and "script" not in code
@@ -229,9 +236,9 @@ def test_export_command_writes_c_and_header_and_names_the_matlab_function(tmp_pa
     from app.cli.export import main
 
     assert main(["export", "planar2", "-f", "c", "-o", str(tmp_path / "arm.c")][1:]) == 0
-    assert (tmp_path / "arm.h").read_text().count("void planar2_jacobian(") == 1
+    assert (tmp_path / "arm.h").read_text().count("void arm_jacobian(") == 1  # named after the file
     assert '#include "arm.h"' in (tmp_path / "arm.c").read_text()
     assert main(["trr", "-f", "matlab", "-o", str(tmp_path / "trr_J.m")]) == 0
-    assert (tmp_path / "trr_J.m").read_text().startswith("function J = trr_J(q)")
+    assert (tmp_path / "trr_J.m").read_text().startswith("function [J, T, Jdot] = trr_J(q, qd)")
     assert main(["trr", "-f", "matlab", "-o", str(tmp_path / "trr-J.m")]) == 1
     assert "is not a valid name" in capsys.readouterr().err

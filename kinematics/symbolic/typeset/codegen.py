@@ -10,6 +10,8 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
 from ..model import SymbolicModel
+from .ccode import numbers_line
+from .controller import Block, ControllerKinematics, block
 from .escape import py_docstring, py_identifier, py_literal
 
 __all__ = ["numeric_function", "python_source"]
@@ -39,7 +41,8 @@ def _printer() -> NumPyPrinter:
 
 def _safe_params(model: SymbolicModel) -> dict[sp.Symbol, sp.Symbol]:
     """Parameter symbol → a symbol whose name is a safe, unique Python identifier."""
-    taken = {"q", "out", "numpy", "J"} | {str(s) for s in model.q}
+    taken = {"q", "qd", "out", "numpy", "J", "T", "Jdot", "dJdq"} | {str(s) for s in model.q}
+    taken |= {f"qd{k + 1}" for k in range(model.dof)}
     out = {}
     for s in sorted(model.params, key=str):
         name = py_identifier(str(s), "p")
@@ -60,8 +63,10 @@ def python_source(
     what: str = "Geometric Jacobian",
     notes: Sequence[str] = (),
     share: bool = True,
+    extra: ControllerKinematics | None = None,
 ) -> str:
-    """Source of a self-contained Python module with a NumPy function ``J(q)``.
+    """Source of a self-contained Python module with a NumPy function ``J(q)`` (and, with ``extra``,
+    ``T(q)``, ``Jdot(q, qd)`` and ``dJdq(q)`` if it has ∂J/∂q).
 
     Common subexpressions are computed once (``sympy.cse``); ``J`` accepts one
     configuration (n,) or a batch (..., n) and returns (6, n) or (..., 6, n).
@@ -77,20 +82,22 @@ def python_source(
         notes: Notes to carry (snapped values, time limits): in ``NOTES``.
         share: Compute common subexpressions once (``sympy.cse``; slow on huge unsimplified
             entries, so exports skip it past their deadline).
+        extra: The controller's other matrices (:mod:`.controller`), written as functions too.
     """
     robot = model.robot
     n, rows = model.dof, M.rows
     printer = _printer()
     safe = _safe_params(model)
     M = M.xreplace(safe)
-    xs = sp.numbered_symbols("x", exclude=M.free_symbols)
-    reps, (reduced,) = sp.cse([M], symbols=xs, optimizations="basic") if share else ([], [M])
+    names_out = (
+        ["J"] + (["T", "Jdot"] if extra is not None else []) + (["dJdq"] if extra and extra.dJdq else [])
+    )
+    exported = ", ".join(f'"{x}"' for x in names_out)
     joints = ", ".join(f"({str(s)!r}, {k!r})" for s, k in zip(model.q, model.joint_kinds, strict=True))
     params = sorted(((safe[s], v) for s, v in model.params.items()), key=lambda kv: str(kv[0]))
     kw = "".join(f", {s}={float(v)!r}" for s, v in params)
     if kw:
         kw = ", *" + kw
-    names = ", ".join(str(s) for s in model.q) + ("," if n == 1 else "")
     units = ", ".join(  # the joint's own name (the slider's, the URDF's) beside its symbol
         f"{s}{'' if name == str(s) else ' ' + py_docstring(name, 60)} [{'rad' if k == 'revolute' else 'm'}]"
         for s, k, name in zip(model.q, model.joint_kinds, robot.joint_names, strict=True)
@@ -105,13 +112,26 @@ def python_source(
         f"Frame: {frame}. Rows [vx, vy, vz, wx, wy, wz]: v [m/s] is the velocity of the tool-frame",
         f"origin and w [rad/s] the angular velocity, per unit joint rate, in {frame} axes.",
         f"Joints: {units}.",
+        *(
+            [
+                "T(q) is T_base_tool (4, 4); Jdot(q, qd) is dJ/dt (a = J qdd + Jdot qd)"
+                + (
+                    "; dJdq(q) is dJ/dq, (n, 6, n) with [k] the derivative by joint k." if extra.dJdq else "."
+                ),
+                "Each takes one configuration (n,) or a batch (..., n).",
+            ]
+            if extra is not None
+            else []
+        ),
         "Regenerate rather than edit (jacobian-lab export ROBOT --format python).",
-        "See NOTES for values of the robot file that were snapped to exact ones." if notes else "",
+        numbers_line(model),
+        "See NOTES for values of the robot file that were snapped to exact ones." if model.snaps else "",
         '"""',
         "",
         "import numpy",
         "",
-        '__all__ = ["J", "ROBOT", "TITLE", "SOURCE", "FRAME", "FINGERPRINT", "JOINTS", "JOINT_NAMES",'
+        f"__all__ = [{exported}, "
+        '"ROBOT", "TITLE", "SOURCE", "FRAME", "FINGERPRINT", "JOINTS", "JOINT_NAMES",'
         ' "PARAMETERS", "NOTES"]',
         "",
         f"ROBOT = {py_literal(robot.name)}",
@@ -123,20 +143,66 @@ def python_source(
         f"JOINT_NAMES = {tuple_of(robot.joint_names)}",
         "PARAMETERS = {" + ", ".join(f"{str(s)!r}: {float(v)!r}" for s, v in params) + "}",
         f"NOTES = {tuple_of(notes)}",
-        "",
-        "",
-        f"def J(q{kw}):",
-        f'    """J(q): shape ({rows}, {n}) for q of shape ({n},); (..., {rows}, {n}) for (..., {n})."""',
+    ]
+    if extra is None:
+        functions = [("J", "", block([M], share))]
+    else:
+        functions = [("J", "", extra.J.renamed(safe)), ("T", "", extra.T.renamed(safe))]
+        functions.append(("Jdot", ", qd", extra.Jdot.renamed(safe)))
+        if extra.dJdq is not None:
+            functions.append(("dJdq", "", extra.dJdq.renamed(safe)))
+    docs = {
+        "J": f"J(q): shape ({rows}, {n}) for q of shape ({n},); (..., {rows}, {n}) for (..., {n}).",
+        "T": "T_base_tool(q): shape (4, 4), or (..., 4, 4) for a batch.",
+        "Jdot": "dJ/dt at (q, qd): shaped like J(q).",
+        "dJdq": f"dJ/dq: shape ({n}, {rows}, {n}) ([k]: by joint k); (..., {n}, {rows}, {n}) for a batch.",
+    }
+    for name, rates, program in functions:
+        lines += ["", ""] + _function(name, rates, program, docs[name], model, kw, printer, extra)
+    return "\n".join(lines) + "\n"
+
+
+def _function(
+    name: str,
+    rates: str,
+    program: Block,
+    doc: str,
+    model: SymbolicModel,
+    kw: str,
+    printer: NumPyPrinter,
+    extra: ControllerKinematics | None,
+) -> list[str]:
+    """The lines of a generated NumPy function of q (and qd) computing ``matrices`` (stacked if several)."""
+    n = model.dof
+    matrices = program.outputs
+    rows, cols = matrices[0].shape
+    shape = f"({len(matrices)}, {rows}, {cols})" if len(matrices) > 1 else f"({rows}, {cols})"
+    q_names = ", ".join(str(s) for s in model.q) + ("," if n == 1 else "")
+    lines = [
+        f"def {name}(q{rates}{kw}):",
+        f'    """{doc}"""',
         "    q = numpy.asarray(q, dtype=float)",
         f"    if q.ndim == 0 or q.shape[-1] != {n}:",
         f'        raise ValueError(f"q should have shape ({n},) or (..., {n}), got {{q.shape}}")',
-        f"    {names} = numpy.moveaxis(q, -1, 0)",
+        f"    {q_names} = numpy.moveaxis(q, -1, 0)",
     ]
-    lines += [f"    {sym} = {printer.doprint(expr)}" for sym, expr in reps]
-    lines.append(f"    out = numpy.zeros(q.shape[:-1] + ({rows}, {n}))")
-    for i in range(rows):
-        for j in range(n):
-            if reduced[i, j] != 0:
-                lines.append(f"    out[..., {i}, {j}] = {printer.doprint(reduced[i, j])}")
+    if rates and extra is not None:
+        qd_names = ", ".join(str(s) for s in extra.qd) + ("," if n == 1 else "")
+        lines += [
+            "    qd = numpy.asarray(qd, dtype=float)",
+            f"    if qd.ndim == 0 or qd.shape[-1] != {n}:",
+            f'        raise ValueError(f"qd should have shape ({n},) or (..., {n}), got {{qd.shape}}")',
+            "    q, qd = numpy.broadcast_arrays(q, qd)",
+            f"    {q_names} = numpy.moveaxis(q, -1, 0)",
+            f"    {qd_names} = numpy.moveaxis(qd, -1, 0)",
+        ]
+    lines += [f"    {sym} = {printer.doprint(expr)}" for sym, expr in program.reps]
+    lines.append(f"    out = numpy.zeros(q.shape[:-1] + {shape})")
+    for m, R in enumerate(matrices):
+        at = f"{m}, " if len(matrices) > 1 else ""
+        for i in range(rows):
+            for j in range(cols):
+                if R[i, j] != 0:
+                    lines.append(f"    out[..., {at}{i}, {j}] = {printer.doprint(R[i, j])}")
     lines.append("    return out")
-    return "\n".join(lines) + "\n"
+    return lines

@@ -5,20 +5,22 @@ The command line ``jacobian-lab export`` lives in :mod:`app.cli.export`.
 * ``latex``: a fragment for a report (needs ``amsmath``): J, its columns, det J
   (or det(J Jᵀ)), the singular sets and the legend of the compact notation;
 * ``mathml``: the same as a standalone HTML page with MathML (Chromium renders it);
-* ``python`` (or ``numpy``): a module with a NumPy function ``J(q)`` (common subexpressions shared)
-  that takes one configuration (n,) or a batch (..., n);
+* ``python`` (or ``numpy``): a module with NumPy functions ``J(q)``, ``T(q)``, ``Jdot(q, qd)`` (and
+  ``dJdq(q)``) (common subexpressions shared) that take one configuration (n,) or a batch (..., n);
 * ``json``: the entries as strings (SymPy syntax), with the LaTeX and the singular sets;
-* ``c``: a C99 function ``void ROBOT_jacobian(const double q[n], double J[6n])`` (no allocation,
-  shared subexpressions): :func:`export_c` gives the header and the source, ``export(…, "c")`` both
-  in one compilable text;
-* ``matlab``: a MATLAB/Octave function file ``function J = ROBOT_jacobian(q)``.
+* ``c``: C99 functions ``NAME_fk``, ``NAME_jacobian``, ``NAME_jacobian_dot`` (and ``NAME_jacobian_dq``)
+  (no allocation, shared subexpressions; :mod:`.ccode`): :func:`export_c` gives the header and the
+  source, ``export(…, "c")`` both in one compilable text;
+* ``matlab``: a MATLAB/Octave function file ``function [J, T, Jdot] = ROBOT_jacobian(q, qd)``.
+
+The code formats take ``exact`` (the robot file's numbers as written: no snapping of 1.5708 to π/2;
+their header says which was done), ``dJdq`` and ``name``.
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Callable
-from typing import Any
 
 import sympy as sp
 
@@ -29,12 +31,13 @@ from .. import build_model, derive, determinant, latex_parts, mathml_parts, pyth
 from ..core import DEFAULT_TIMEOUT, check_timeout
 from ..model import SymbolicModel, check_frame
 from ..trig import Deadline, Progress
-from .ccode import c_identifier, c_source, matlab_source
+from .ccode import c_identifier, c_source, header_name, matlab_source
+from .controller import ControllerKinematics, controller_kinematics
 from .escape import NOTE_CHARS, latex_text, plain, xml_text
 from .layout import latex_matrix, too_long
 from .render import MATH_STYLE, notation_for
 
-__all__ = ["FORMATS", "ExportError", "export", "export_c", "export_matlab"]
+__all__ = ["CODE_FORMATS", "FORMATS", "ExportError", "export", "export_c", "export_matlab"]
 
 FORMATS = ("latex", "mathml", "python", "numpy", "json", "c", "matlab")
 
@@ -116,16 +119,6 @@ def _mathml(
     return head_html + "\n<body>\n" + "\n".join(body) + "\n</body>\n</html>\n"
 
 
-def _python(
-    robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress: Progress | None
-) -> str:
-    d = derive(robot, frame, symbolic_params=symbolic_params, progress=progress, deadline=deadline)
-    model = build_model(robot, symbolic_params)
-    return python_source(
-        d.J, model, frame=frame, notes=d.notes, share=not deadline.expired() and not any(map(too_long, d.J))
-    )
-
-
 def _json(
     robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress: Progress | None
 ) -> str:
@@ -174,15 +167,27 @@ def _json(
     return json.dumps(doc, indent=2, ensure_ascii=True, allow_nan=False) + "\n"
 
 
-def _compiled_model(
+CODE_FORMATS = ("python", "numpy", "c", "matlab")
+"""The formats that are code for a controller: they take ``exact``, ``dJdq`` and ``name``."""
+
+
+def _code_kinematics(
     robot: Robot,
     frame: str,
     symbolic_params: bool,
     deadline: Deadline,
     progress: Callable[[str], None] | None,
-) -> tuple[Any, SymbolicModel, tuple[str, ...]]:
-    d = derive(robot, frame, symbolic_params=symbolic_params, progress=progress, deadline=deadline)
-    return d.J, build_model(robot, symbolic_params), tuple(d.notes)
+    exact: bool = False,
+    dJdq: bool = False,
+) -> tuple[ControllerKinematics, SymbolicModel, tuple[str, ...]]:
+    d = derive(
+        robot, frame, symbolic_params=symbolic_params, progress=progress, deadline=deadline, exact=exact
+    )
+    model = build_model(robot, symbolic_params, exact)
+    if progress is not None:
+        progress("differentiating J for Jdot" + (" and dJ/dq" if dJdq else ""))
+    share = not deadline.expired() and not any(map(too_long, d.J))
+    return controller_kinematics(d.T, d.J, model, dJdq, share), model, tuple(d.notes)
 
 
 def export_c(
@@ -193,16 +198,25 @@ def export_c(
     progress: Callable[[str], None] | None = None,
     *,
     timeout: float | None = DEFAULT_TIMEOUT,
+    exact: bool = False,
+    dJdq: bool = False,
+    name: str | None = None,
 ) -> tuple[str, str]:
-    """The header ``STEM.h`` and the source ``STEM.c`` of a C99 function computing J(q).
+    """The header ``STEM.h`` and the source ``STEM.c`` of C99 functions computing T_base_tool(q), J(q),
+    J̇(q, q̇) and, with ``dJdq``, ∂J/∂q (see :mod:`.ccode`).
 
     Args:
         stem: File name of the header without ``.h`` (the source includes it), reduced to an identifier.
+        name: Prefix of every C name (default: the robot's name), reduced to an identifier.
+        exact: Keep every number of the robot file as written (no snapping to exact angles).
+        dJdq: Also write ``NAME_jacobian_dq``.
         The others as for :func:`export`.
     """
     deadline = Deadline(check_timeout(timeout))
-    J, model, notes = _compiled_model(robot, check_frame(frame), symbolic_params, deadline, progress)
-    return c_source(J, model, frame=frame, stem=stem, notes=notes)
+    K, model, notes = _code_kinematics(
+        robot, check_frame(frame), symbolic_params, deadline, progress, exact, dJdq
+    )
+    return c_source(K, model, frame=frame, stem=stem, prefix=name, notes=notes)
 
 
 def export_matlab(
@@ -213,41 +227,49 @@ def export_matlab(
     *,
     function: str | None = None,
     timeout: float | None = DEFAULT_TIMEOUT,
+    exact: bool = False,
+    dJdq: bool = False,
 ) -> tuple[str, str]:
-    """(function name, text of its ``.m`` file): a MATLAB/Octave function computing J(q).
+    """(function name, text of its ``.m`` file): a MATLAB/Octave function ``[J, T, Jdot] = NAME(q, qd)``
+    (and ``dJdq`` with ``dJdq=True``).
 
     Args:
         function: The function's name (MATLAB wants it to be the file's name); default
             ``ROBOT_jacobian``. Reduced to an identifier.
-        The others as for :func:`export`.
+        The others as for :func:`export_c`.
     """
     deadline = Deadline(check_timeout(timeout))
-    J, model, notes = _compiled_model(robot, check_frame(frame), symbolic_params, deadline, progress)
-    return matlab_source(J, model, frame=frame, function=function, notes=notes)
+    K, model, notes = _code_kinematics(
+        robot, check_frame(frame), symbolic_params, deadline, progress, exact, dJdq
+    )
+    return matlab_source(K, model, frame=frame, function=function, notes=notes)
 
 
-def _c(robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress: Progress | None) -> str:
-    J, model, notes = _compiled_model(robot, frame, symbolic_params, deadline, progress)
-    stem = c_identifier(f"{robot.name}_jacobian")
-    header, source = c_source(J, model, frame=frame, stem=stem, notes=notes)
-    return header + "\n" + source.replace(f'#include "{stem}.h"\n', "")
-
-
-def _matlab(
-    robot: Robot, frame: str, symbolic_params: bool, deadline: Deadline, progress: Progress | None
+def _code(
+    robot: Robot,
+    fmt: str,
+    frame: str,
+    symbolic_params: bool,
+    deadline: Deadline,
+    progress: Progress | None,
+    exact: bool,
+    dJdq: bool,
+    name: str | None,
 ) -> str:
-    J, model, notes = _compiled_model(robot, frame, symbolic_params, deadline, progress)
-    return matlab_source(J, model, frame=frame, notes=notes)[1]
+    K, model, notes = _code_kinematics(robot, frame, symbolic_params, deadline, progress, exact, dJdq)
+    if fmt == "c":
+        stem = c_identifier(f"{name or robot.name}_kinematics")
+        header, source = c_source(K, model, frame=frame, stem=stem, prefix=name, notes=notes)
+        return header + "\n" + source.replace(f'#include "{header_name(stem)}"\n', "")
+    if fmt == "matlab":
+        return matlab_source(K, model, frame=frame, function=name, notes=notes)[1]
+    return python_source(K.J.outputs[0], model, frame=frame, notes=notes, extra=K)
 
 
 _WRITERS = {
     "latex": _latex,
     "mathml": _mathml,
-    "python": _python,
-    "numpy": _python,
     "json": _json,
-    "c": _c,
-    "matlab": _matlab,
 }
 
 
@@ -259,6 +281,9 @@ def export(
     progress: Callable[[str], None] | None = None,
     *,
     timeout: float | None = DEFAULT_TIMEOUT,
+    exact: bool = False,
+    dJdq: bool = False,
+    name: str | None = None,
 ) -> str:
     """The symbolic Jacobian of ``robot`` as text in ``fmt``.
 
@@ -274,13 +299,20 @@ def export(
         progress: Called with short messages while the work goes on.
         timeout: Budget [s] for the whole export: derivation, simplification, determinant and
             typesetting share it; what does not fit is left out or unsimplified, with a note.
+        exact, dJdq, name: For the code formats (:data:`CODE_FORMATS`): keep the file's numbers as
+            written, also write ∂J/∂q, the prefix of the C names / the MATLAB function's name.
 
     Raises:
-        ExportError: unknown format. SymbolicError: bad frame, timeout or options.
+        ExportError: unknown format, or a code option for a format that is not code. SymbolicError:
+            bad frame, timeout or options.
     """
     if fmt not in FORMATS:
         raise ExportError(f"format must be one of {', '.join(FORMATS)}, got {fmt!r}")
     if not isinstance(robot, Robot):
         raise ExportError(f"expected a kinematics.Robot, got {type(robot).__name__}")
     deadline = Deadline(check_timeout(timeout))
+    if fmt in CODE_FORMATS:
+        return _code(robot, fmt, check_frame(frame), symbolic_params, deadline, progress, exact, dJdq, name)
+    if exact or dJdq or name is not None:
+        raise ExportError(f"exact, dJdq and name are options of the code formats ({', '.join(CODE_FORMATS)})")
     return _WRITERS[fmt](robot, check_frame(frame), symbolic_params, deadline, progress)
