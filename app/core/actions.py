@@ -39,6 +39,7 @@ __all__ = [
     "DriveTool",
     "SelfMove",
     "FollowPath",
+    "PlayNullMotion",
     "Wait",
     "GoToRepresentationSingularity",
     "EditRobot",
@@ -196,6 +197,12 @@ class FollowPath:
 
 
 @dataclass(frozen=True)
+class PlayNullMotion:
+    """At a singularity, play the null joint motion (Ker J) back and forth: the joints move, the tool
+    stands still."""
+
+
+@dataclass(frozen=True)
 class Wait:
     """Stop any motion and say ``note`` while the tab waits for a command's result (the nearest
     singularity being looked for away from the drawing thread)."""
@@ -242,6 +249,7 @@ Action = (
     | DriveTool
     | SelfMove
     | FollowPath
+    | PlayNullMotion
     | Wait
     | GoToRepresentationSingularity
     | EditRobot

@@ -20,6 +20,7 @@ import numpy as np
 from kinematics import Robot
 from kinematics.analytic_jacobian import representation_singularity
 from kinematics.errors import ConfigurationError
+from kinematics.singularity.null_motion import null_motion
 
 from . import motion_rules
 from .actions import (
@@ -32,6 +33,7 @@ from .actions import (
     GoTo,
     GoToRepresentationSingularity,
     Play,
+    PlayNullMotion,
     ReplaceState,
     ResetMotion,
     SelfMove,
@@ -51,6 +53,7 @@ from .build_table import edited_state
 from .motion_rules import FRAME_DT, MotionRefused
 from .options import OPTION
 from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
+from .self_motion import NULL_FOUND, null_motion_path, null_motion_text
 from .state import LabState, Options, default_options, frozen
 
 __all__ = ["reduce", "InvalidAction", "named_configuration_at"]
@@ -192,9 +195,26 @@ def _reduce(state: LabState, action: Action) -> LabState:
             return motion_rules.self_move(state, _finite(s, "self-motion"))
         case FollowPath(path=path, found=found):
             return motion_rules.follow_path(state, path, found)
+        case PlayNullMotion():
+            return _null_motion(state)
         case Wait(note=note):
             return state.replace(playing=False, stopped=str(note))
     raise InvalidAction(f"{action!r} is not a state change (a command is carried out by the session)")
+
+
+def _null_motion(state: LabState) -> LabState:
+    """Play the null joint motion of Ker J back and forth (refused where J has full rank)."""
+    m = null_motion(state.robot, np.array(state.q))
+    if m.dimension == 0:
+        raise MotionRefused("no null motion here: J has full rank (go to a singularity first)")
+    ranges = joint_ranges(state.robot)
+    lo = np.array([r.clamp_si(-math.inf) for r in ranges])
+    hi = np.array([r.clamp_si(math.inf) for r in ranges])
+    path = null_motion_path(np.array(state.q), m.direction, lo, hi)
+    if float(np.ptp(path, axis=0).max()) < 1e-6:
+        raise MotionRefused("no null motion here: it would leave a joint's range")
+    found = NULL_FOUND.format(motion=null_motion_text(m.direction))
+    return motion_rules.follow_path(state, tuple(tuple(float(x) for x in row) for row in path), found)
 
 
 def _representation_singularity(state: LabState, convention: object) -> LabState:

@@ -30,6 +30,8 @@ TEMPLATES: tuple[str, ...] = (
     N_("stopped: joint {number} {name} would pass its upper limit {value}"),
     N_("stopped: joint {number} {name} would pass its lower limit {value}"),
     N_("stopped: joint {number} {name} would need {need}"),
+    # app.core.reducer (the null motion, Ker J)
+    N_("the null motion {motion} moved the joints; the tool stood still"),
     # app.services.background.nearest_path
     N_("found: a singularity here (σmin/σmax = {ratio})"),
     N_("closest found: σmin/σmax = {ratio} (a singularity nearby)"),

@@ -34,6 +34,7 @@ from .. import fmt
 from ..palette import joint_hex
 from .common import Dispatch, bind, option_widget, show_option, sync_value
 from .errata import erratum_html
+from .null_motion import NullMotionPanel
 
 __all__ = ["MotionPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 
@@ -185,6 +186,7 @@ class MotionPanel:
                         height=_CHART_HEIGHT,
                         aspect=2.0,
                     )
+            self.null = NullMotionPanel(gui, dispatch, tr)
             nearest = gui.add_button(_("Go to the nearest singularity"), icon=viser.Icon.TARGET)
             nearest.on_click(lambda _: dispatch(FindSingularity()))
 
@@ -246,6 +248,7 @@ class MotionPanel:
             self.about.content = self._about(shown)
             self.readout.content = _readout(state, snap, self._pending is not None, self.tr)
         self.ik.content = _ik_html(state, self.tr)
+        self.null.draw(snap)
         # Charts at most every third frame while playing (each update resends the whole series).
         if (
             m.trace is not self._trace
@@ -327,6 +330,8 @@ def _readout(state: LabState, snap: Snapshot, pending: bool = False, tr: Transla
         if kind == "resolved_rate"
         else _("climbing w of the held rows")
         if kind == "climb"
+        else _("the null motion: the joints move, the tool stands still")
+        if kind == "path" and state.motion.found.startswith("the null motion")
         else _("descending to the nearest singularity")
         if kind == "path"
         else _("moving at q̇")
