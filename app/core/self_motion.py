@@ -15,7 +15,14 @@ NULL_FOUND = "the null motion {motion} moved the joints; the tool stood still"
 NULL_AMPLITUDE = 1.2
 """How far the null motion swings each way [rad | m along the unit direction] (less near a limit)."""
 
-__all__ = ["ROW_WORDS", "climbed_along", "null_motion_text", "null_motion_path", "NULL_FOUND"]
+__all__ = [
+    "ROW_WORDS",
+    "climbed_along",
+    "null_motion_text",
+    "null_motion_path",
+    "NULL_FOUND",
+    "is_null_motion",
+]
 
 ROW_WORDS = ("vx", "vy", "vz", "ωx", "ωy", "ωz")
 
@@ -74,3 +81,8 @@ def null_motion_path(
     for i in np.flatnonzero(d):
         room = min(room, float((upper[i] - q[i]) / abs(d[i])), float((q[i] - lower[i]) / abs(d[i])))
     return _sweep(q, d, max(room, 0.0), 30)
+
+
+def is_null_motion(m: MotionState) -> bool:
+    """Whether ``m`` plays the null motion (a path that says :data:`NULL_FOUND` when it ends)."""
+    return m.kind == "path" and m.found.startswith(NULL_FOUND.split("{", 1)[0])

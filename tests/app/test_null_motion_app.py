@@ -18,6 +18,7 @@ from app.core.refusals import say
 from app.core.self_motion import null_motion_text
 from app.core.snapshot import compute
 from app.core.state import LabState
+from app.views.panel.live import live_html
 from kinematics import fk, jacobian
 
 
@@ -42,6 +43,8 @@ def test_playing_the_null_motion_moves_q4_and_q6_and_holds_the_tool_pose():
     T0 = fk(state.robot, state.q)
     state = reduce(state, PlayNullMotion())
     assert state.playing and state.motion.kind == "path"
+    state = reduce(state, Step(FRAME_DT))
+    assert "the null motion (Ker J)" in live_html(state)  # not "to the nearest singularity"
     seen = [np.array(state.q)]
     while state.playing:
         state = reduce(state, Step(FRAME_DT))

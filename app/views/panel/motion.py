@@ -28,6 +28,7 @@ from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
 from ...core.refusals import say
 from ...core.robot_texts import motion_description, motion_name
+from ...core.self_motion import is_null_motion
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from .. import fmt
@@ -331,7 +332,7 @@ def _readout(state: LabState, snap: Snapshot, pending: bool = False, tr: Transla
         else _("climbing w of the held rows")
         if kind == "climb"
         else _("the null motion: the joints move, the tool stands still")
-        if kind == "path" and state.motion.found.startswith("the null motion")
+        if is_null_motion(state.motion)
         else _("descending to the nearest singularity")
         if kind == "path"
         else _("moving at q̇")
