@@ -40,6 +40,7 @@ __all__ = [
     "SelfMove",
     "FollowPath",
     "PlayNullMotion",
+    "FollowToolPath",
     "Wait",
     "GoToRepresentationSingularity",
     "EditRobot",
@@ -203,6 +204,14 @@ class PlayNullMotion:
 
 
 @dataclass(frozen=True)
+class FollowToolPath:
+    """Lay out a ``shape`` ("line" or "circle") through the tool point and follow it by the course's
+    Jacobian method (Newton for q(t₀), then q̇ = J⁺ẏ(t)), played back."""
+
+    shape: str
+
+
+@dataclass(frozen=True)
 class Wait:
     """Stop any motion and say ``note`` while the tab waits for a command's result (the nearest
     singularity being looked for away from the drawing thread)."""
@@ -250,6 +259,7 @@ Action = (
     | SelfMove
     | FollowPath
     | PlayNullMotion
+    | FollowToolPath
     | Wait
     | GoToRepresentationSingularity
     | EditRobot

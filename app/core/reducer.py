@@ -30,6 +30,7 @@ from .actions import (
     DriveTool,
     EditRobot,
     FollowPath,
+    FollowToolPath,
     GoTo,
     GoToRepresentationSingularity,
     Play,
@@ -55,6 +56,7 @@ from .options import OPTION
 from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
 from .self_motion import NULL_FOUND, null_motion_path, null_motion_text
 from .state import LabState, Options, default_options, frozen
+from .tool_path import SHAPES, followed
 
 __all__ = ["reduce", "InvalidAction", "named_configuration_at"]
 
@@ -195,6 +197,12 @@ def _reduce(state: LabState, action: Action) -> LabState:
             return motion_rules.self_move(state, _finite(s, "self-motion"))
         case FollowPath(path=path, found=found):
             return motion_rules.follow_path(state, path, found)
+        case FollowToolPath(shape=shape):
+            if shape not in SHAPES:
+                raise InvalidAction(f"shape must be one of {', '.join(SHAPES)}, got {str(shape)[:40]!r}")
+            configurations, said = followed(state, shape)
+            rows = tuple(tuple(float(x) for x in row) for row in configurations)
+            return motion_rules.follow_path(state, rows, said)
         case PlayNullMotion():
             return _null_motion(state)
         case Wait(note=note):

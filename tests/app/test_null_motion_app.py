@@ -76,7 +76,7 @@ def test_the_planar_2r_stretched_null_motion_is_said_with_its_ratio_in_each_lang
 
 
 def test_the_motion_tab_says_the_null_motion_and_its_button_plays_it(session):
-    words = session.panel.motion.null
+    words = session.panel.motion.course.null
     assert words.button.disabled and "full rank" in words.words.content
     session.dispatch(SetConfiguration(wrist_singular()))
     session.settle()

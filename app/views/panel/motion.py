@@ -31,11 +31,12 @@ from ...core.robot_texts import motion_description, motion_name
 from ...core.self_motion import is_null_motion
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
+from ...core.tool_path import is_tool_path
 from .. import fmt
 from ..palette import joint_hex
 from .common import Dispatch, bind, option_widget, show_option, sync_value
+from .course_motion import CourseMotion
 from .errata import erratum_html
-from .null_motion import NullMotionPanel
 
 __all__ = ["MotionPanel", "OWN_TWIST", "PLAY_BUTTONS"]
 
@@ -187,7 +188,7 @@ class MotionPanel:
                         height=_CHART_HEIGHT,
                         aspect=2.0,
                     )
-            self.null = NullMotionPanel(gui, dispatch, tr)
+            self.course = CourseMotion(gui, dispatch, tr)
             nearest = gui.add_button(_("Go to the nearest singularity"), icon=viser.Icon.TARGET)
             nearest.on_click(lambda _: dispatch(FindSingularity()))
 
@@ -249,7 +250,7 @@ class MotionPanel:
             self.about.content = self._about(shown)
             self.readout.content = _readout(state, snap, self._pending is not None, self.tr)
         self.ik.content = _ik_html(state, self.tr)
-        self.null.draw(snap)
+        self.course.draw(snap)
         # Charts at most every third frame while playing (each update resends the whole series).
         if (
             m.trace is not self._trace
@@ -333,6 +334,8 @@ def _readout(state: LabState, snap: Snapshot, pending: bool = False, tr: Transla
         if kind == "climb"
         else _("the null motion: the joints move, the tool stands still")
         if is_null_motion(state.motion)
+        else _("following the path y(t)")
+        if is_tool_path(state.motion)
         else _("descending to the nearest singularity")
         if kind == "path"
         else _("moving at q̇")
