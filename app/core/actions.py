@@ -41,6 +41,8 @@ __all__ = [
     "FollowPath",
     "PlayNullMotion",
     "FollowToolPath",
+    "FindIkSolutions",
+    "SelectIkSolution",
     "Wait",
     "GoToRepresentationSingularity",
     "EditRobot",
@@ -212,6 +214,18 @@ class FollowToolPath:
 
 
 @dataclass(frozen=True)
+class FindIkSolutions:
+    """Find the several IK solutions of the tool's pose (elbow up / down, wrist flip …)."""
+
+
+@dataclass(frozen=True)
+class SelectIkSolution:
+    """Move the arm to IK solution ``index`` (0-based) of those found."""
+
+    index: int
+
+
+@dataclass(frozen=True)
 class Wait:
     """Stop any motion and say ``note`` while the tab waits for a command's result (the nearest
     singularity being looked for away from the drawing thread)."""
@@ -260,6 +274,8 @@ Action = (
     | FollowPath
     | PlayNullMotion
     | FollowToolPath
+    | FindIkSolutions
+    | SelectIkSolution
     | Wait
     | GoToRepresentationSingularity
     | EditRobot

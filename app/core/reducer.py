@@ -20,6 +20,8 @@ import numpy as np
 from kinematics import Robot
 from kinematics.analytic_jacobian import representation_singularity
 from kinematics.errors import ConfigurationError
+from kinematics.motion.branches import branches
+from kinematics.numeric import fk
 from kinematics.singularity.null_motion import null_motion
 
 from . import motion_rules
@@ -29,6 +31,7 @@ from .actions import (
     ClearWrench,
     DriveTool,
     EditRobot,
+    FindIkSolutions,
     FollowPath,
     FollowToolPath,
     GoTo,
@@ -37,6 +40,7 @@ from .actions import (
     PlayNullMotion,
     ReplaceState,
     ResetMotion,
+    SelectIkSolution,
     SelfMove,
     SetConfiguration,
     SetDesired,
@@ -52,6 +56,7 @@ from .actions import (
 )
 from .build_table import edited_state
 from .motion_rules import FRAME_DT, MotionRefused
+from .motion_state import readonly
 from .options import OPTION
 from .ranges import joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
 from .self_motion import NULL_FOUND, null_motion_path, null_motion_text
@@ -203,11 +208,34 @@ def _reduce(state: LabState, action: Action) -> LabState:
             configurations, said = followed(state, shape)
             rows = tuple(tuple(float(x) for x in row) for row in configurations)
             return motion_rules.follow_path(state, rows, said)
+        case FindIkSolutions():
+            return _ik_solutions(state)
+        case SelectIkSolution(index=index):
+            return _select_solution(state, index)
         case PlayNullMotion():
             return _null_motion(state)
         case Wait(note=note):
             return state.replace(playing=False, stopped=str(note))
     raise InvalidAction(f"{action!r} is not a state change (a command is carried out by the session)")
+
+
+def _ik_solutions(state: LabState) -> LabState:
+    """The IK solutions of the tool's pose, kept in the motion state (the arm does not move)."""
+    T = fk(state.robot, np.array(state.q))
+    found = branches(state.robot, T, np.array(state.q))
+    solutions = readonly(np.array([b.q for b in found]).reshape(len(found), state.robot.dof))
+    return state.replace(motion=state.motion.replace(solutions=solutions, pose=readonly(T)))
+
+
+def _select_solution(state: LabState, index: object) -> LabState:
+    """The arm at solution ``index`` of those found (checked against them)."""
+    solutions = state.motion.solutions
+    count = 0 if solutions is None else len(solutions)
+    if solutions is None or not (
+        isinstance(index, int) and not isinstance(index, bool) and 0 <= index < count
+    ):
+        raise InvalidAction(f"index must be an int 0…{count - 1} (one of the solutions found), got {index!r}")
+    return state.replace(q=frozen(solutions[index]), configuration="", playing=False, stopped="")
 
 
 def _null_motion(state: LabState) -> LabState:

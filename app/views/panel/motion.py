@@ -250,7 +250,7 @@ class MotionPanel:
             self.about.content = self._about(shown)
             self.readout.content = _readout(state, snap, self._pending is not None, self.tr)
         self.ik.content = _ik_html(state, self.tr)
-        self.course.draw(snap)
+        self.course.draw(state, snap)
         # Charts at most every third frame while playing (each update resends the whole series).
         if (
             m.trace is not self._trace
