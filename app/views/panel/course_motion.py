@@ -15,6 +15,7 @@ import numpy as np
 import viser
 
 from kinematics import fk
+from kinematics.motion.ik import pose_error, target_rows
 
 from ...core.actions import FindIkSolutions, FollowToolPath, PlayNullMotion, SelectIkSolution
 from ...core.i18n import N_, Translator
@@ -133,7 +134,9 @@ class SolutionsPanel:
         here = next((k for k, q in enumerate(m.solutions) if np.abs(q - state.q).max() < 1e-6), None)
         if here is not None:
             sync_value(self.menu, labels[here])
-        stale = np.abs(fk(state.robot, np.array(state.q)) - m.pose).max() > 1e-6
+        # the rows IK solves (a planar 2R's elbows reach one point with two tool orientations)
+        rows = target_rows(state.robot, False, None)
+        stale = float(np.abs(pose_error(fk(state.robot, np.array(state.q)), m.pose)[rows]).max()) > 1e-6
         gap = _nearest_gap(m.solutions, revolute)
         count = len(m.solutions)
         text = self.tr.ngettext(
