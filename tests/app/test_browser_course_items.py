@@ -66,3 +66,21 @@ def test_the_ik_solutions_are_found_and_the_other_elbow_chosen(tmp_path):
         words.evaluate("e => e.scrollIntoView({block: 'center'})")
         page.screenshot(path=str(_out(tmp_path) / "ik_solutions_planar2_elbow_down.png"))
         assert not errors
+
+
+def test_the_workspace_cloud_marks_both_kinds_of_critical_points(tmp_path):
+    from app.core.actions import SetOption
+
+    with app_page(Lab(port=0)) as (page, session, errors):
+        session.dispatch(SetOption("workspace", True))
+        session.settle()
+        page.get_by_role("tab", name="Maps").click()
+        key = page.get_by_text("Critical points:").first
+        key.wait_for()
+        key.evaluate("e => e.scrollIntoView({block: 'center'})")
+        text = key.inner_text()
+        assert "near a singularity" in text and "with a joint at a limit" in text
+        right = key.evaluate("e => e.getBoundingClientRect().right")
+        assert right <= 1280
+        page.screenshot(path=str(_out(tmp_path) / "workspace_cloud_critical_points.png"))
+        assert not errors
