@@ -40,6 +40,10 @@ __all__ = [
     "DriveTool",
     "SelfMove",
     "FollowPath",
+    "PlayNullMotion",
+    "FollowToolPath",
+    "FindIkSolutions",
+    "SelectIkSolution",
     "Wait",
     "GoToRepresentationSingularity",
     "EditRobot",
@@ -205,6 +209,32 @@ class FollowPath:
 
 
 @dataclass(frozen=True)
+class PlayNullMotion:
+    """At a singularity, play the null joint motion (Ker J) back and forth: the joints move, the tool
+    stands still."""
+
+
+@dataclass(frozen=True)
+class FollowToolPath:
+    """Lay out a ``shape`` ("line" or "circle") through the tool point and follow it by the course's
+    Jacobian method (Newton for q(t₀), then q̇ = J⁺ẏ(t)), played back."""
+
+    shape: str
+
+
+@dataclass(frozen=True)
+class FindIkSolutions:
+    """Find the several IK solutions of the tool's pose (elbow up / down, wrist flip …)."""
+
+
+@dataclass(frozen=True)
+class SelectIkSolution:
+    """Move the arm to IK solution ``index`` (0-based) of those found."""
+
+    index: int
+
+
+@dataclass(frozen=True)
 class Wait:
     """Stop any motion and say ``note`` while the tab waits for a command's result (the nearest
     singularity being looked for away from the drawing thread)."""
@@ -252,6 +282,10 @@ Action = (
     | DriveTool
     | SelfMove
     | FollowPath
+    | PlayNullMotion
+    | FollowToolPath
+    | FindIkSolutions
+    | SelectIkSolution
     | Wait
     | GoToRepresentationSingularity
     | EditRobot

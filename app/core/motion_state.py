@@ -128,6 +128,9 @@ class MotionState:
         ik: The last "drive the tool" solve, or ``None``.
         pace: The motion's time per second of the clock and unit speed at the last step (1: as fast as
             the speed option says; less near a singularity, see :mod:`app.core.pacing`).
+        solutions: The IK solutions (k, n) of ``pose`` found on request (elbow up / down, wrist flip …),
+            nearest to where the arm stood first, or ``None``.
+        pose: T_base_tool (4, 4) whose solutions they are.
     """
 
     kind: str = "joints"
@@ -143,6 +146,8 @@ class MotionState:
     direction: np.ndarray | None = None
     ik: IkInfo | None = None
     pace: float = 1.0
+    solutions: np.ndarray | None = None
+    pose: np.ndarray | None = None
 
     def replace(self, **changes: object) -> MotionState:
         return replace(self, **changes)  # type: ignore[arg-type]

@@ -20,6 +20,9 @@ import numpy as np
 from kinematics import Robot
 from kinematics.analytic_jacobian import representation_singularity
 from kinematics.errors import ConfigurationError
+from kinematics.motion.branches import branches
+from kinematics.numeric import fk
+from kinematics.singularity.null_motion import null_motion
 
 from . import motion_rules
 from .actions import (
@@ -28,12 +31,16 @@ from .actions import (
     ClearWrench,
     DriveTool,
     EditRobot,
+    FindIkSolutions,
     FollowPath,
+    FollowToolPath,
     GoTo,
     GoToRepresentationSingularity,
     Play,
+    PlayNullMotion,
     ReplaceState,
     ResetMotion,
+    SelectIkSolution,
     SelfMove,
     SetAcceleration,
     SetConfiguration,
@@ -50,9 +57,12 @@ from .actions import (
 )
 from .build_table import edited_state
 from .motion_rules import FRAME_DT, MotionRefused
+from .motion_state import readonly
 from .options import OPTION
 from .ranges import accel_ranges, joint_ranges, rate_ranges, snap_joint, twist_ranges, wrench_ranges
+from .self_motion import NULL_FOUND, null_motion_path, null_motion_text
 from .state import LabState, Options, default_options, frozen
+from .tool_path import SHAPES, followed
 
 __all__ = ["reduce", "InvalidAction", "named_configuration_at"]
 
@@ -197,9 +207,55 @@ def _reduce(state: LabState, action: Action) -> LabState:
             return motion_rules.self_move(state, _finite(s, "self-motion"))
         case FollowPath(path=path, found=found):
             return motion_rules.follow_path(state, path, found)
+        case FollowToolPath(shape=shape):
+            if shape not in SHAPES:
+                raise InvalidAction(f"shape must be one of {', '.join(SHAPES)}, got {str(shape)[:40]!r}")
+            configurations, said = followed(state, shape)
+            rows = tuple(tuple(float(x) for x in row) for row in configurations)
+            return motion_rules.follow_path(state, rows, said)
+        case FindIkSolutions():
+            return _ik_solutions(state)
+        case SelectIkSolution(index=index):
+            return _select_solution(state, index)
+        case PlayNullMotion():
+            return _null_motion(state)
         case Wait(note=note):
             return state.replace(playing=False, stopped=str(note))
     raise InvalidAction(f"{action!r} is not a state change (a command is carried out by the session)")
+
+
+def _ik_solutions(state: LabState) -> LabState:
+    """The IK solutions of the tool's pose, kept in the motion state (the arm does not move)."""
+    T = fk(state.robot, np.array(state.q))
+    found = branches(state.robot, T, np.array(state.q))
+    solutions = readonly(np.array([b.q for b in found]).reshape(len(found), state.robot.dof))
+    return state.replace(motion=state.motion.replace(solutions=solutions, pose=readonly(T)))
+
+
+def _select_solution(state: LabState, index: object) -> LabState:
+    """The arm at solution ``index`` of those found (checked against them)."""
+    solutions = state.motion.solutions
+    count = 0 if solutions is None else len(solutions)
+    if solutions is None or not (
+        isinstance(index, int) and not isinstance(index, bool) and 0 <= index < count
+    ):
+        raise InvalidAction(f"index must be an int 0…{count - 1} (one of the solutions found), got {index!r}")
+    return state.replace(q=frozen(solutions[index]), configuration="", playing=False, stopped="")
+
+
+def _null_motion(state: LabState) -> LabState:
+    """Play the null joint motion of Ker J back and forth (refused where J has full rank)."""
+    m = null_motion(state.robot, np.array(state.q))
+    if m.dimension == 0:
+        raise MotionRefused("no null motion here: J has full rank (go to a singularity first)")
+    ranges = joint_ranges(state.robot)
+    lo = np.array([r.clamp_si(-math.inf) for r in ranges])
+    hi = np.array([r.clamp_si(math.inf) for r in ranges])
+    path = null_motion_path(np.array(state.q), m.direction, lo, hi)
+    if float(np.ptp(path, axis=0).max()) < 1e-6:
+        raise MotionRefused("no null motion here: it would leave a joint's range")
+    found = NULL_FOUND.format(motion=null_motion_text(m.direction))
+    return motion_rules.follow_path(state, tuple(tuple(float(x) for x in row) for row in path), found)
 
 
 def _representation_singularity(state: LabState, convention: object) -> LabState:

@@ -30,6 +30,13 @@ TEMPLATES: tuple[str, ...] = (
     N_("stopped: joint {number} {name} would pass its upper limit {value}"),
     N_("stopped: joint {number} {name} would pass its lower limit {value}"),
     N_("stopped: joint {number} {name} would need {need}"),
+    # app.core.reducer (the null motion, Ker J)
+    N_("the null motion {motion} moved the joints; the tool stood still"),
+    # app.core.tool_path (the course's Jacobian IK along a path)
+    N_("the tool followed the line: q̇ = J⁺ẏ(t) held the error below {error} m"),
+    N_("the tool followed the circle: q̇ = J⁺ẏ(t) held the error below {error} m"),
+    N_("the tool left the line near a singularity: the error reached {error} m, a joint rate {rate} rad/s"),
+    N_("the tool left the circle near a singularity: the error reached {error} m, a joint rate {rate} rad/s"),
     # app.services.background.nearest_path
     N_("found: a singularity here (σmin/σmax = {ratio})"),
     N_("closest found: σmin/σmax = {ratio} (a singularity nearby)"),

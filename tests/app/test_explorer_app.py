@@ -254,6 +254,15 @@ def test_the_workspace_cloud_has_a_legend_of_its_colours(session):
     assert f"linear-gradient(to right, {', '.join(COLOUR_STOPS)})" in key.content
     shown = re.findall(r"<span>(.*?)</span>", key.content)
     assert shown[0] == "w = 0" and float(shown[1]) == pytest.approx(cloud.w_max, rel=2e-3)
+    # both kinds of critical points (002): the singular ones and those on the joint-limit boundary
+    assert "Critical points:" in key.content and "2 000 points with a joint at a limit" in key.content
+    robot = session.state.robot
+    lo, hi = robot.qlim
+    assert cloud.limits == 2000 and (cloud.colors[-cloud.limits :] == (232, 89, 12)).all()
+    assert (
+        cloud.singular > 0
+        and (cloud.colors[: -cloud.limits] == (230, 73, 128)).all(axis=1).sum() == cloud.singular
+    )
     session.panel.maps.cloud.value = False
     session.settle()
     assert key.content == ""
@@ -274,7 +283,7 @@ def test_workspace_cloud_is_drawn_from_tool_points(session):
     session.settle()
     cloud = scene_node(session, "/lab/drive/cloud")
     points = np.asarray(cloud.points)
-    assert points.shape == (20_000, 3) and np.isfinite(points).all()
+    assert points.shape == (20_000 + 2_000, 3) and np.isfinite(points).all()  # + the joint-limit points
     reach = np.linalg.norm(points - fk(session.state.robot, np.zeros(6))[:3, 3] * 0, axis=1).max()
     assert reach < 1.5  # the Puma reaches under a metre from its base
     session.panel.maps.cloud.value = False

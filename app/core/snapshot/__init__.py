@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinematics import jacobian, jacobian_dot, jacobian_dot_alone
+from kinematics import Robot, jacobian, jacobian_dot, jacobian_dot_alone
 from kinematics.analysis import (
     Ellipsoid,
     condition_number,
@@ -28,7 +28,9 @@ from kinematics.inverse import solve_rates
 from kinematics.numeric import frames_and_jacobian
 from kinematics.singularity import SingularityReport, assess
 from kinematics.singularity.decoupling import Decoupling, decouple
+from kinematics.singularity.limits import LimitContact, limit_contacts
 from kinematics.singularity.lost import LostDirection, lost_direction
+from kinematics.singularity.null_motion import NullMotion, null_motion
 
 from ..ranges import reach
 from ..state import LabState
@@ -91,6 +93,8 @@ class Snapshot:
         arm_ellipsoid, wrist_ellipsoid: The decoupled blocks' ellipsoids at the wrist centre (the
             wrist centre's velocity by the arm joints, the angular velocity by the wrist joints), when
             the arm or the wrist block loses a direction (they are drawn only then), else ``None``.
+        limits: The joints at a limit (a critical point of the course's 002: each can move one way only).
+        null: A null joint motion (Ker J of the task rows) at a singularity, else ``None``.
         T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
     """
 
@@ -133,6 +137,8 @@ class Snapshot:
     losses: tuple[Loss, ...] = ()
     arm_ellipsoid: Ellipsoid | None = None
     wrist_ellipsoid: Ellipsoid | None = None
+    null: NullMotion | None = None
+    limits: tuple[LimitContact, ...] = ()
 
     @property
     def T_tool(self) -> np.ndarray:
@@ -222,7 +228,15 @@ def compute(state: LabState) -> Snapshot:
         losses=every_loss,
         arm_ellipsoid=arm_e,
         wrist_ellipsoid=wrist_e,
+        null=_null(robot, q) if report.status != "regular" else None,
+        limits=limit_contacts(robot, q),
     )
+
+
+def _null(robot: Robot, q: np.ndarray) -> NullMotion | None:
+    """The null motion where the task rows lose rank (``None`` near, but not at, a singularity)."""
+    found = null_motion(robot, q)
+    return found if found.dimension else None
 
 
 def _map(state: LabState) -> JointMap | None:

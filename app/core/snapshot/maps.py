@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinematics import Robot, maps
+from kinematics import Robot, fk, maps
 
 from ..ranges import joint_ranges
 
@@ -24,6 +24,13 @@ __all__ = ["JointMap", "Cloud", "joint_map", "workspace_cloud", "colormap", "png
 MAP_RESOLUTION = 48
 """Cells per side of the joint-space map."""
 CLOUD_POINTS = 20_000
+LIMIT_POINTS = 2_000
+"""Extra cloud points with one joint at a limit (002's joint-limit critical points), drawn in LIMIT_RGB."""
+LIMIT_RGB = (232, 89, 12)
+"""The colour of the joint-limit points (orange)."""
+SINGULAR_RGB = (230, 73, 128)
+"""The colour of the (near-)singular points, σmin/σmax < SINGULAR_RATIO (pink)."""
+SINGULAR_RATIO = 0.01
 """Tool points in the workspace cloud."""
 
 # Viridis at five stops (perceptually ordered, readable by colour-blind viewers): low w dark blue.
@@ -105,11 +112,16 @@ class Cloud:
         points: (N, 3) float32 [m].
         colors: (N, 3) uint8.
         w_max: Largest w (the colour scale's top).
+        singular: How many of the first CLOUD_POINTS are drawn as (near-)singular (SINGULAR_RGB).
+        limits: How many points at the end have a joint at a limit (LIMIT_RGB): the critical points of
+            the joint-limit boundary.
     """
 
     points: np.ndarray
     colors: np.ndarray
     w_max: float
+    singular: int = 0
+    limits: int = 0
 
 
 @functools.lru_cache(maxsize=8)
@@ -119,4 +131,15 @@ def workspace_cloud(robot: Robot, n: int = CLOUD_POINTS) -> Cloud:
     w = np.asarray(result.w, dtype=float)
     top = float(np.max(w)) if w.size and np.isfinite(w).all() else 0.0
     colors = colormap(w / top if top > 0 else np.zeros_like(w))
-    return Cloud(np.asarray(result.points, dtype=np.float32), colors, top)
+    near = np.asarray(result.inverse_kappa) < SINGULAR_RATIO
+    colors[near] = SINGULAR_RGB
+    # The joint-limit points: random configurations with one joint (at random) at one of its ends.
+    rng = np.random.default_rng(1)
+    lim = maps.sampling_range(robot)
+    Q = rng.uniform(lim[0], lim[1], size=(LIMIT_POINTS, robot.dof))
+    joint = rng.integers(0, robot.dof, LIMIT_POINTS)
+    Q[np.arange(LIMIT_POINTS), joint] = np.where(rng.random(LIMIT_POINTS) < 0.5, lim[0, joint], lim[1, joint])
+    edge = np.array([fk(robot, q)[:3, 3] for q in Q]).reshape(LIMIT_POINTS, 3)
+    points = np.vstack([np.asarray(result.points, dtype=np.float32), edge.astype(np.float32)])
+    colors = np.vstack([colors, np.tile(np.array(LIMIT_RGB, dtype=np.uint8), (LIMIT_POINTS, 1))])
+    return Cloud(points, colors, top, int(near.sum()), LIMIT_POINTS)

@@ -16,7 +16,9 @@ from kinematics.conventions import ROW_HTML
 
 from ...core.i18n import Translator, translations
 from ...core.motion_rules import redundancy_rows
+from ...core.self_motion import is_null_motion
 from ...core.state import LabState
+from ...core.tool_path import is_tool_path
 from .. import fmt
 from ..palette import joint_text_hex
 
@@ -29,6 +31,10 @@ def _doing(kind: str, tr: Translator) -> str:
         return _("holding v")
     if kind == "climb":
         return _("climbing w")
+    if kind == "tool_path":
+        return _("following the path y(t)")
+    if kind == "null":
+        return _("the null motion (Ker J)")
     if kind == "path":
         return _("to the nearest singularity")
     return _("moving at q̇") if kind == "joints" else ""
@@ -53,7 +59,7 @@ def live_html(state: LabState, tr: Translator | None = None) -> str:
             f"<b>{fmt.fixed(value, 1 if revolute else 3, tr)}</b><small>{unit}</small></div>"
         )
     kappa = float(trace.kappa[-1])
-    doing = _doing(m.kind, tr)
+    doing = _doing("null" if is_null_motion(m) else "tool_path" if is_tool_path(m) else m.kind, tr)
     state_word = _("playing") if state.playing else _("paused") if not state.stopped else _("stopped")
     slowed = _("slowed ×{factor} near the singularity").format(factor=fmt.number(m.pace, 2, tr))
     pace = (

@@ -23,7 +23,15 @@ from ...core.actions import SetOption
 from ...core.i18n import Translator, translations
 from ...core.ranges import joint_ranges
 from ...core.snapshot import Snapshot
-from ...core.snapshot.maps import CLOUD_POINTS, Cloud, JointMap, colormap
+from ...core.snapshot.maps import (
+    CLOUD_POINTS,
+    LIMIT_RGB,
+    SINGULAR_RATIO,
+    SINGULAR_RGB,
+    Cloud,
+    JointMap,
+    colormap,
+)
 from ...core.state import LabState
 from ...viser_adapter import handle_uuid
 from .. import fmt
@@ -120,7 +128,26 @@ def cloud_legend_html(cloud: Cloud | None, tr: Translator | None = None) -> str:
     return (
         f'<div class="jl">{MAP_CSS}<div class="jl-note">{what}</div>'
         f'<div class="jl-cloudkey"><span>w = 0</span><div class="bar" style="background:'
-        f'{_gradient("right")}"></div><span>{_tick(cloud.w_max, tr)}</span></div></div>'
+        f'{_gradient("right")}"></div><span>{_tick(cloud.w_max, tr)}</span></div>'
+        f"{_critical_key(cloud, tr)}</div>"
+    )
+
+
+def _critical_key(cloud: Cloud, tr: Translator) -> str:
+    """The key of the two kinds of critical points the cloud marks (002: singular and joint-limit points)."""
+    singular = tr.gettext("near a singularity (σmin/σmax < {ratio})").format(
+        ratio=fmt.number(SINGULAR_RATIO, 2, tr)
+    )
+    limits = tr.ngettext(
+        "{count} points with a joint at a limit",
+        "{count} points with a joint at a limit",
+        cloud.limits,
+    ).format(count=f"{cloud.limits:,}".replace(",", "\u2009"))
+    title = tr.gettext("Critical points:")
+    swatch = '<span style="display:inline-block;width:10px;height:10px;background:rgb{rgb}"></span>'
+    return (
+        f'<div class="jl-note">{fmt.escape(title)} {swatch.format(rgb=SINGULAR_RGB)} {fmt.escape(singular)}; '
+        f"{swatch.format(rgb=LIMIT_RGB)} {fmt.escape(limits)}</div>"
     )
 
 

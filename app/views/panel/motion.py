@@ -28,11 +28,14 @@ from ...core.motion_rules import redundancy_rows
 from ...core.motion_state import Trace
 from ...core.refusals import say
 from ...core.robot_texts import motion_description, motion_name
+from ...core.self_motion import is_null_motion
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
+from ...core.tool_path import is_tool_path
 from .. import fmt
 from ..palette import joint_hex
 from .common import Dispatch, bind, option_widget, show_option, sync_value
+from .course_motion import CourseMotion
 from .errata import erratum_html
 
 __all__ = ["MotionPanel", "OWN_TWIST", "PLAY_BUTTONS"]
@@ -185,6 +188,7 @@ class MotionPanel:
                         height=_CHART_HEIGHT,
                         aspect=2.0,
                     )
+            self.course = CourseMotion(gui, dispatch, tr)
             nearest = gui.add_button(_("Go to the nearest singularity"), icon=viser.Icon.TARGET)
             nearest.on_click(lambda _: dispatch(FindSingularity()))
 
@@ -246,6 +250,7 @@ class MotionPanel:
             self.about.content = self._about(shown)
             self.readout.content = _readout(state, snap, self._pending is not None, self.tr)
         self.ik.content = _ik_html(state, self.tr)
+        self.course.draw(state, snap)
         # Charts at most every third frame while playing (each update resends the whole series).
         if (
             m.trace is not self._trace
@@ -327,6 +332,10 @@ def _readout(state: LabState, snap: Snapshot, pending: bool = False, tr: Transla
         if kind == "resolved_rate"
         else _("climbing w of the held rows")
         if kind == "climb"
+        else _("the null motion: the joints move, the tool stands still")
+        if is_null_motion(state.motion)
+        else _("following the path y(t)")
+        if is_tool_path(state.motion)
         else _("descending to the nearest singularity")
         if kind == "path"
         else _("moving at q̇")

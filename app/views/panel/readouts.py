@@ -218,7 +218,7 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
     # the pointer as a drag leaves a named configuration (or down as a "lost" line comes and goes).
     lines = "".join(
         _description(x) if x is sub and not state.stopped else f'<div class="jl-sub">{x}</div>'
-        for x in (representation, sub, lost)
+        for x in (representation, sub, lost, limit_text(snap, robot, tr))
         if x
     )
     return f'<div class="jl">{banner}<div class="jl-lines">{lines}</div></div>'
@@ -319,3 +319,26 @@ def source_html(robot: Robot, chain: object | None, meshes: tuple[int, list[str]
     elif found:
         parts.append(f"{found} mesh files")
     return f'<div class="jl jl-note">{"; ".join(parts)}.</div>'
+
+
+def limit_text(snap: Snapshot, robot: Robot, tr: Translator) -> str:
+    """Why a configuration with a joint at a limit is critical (002: the joint-limit points), one sentence
+    per such joint; empty when none is."""
+    _ = tr.gettext
+    lines = []
+    for c in snap.limits:
+        template = (
+            _(
+                "<b>Critical point</b>: joint {number} ({name}) is at its lower limit, so it can only "
+                "increase (q̇{number} ≥ 0): the tool velocity along column {number} of J is possible in "
+                "that sense only."
+            )
+            if c.side == "lower"
+            else _(
+                "<b>Critical point</b>: joint {number} ({name}) is at its upper limit, so it can only "
+                "decrease (q̇{number} ≤ 0): the tool velocity along column {number} of J is possible in "
+                "the opposite sense only."
+            )
+        )
+        lines.append(template.format(number=c.joint + 1, name=fmt.escape(robot.joint_names[c.joint])))
+    return "<br>".join(lines)
