@@ -112,3 +112,14 @@ def assert_all_finite(session: ClientSession) -> None:
 
 wait_until = poll
 """The name of :func:`fakes.poll` before tests/fakes.py (for tests written before it)."""
+
+
+def derive_walk(session: ClientSession, method: str, step: int) -> None:
+    """Open the Derive tab's ``method`` at ``step`` (0-based) as the user picks them, and check it took."""
+    from app.core.snapshot.derive import METHODS
+
+    session.panel.derive.method.value = METHODS[method]
+    session.settle()
+    session.panel.derive.step.value = step + 1
+    session.settle()
+    assert session.state.options.derive == method and session.state.options.derive_step == step

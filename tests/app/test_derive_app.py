@@ -9,7 +9,7 @@ import re
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, running_lab, scene_node
+from app_helpers import assert_all_finite, derive_walk, running_lab, scene_node
 from fakes import poll
 from locations import DATA
 
@@ -26,14 +26,6 @@ def choose(session, name: str) -> None:
     session.dispatch(ChooseRobot(name))
     session.settle()
     assert session.state.robot_name == name
-
-
-def walk(session, method: str, step: int) -> None:
-    session.panel.derive.method.value = METHODS[method]  # as the user picks it
-    session.settle()
-    session.panel.derive.step.value = step + 1
-    session.settle()
-    assert session.state.options.derive == method and session.state.options.derive_step == step
 
 
 def text(html: str) -> str:
@@ -61,7 +53,7 @@ def test_whitney_step_shows_and_draws_the_column(session):
     choose(session, "puma560")
     session.dispatch(SetJoint(2, 0.4))
     session.settle()
-    walk(session, "whitney", 2)
+    derive_walk(session, "whitney", 2)
     robot, q = session.state.robot, np.array(session.state.q)
     # Independently: joint 3 turns about z₂ of DH frame 2, through its origin p₂.
     L = link_frames(robot, q)
@@ -79,14 +71,14 @@ def test_whitney_step_shows_and_draws_the_column(session):
     assert tuple(arrows.colors[0]) == joint_color(2)
     lever = scene_node(session, "/lab/derive/thin_arrows")
     np.testing.assert_allclose(lever.points[0], [p2, pn], atol=1e-5)
-    walk(session, "whitney", 1)  # the next joint's arrows take its colour
+    derive_walk(session, "whitney", 1)  # the next joint's arrows take its colour
     assert tuple(scene_node(session, "/lab/derive/arrows").colors[0]) == joint_color(1)
     assert_all_finite(session)
 
 
 def test_next_and_previous_step_stop_at_the_ends(session):
     choose(session, "planar2")
-    walk(session, "whitney", 0)
+    derive_walk(session, "whitney", 0)
     buttons = session.panel.derive.buttons
     for expected in (1, 1):
         buttons._impl.value = "Next ▶"  # noqa: SLF001 - what the click handler reads
@@ -102,7 +94,7 @@ def test_next_and_previous_step_stop_at_the_ends(session):
 
 def test_dh_step_shows_A_i_and_its_product(session):
     choose(session, "puma560")
-    walk(session, "dh", 3)
+    derive_walk(session, "dh", 3)
     robot, q = session.state.robot, np.array(session.state.q)
     L = link_frames(robot, q)
     A4 = np.linalg.inv(L[3]) @ L[4]
@@ -118,7 +110,7 @@ def test_dh_step_shows_A_i_and_its_product(session):
 
 def test_differentiation_step_draws_the_tool_path_and_its_tangent(session):
     choose(session, "planar2")
-    walk(session, "differentiation", 0)
+    derive_walk(session, "differentiation", 0)
     robot, q = session.state.robot, np.array(session.state.q)
     lines = scene_node(session, "/lab/derive/lines")
     assert lines.visible
@@ -134,7 +126,7 @@ def test_differentiation_step_draws_the_tool_path_and_its_tangent(session):
 
 def test_propagation_uses_the_tabs_rates_and_ends_at_J_qdot(session):
     choose(session, "puma560")
-    walk(session, "propagation", 5)
+    derive_walk(session, "propagation", 5)
     assert "shown for q̇ᵢ = 1" in text(session.panel.derive.body.content)
     for i, rate in enumerate((0.3, -0.2, 0.5, 0.1, 0.4, -0.6)):
         session.dispatch(SetRate(i, rate))
@@ -149,7 +141,7 @@ def test_propagation_uses_the_tabs_rates_and_ends_at_J_qdot(session):
 
 def test_force_step_is_the_transpose(session):
     choose(session, "planar2")
-    walk(session, "force", 0)
+    derive_walk(session, "force", 0)
     session.dispatch(SetWrench(1, 2.0))
     session.settle()
     tau = jacobian(session.state.robot, session.state.q).T @ np.array(session.state.wrench)
@@ -161,7 +153,7 @@ def test_force_step_is_the_transpose(session):
 def test_switching_robot_keeps_the_walk_and_starts_at_joint_1(session):
     """A new robot's walk starts at its first joint, not at the last robot's step (issue 21)."""
     choose(session, "puma560")
-    walk(session, "whitney", 5)
+    derive_walk(session, "whitney", 5)
     choose(session, "planar2")
     assert session.state.options.derive == "whitney" and session.state.options.derive_step == 0
     assert "Step 1 of 2" in text(session.panel.derive.body.content)
@@ -173,7 +165,7 @@ def test_every_step_at_a_singularity_is_finite(session, method):
     session.dispatch(SetJoint(4, 0.0))  # wrist singular
     session.settle()
     for step in range(6):
-        walk(session, method, step)
+        derive_walk(session, method, step)
         assert "✗" not in session.panel.derive.body.content
         assert_all_finite(session)
     session.panel.derive.method.value = METHODS[""]
@@ -186,7 +178,7 @@ def test_a_urdf_robot_has_no_dh_table_but_every_walk():
     with running_lab(urdf=str(DATA / "iiwa14_like.urdf")) as (lab, session, _):
         assert "comes from a URDF" in session.panel.derive.table.content
         for method, step in (("whitney", 3), ("propagation", 6), ("force", 3)):
-            walk(session, method, step)
+            derive_walk(session, method, step)
             assert "✓" in session.panel.derive.body.content
             assert_all_finite(session)
 
@@ -197,7 +189,7 @@ def test_each_step_is_shown_in_symbols_too(symbolic_session):
     (and the assembled J and det J at the last one)."""
     session = symbolic_session
     choose(session, "planar2")
-    walk(session, "whitney", 1)
+    derive_walk(session, "whitney", 1)
     formula = session.panel.derive.formula
     poll(lambda: "<math" in formula.content)
     assert "Column 2 = z₁ × (pₙ − p₁)" in formula.content
@@ -206,11 +198,11 @@ def test_each_step_is_shown_in_symbols_too(symbolic_session):
     assert "det J of the task rows, factored: J is singular where a factor vanishes" in formula.content
     assert "(elbow singularity)" in formula.content and "<mo>⇒</mo>" in formula.content
     assert "sin(q2)" not in formula.content
-    walk(session, "whitney", 0)
+    derive_walk(session, "whitney", 0)
     assert "Column 1 = z₀ × (pₙ − p₀)" in formula.content and "det J" not in formula.content
-    walk(session, "propagation", 0)
+    derive_walk(session, "propagation", 0)
     poll(lambda: "ω" in formula.content and "<math" in formula.content)
-    walk(session, "dh", 1)
+    derive_walk(session, "dh", 1)
     poll(lambda: "A₂" in formula.content and "⁰T₂" in formula.content)
 
 
@@ -225,7 +217,7 @@ def test_step_labels_keep_clear_of_the_joint_labels_and_of_each_other(session, r
     choose(session, robot)
     size = session.scene.size
     for step in range(session.state.robot.dof):
-        walk(session, method, step)
+        derive_walk(session, method, step)
         joints = [scene_node(session, f"/lab/arm/label_{j}") for j in range(session.state.robot.dof)]
         at = [np.asarray(n.position) for n in joints if n.visible]
         shown = [

@@ -5,7 +5,7 @@ step's bounds, the 3-D frames drawn, and its symbolic steps chosen for the tab."
 from __future__ import annotations
 
 import numpy as np
-from app_helpers import assert_all_finite
+from app_helpers import assert_all_finite, derive_walk
 
 import robots
 from app.core.actions import SetConfiguration, SetOption
@@ -17,18 +17,11 @@ from app.views.panel.derive_html import formulas_html
 from kinematics import fk, link_frames
 
 
-def _walk(session, method: str, step: int) -> None:
-    session.panel.derive.method.value = METHODS[method]
-    session.settle()
-    session.panel.derive.step.value = step + 1
-    session.settle()
-
-
 def test_the_3r_walk_ends_with_the_tool_frame_3T4_and_0T4(session):
     session.dispatch(ChooseRobot("elbow3r"))  # 001's spatial 3R: the tool is frame 4 = Tx(L3)
     session.dispatch(SetConfiguration((0.3, -0.7, 1.1)))
     session.settle()
-    _walk(session, "dh", 3)
+    derive_walk(session, "dh", 3)
     assert session.state.options.derive_step == 3 and session.panel.derive.step.max == 4
     d = session.snapshot.derive
     robot, q = session.state.robot, np.array(session.state.q)
@@ -47,7 +40,7 @@ def test_the_3r_walk_ends_with_the_tool_frame_3T4_and_0T4(session):
     assert "x₃" in labels and "x₄" in labels
     assert len(session.scene.derive.extent)
     # Joint steps of the DH walk count the tool step too; Next stops on it.
-    _walk(session, "dh", 0)
+    derive_walk(session, "dh", 0)
     assert "Step 1 of 4" in session.panel.derive.body.content
     session.dispatch(SetOption("derive_step", 9))
     session.settle()

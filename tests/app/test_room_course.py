@@ -9,13 +9,12 @@ import re
 
 import numpy as np
 import pytest
-from app_helpers import assert_all_finite, scene_node, wait_until
+from app_helpers import assert_all_finite, derive_walk, scene_node, wait_until
 from fakes import poll
 
 from app.core.actions import GoTo, SetRate, SetWrench
 from app.core.commands import ChooseRobot, UploadRobot
 from app.core.numbers import NumberError, parse_number
-from app.core.snapshot.derive import METHODS
 from app.views.camera import in_view
 from app.views.panel.errata import ERRATA
 
@@ -247,12 +246,6 @@ def test_the_dh_table_shows_the_files_numbers(session):
 
 
 # ---------------------------------------------------------------------- item 12: the Derive tab
-def _walk(session, method: str, step: int) -> None:
-    session.panel.derive.method.value = METHODS[method]
-    session.settle()
-    session.panel.derive.step.value = step + 1
-    session.settle()
-    assert session.state.options.derive == method and session.state.options.derive_step == step
 
 
 def test_trr_velocity_propagation_draws_every_links_velocity_readably(session):
@@ -262,7 +255,7 @@ def test_trr_velocity_propagation_draws_every_links_velocity_readably(session):
     choose(session, "trr")
     for i, rate in enumerate((0.5, np.pi / 2, np.pi / 4)):
         session.dispatch(SetRate(i, rate))
-    _walk(session, "propagation", 2)
+    derive_walk(session, "propagation", 2)
     d, size = session.snapshot.derive, session.scene.size
     thin = scene_node(session, "/lab/derive/thin_arrows").points
     thick = scene_node(session, "/lab/derive/arrows").points
@@ -288,7 +281,7 @@ def test_trr_velocity_propagation_draws_every_links_velocity_readably(session):
 
 def test_a_new_robot_starts_its_walk_at_joint_1(session):
     choose(session, "puma560")
-    _walk(session, "propagation", 5)
+    derive_walk(session, "propagation", 5)
     choose(session, "trr")
     assert session.state.options.derive_step == 0 and session.panel.derive.step.value == 1
     assert "Step 1 of 3" in _text(session.panel.derive.body.content)
@@ -300,7 +293,7 @@ def test_course_letters_reach_the_derive_tabs_steps(symbolic_session):
     l₁, l₂, l₃), not its numbers; without, the numbers (typeset by the real symbolic worker)."""
     session = symbolic_session
     choose(session, "trr")
-    _walk(session, "dh", 1)
+    derive_walk(session, "dh", 1)
     formula = session.panel.derive.formula
     wait_until(lambda: "⁰T₂" in formula.content and "<math" in formula.content, timeout=120)
     assert "<msub><mi>l</mi><mn>2</mn></msub>" not in formula.content

@@ -6,10 +6,9 @@ from __future__ import annotations
 
 import json
 
-from app_helpers import scene_node, wait_until
+from app_helpers import derive_walk, scene_node, wait_until
 
 from app.core.commands import ChooseRobot
-from app.core.snapshot.derive import METHODS
 from app.views.panel import TAB_LABELS
 
 _DERIVE_NODES = ("arrows", "thin_arrows", "lines", *(f"label_{k}" for k in range(6)))
@@ -29,18 +28,11 @@ def shown(session) -> list[str]:
     return [name for name in _DERIVE_NODES if scene_node(session, f"/lab/derive/{name}").visible]
 
 
-def walk(session, method: str, step: int) -> None:
-    session.panel.derive.method.value = METHODS[method]
-    session.settle()
-    session.panel.derive.step.value = step + 1
-    session.settle()
-
-
 def test_derive_glyphs_leave_with_the_derive_tab(session):
     session.dispatch(ChooseRobot("puma560"))
     session.settle()
     open_tab(session, "Derive")
-    walk(session, "propagation", 0)  # ω₁ and v₁ on the waist
+    derive_walk(session, "propagation", 0)  # ω₁ and v₁ on the waist
     assert "arrows" in shown(session) and "label_0" in shown(session)
     open_tab(session, "J(q)")
     assert shown(session) == []  # no "ω₁" on the Puma's waist in the J(q) tab
@@ -52,7 +44,7 @@ def test_derive_glyphs_stay_away_on_another_robot_and_tab(session):
     session.dispatch(ChooseRobot("puma560"))
     session.settle()
     open_tab(session, "Derive")
-    walk(session, "dh", 2)  # the DH frames x₂, z₂ …
+    derive_walk(session, "dh", 2)  # the DH frames x₂, z₂ …
     assert any(n.startswith("label_") for n in shown(session))
     open_tab(session, "Maps")
     assert shown(session) == []  # no frame axes in the Maps tab
