@@ -123,3 +123,18 @@ def derive_walk(session: ClientSession, method: str, step: int) -> None:
     session.panel.derive.step.value = step + 1
     session.settle()
     assert session.state.options.derive == method and session.state.options.derive_step == step
+
+
+def scene_update_to(name: str, want: np.ndarray):
+    """A predicate of websocket messages: ``name``'s batched positions updated to ``want`` (to 1e-6)."""
+
+    def got(m: dict[str, Any]) -> bool:
+        positions = m.get("updates", {}).get("batched_positions")
+        return (
+            m["type"] == "SceneNodeUpdateMessage"
+            and m["name"] == name
+            and positions is not None
+            and np.allclose(np.asarray(positions, dtype=np.float32).ravel(), want, atol=1e-6)
+        )
+
+    return got

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import importlib.util
+import subprocess
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -89,3 +90,17 @@ def generated_code_set_aside(robot: Robot) -> Iterator[None]:
         yield
     finally:
         object.__setattr__(c, "compiled", saved)
+
+
+def octave_lines(octave: str, folder: Path, script: list[str]) -> list[str]:
+    """Run ``script`` (lines of an Octave script) in ``folder`` with ``octave``; its non-empty output lines."""
+    (folder / "run_all.m").write_text("\n".join(script) + "\n", encoding="utf-8")
+    done = subprocess.run(
+        [octave, "--no-gui", "--quiet", "--no-window-system", "run_all.m"],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    return [line for line in done.stdout.splitlines() if line.strip()]

@@ -148,3 +148,16 @@ class TreeMemory:
 
     def peak(self) -> int:
         return max((b for _, b in self.samples), default=0)
+
+
+def printed_presenter_link(server: Server) -> str:
+    """The presenter link ``serve`` printed ("open LINK in the tab …"), polled from its output."""
+    from fakes import poll
+
+    said = poll(
+        lambda: next(
+            (m for line in list(server.out) if (m := re.search(r"open (\S+) in the tab", line))), None
+        ),
+        what="the presenter link printed",
+    )
+    return said.group(1)

@@ -8,13 +8,12 @@ shows, before and after the move. Screenshots go to ``$APP_SCREENSHOT_DIR``
 from __future__ import annotations
 
 import os
-import re
 from pathlib import Path
 
 import pytest
 from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
 from fakes import poll
-from server_process import Server
+from server_process import Server, printed_presenter_link
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -30,13 +29,7 @@ def test_followers_show_the_presenters_readouts_after_a_move(tmp_path):
     sync_playwright = require_browser()
     server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
     try:
-        said = poll(
-            lambda: next(
-                (m for line in list(server.out) if (m := re.search(r"open (\S+) in the tab", line))), None
-            ),
-            what="the presenter link printed",
-        )
-        link = said.group(1)
+        link = printed_presenter_link(server)
         base = link.split("?", 1)[0]
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)

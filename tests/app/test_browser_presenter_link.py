@@ -9,14 +9,13 @@ directory)."""
 from __future__ import annotations
 
 import os
-import re
 import urllib.parse
 from pathlib import Path
 
 import pytest
 from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
 from fakes import poll
-from server_process import Server
+from server_process import Server, printed_presenter_link
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -32,13 +31,7 @@ def test_the_printed_presenter_link_presents_and_leaves_no_token_in_the_address_
     sync_playwright = require_browser()
     server = Server(tmp_path, argv=[*argv, "--port", "0"])
     try:
-        said = poll(
-            lambda: next(
-                (m for line in list(server.out) if (m := re.search(r"open (\S+) in the tab", line))), None
-            ),
-            what="the presenter link printed",
-        )
-        link = said.group(1)
+        link = printed_presenter_link(server)
         token = urllib.parse.parse_qs(urllib.parse.urlsplit(link).query)["presenter"][0]
         assert "#" not in link and len(token) == 22  # 128 random bits, in the query
         with sync_playwright() as p:

@@ -213,7 +213,7 @@ def test_followers_draw_a_robot_only_the_presenter_has():
 def test_a_followers_browser_gets_the_presenters_scene():
     """The scene messages of the presenter's redraw are replayed to the followers' browsers: what a
     follower's websocket receives for the arm is what the presenter's scene holds."""
-    from app_helpers import scene_node
+    from app_helpers import scene_node, scene_update_to
 
     with running_lab(presenter_token=TOKEN) as (lab, presenter, _ws):
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as student:
@@ -231,16 +231,7 @@ def test_a_followers_browser_gets_the_presenters_scene():
                 arm = scene_node(presenter, "/lab/arm/cylinders")
                 want = np.asarray(arm.batched_positions, dtype=np.float32).ravel()
 
-                def got_it(m, want=want):
-                    positions = m.get("updates", {}).get("batched_positions")
-                    return (
-                        m["type"] == "SceneNodeUpdateMessage"
-                        and m["name"] == "/lab/arm/cylinders"
-                        and positions is not None
-                        and np.allclose(np.asarray(positions, dtype=np.float32).ravel(), want, atol=1e-6)
-                    )
-
-                student.wait_for(got_it, after=mark)
+                student.wait_for(scene_update_to("/lab/arm/cylinders", want), after=mark)
             # Exploring alone again: the follower's own scene is rebuilt and drawn from its state.
             follower.dispatch(ExploreAlone())
             settle(follower)

@@ -10,7 +10,7 @@ import socket
 import numpy as np
 import pytest
 import websockets
-from app_helpers import running_lab, scene_node
+from app_helpers import running_lab, scene_node, scene_update_to
 from fakes import poll
 from test_classroom import room
 from wsclient import ViserWsClient, decode_frame
@@ -138,17 +138,7 @@ def test_a_relayed_state_s_scene_is_drawn_by_one_follower_and_replayed_to_the_ot
                         want = np.asarray(scene_node(tab, "/lab/arm/cylinders").batched_positions).ravel()
                 assert want is not None
                 for ws, mark in zip(sockets, marks, strict=True):
-
-                    def got(m, want=want):
-                        positions = m.get("updates", {}).get("batched_positions")
-                        return (
-                            m["type"] == "SceneNodeUpdateMessage"
-                            and m["name"] == "/lab/arm/cylinders"
-                            and positions is not None
-                            and np.allclose(np.asarray(positions, dtype=np.float32).ravel(), want, atol=1e-6)
-                        )
-
-                    ws.wait_for(got, after=mark)
+                    ws.wait_for(scene_update_to("/lab/arm/cylinders", want), after=mark)
         finally:
             for c in others:
                 c.close()

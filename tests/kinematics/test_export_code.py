@@ -16,7 +16,7 @@ import subprocess
 
 import numpy as np
 import pytest
-from kinematics_helpers import import_source
+from kinematics_helpers import import_source, octave_lines
 from locations import DATA
 from test_export_escaping import INJECT, SCRIPT, hostile_robot
 
@@ -168,16 +168,7 @@ def test_octave_function_matches_the_numeric_jacobian(tmp_path, urdf_from_puma):
             cases.append((robot, q, tolerance(robot, text)))
             values = " ".join(f"{v:.17g}" for v in q)
             script.append(f"J = {function}([{values}]); printf('%.17g ', J'); printf('\\n');")
-    (tmp_path / "run_all.m").write_text("\n".join(script) + "\n", encoding="utf-8")
-    done = subprocess.run(
-        [octave, "--no-gui", "--quiet", "--no-window-system", "run_all.m"],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert done.returncode == 0, done.stderr[-2000:]
-    lines = [line for line in done.stdout.splitlines() if line.strip()]
+    lines = octave_lines(octave, tmp_path, script)
     assert len(lines) == len(cases)
     for (robot, q, atol), line in zip(cases, lines, strict=True):
         J = np.array([float(v) for v in line.split()]).reshape(6, robot.dof)

@@ -11,7 +11,7 @@ import subprocess
 
 import numpy as np
 import pytest
-from kinematics_helpers import import_source
+from kinematics_helpers import import_source, octave_lines
 from locations import DATA
 from test_export_code import TOL, _needs, c_prefix, compile_c, configurations
 from test_export_escaping import hostile_robot
@@ -128,16 +128,7 @@ def test_octave_runs_j_t_jdot_and_dJdq(tmp_path, urdf_from_puma):
             vq, vqd = (" ".join(f"{v:.17g}" for v in x) for x in (q, qd))
             script.append(f"[J, T, Jd, dJ] = {function}([{vq}], [{vqd}]);")
             script.append("printf('%.17g ', J', T', Jd', permute(dJ, [2 1 3])); printf('\\n');")
-    (tmp_path / "run_all.m").write_text("\n".join(script) + "\n", encoding="utf-8")
-    done = subprocess.run(
-        [octave, "--no-gui", "--quiet", "--no-window-system", "run_all.m"],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert done.returncode == 0, done.stderr[-2000:]
-    lines = [line for line in done.stdout.splitlines() if line.strip()]
+    lines = octave_lines(octave, tmp_path, script)
     assert len(lines) == len(cases)
     for (robot, q, qd), line in zip(cases, lines, strict=True):
         n, v = robot.dof, np.array([float(x) for x in line.split()])
