@@ -1,0 +1,58 @@
+"""Where the 3-D view can be seen: the rectangle of the window not under the panel, at any window size.
+
+viser lays its control panel out in one of two ways (its client, ``App.tsx``): from 577 CSS px wide the
+panel is docked in a right column (:data:`~app.views.panel.layout.COLUMN` px wide, zoomed by the page
+script in :mod:`app.views.panel.layout`); up to Mantine's ``xs`` breakpoint (36 em = 576 px, a phone
+held upright) it is a sheet at the bottom of the screen, which our CSS makes as wide as the window and
+at most :data:`SHEET_MAX` of its height. The 3-D view's canvas always covers the whole window; what is
+seen of it is the part left of the column or above the sheet. Labels in screen space are placed inside
+:func:`visible_view_rect` (pure: the same numbers as the page script's, tested in Chromium).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+from .layout import COLUMN, ZOOM_MAX
+
+__all__ = ["MOBILE_MAX_WIDTH", "SHEET_MAX", "Rect", "is_phone_layout", "panel_zoom", "visible_view_rect"]
+
+MOBILE_MAX_WIDTH = 576
+"""Widest window [CSS px] in which viser shows its panel as a bottom sheet (Mantine's xs, 36 em)."""
+SHEET_MAX = 0.5
+"""Largest share of the window's height the bottom sheet takes (viser's own is 60 %): the 3-D view keeps
+at least half of a phone's screen."""
+
+
+class Rect(NamedTuple):
+    """A rectangle in CSS px, from the window's top-left corner."""
+
+    x: float
+    y: float
+    width: float
+    height: float
+
+
+def is_phone_layout(width: float) -> bool:
+    """Whether viser shows the panel as a bottom sheet at this window width [CSS px]."""
+    return width <= MOBILE_MAX_WIDTH
+
+
+def panel_zoom(width: float, height: float) -> float:
+    """The docked column's zoom the page script sets (``zoomFor`` in :data:`layout.LAYOUT_JS`)."""
+    if height < 600:
+        return max(0.8, math.floor(height / 600 * 20) / 20)
+    z = min(width / 1280, height / 720)
+    return min(ZOOM_MAX, max(1.0, math.floor(z * 20) / 20))
+
+
+def visible_view_rect(width: float, height: float) -> Rect:
+    """The part of the 3-D view not under the panel in a window of ``width``×``height`` CSS px.
+
+    On a phone held upright it is the part above the bottom sheet when the sheet is pulled up (the
+    least that is seen); elsewhere the part left of the docked column."""
+    if is_phone_layout(width):
+        return Rect(0.0, 0.0, float(width), float(height) * (1 - SHEET_MAX))
+    column = COLUMN * panel_zoom(width, height)
+    return Rect(0.0, 0.0, max(0.0, float(width) - column), float(height))
