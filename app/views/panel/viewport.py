@@ -16,7 +16,15 @@ from typing import NamedTuple
 
 from .layout import COLUMN, ZOOM_MAX
 
-__all__ = ["MOBILE_MAX_WIDTH", "SHEET_MAX", "Rect", "is_phone_layout", "panel_zoom", "visible_view_rect"]
+__all__ = [
+    "MOBILE_MAX_WIDTH",
+    "PHONE_CSS",
+    "SHEET_MAX",
+    "Rect",
+    "is_phone_layout",
+    "panel_zoom",
+    "visible_view_rect",
+]
 
 MOBILE_MAX_WIDTH = 576
 """Widest window [CSS px] in which viser shows its panel as a bottom sheet (Mantine's xs, 36 em)."""
@@ -56,3 +64,32 @@ def visible_view_rect(width: float, height: float) -> Rect:
         return Rect(0.0, 0.0, float(width), float(height) * (1 - SHEET_MAX))
     column = COLUMN * panel_zoom(width, height)
     return Rect(0.0, 0.0, max(0.0, float(width) - column), float(height))
+
+
+PHONE_CSS = f"""
+<style>
+@media (max-width: {MOBILE_MAX_WIDTH}px) {{
+  /* viser's bottom sheet: as wide as the phone (viser's is 20 em, leaving a strip of view beside it) and
+     at most SHEET_MAX of its height, so the 3-D view keeps the upper half. */
+  .mantine-Paper-root[style*="position: fixed"][style*="bottom: 0"] {{ width: 100% !important;
+    max-height: {SHEET_MAX * 100:g}% !important; max-height: {SHEET_MAX * 100:g}dvh !important; }}
+  div[style="width: 20em;"] {{ width: 100% !important; }}
+  .mantine-ScrollArea-content:has(> div[style="width: 20em;"]) {{ display: block !important;
+    width: 100% !important; min-width: 0 !important; }}
+  /* The 3-D view is drawn in the upper half only (what the sheet leaves), so the camera frames the arm
+     there rather than half under the sheet. */
+  div:has(> canvas) {{ bottom: {SHEET_MAX * 100:g}% !important; }}
+  /* The first hint and the motion's numbers: across the top of the view, above the arm. */
+  .jl-hint {{ left: 8px; right: 8px; top: 8px; bottom: auto; max-width: none; font-size: 14px; }}
+  .jl-live {{ left: 8px; right: 8px; top: 8px; width: auto; }}
+  .jl-live-head {{ font-size: 14px; flex-wrap: wrap; gap: 0 10px; }}
+  .jl-live-head b, .jl-live-rate b {{ font-size: 16px; }}
+  .jl-live-rate {{ font-size: 13px; }}
+  /* Thumbs large enough for a finger. */
+  .mantine-Slider-thumb {{ width: 20px !important; height: 20px !important; border-radius: 50% !important; }}
+  .mantine-Slider-root {{ min-height: 2.4em; }}
+}}
+</style>
+"""
+"""CSS for a phone held upright (viser's bottom sheet): the sheet as wide as the screen and at most half
+of it high, the hint and the motion's numbers over the top of the 3-D view."""
