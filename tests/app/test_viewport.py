@@ -40,3 +40,10 @@ def test_phone_upright_sees_the_upper_half():
 def test_view_keeps_at_least_45_percent(size):
     r = visible_view_rect(*size)
     assert r.width * r.height >= 0.45 * size[0] * size[1]
+
+
+def test_a_phone_held_sideways_keeps_the_column_at_zoom_1():
+    # 844x390 with a mouse: zoom 0.8 (a 150 % zoomed laptop); on a touch screen 1, its text 13 px.
+    assert panel_zoom(844, 390, touch=True) == 1.0
+    assert visible_view_rect(844, 390, touch=True) == Rect(0, 0, 844 - 404, 390)
+    assert 440 * 390 >= 0.45 * 844 * 390

@@ -47,22 +47,24 @@ def is_phone_layout(width: float) -> bool:
     return width <= MOBILE_MAX_WIDTH
 
 
-def panel_zoom(width: float, height: float) -> float:
-    """The docked column's zoom the page script sets (``zoomFor`` in :data:`layout.LAYOUT_JS`)."""
+def panel_zoom(width: float, height: float, touch: bool = False) -> float:
+    """The docked column's zoom the page script sets (``zoomFor`` in :data:`layout.LAYOUT_JS`);
+    ``touch``: a touch screen (CSS ``pointer: coarse``), where short screens keep zoom 1 (12 px text)."""
     if height < 600:
-        return max(0.8, math.floor(height / 600 * 20) / 20)
+        return 1.0 if touch else max(0.8, math.floor(height / 600 * 20) / 20)
     z = min(width / 1280, height / 720)
     return min(ZOOM_MAX, max(1.0, math.floor(z * 20) / 20))
 
 
-def visible_view_rect(width: float, height: float) -> Rect:
+def visible_view_rect(width: float, height: float, touch: bool = False) -> Rect:
     """The part of the 3-D view not under the panel in a window of ``width``×``height`` CSS px.
 
     On a phone held upright it is the part above the bottom sheet when the sheet is pulled up (the
-    least that is seen); elsewhere the part left of the docked column."""
+    least that is seen); elsewhere the part left of the docked column. ``touch``: a touch screen
+    (a phone held sideways keeps the column at zoom 1)."""
     if is_phone_layout(width):
         return Rect(0.0, 0.0, float(width), float(height) * (1 - SHEET_MAX))
-    column = COLUMN * panel_zoom(width, height)
+    column = COLUMN * panel_zoom(width, height, touch)
     return Rect(0.0, 0.0, max(0.0, float(width) - column), float(height))
 
 
@@ -79,6 +81,7 @@ PHONE_CSS = f"""
   /* The 3-D view is drawn in the upper half only (what the sheet leaves), so the camera frames the arm
      there rather than half under the sheet. */
   div:has(> canvas) {{ bottom: {SHEET_MAX * 100:g}% !important; }}
+  div[style="width: 20em;"] .mantine-Text-root {{ font-size: max(1em, 12px) !important; }}
   /* The first hint and the motion's numbers: across the top of the view, above the arm. */
   .jl-hint {{ left: 8px; right: 8px; top: 8px; bottom: auto; max-width: none; font-size: 14px; }}
   .jl-live {{ left: 8px; right: 8px; top: 8px; width: auto; }}
