@@ -57,6 +57,7 @@ from .page import page_js as page_state_js
 from .readouts import hint_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import number_guard_js
+from .viewport import PHONE_CSS
 
 __all__ = ["PanelView", "PANEL_WIDTH", "TAB_LABELS"]
 
@@ -95,7 +96,7 @@ class PanelView:
         gui.main_panel.set_width(PANEL_WIDTH)
         more = _("▾ more below: scroll").replace("\\", "\\\\").replace('"', '\\"').replace("<", "\\3C ")
         more_css = f'.jl-more::after {{ content: "{more}"; }}'  # the band's words, in the tab's language
-        gui.add_html(BASE_CSS + LAYOUT_CSS + f"<style>{status_css()}{more_css}</style>", order=0)
+        gui.add_html(BASE_CSS + LAYOUT_CSS + PHONE_CSS + f"<style>{status_css()}{more_css}</style>", order=0)
         run_javascript(client, page_js())
         run_javascript(client, classroom_words_js() + LAYOUT_JS)
         run_javascript(client, number_guard_js(tr))

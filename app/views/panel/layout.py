@@ -149,7 +149,9 @@ LAYOUT_JS = """
   // Larger on large screens; on short ones (150 % zoom of 1280×720 leaves 480 px) a little smaller, so
   // the joints and Configuration stay in sight above the views of J.
   const zoomFor = () => {
-    if (innerHeight < 600) return Math.max(0.8, Math.floor(innerHeight / 600 * 20) / 20);
+    // Not on a touch screen (a phone held sideways): its text would fall under 12 px.
+    const touch = matchMedia("(pointer: coarse)").matches;
+    if (innerHeight < 600) return touch ? 1 : Math.max(0.8, Math.floor(innerHeight / 600 * 20) / 20);
     const z = Math.min(innerWidth / 1280, innerHeight / 720);
     return Math.min(__ZOOM_MAX__, Math.max(1, Math.floor(z * 20) / 20));
   };

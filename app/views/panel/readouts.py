@@ -221,7 +221,10 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
         for x in (representation, sub, lost, limit_text(snap, robot, tr))
         if x
     )
-    return f'<div class="jl">{banner}<div class="jl-lines">{lines}</div></div>'
+    # While a motion plays and once it has stopped, the lines keep the height of four (the stop in two, the
+    # lost direction, the representation), so the sliders do not step as they come (issue 28, 4).
+    held = " jl-held" if state.playing or state.stopped else ""
+    return f'<div class="jl">{banner}<div class="jl-lines{held}">{lines}</div></div>'
 
 
 def _description(html: str) -> str:

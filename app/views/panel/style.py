@@ -26,6 +26,7 @@ BASE_CSS = """
   line-height: 1.2; margin-bottom: 2px; cursor: pointer; }
 .jl-desc-all:checked + .jl-desc { -webkit-line-clamp: unset; }
 .jl-lines { min-height: 29px; }
+.jl-lines.jl-held { min-height: 78px; display: flow-root; }  /* flow-root: the first line's -4 px margin stays inside */
 /* The first hint: one line over the 3-D view's lower edge (out of the panel's flow: no slider moves). */
 .jl-hint { position: fixed; left: 72px; bottom: 14px; max-width: min(640px, calc(100vw - 500px)); z-index: 20;
   color: #1f3a93; background: #eef2ff; font-size: 15px; border: 1px solid #8ea2e6; border-radius: 8px;
