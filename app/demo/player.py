@@ -7,7 +7,9 @@ The script tries the player where the notebook's Jupyter server serves it (``{ba
 the running server whose root holds the kernel's folder) and then beside the page (a relative path: the
 notebook's HTML export in the same folder, opened from a web server or from the disk). With no player
 found, or no scripts run (an untrusted notebook, a code host's preview), the cell shows one line saying
-where the player is expected and how to write it again.
+where the demo plays and how to write the player again. (An export opened through Jupyter's own
+``/files/`` is sandboxed by Jupyter's security policy, which lets no page frame it: the line shows there
+too.)
 
 The file's name holds a digest of its bytes: a notebook keeps playing with the player it was written
 with, and a new viser writes a new file beside the old one.
@@ -138,8 +140,8 @@ def cell_html(recording: Recording, height: int, server_url: str | None) -> str:
     # TRANSLATORS: shown in a notebook cell when the demo's player page is not found; {folder} is a
     # folder's name, {title} the demo's title.
     line = tr.gettext(
-        "The recorded demo “{title}” plays with the player in the folder {folder} beside this "
-        "notebook: run the cell again to write it there."
+        "The recorded demo “{title}” plays in Jupyter, or in this notebook's HTML export next to the "
+        "folder {folder}: run the cell again to write the player there."
     )
     text = html.escape(line).replace("{title}", html.escape(recording.title))
     text = text.replace("{folder}", f"<code>{PLAYER_DIR}/</code>")

@@ -79,7 +79,7 @@ def test_the_player_url_is_where_the_kernels_server_serves_the_folder(tmp_path):
     assert server_player_url(folder, servers[:1], parent=12) is None
 
 
-@pytest.mark.parametrize("lang, words", [("en", "beside this notebook"), ("es", "celda"), ("pl", "komórkę")])
+@pytest.mark.parametrize("lang, words", [("en", "HTML export next to"), ("es", "celda"), ("pl", "komórkę")])
 def test_with_no_player_or_no_scripts_the_cell_says_where_the_player_goes(lang, words, tmp_path):
     rec = record("planar2", robots.load("planar2"), seconds=1, fps=5, tr=translations(lang))
     cell = show_recording(rec, folder=tmp_path)._repr_html_()
