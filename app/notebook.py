@@ -29,8 +29,10 @@ the recording, and viser's player page is written once beside the notebook (:mod
 from __future__ import annotations
 
 import atexit
+import html
 import os
 import threading
+import warnings
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -302,9 +304,10 @@ def show(
 
 class RecordingView:
     """A recorded demo as a cell's value: the recording, played by the player page written beside the
-    notebook (:mod:`app.demo.player`)."""
+    notebook (:mod:`app.demo.player`); with no player written (``player_url=False``), the whole page
+    inline in an ``<iframe srcdoc>``."""
 
-    def __init__(self, recording: Recording, height: int = 480, player_url: str | None = None) -> None:
+    def __init__(self, recording: Recording, height: int = 480, player_url: str | None | bool = None) -> None:
         self.recording = recording
         self.height = int(height)
         self.player_url = player_url
@@ -315,7 +318,14 @@ class RecordingView:
         return embedded_page(self.recording)
 
     def _repr_html_(self) -> str:
-        return player_cell(self.recording, self.height, self.player_url)
+        if self.player_url is False:
+            page = html.escape(self.html(), quote=True)
+            return (
+                f'<iframe srcdoc="{page}" width="100%" height="{self.height}" '
+                'style="border:1px solid #ddd;display:block" '
+                f'title="{html.escape(self.recording.title, quote=True)}"></iframe>'
+            )
+        return player_cell(self.recording, self.height, self.player_url or None)
 
     def __repr__(self) -> str:
         r = self.recording
@@ -328,8 +338,17 @@ def show_recording(
     """Embed ``recording`` in the cell (the returned view displays itself as the cell's value).
 
     Writes the player into ``folder/jacobian-lab-player/`` (``folder``: the kernel's working directory,
-    the notebook's folder) unless it is there already; the cell holds the recording alone.
+    the notebook's folder) unless it is there already; the cell holds the recording alone. A folder that
+    cannot be written gets the whole page in the cell (819 kB more), with a warning.
     """
     where = Path.cwd() if folder is None else Path(folder)
-    write_player(where)
+    try:
+        write_player(where)
+    except OSError as exc:
+        warnings.warn(
+            f"the demo's player cannot be written into {where} ({exc.strerror or exc}): the cell holds the "
+            "whole player (819 kB more in the notebook)",
+            stacklevel=2,
+        )
+        return RecordingView(recording, height, False)
     return RecordingView(recording, height, server_player_url(where))

@@ -67,7 +67,9 @@ def _plays(page, shot: Path) -> str:
         return moved
 
     poll(changed, what="the demo's frames change")
-    frame.add_style_tag(content=".mantine-Notifications-root { display: none !important; }")  # headless GL
+    shown = box.element_handle().content_frame()
+    shown.add_style_tag(content=".mantine-Notifications-root { display: none !important; }")  # headless GL
+    page.wait_for_timeout(300)  # the style applied, for the screenshot
     page.screenshot(path=str(shot))
     return str(box.evaluate("f => f.src"))
 

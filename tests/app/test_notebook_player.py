@@ -4,6 +4,7 @@ the notebook and the cell holds the recording alone; issue 30's target is ≤ 30
 from __future__ import annotations
 
 import base64
+import html
 import json
 import re
 
@@ -86,3 +87,12 @@ def test_with_no_player_or_no_scripts_the_cell_says_where_the_player_goes(lang, 
     line = re.search(r"<p[^>]*>(.*?)</p>", cell).group(1)
     assert words in line and f"<code>{PLAYER_DIR}/</code>" in line
     assert cell.index("</p>") < cell.index("<script>")  # shown until the script finds the player
+
+
+def test_a_folder_that_cannot_be_written_gets_the_whole_page_in_the_cell(tmp_path):
+    rec = record("planar2", robots.load("planar2"), seconds=1, fps=5)
+    (tmp_path / PLAYER_DIR).write_text("a file where the folder goes")
+    with pytest.warns(UserWarning, match="cannot be written"):
+        view = show_recording(rec, folder=tmp_path)
+    cell = view._repr_html_()
+    assert cell.startswith('<iframe srcdoc="') and html.unescape(cell.split('"')[1]) == view.html()
