@@ -304,13 +304,16 @@ def show(
 
 class RecordingView:
     """A recorded demo as a cell's value: the recording, played by the player page written beside the
-    notebook (:mod:`app.demo.player`); with no player written (``player_url=False``), the whole page
-    inline in an ``<iframe srcdoc>``."""
+    notebook (:mod:`app.demo.player`); ``inline`` (no player written): the whole page in an
+    ``<iframe srcdoc>``."""
 
-    def __init__(self, recording: Recording, height: int = 480, player_url: str | None | bool = None) -> None:
+    def __init__(
+        self, recording: Recording, height: int = 480, player_url: str | None = None, inline: bool = False
+    ) -> None:
         self.recording = recording
         self.height = int(height)
         self.player_url = player_url
+        self.inline = inline
 
     def html(self) -> str:
         """The self-contained page (player and recording; save it as ``demo.html``: it plays from the
@@ -318,14 +321,14 @@ class RecordingView:
         return embedded_page(self.recording)
 
     def _repr_html_(self) -> str:
-        if self.player_url is False:
+        if self.inline:
             page = html.escape(self.html(), quote=True)
             return (
                 f'<iframe srcdoc="{page}" width="100%" height="{self.height}" '
                 'style="border:1px solid #ddd;display:block" '
                 f'title="{html.escape(self.recording.title, quote=True)}"></iframe>'
             )
-        return player_cell(self.recording, self.height, self.player_url or None)
+        return player_cell(self.recording, self.height, self.player_url)
 
     def __repr__(self) -> str:
         r = self.recording
@@ -350,5 +353,5 @@ def show_recording(
             "whole player (819 kB more in the notebook)",
             stacklevel=2,
         )
-        return RecordingView(recording, height, False)
+        return RecordingView(recording, height, inline=True)
     return RecordingView(recording, height, server_player_url(where))
