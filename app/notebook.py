@@ -336,14 +336,22 @@ class RecordingView:
 
 
 def show_recording(
-    recording: Recording, height: int = 480, folder: str | os.PathLike[str] | None = None
+    recording: Recording,
+    height: int = 480,
+    folder: str | os.PathLike[str] | None = None,
+    inline: bool | None = None,
+    environ: Mapping[str, str] | None = None,
 ) -> RecordingView:
     """Embed ``recording`` in the cell (the returned view displays itself as the cell's value).
 
     Writes the player into ``folder/jacobian-lab-player/`` (``folder``: the kernel's working directory,
-    the notebook's folder) unless it is there already; the cell holds the recording alone. A folder that
-    cannot be written gets the whole page in the cell (819 kB more), with a warning.
+    the notebook's folder) unless it is there already; the cell holds the recording alone. ``inline``:
+    the whole page in the cell instead (819 kB more), for a front end that serves no file beside the
+    notebook; ``None`` chooses it in VS Code and Colab (:func:`serves_no_files`). A folder that cannot
+    be written gets the whole page too, with a warning.
     """
+    if inline if inline is not None else serves_no_files(environ):
+        return RecordingView(recording, height, inline=True)
     where = Path.cwd() if folder is None else Path(folder)
     try:
         write_player(where)
@@ -355,3 +363,10 @@ def show_recording(
         )
         return RecordingView(recording, height, inline=True)
     return RecordingView(recording, height, server_player_url(where))
+
+
+def serves_no_files(environ: Mapping[str, str] | None = None) -> bool:
+    """The kernel runs under a front end whose outputs cannot frame a file beside the notebook: VS
+    Code (its webview, ``VSCODE_PID``/``VSCODE_CWD`` in the kernel's environment) or Google Colab."""
+    env = os.environ if environ is None else environ
+    return "VSCODE_PID" in env or "VSCODE_CWD" in env or "COLAB_RELEASE_TAG" in env

@@ -32,6 +32,8 @@ def _run(name: str, tmp_path: Path, monkeypatch) -> dict[str, str]:
     shutil.copytree(EXAMPLES, work, ignore=shutil.ignore_patterns("*.c", "*.h", ".ipynb_checkpoints"))
     monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
     monkeypatch.setenv("MPLBACKEND", "Agg")
+    for var in ("VSCODE_PID", "VSCODE_CWD", "COLAB_RELEASE_TAG"):  # a Jupyter kernel: the player beside
+        monkeypatch.delenv(var, raising=False)
     book = nbformat.read(work / name, as_version=4)
     nbclient.NotebookClient(
         book, timeout=300, kernel_name="python3", resources={"metadata": {"path": str(work)}}

@@ -30,7 +30,7 @@ def test_a_notebook_page_frames_the_live_app_and_a_recorded_demo(tmp_path):
     notebook = tmp_path / "notebook"
     notebook.mkdir()
     rec = record("planar2", robots.load("planar2"), seconds=2, fps=10)
-    demo = show_recording(rec, height=300, folder=notebook)
+    demo = show_recording(rec, height=300, folder=notebook, inline=False)
     (notebook / "index.html").write_text(
         "<!doctype html><meta charset=utf-8><title>a notebook</title><body style='margin:16px;font:14px sans-serif'>"
         f"<p>In [1]: lab = show('planar2')</p>{nb._repr_html_()}"

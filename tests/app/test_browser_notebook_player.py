@@ -83,6 +83,8 @@ def test_a_saved_notebook_plays_its_demo_from_the_player_beside_it(tmp_path, mon
     out_dir.mkdir(parents=True, exist_ok=True)
     sync_playwright = require_browser()
     monkeypatch.setenv("JUPYTER_RUNTIME_DIR", str(tmp_path / "runtime"))  # this server alone, for both
+    for name in ("VSCODE_PID", "VSCODE_CWD", "COLAB_RELEASE_TAG"):  # a kernel of Jupyter's, not VS Code's
+        monkeypatch.delenv(name, raising=False)
     root = tmp_path / "root"
     folder = root / "course" / "week 1"
     folder.mkdir(parents=True)

@@ -19,6 +19,13 @@ from app.demo.record import record
 from app.notebook import show_recording
 
 
+@pytest.fixture(autouse=True)
+def _not_in_vs_code(monkeypatch):
+    """These tests run as Jupyter's kernel would (a terminal of VS Code would choose the inline page)."""
+    for name in ("VSCODE_PID", "VSCODE_CWD", "COLAB_RELEASE_TAG"):
+        monkeypatch.delenv(name, raising=False)
+
+
 def _saved_size(view) -> int:
     """The .ipynb's size with the view as a cell's output, as Jupyter saves it."""
     cell = nbformat.v4.new_code_cell("show_recording(...)")
@@ -96,3 +103,19 @@ def test_a_folder_that_cannot_be_written_gets_the_whole_page_in_the_cell(tmp_pat
         view = show_recording(rec, folder=tmp_path)
     cell = view._repr_html_()
     assert cell.startswith('<iframe srcdoc="') and html.unescape(cell.split('"')[1]) == view.html()
+
+
+def test_vs_code_and_colab_get_the_whole_page_and_inline_chooses_either(tmp_path):
+    rec = record("planar2", robots.load("planar2"), seconds=1, fps=5)
+    vscode = show_recording(rec, folder=tmp_path, environ={"VSCODE_PID": "4242"})
+    colab = show_recording(rec, folder=tmp_path, environ={"COLAB_RELEASE_TAG": "release-colab_20260101"})
+    for view in (vscode, colab):
+        assert view._repr_html_().startswith('<iframe srcdoc="')  # their webviews frame no file beside it
+    assert not (tmp_path / PLAYER_DIR).exists()
+    forced = show_recording(rec, folder=tmp_path, inline=False, environ={"VSCODE_PID": "4242"})
+    assert "var data=" in forced._repr_html_() and (tmp_path / PLAYER_DIR).is_dir()
+    assert (
+        show_recording(rec, folder=tmp_path, inline=True, environ={})
+        ._repr_html_()
+        .startswith("<iframe srcdoc=")
+    )
