@@ -22,8 +22,8 @@ The cell keeps a still picture of its 3-D view (:meth:`NotebookLab.capture`) and
 once it answers: a saved or reopened notebook with no lab shows that picture and a line on how to
 start it again (:mod:`app.notebook_frame`).
 
-:func:`show_recording` embeds a recorded demo (:func:`app.demo.record.record`) in a cell: viser's
-client page with the recording inside, in an ``<iframe srcdoc>`` (no server behind it).
+:func:`show_recording` embeds a recorded demo (:func:`app.demo.record.record`) in a cell: the cell holds
+the recording, and viser's player page is written once beside the notebook (:mod:`app.demo.player`).
 """
 
 from __future__ import annotations
@@ -32,7 +32,9 @@ import atexit
 import html
 import os
 import threading
+import warnings
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
@@ -44,6 +46,8 @@ from .core.actions import SetConfiguration
 from .core.reducer import reduce
 from .core.snapshot import Snapshot, compute
 from .core.state import LabState
+from .demo.player import cell_html as player_cell
+from .demo.player import server_player_url, write_player
 from .demo.record import Recording, embedded_page, quiet
 from .notebook_frame import cell_html, jpeg
 from .server import Lab
@@ -299,29 +303,70 @@ def show(
 
 
 class RecordingView:
-    """A recorded demo as a cell's value: viser's client page playing it, inline (no server)."""
+    """A recorded demo as a cell's value: the recording, played by the player page written beside the
+    notebook (:mod:`app.demo.player`); ``inline`` (no player written): the whole page in an
+    ``<iframe srcdoc>``."""
 
-    def __init__(self, recording: Recording, height: int = 480) -> None:
+    def __init__(
+        self, recording: Recording, height: int = 480, player_url: str | None = None, inline: bool = False
+    ) -> None:
         self.recording = recording
         self.height = int(height)
+        self.player_url = player_url
+        self.inline = inline
 
     def html(self) -> str:
-        """The page alone (save it as ``demo.html``: it plays from the file)."""
+        """The self-contained page (player and recording; save it as ``demo.html``: it plays from the
+        file)."""
         return embedded_page(self.recording)
 
     def _repr_html_(self) -> str:
-        page = html.escape(self.html(), quote=True)
-        return (
-            f'<iframe srcdoc="{page}" width="100%" height="{self.height}" '
-            'style="border:1px solid #ddd;display:block" '
-            f'title="{html.escape(self.recording.title, quote=True)}"></iframe>'
-        )
+        if self.inline:
+            page = html.escape(self.html(), quote=True)
+            return (
+                f'<iframe srcdoc="{page}" width="100%" height="{self.height}" '
+                'style="border:1px solid #ddd;display:block" '
+                f'title="{html.escape(self.recording.title, quote=True)}"></iframe>'
+            )
+        return player_cell(self.recording, self.height, self.player_url)
 
     def __repr__(self) -> str:
         r = self.recording
         return f"<recorded demo: {r.title}, {r.frames} frames, {r.duration:.1f} s>"
 
 
-def show_recording(recording: Recording, height: int = 480) -> RecordingView:
-    """Embed ``recording`` in the cell (the returned view displays itself as the cell's value)."""
-    return RecordingView(recording, height)
+def show_recording(
+    recording: Recording,
+    height: int = 480,
+    folder: str | os.PathLike[str] | None = None,
+    inline: bool | None = None,
+    environ: Mapping[str, str] | None = None,
+) -> RecordingView:
+    """Embed ``recording`` in the cell (the returned view displays itself as the cell's value).
+
+    Writes the player into ``folder/jacobian-lab-player/`` (``folder``: the kernel's working directory,
+    the notebook's folder) unless it is there already; the cell holds the recording alone. ``inline``:
+    the whole page in the cell instead (819 kB more), for a front end that serves no file beside the
+    notebook; ``None`` chooses it in VS Code and Colab (:func:`serves_no_files`). A folder that cannot
+    be written gets the whole page too, with a warning.
+    """
+    if inline if inline is not None else serves_no_files(environ):
+        return RecordingView(recording, height, inline=True)
+    where = Path.cwd() if folder is None else Path(folder)
+    try:
+        write_player(where)
+    except OSError as exc:
+        warnings.warn(
+            f"the demo's player cannot be written into {where} ({exc.strerror or exc}): the cell holds the "
+            "whole player (819 kB more in the notebook)",
+            stacklevel=2,
+        )
+        return RecordingView(recording, height, inline=True)
+    return RecordingView(recording, height, server_player_url(where))
+
+
+def serves_no_files(environ: Mapping[str, str] | None = None) -> bool:
+    """The kernel runs under a front end whose outputs cannot frame a file beside the notebook: VS
+    Code (its webview, ``VSCODE_PID``/``VSCODE_CWD`` in the kernel's environment) or Google Colab."""
+    env = os.environ if environ is None else environ
+    return "VSCODE_PID" in env or "VSCODE_CWD" in env or "COLAB_RELEASE_TAG" in env

@@ -1,5 +1,5 @@
 """The notebook cells in Chromium: the live app framed by a page of another origin (as JupyterLab
-frames it) connects and follows set_q, and a recorded demo plays from its srcdoc with no server."""
+frames it) connects and follows set_q, and a recorded demo plays from the player beside the page."""
 
 from __future__ import annotations
 
@@ -27,9 +27,10 @@ def test_a_notebook_page_frames_the_live_app_and_a_recorded_demo(tmp_path):
     out_dir.mkdir(parents=True, exist_ok=True)
     sync_playwright = require_browser()
     nb = NotebookLab(Lab(robot="planar2", port=0, symbolic=FakeSymbolicService()), height=460)
-    demo = show_recording(record("planar2", robots.load("planar2"), seconds=2, fps=10), height=300)
     notebook = tmp_path / "notebook"
     notebook.mkdir()
+    rec = record("planar2", robots.load("planar2"), seconds=2, fps=10)
+    demo = show_recording(rec, height=300, folder=notebook, inline=False)
     (notebook / "index.html").write_text(
         "<!doctype html><meta charset=utf-8><title>a notebook</title><body style='margin:16px;font:14px sans-serif'>"
         f"<p>In [1]: lab = show('planar2')</p>{nb._repr_html_()}"
@@ -56,7 +57,7 @@ def test_a_notebook_page_frames_the_live_app_and_a_recorded_demo(tmp_path):
                 poll(
                     lambda: any(v.startswith("28.6") for v in values())
                 )  # q1 = 0.5 rad = 28.65° on its slider
-                recorded = page.frame_locator("iframe[srcdoc]")
+                recorded = page.frame_locator("iframe[src*='jacobian-lab-player/']")
                 recorded.locator("canvas").first.wait_for()
                 page.wait_for_timeout(1500)  # let both canvases draw a frame for the screenshot
                 page.screenshot(path=str(out_dir / "notebook_cells.png"), full_page=True)

@@ -138,14 +138,11 @@ def _refused(port: int) -> bool:
         return True
 
 
-def test_a_recorded_demo_is_embedded_whole_in_the_cell():
+def test_a_recorded_demo_saves_as_one_self_contained_page(tmp_path):
     robot = robots.load("planar2")
     rec = record("planar2", robot, seconds=1.0, fps=10)
-    view = show_recording(rec, height=400)
-    cell = view._repr_html_()
-    assert cell.startswith('<iframe srcdoc="') and 'height="400"' in cell
-    page = html.unescape(re.search(r'srcdoc="([^"]*)"', cell).group(1))
-    assert page == view.html()
+    view = show_recording(rec, height=400, folder=tmp_path)
+    page = view.html()
     data = re.search(r'window\.__VISER_EMBED_DATA__="([A-Za-z0-9+/=]*)"', page).group(1)
     assert base64.b64decode(data) == rec.data  # the whole recording, no file or server behind it
     assert f"<title>{html.escape(rec.title)}</title>" in page
