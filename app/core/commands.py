@@ -22,6 +22,7 @@ __all__ = [
     "Command",
     "Message",
     "CLASSROOM",
+    "AnswerHandover",
     "ChooseRobot",
     "ChooseChain",
     "UploadRobot",
@@ -87,6 +88,14 @@ class ExploreAlone:
 @dataclass(frozen=True)
 class FollowPresenter:
     """A tab follows the presenter again."""
+
+
+@dataclass(frozen=True)
+class AnswerHandover:
+    """The presenter answers another tab that typed the token: it hands over (``accept``) or keeps
+    presenting. Only the presenting tab's answer counts."""
+
+    accept: bool
 
 
 @dataclass(frozen=True, eq=False)
@@ -179,7 +188,7 @@ class SymbolicResult:
     note: str
 
 
-CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)
+CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter, AnswerHandover)
 """Classroom commands: a follower may always send these (its other inputs are read-only)."""
 
 Command = (
@@ -193,6 +202,7 @@ Command = (
     | StopPresenting
     | ExploreAlone
     | FollowPresenter
+    | AnswerHandover
     | Mirror
     | Redraw
     | ResetView

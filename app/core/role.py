@@ -17,6 +17,8 @@ class Role:
         following: This tab mirrors the presenter (its inputs are read-only).
         presenter: Whether any tab presents.
         followers: How many tabs follow (told to the presenter).
+        asked: This tab presents and another tab asks it to hand over.
+        waiting: This tab typed the token and waits for the presenter to hand over.
         note: A sentence for this tab ("the presenter has left", ...), "" when none.
     """
 
@@ -24,4 +26,6 @@ class Role:
     following: bool = False
     presenter: bool = False
     followers: int = 0
+    asked: bool = False
+    waiting: bool = False
     note: str = ""

@@ -4,7 +4,10 @@ The server owns one :class:`Classroom` when it was started with a presenter toke
 presenter by typing the token (compared in constant time). Wrong tokens are limited per connection
 (:data:`TOKEN_TRIES`), never per address nor for the whole room, so no tab can lock another out: a wrong
 guess never refuses the right token typed in another tab (``docs/security.md`` has the arithmetic that
-keeps guessing hopeless). A presenter that another tab replaces is told.
+keeps guessing hopeless). A right token typed while another tab presents (and is connected) does not
+replace it: the presenting tab is asked, and the asking tab presents only if it hands over (no answer
+changes nothing; a reconnect key, which only the presenter's browser has, takes over at once). The
+replaced presenter and the room are told.
 Every other tab follows by default: each state the presenter's tab commits, with the snapshot it
 computed, is handed to the followers, which draw it without computing it again (one computation per
 presenter change, not one per follower). The presenter's camera is relayed too. A follower can leave
@@ -18,18 +21,25 @@ from __future__ import annotations
 
 import hmac
 import logging
-import math
 import secrets
 import threading
 import time
-import urllib.parse
 from collections.abc import Callable
-from typing import Protocol
+from dataclasses import replace
 
 from ..core.i18n import N_
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
+from .member import Member
+from .presenter_token import (
+    MAX_TOKEN_LENGTH,
+    RANDOM_TOKEN_BYTES,
+    TOKEN_TRIES,
+    presenter_link,
+    random_token,
+    token_weakness,
+)
 
 __all__ = [
     "Classroom",
@@ -43,89 +53,32 @@ __all__ = [
     "PRESENTER_AWAY",
     "WRONG_TOKEN",
     "TOO_MANY_TRIES",
+    "MAX_TOKEN_LENGTH",
+    "ASKED",
+    "WAITING",
+    "KEPT",
+    "HANDED_OVER",
+    "HANDED_OVER_ROOM",
 ]
 
 log = logging.getLogger(__name__)
 
-TOKEN_TRIES = 5
-"""Wrong tokens one connection (a tab, until it reloads) may type; its later tries are refused unread.
-Counted per connection only: no address, and no room-wide count, so no tab can lock another out."""
-RANDOM_TOKEN_BYTES = 16
-"""Random bytes of the token ``--presenter`` alone makes: 128 bits, out of reach of guessing at any rate."""
-STRONG_BITS = 64
-"""A token given by hand with less estimated randomness than this [bits] is warned about."""
 WRONG_TOKEN = N_("that is not the presenter token")
 TOO_MANY_TRIES = "this tab has typed {tries} wrong tokens: reload the page to try again"
 """Said in a tab's language by :meth:`app.tab.following.Following` (a plural of ``tries``)."""
 TAKEN_OVER = N_("Another tab took over as presenter: this tab now follows it.")
-MAX_TOKEN_LENGTH = 200
+# A hand-over: a right token typed while another tab presents asks that tab first.
+ASKED = N_("Another tab typed the presenter token and asks to present.")
+WAITING = N_("The presenting tab was asked to hand over: this tab presents as soon as it agrees.")
+KEPT = N_("The presenting tab kept presenting.")
+HANDED_OVER = N_("You handed over: this tab now follows the new presenter.")
+HANDED_OVER_ROOM = N_("The presenter handed the lecture over to another tab.")
 RESUME_GRACE = 120.0
 """A presenter whose tab closed (a reload, a lost connection) may come back this long [s] with its
 reconnect key, and keeps its role and its state; the followers follow it again."""
 PRESENTER_AWAY = N_(
     "The presenter's connection dropped: you keep what was shown, and follow again when it is back."
 )
-
-
-def random_token() -> str:
-    """A fresh presenter token: 128 random bits in 22 URL-safe characters (never typed on the projector:
-    ``serve`` prints a presenter link that fills it in)."""
-    return secrets.token_urlsafe(RANDOM_TOKEN_BYTES)
-
-
-def presenter_link(url: str, token: str) -> str:
-    """The presenter link ``serve`` prints, for the lab at ``url`` (``http://host:port``), by every path
-    (one process or workers): ``url/?presenter=TOKEN``. In the query, never the fragment: viser's page
-    opens its websocket at its own address minus the query, and a WebSocket address with a fragment is
-    refused (the page would never connect). The page's script drops it from the address bar."""
-    return f"{url.rstrip('/')}/?presenter={urllib.parse.quote(token, safe='')}"
-
-
-def token_weakness(token: str) -> str:
-    """Why ``token`` is easy to guess (short, or little randomness for its characters), or ``""``.
-
-    The estimate is generous (length × log₂ of the character classes used): a dictionary word with a
-    digit (``lecture-7``) is weak; :func:`random_token`'s are strong.
-    """
-    pool = sum(
-        size
-        for size, present in (
-            (26, any(c.islower() for c in token)),
-            (26, any(c.isupper() for c in token)),
-            (10, any(c.isdigit() for c in token)),
-            (33, any(not c.isalnum() for c in token)),
-        )
-        if present
-    )
-    bits = len(token) * math.log2(max(pool, 2))
-    if len(token) < 12 or bits < STRONG_BITS:
-        return (
-            f"the presenter token {len(token)} characters long is easy to guess (about {bits:.0f} bits; "
-            f"use at least {STRONG_BITS}, or --presenter alone for a random one)"
-        )
-    return ""
-
-
-class Member(Protocol):
-    """What the classroom needs of a tab's session."""
-
-    def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]: ...
-
-    def mirror(
-        self, state: LabState, snapshot: Snapshot, scene: tuple = (), shared: object = None
-    ) -> None: ...
-
-    @property
-    def scene_messages(self) -> tuple: ...
-
-    def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None: ...
-
-    def mirror_tab(self, label: str) -> None: ...
-
-    def role_changed(self, role: Role) -> None: ...
-
-    @property
-    def latest(self) -> tuple[LabState, Snapshot | None]: ...
 
 
 class Classroom:
@@ -162,6 +115,7 @@ class Classroom:
         self._resume_until: float | None = None
         self._last: tuple[LabState, Snapshot] | None = None
         self._tab = ""
+        self._asking: int | None = None  # the tab that typed the token and waits for the presenter
 
     # ---------------------------------------------------------------- membership
     def join(self, key: int, member: Member) -> None:
@@ -185,7 +139,10 @@ class Classroom:
             self._alone.discard(key)
             self._wrong.pop(key, None)
             was_presenter = key == self._presenter
+            if key == self._asking:  # the asking tab closed: its request is withdrawn
+                self._asking = None
             if was_presenter:
+                self._asking = None  # dropped: a right token now presents at once
                 unsubscribe = self._stop_relay()
                 self._resume_until = self._clock() + RESUME_GRACE  # it may come back with its key
         if unsubscribe is not None:  # never under our lock: it takes the session's
@@ -196,8 +153,12 @@ class Classroom:
     def claim(self, key: int, token: str) -> str:
         """Make tab ``key`` the presenter if ``token`` is right.
 
+        A right token while another tab presents and is connected asks that tab to hand over
+        (:data:`WAITING` is returned; a newer request replaces an older one).
+
         Returns:
-            "" when it now presents, else why not (wrong token, too many tries from this tab).
+            "" when it now presents, :data:`WAITING` when the presenter was asked, else why not (wrong
+            token, too many tries from this tab).
         """
         why = self._spent(key)
         if why:
@@ -208,9 +169,31 @@ class Classroom:
         with self._lock:
             if key not in self._members:
                 return N_("this tab is not connected")
-            self._resume_key, self._resume_until, self._last = secrets.token_urlsafe(24), None, None
+            presenter = self._presenter
+            if presenter not in (None, key):
+                self._asking = key
+            else:
+                self._resume_key, self._resume_until, self._last = secrets.token_urlsafe(24), None, None
+        if presenter is not None and presenter != key:
+            self._tell_all(personal={presenter: ASKED, key: WAITING})
+            return WAITING
         self._present(key, None)
         return ""
+
+    def answer(self, key: int, accept: bool) -> None:
+        """The presenting tab ``key`` answers the request to hand over: the asking tab presents
+        (``accept``) or is told the presenter kept presenting. Any other tab's answer changes nothing."""
+        with self._lock:
+            claimant = self._asking
+            if key != self._presenter or claimant is None:
+                return
+            self._asking = None
+            if accept:
+                self._resume_key, self._resume_until, self._last = secrets.token_urlsafe(24), None, None
+        if accept:
+            self._present(claimant, None, handover=True)
+        else:
+            self._tell_all(personal={claimant: KEPT})
 
     def resume(self, key: int, resume_key: str) -> tuple[LabState, Snapshot] | None | bool:
         """Tab ``key`` comes back with the presenter's reconnect key (a reload, a lost connection, a new
@@ -229,7 +212,7 @@ class Classroom:
             ok = bool(current) and fresh and hmac.compare_digest(resume_key.encode(), current.encode())
             if not ok or key not in self._members:
                 return False
-            last, self._resume_until = self._last, None
+            last, self._resume_until, self._asking = self._last, None, None
         self._present(key, last)
         return last
 
@@ -238,14 +221,17 @@ class Classroom:
         with self._lock:
             return self._resume_key if key == self._presenter else ""
 
-    def _present(self, key: int, restore: tuple[LabState, Snapshot] | None) -> None:
-        """Make tab ``key`` the presenter; relay what it shows (or ``restore``: what it showed before)."""
+    def _present(self, key: int, restore: tuple[LabState, Snapshot] | None, handover: bool = False) -> None:
+        """Make tab ``key`` the presenter; relay what it shows (or ``restore``: what it showed before).
+        ``handover``: the presenter agreed (it and the room are told so)."""
         with self._lock:
             member = self._members[key]
             replaced = self._presenter if self._presenter not in (key, None) else None
             previous = self._stop_relay()
             self._presenter = key
             self._alone.discard(key)
+            if self._asking == key:
+                self._asking = None
         # Sessions' locks are taken outside ours only: a presenter's redraw holds its session's lock
         # and then asks for ours (to relay), so the other order would deadlock.
         if previous is not None:
@@ -262,7 +248,14 @@ class Classroom:
             state, snap = member.latest
             if snap is not None:
                 self._relay(state, snap)
-        self._tell_all(personal={replaced: TAKEN_OVER} if replaced is not None else None)
+        self._tell_replaced(replaced, handover)
+
+    def _tell_replaced(self, replaced: int | None, handover: bool) -> None:
+        """Tell every tab its new role: the replaced presenter why, the room a hand-over."""
+        said = HANDED_OVER if handover else TAKEN_OVER
+        self._tell_all(
+            HANDED_OVER_ROOM if handover else "", {replaced: said} if replaced is not None else None
+        )
 
     def address(self, key: int) -> str:
         """The network address of tab ``key``, for the log (never what tries are counted by)."""
@@ -296,6 +289,7 @@ class Classroom:
                 return
             unsubscribe = self._stop_relay()
             self._resume_key, self._resume_until, self._last, self._tab = "", None, None, ""
+            self._asking = None
         if unsubscribe is not None:
             unsubscribe()
         self._tell_all(N_("The presenter stopped presenting: explore on your own."))
@@ -334,8 +328,11 @@ class Classroom:
             followers = self._following_keys()
             anyone = self._someone_presents()
             count = self._room_followers(len(followers))
-        following = key in followers
-        return Role(presenting=key == presenter, following=following, presenter=anyone, followers=count)
+            asked, waiting = key == presenter and self._is_asked(), key == self._asking
+        role = Role(
+            presenting=key == presenter, following=key in followers, presenter=anyone, followers=count
+        )
+        return replace(role, asked=asked, waiting=waiting)
 
     def followers(self) -> int:
         """How many tabs follow the presenter (in the whole room)."""
@@ -349,6 +346,10 @@ class Classroom:
 
     def _room_followers(self, here: int) -> int:
         return here
+
+    def _is_asked(self) -> bool:
+        """Whether this process's presenter has a request to hand over."""
+        return self._asking is not None
 
     def _following_keys(self) -> list[int]:
         if not self._someone_presents():
@@ -388,10 +389,11 @@ class Classroom:
             member.mirror_tab(label)
 
     def _tell_all(self, note: str = "", personal: dict[int, str] | None = None) -> None:
-        """Tell every tab its role, with ``note`` (or its own note in ``personal``) unless it presents."""
+        """Tell every tab its role, with its own note in ``personal``, else ``note`` unless it presents."""
+        personal = personal or {}
         with self._lock:
             members = list(self._members.items())
         for key, member in members:
             role = self.role(key)
-            said = (personal or {}).get(key, note)
-            member.role_changed(Role(**{**role.__dict__, "note": said if not role.presenting else ""}))
+            said = personal[key] if key in personal else note if not role.presenting else ""
+            member.role_changed(Role(**{**role.__dict__, "note": said}))

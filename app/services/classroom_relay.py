@@ -17,7 +17,10 @@ JSON, never pickles):
   scene messages for the others to replay (:class:`~app.services.scene_slot.SceneSlot`: the scene drawn
   once per change per worker);
 * the presenter's camera and open tab go the same way; each worker tells the hub how many of its tabs
-  follow, and the presenter is shown the room's count.
+  follow, and the presenter is shown the room's count;
+* a right token while a tab presents is a request the hub passes to the presenter's worker (``ask``);
+  the presenter's answer goes back through the hub, which grants the asking tab's worker the role (with
+  a new reconnect key) or tells it the presenter refused.
 """
 
 from __future__ import annotations
@@ -32,7 +35,15 @@ from typing import Any
 from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
 from .catalog import RobotCatalog
-from .classroom import MAX_TOKEN_LENGTH, PRESENTER_AWAY, TAKEN_OVER, Classroom, Member
+from .classroom import (
+    ASKED,
+    KEPT,
+    MAX_TOKEN_LENGTH,
+    PRESENTER_AWAY,
+    WAITING,
+    Classroom,
+    Member,
+)
 from .scene_slot import SceneSlot
 from .state_codec import RobotWire, decode_state, dumps, encode_state, loads
 
@@ -144,6 +155,7 @@ class RelayedClassroom(Classroom):
         self._others = 0  # followers in the other workers
         self._told_count = -1
         self.computed = 0  # snapshots computed for states of another worker
+        self._asked = False  # this worker's presenter is asked to hand over (the hub keeps who asks)
         channel.on_message = self._message
 
     # ---------------------------------------------------------------- the seam of Classroom
@@ -152,6 +164,9 @@ class RelayedClassroom(Classroom):
 
     def _room_followers(self, here: int) -> int:
         return here + self._others
+
+    def _is_asked(self) -> bool:
+        return self._asked
 
     # ---------------------------------------------------------------- this worker's tabs
     def join(self, key: int, member: Member) -> None:
@@ -174,10 +189,14 @@ class RelayedClassroom(Classroom):
 
     def closed(self, key: int) -> None:
         with self._lock:
-            was_presenter = key == self._presenter
+            was_presenter, was_asking = key == self._presenter, key == self._asking
+            if was_presenter:
+                self._asked = False
         super().closed(key)
         if was_presenter:
             self.channel.send({"op": "away", "key": key})
+        elif was_asking:
+            self.channel.send({"op": "withdraw", "key": key})
 
     def claim(self, key: int, token: str) -> str:
         with self._lock:
@@ -194,7 +213,21 @@ class RelayedClassroom(Classroom):
         key = int(answer["key"])
         if not answer.get("ok"):
             return self._wrong_try(key)
+        if answer.get("waiting"):  # the presenter (in any worker) was asked to hand over
+            with self._lock:
+                self._asking = key if key in self._members else None
+            if self._asking is None:
+                self.channel.send({"op": "withdraw", "key": key})
+                return "this tab is not connected"
+            self._tell_all(personal={key: WAITING})
+            return WAITING
+        return self._granted(answer)
+
+    def _granted(self, answer: dict[str, Any], handover: bool = False) -> str:
+        """The hub made tab ``answer["key"]`` the presenter (its token, or the presenter handed over)."""
+        key = int(answer["key"])
         with self._lock:
+            self._asking = None if self._asking == key else self._asking
             if key not in self._members:  # closed meanwhile: the hub hears it as the presenter's close
                 self._presenter = key
             self._resume_key, self._resume_until, self._last = str(answer.get("resume", "")), None, None
@@ -202,8 +235,19 @@ class RelayedClassroom(Classroom):
         if key not in self._members:
             self.closed(key)
             return "this tab is not connected"
-        self._present(key, None)
+        self._present(key, None, handover)
         return ""
+
+    def answer(self, key: int, accept: bool) -> None:
+        """The presenting tab answers the request (the hub grants the asking tab the role, or refuses it);
+        any other tab's answer changes nothing."""
+        with self._lock:
+            if key != self._presenter or not self._asked:
+                return
+            self._asked = False
+        if not accept:  # told before the hub's answer: the asking tab's note (refused) comes after
+            self._tell_all()
+        self.channel.send({"op": "answer", "key": key, "accept": bool(accept)})
 
     def resume(self, key: int, resume_key: str) -> tuple[LabState, Snapshot] | None | bool:
         with self._lock:
@@ -228,6 +272,7 @@ class RelayedClassroom(Classroom):
                 self._presenter = key
             self._resume_key, self._resume_until = str(answer.get("resume", "")), None
             self._remote, self._remote_last, self._tab = False, None, str(answer.get("tab", ""))
+            self._asking, self._asked = None, False
         if key not in self._members:
             self.closed(key)
             return False
@@ -237,6 +282,7 @@ class RelayedClassroom(Classroom):
     def resign(self, key: int) -> None:
         with self._lock:
             presenting = key == self._presenter
+            self._asked = self._asked and not presenting
         super().resign(key)
         if presenting:
             self.channel.send({"op": "resign", "key": key})
@@ -276,9 +322,12 @@ class RelayedClassroom(Classroom):
                 unsubscribe = self._stop_relay()
                 self._resume_key, self._resume_until, self._last = "", None, None
                 self._remote, self._remote_last, self._tab = True, None, ""
+                self._asking, self._asked = None, False
             if unsubscribe is not None:
                 unsubscribe()
-            self._tell_all(personal={replaced: TAKEN_OVER} if replaced is not None else None)
+            self._tell_replaced(replaced, message.get("handover") is True)
+        elif op in ("ask", "unask", "granted", "refused"):
+            self._handover(op, message)
         elif op == "state":
             self._remote_state(message.get("state"))
         elif op == "camera":
@@ -298,7 +347,7 @@ class RelayedClassroom(Classroom):
             with self._lock:
                 if not self._remote:
                     return
-                self._remote = False
+                self._remote, self._asking = False, None
                 if op == "resigned":
                     self._remote_last, self._tab = None, ""
             self._tell_all(PRESENTER_AWAY if op == "away" else STOPPED)
@@ -309,6 +358,24 @@ class RelayedClassroom(Classroom):
                 presenter = self._members.get(key) if key is not None else None
             if presenter is not None and key is not None:
                 presenter.role_changed(self.role(key))
+
+    def _handover(self, op: str, message: dict[str, Any]) -> None:
+        """What the hub says of a request to hand over: this worker's presenter is asked (or no longer),
+        or this worker's asking tab presents now or was refused."""
+        if op in ("ask", "unask"):
+            with self._lock:
+                self._asked, here = op == "ask" and self._presenter is not None, self._presenter
+            if here is not None:
+                self._tell_all(personal={here: ASKED} if op == "ask" else None)
+        elif op == "granted":
+            self._granted(message, handover=True)
+        else:
+            asker = int(message.get("key", -1))
+            with self._lock:
+                if self._asking != asker:
+                    return
+                self._asking = None
+            self._tell_all(personal=None if message.get("quiet") else {asker: KEPT})
 
     def _remote_state(self, data: Any) -> None:
         """The presenter (in another worker) committed a state: compute its snapshot once, and every

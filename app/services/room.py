@@ -13,9 +13,18 @@ it returns.
 
 Worker → hub: ``claim`` (id, key, token), ``resume`` (id, key, resume), ``state`` (the
 presenter's commit, :mod:`app.services.state_codec`), ``camera``, ``tab``, ``away`` (the presenter's
-tab closed), ``resign``, ``count`` (its followers). Hub → worker: ``reply`` (id, …), ``presenter`` (a
-tab of another worker presents now), ``state``, ``camera``, ``tab``, ``away``, ``resigned``, ``others``
-(followers in the other workers).
+tab closed), ``resign``, ``count`` (its followers), ``answer`` (key, accept: the presenter's answer
+to a hand-over), ``withdraw`` (key: the asking tab closed). Hub → worker: ``reply`` (id, …; ``waiting``
+when the presenter was asked), ``presenter`` (a tab of another worker presents now; ``handover`` when
+its presenter agreed), ``state``, ``camera``, ``tab``, ``away``, ``resigned``, ``others`` (followers
+in the other workers), ``ask`` / ``unask`` (to the presenter's worker: a tab asks to present, or no
+longer), ``granted`` (key, resume: the asking tab presents) / ``refused`` (key; ``quiet`` when a newer
+request replaced it).
+
+A hand-over: a right token typed while a tab presents (and is connected) is kept as ``asking``
+(worker, key), one at a time, and the presenter's worker is asked; only the presenter's worker's
+``answer`` for the presenter counts. Away, resign, a takeover by reconnect key and a worker gone clear
+the request.
 """
 
 from __future__ import annotations
@@ -53,6 +62,7 @@ class RoomHub:
         self.resume_until: float | None = None
         self.last: Any = None  # the presenter's last state, as sent
         self.tab = ""
+        self.asking: tuple[int, int] | None = None  # (worker, tab key) that asks the presenter to hand over
         self.counts: dict[int, int] = {}
         self._told_others: dict[int, int] = {}
         self.relayed = 0
@@ -79,6 +89,8 @@ class RoomHub:
         self.counts.pop(worker, None)
         self._told_others.pop(worker, None)
         out = self._away(worker) if self.presenter is not None and self.presenter[0] == worker else []
+        if self.asking is not None and self.asking[0] == worker:
+            out += self._withdraw()
         return out + self._counts()
 
     # ---------------------------------------------------------------- messages
@@ -95,6 +107,8 @@ class RoomHub:
             if op == "count":
                 self.counts[worker] = max(0, int(message.get("n", 0)))
                 return self._counts()
+            if op == "withdraw" and self.asking == (worker, int(message["key"])):
+                return self._withdraw()
         except (TypeError, ValueError, KeyError):
             return []
         if self.presenter is None or self.presenter[0] != worker:
@@ -111,8 +125,27 @@ class RoomHub:
             return self._away(worker)
         if op == "resign" and message.get("key") == self.presenter[1]:
             self.presenter, self.resume_key, self.resume_until, self.last, self.tab = None, "", None, None, ""
+            self.asking = None
             return self._others(worker, {"op": "resigned"})
+        if op == "answer" and message.get("key") == self.presenter[1] and self.asking is not None:
+            return self._answer(message.get("accept") is True)
         return []
+
+    def _answer(self, accept: bool) -> Outgoing:
+        """The presenter answered the request: the asking tab presents, or is told it was refused."""
+        assert self.asking is not None
+        (worker, key), self.asking = self.asking, None
+        if not accept:
+            return [(worker, {"op": "refused", "key": key})]
+        self.resume_key, self.resume_until, self.last, self.tab = secrets.token_urlsafe(24), None, None, ""
+        self.presenter = (worker, key)
+        granted = {"op": "granted", "key": key, "resume": self.resume_key}
+        return [(worker, granted), *self._others(worker, {"op": "presenter", "handover": True})]
+
+    def _withdraw(self) -> Outgoing:
+        """The asking tab is gone: the presenter's worker is no longer asked."""
+        self.asking = None
+        return [(self.presenter[0], {"op": "unask"})] if self.presenter is not None else []
 
     def _claim(self, worker: int, message: dict[str, Any]) -> Outgoing:
         given = str(message.get("token", "")).encode("utf-8")[: MAX_TOKEN_LENGTH * 4]
@@ -121,6 +154,12 @@ class RoomHub:
         reply: dict[str, Any] = {"op": "reply", "id": message.get("id"), "key": key, "ok": ok}
         if not ok:  # the worker counts it against the tab's connection
             return [(worker, reply)]
+        if self.presenter is not None and self.presenter != (worker, key):  # ask it to hand over
+            replaced, self.asking = self.asking, (worker, key)
+            out: Outgoing = [(worker, {**reply, "waiting": True}), (self.presenter[0], {"op": "ask"})]
+            if replaced is not None and replaced != self.asking:
+                out.append((replaced[0], {"op": "refused", "key": replaced[1], "quiet": True}))
+            return out
         self.resume_key, self.resume_until, self.last, self.tab = secrets.token_urlsafe(24), None, None, ""
         return [(worker, {**reply, "resume": self.resume_key}), *self._take_over(worker, key)]
 
@@ -140,12 +179,12 @@ class RoomHub:
 
     def _take_over(self, worker: int, key: int) -> Outgoing:
         """Tab ``key`` of ``worker`` presents: every other worker follows it (a tab of theirs that
-        presented is told it was replaced)."""
-        self.presenter = (worker, key)
+        presented is told it was replaced); a request to hand over is dropped."""
+        self.presenter, self.asking = (worker, key), None
         return self._others(worker, {"op": "presenter"})
 
     def _away(self, worker: int) -> Outgoing:
-        self.presenter, self.resume_until = None, self._clock() + RESUME_GRACE
+        self.presenter, self.resume_until, self.asking = None, self._clock() + RESUME_GRACE, None
         return self._others(worker, {"op": "away"})
 
     def _others(self, worker: int, message: dict[str, Any]) -> Outgoing:

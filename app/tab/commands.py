@@ -22,17 +22,14 @@ import numpy as np
 from ..core.actions import Action, FollowPath, SetRobot, Wait
 from ..core.build_table import robot_file
 from ..core.commands import (
+    CLASSROOM,
     ChooseChain,
     ChooseRobot,
-    ClaimPresenter,
     Command,
-    ExploreAlone,
     FindSingularity,
-    FollowPresenter,
     Message,
     Redraw,
     RequestDownload,
-    StopPresenting,
     ToggleRecording,
     UploadRobot,
 )
@@ -111,7 +108,7 @@ class CommandRunner:
             return None
         if isinstance(command, RequestDownload):
             self._download(state, command.label)
-        elif isinstance(command, (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter)):
+        elif isinstance(command, CLASSROOM):
             self.following.command(command)
         elif isinstance(command, ToggleRecording):
             self._toggle_recording(state)

@@ -20,6 +20,7 @@ from typing import Any
 from ..core.actions import Step
 from ..core.commands import (
     CLASSROOM,
+    AnswerHandover,
     ClaimPresenter,
     ExploreAlone,
     FollowPresenter,
@@ -35,7 +36,7 @@ from ..core.commands import (
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
-from ..services.classroom import TOO_MANY_TRIES, Classroom
+from ..services.classroom import TOO_MANY_TRIES, WAITING, Classroom
 from .camera import TabCamera
 from .notices import Notices
 
@@ -157,17 +158,25 @@ class Following:
 
     def role_changed(self, role: Role) -> None:
         """The classroom says what this tab now is (redrawn on the renderer's next visit)."""
-        following_before = self.role.following
+        before = self.role
         self.role = role
-        if role.note and not role.presenting:
+        if role.note:
             _ = self._notices.tr.gettext
             self._notices.notify(_("Classroom"), _(role.note))
-        if role.following and not following_before:
+        if role.following and not before.following:
             self._stop_ticker()
+        if role.presenting and not before.presenting and self.classroom is not None and self.page is not None:
+            # Presenting now (its token, its reconnect key, or a hand-over it asked for): the page keeps
+            # the reconnect key, and the followers open the tab it has open.
+            self.page.remember(self.classroom.resume_key(self.key))
+            if self.page.tab:
+                self.classroom.tab(self.key, self.page.tab)
         self._dispatch(Redraw())
 
     # ------------------------------------------------------------------ the tab's commands
-    def command(self, command: ClaimPresenter | StopPresenting | ExploreAlone | FollowPresenter) -> None:
+    def command(
+        self, command: ClaimPresenter | StopPresenting | ExploreAlone | FollowPresenter | AnswerHandover
+    ) -> None:
         """Carry out a classroom command."""
         if self.classroom is None:
             raise ValueError(
@@ -183,6 +192,8 @@ class Following:
             self.classroom.explore_alone(self.key)
         elif isinstance(command, FollowPresenter):
             self.classroom.follow(self.key)
+        elif isinstance(command, AnswerHandover):  # the classroom ignores it unless this tab presents
+            self.classroom.answer(self.key, command.accept)
 
     def _claim(self, command: ClaimPresenter) -> None:
         assert self.classroom is not None
@@ -198,6 +209,8 @@ class Following:
         if command.token != self._typed_token:
             return  # typing went on: a later try comes
         why = self.classroom.claim(self.key, command.token)
+        if why == WAITING:
+            return  # the classroom told the tab (a note with its role); its token box is hidden meanwhile
         if why:
             self._notices.notify(
                 self._notices.tr.gettext("Not the presenter"), self._refusal(why), seconds=6.0

@@ -8,13 +8,23 @@ import contextlib
 import numpy as np
 import pytest
 from app_helpers import assert_all_finite, running_lab
-from fakes import POLL_TIMEOUT, poll
+from fakes import POLL_TIMEOUT, FakeClock, poll
 from wsclient import ViserWsClient
 
 import robots
 from app.core.actions import ApplyPreset, Play, SetJoint
-from app.core.commands import ExploreAlone
-from app.services.classroom import PRESENTER_AWAY, TOKEN_TRIES, Classroom
+from app.core.commands import AnswerHandover, ExploreAlone
+from app.services.classroom import (
+    ASKED,
+    HANDED_OVER,
+    HANDED_OVER_ROOM,
+    KEPT,
+    PRESENTER_AWAY,
+    TAKEN_OVER,
+    TOKEN_TRIES,
+    WAITING,
+    Classroom,
+)
 
 TOKEN = "lecture-7"
 
@@ -178,7 +188,8 @@ def test_tokens_are_limited_per_connection_and_hold_no_other_tab_back():
     assert room_.role(2).presenting and room_.role(1).following
     room_.closed(1)
     room_.join(3, a)  # the student's reload: a new connection with its own tries
-    assert room_.claim(3, "right") == ""
+    assert room_.claim(3, "right") == WAITING  # taken: tab 2 presents, so it is asked first
+    room_.answer(2, accept=True)
     assert room_.role(3).presenting and not room_.role(2).presenting
     room_.closed(3)
     assert b.role.note == PRESENTER_AWAY and not b.role.following
@@ -250,6 +261,8 @@ def test_typing_the_token_key_by_key_tries_it_once():
         token = follower.panel.classroom.token
         for k in range(1, len(TOKEN) + 1):
             token.value = TOKEN[:k]  # as typed, key by key
+        poll(lambda: presenter.role.asked and follower.role.waiting)  # the presenter is asked once
+        presenter.dispatch(AnswerHandover(accept=True))
         poll(lambda: follower.role.presenting)
         assert not presenter.role.presenting and presenter.role.following
         assert lab.classroom.wrong_tries(follower.key) == 0
@@ -310,3 +323,119 @@ def test_the_presenter_closing_while_it_redraws_does_not_deadlock():
     a.join(10)
     b.join(10)
     assert sorted(done) == ["closed", "redraw"]
+
+
+# ---------------------------------------------------------------- issue 28, item 7: a hand-over
+class _Tab:
+    """A tab as the classroom sees it (no session): the role it was told last, and every note."""
+
+    latest = (None, None)
+    scene_messages = ()
+
+    def __init__(self) -> None:
+        self.role = None
+        self.notes: list[str] = []
+
+    def subscribe(self, fn):
+        return lambda: None
+
+    def mirror(self, state, snapshot, scene=()):
+        pass
+
+    def mirror_camera(self, *pose):
+        pass
+
+    def mirror_tab(self, label):
+        pass
+
+    def role_changed(self, role):
+        self.role = role
+        if role.note:
+            self.notes.append(role.note)
+
+
+def _handover_room(n: int = 4, clock=None):
+    """A classroom with tabs 1..n; tab 1 presents (by token)."""
+    room_ = Classroom(TOKEN, clock=clock) if clock else Classroom(TOKEN)
+    tabs = {k: _Tab() for k in range(1, n + 1)}
+    for k, tab in tabs.items():
+        room_.join(k, tab)
+    assert room_.claim(1, TOKEN) == ""
+    return room_, tabs
+
+
+def test_a_right_token_asks_the_presenter_and_replaces_it_only_when_it_hands_over():
+    """On the old code claim(2) returned "" and tab 2 presented at once (tab 1 told TAKEN_OVER)."""
+    room_, tabs = _handover_room()
+    old_key = room_.resume_key(1)
+    assert room_.claim(2, TOKEN) == WAITING
+    assert room_.role(1).presenting and room_.role(1).asked and tabs[1].notes[-1] == ASKED
+    assert room_.role(2).waiting and room_.role(2).following and tabs[2].notes[-1] == WAITING
+    assert not room_.role(3).asked and not room_.role(3).waiting and not tabs[3].notes
+    room_.answer(1, accept=True)
+    assert room_.role(2).presenting and not room_.role(2).waiting and not room_.role(2).asked
+    assert room_.role(1).following and tabs[1].notes[-1] == HANDED_OVER
+    assert tabs[3].notes == [HANDED_OVER_ROOM] and tabs[4].notes == [HANDED_OVER_ROOM]
+    new_key = room_.resume_key(2)
+    assert new_key and new_key != old_key and room_.resume_key(1) == ""
+    room_.closed(2)
+    room_.join(5, _Tab())
+    assert room_.resume(5, old_key) is False and room_.resume(5, new_key) is None  # the new key only
+
+
+def test_a_presenter_that_refuses_keeps_presenting_and_the_tab_may_ask_again():
+    room_, tabs = _handover_room()
+    assert room_.claim(2, TOKEN) == WAITING
+    room_.answer(1, accept=False)
+    assert room_.role(1).presenting and not room_.role(1).asked
+    assert tabs[2].notes[-1] == KEPT and room_.role(2).following and not room_.role(2).waiting
+    assert room_.claim(2, TOKEN) == WAITING and room_.role(1).asked  # a new request
+    room_.answer(1, accept=True)
+    assert room_.role(2).presenting
+
+
+def test_only_the_presenter_s_answer_counts():
+    room_, tabs = _handover_room()
+    assert room_.claim(2, TOKEN) == WAITING
+    for forger in (2, 3, 99):  # the asking tab itself, a follower, a tab that is not there
+        room_.answer(forger, accept=True)
+    assert room_.role(1).presenting and room_.role(1).asked and room_.role(2).waiting
+    room_.answer(3, accept=False)  # nor refuse in its name
+    assert room_.role(1).asked and room_.role(2).waiting and tabs[2].notes[-1] == WAITING
+
+
+def test_no_answer_changes_nothing_and_a_newer_request_replaces_an_older_one():
+    room_, tabs = _handover_room()
+    assert room_.claim(2, TOKEN) == WAITING
+    assert room_.claim(3, TOKEN) == WAITING
+    assert not room_.role(2).waiting and room_.role(3).waiting and room_.role(1).presenting
+    room_.answer(1, accept=True)
+    assert room_.role(3).presenting and room_.role(2).following and room_.role(1).following
+
+
+def test_the_asking_tab_closing_withdraws_its_request():
+    room_, tabs = _handover_room()
+    assert room_.claim(2, TOKEN) == WAITING
+    room_.closed(2)
+    assert room_.role(1).presenting and not room_.role(1).asked and not tabs[1].role.asked
+    room_.answer(1, accept=True)  # too late: nothing to grant
+    assert room_.role(1).presenting
+
+
+def test_with_no_presenter_connected_a_right_token_presents_at_once():
+    clock = FakeClock()
+    room_, tabs = _handover_room(clock=clock)
+    assert room_.claim(2, TOKEN) == WAITING
+    room_.closed(1)  # the presenter's tab closed (within the resume grace): the request is dropped
+    assert not room_.role(2).waiting and not room_.role(3).presenter
+    assert room_.claim(3, TOKEN) == "" and room_.role(3).presenting
+
+
+def test_the_presenter_s_reconnect_key_takes_over_at_once():
+    """Only the teacher's browser has it: a second tab of that browser presents without asking."""
+    room_, tabs = _handover_room()
+    key = room_.resume_key(1)
+    assert room_.claim(2, TOKEN) == WAITING
+    assert room_.resume(3, key) is None  # no state committed yet
+    assert room_.role(3).presenting and not room_.role(3).asked and not room_.role(2).waiting
+    assert room_.role(1).following and tabs[1].notes[-1] == TAKEN_OVER

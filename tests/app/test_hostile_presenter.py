@@ -2,8 +2,8 @@
 teacher out. Wrong tokens are counted per connection only (never per address, never for the room): a
 tab that typed five is refused further tries, and every other tab's right token is taken at once.
 ``--presenter`` alone makes a 128-bit random token and a link, a weak token is warned about, the token
-box is masked, a presenter replaced by another tab is told, and the address in the log is read from
-``X-Forwarded-For`` only behind a proxy declared with ``--trusted-proxy``."""
+box is masked, a presenter is asked before another tab replaces it (issue 28, item 7), and the address
+in the log is read from ``X-Forwarded-For`` only behind a proxy declared with ``--trusted-proxy``."""
 
 from __future__ import annotations
 
@@ -12,13 +12,16 @@ import logging
 
 import pytest
 from app_helpers import running_lab, wait_until
-from hostile_helpers import RoundTrips, slider, widgets
+from hostile_helpers import RoundTrips, slider, widget, widgets
 from wsclient import ViserWsClient
 
 from app.cli.main import main
 from app.services.classroom import (
-    TAKEN_OVER,
+    ASKED,
+    HANDED_OVER,
+    KEPT,
     TOKEN_TRIES,
+    WAITING,
     WRONG_TOKEN,
     Classroom,
     presenter_link,
@@ -125,19 +128,58 @@ def test_a_wrong_token_is_logged_with_the_tab_s_address(caplog):
     assert "wrong presenter token from tab 1 at 203.0.113.7 (1 of 5)" in caplog.text
 
 
-def test_the_presenter_replaced_by_another_tab_is_told():
+def _button(ws: ViserWsClient, label: str) -> str:
+    """The uuid of this tab's button ``label`` (sent to every tab, shown or not)."""
+    return widget(ws, lambda m: m["type"] == "GuiButtonMessage" and m.get("props", {}).get("label") == label)
+
+
+def test_the_presenter_is_asked_before_another_tab_replaces_it_and_is_told():
+    """Issue 28, item 7: a right token typed in another tab asks the presenter (on the old code the
+    presenter became a follower at once). The asking tab's own click on the hidden "Hand over" button,
+    sent over its websocket, changes nothing; the presenter's click hands over, and both are told."""
     with running_lab(robot="planar2", presenter_token=TOKEN) as (lab, first, ws_first):
         with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws_second:
             wait_until(lambda: len(lab.sessions) == 2)
             second = next(s for s in lab.sessions.values() if s is not first)
             assert lab.classroom.claim(first.key, TOKEN) == ""
             wait_until(lambda: first.following.role.presenting)
+            mark, mark_second = ws_first.mark(), ws_second.mark()
+            ws_second.send(UPDATE(_token_box(ws_second), {"value": TOKEN}))
+            assert _notice(ws_first, mark, "Classroom") == ASKED
+            assert _notice(ws_second, mark_second, "Classroom") == WAITING
+            assert first.following.role.presenting and first.following.role.asked
+            assert second.following.role.waiting and not second.following.role.presenting
+            answers: list[tuple[int, bool]] = []
+            answer = lab.classroom.answer
+            lab.classroom.answer = lambda key, accept: (answers.append((key, accept)), answer(key, accept))
+            ws_second.send(UPDATE(_button(ws_second, "Hand over"), {"value": True}))  # forged
+            wait_until(lambda: (second.key, True) in answers, timeout=20)  # it reached the classroom
+            assert first.following.role.presenting and first.following.role.asked
+            assert second.following.role.waiting and not second.following.role.presenting
             mark = ws_first.mark()
-            box = _token_box(ws_second)
-            ws_second.send(UPDATE(box, {"value": TOKEN}))
+            ws_first.send(UPDATE(_button(ws_first, "Hand over"), {"value": True}))
             wait_until(lambda: second.following.role.presenting, timeout=20)
-            assert first.following.role.following
-            assert _notice(ws_first, mark, "Classroom") == TAKEN_OVER
+            assert first.following.role.following and not first.following.role.asked
+            assert _notice(ws_first, mark, "Classroom") == HANDED_OVER
+
+
+def test_a_presenter_that_keeps_presenting_tells_the_asking_tab():
+    with running_lab(robot="planar2", presenter_token=TOKEN) as (lab, first, ws_first):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws_second:
+            wait_until(lambda: len(lab.sessions) == 2)
+            second = next(s for s in lab.sessions.values() if s is not first)
+            assert lab.classroom.claim(first.key, TOKEN) == ""
+            ws_second.send(UPDATE(_token_box(ws_second), {"value": TOKEN}))
+            wait_until(lambda: first.following.role.asked, timeout=20)
+            mark = ws_second.mark()
+            ws_first.send(UPDATE(_button(ws_first, "Keep presenting"), {"value": True}))
+            ws_second.wait_for(
+                lambda m: m["type"] == "NotificationShowMessage" and m["props"]["body"] == KEPT,
+                after=mark,
+                timeout=30,
+            )
+            assert first.following.role.presenting and not first.following.role.asked
+            assert second.following.role.following and not second.following.role.waiting
 
 
 def test_the_token_box_is_masked_and_filled_from_the_presenter_link():

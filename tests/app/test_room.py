@@ -18,7 +18,17 @@ import robots
 from app.core.snapshot import compute
 from app.core.state import LabState
 from app.services.catalog import RobotCatalog
-from app.services.classroom import PRESENTER_AWAY, TAKEN_OVER, TOKEN_TRIES, WRONG_TOKEN
+from app.services.classroom import (
+    ASKED,
+    HANDED_OVER,
+    HANDED_OVER_ROOM,
+    KEPT,
+    PRESENTER_AWAY,
+    TAKEN_OVER,
+    TOKEN_TRIES,
+    WAITING,
+    WRONG_TOKEN,
+)
 from app.services.classroom_relay import RelayedClassroom, RoomChannel
 from app.services.room import RoomHub
 from app.services.state_codec import CodecError, RobotWire, decode_state, dumps, encode_state, loads
@@ -170,8 +180,10 @@ def test_wrong_tokens_spend_only_their_own_connection_s_tries_in_any_worker(room
     assert spent.startswith(f"this tab has typed {TOKEN_TRIES} wrong tokens") and not a.role.presenting
     assert room.workers[2].claim(2, TOKEN) == ""  # the teacher, in the other worker
     poll(lambda: b.role is not None and b.role.presenting, what="the teacher presents")
-    assert room.workers[1].claim(3, TOKEN) == ""  # and in the guessing tab's own worker
-    poll(lambda: c.role is not None and c.role.presenting and not b.role.presenting, what="taken over")
+    assert room.workers[1].claim(3, TOKEN) == WAITING  # and in the guessing tab's own worker (it asks)
+    poll(lambda: b.role.asked, what="the teacher asked")
+    room.workers[2].answer(2, accept=True)
+    poll(lambda: c.role is not None and c.role.presenting and not b.role.presenting, what="handed over")
 
 
 def test_a_robot_only_the_presenter_has_reaches_the_other_worker(room):
@@ -188,7 +200,7 @@ def test_a_robot_only_the_presenter_has_reaches_the_other_worker(room):
     assert far.mirrored[-1][0].robot is far.mirrored[-2][0].robot  # read once: no scene rebuilt per change
 
 
-def test_the_presenter_comes_back_in_another_worker_and_a_takeover_is_told(room):
+def test_the_presenter_comes_back_in_another_worker_and_a_hand_over_and_a_takeover_are_told(room):
     clock_tabs = [room.tab(1, 1), room.tab(1, 2), room.tab(2, 3)]
     presenter, near, far = clock_tabs
     assert room.workers[1].claim(1, TOKEN) == ""
@@ -205,9 +217,19 @@ def test_the_presenter_comes_back_in_another_worker_and_a_takeover_is_told(room)
     poll(lambda: near.role.following and far.role.following, what="everyone follows it again")
     back.commit(_moved(back, -0.4))
     poll(lambda: near.state.q[0] == -0.4 and far.state.q[0] == -0.4, what="followed from worker 2")
-    assert room.workers[1].claim(2, TOKEN) == ""  # a tab of worker 1 takes over
-    poll(lambda: back.role.note == TAKEN_OVER and back.role.following, what="the replaced presenter told")
-    room.workers[1].resign(2)
+    assert room.workers[1].claim(2, TOKEN) == WAITING  # a tab of worker 1 asks the presenter (worker 2)
+    poll(lambda: back.role.asked and back.role.note == ASKED, what="the presenter asked")
+    assert back.role.presenting and near.role.waiting and near.role.note == WAITING
+    room.workers[2].answer(4, accept=True)
+    poll(lambda: back.role.note == HANDED_OVER and back.role.following, what="the presenter told")
+    poll(lambda: far.role.note == HANDED_OVER_ROOM and near.role.presenting, what="the room told")
+    key = room.workers[1].resume_key(2)
+    assert key == room.hub.resume_key and room.hub.presenter == (1, 2)
+    again = room.tab(2, 5)  # the presenter's other tab (its browser has the key) takes over at once
+    last = room.workers[2].resume(5, key)
+    assert last and last[0].q[0] == -0.4 and again.state.q[0] == -0.4  # what the new presenter showed
+    poll(lambda: near.role.note == TAKEN_OVER and near.role.following, what="the replaced presenter told")
+    room.workers[2].resign(5)
     poll(lambda: not far.role.presenter and not back.role.following, what="resigned everywhere")
 
 
@@ -250,6 +272,88 @@ def test_a_worker_that_ends_leaves_the_room_and_its_presenter_may_come_back():
     assert hub.handle(2, {"op": "state", "state": {}}) == []  # only the presenter's worker speaks for it
     for garbage in ([1], {"op": "claim", "id": 4}, {"op": "count", "n": "many"}, {"op": "nope"}, None):
         assert hub.handle(2, garbage) == []  # dropped, never raised into the parent's loop
+
+
+# ---------------------------------------------------------------- issue 28, item 7: a hand-over
+def _asked_room(room, claimant_worker: int):
+    """Tab 1 of worker 1 presents; tab 2 of ``claimant_worker`` types the token and waits; tab 3 of
+    worker 2 follows."""
+    presenter, asking, other = room.tab(1, 1), room.tab(claimant_worker, 2), room.tab(2, 3)
+    assert room.workers[1].claim(1, TOKEN) == ""
+    poll(lambda: other.role is not None and other.role.following, what="followed")
+    assert room.workers[claimant_worker].claim(2, TOKEN) == WAITING
+    poll(lambda: presenter.role.asked and presenter.role.note == ASKED, what="the presenter asked")
+    assert presenter.role.presenting and asking.role.waiting and room.hub.asking == (claimant_worker, 2)
+    return presenter, asking, other
+
+
+@pytest.mark.parametrize("claimant_worker", [1, 2], ids=["same worker", "other worker"])
+def test_a_hand_over_across_workers_happens_only_when_the_presenter_agrees(room, claimant_worker):
+    """On the old code the hub answered the claim with the presenter's role at once."""
+    presenter, asking, other = _asked_room(room, claimant_worker)
+    old_key = room.hub.resume_key
+    room.workers[claimant_worker].answer(2, accept=True)  # forged: the asking tab's own worker and key
+    room.workers[2].answer(3, accept=True)  # forged: a follower
+    with room._lock:  # a worker that is not the presenter's speaks for it: the hub drops it
+        assert room.hub.handle(2, {"op": "answer", "key": 1, "accept": True}) == []
+    presenter.commit(_moved(presenter, 0.3))
+    poll(lambda: other.state.q[0] == 0.3, what="the presenter still presents")
+    assert presenter.role.presenting and asking.role.waiting and room.hub.presenter == (1, 1)
+    room.workers[1].answer(1, accept=True)
+    poll(lambda: asking.role.presenting and presenter.role.following, what="handed over")
+    assert presenter.role.note == HANDED_OVER and not asking.role.waiting
+    poll(lambda: other.role.note == HANDED_OVER_ROOM, what="the room told")
+    new_key = room.workers[claimant_worker].resume_key(2)
+    assert new_key == room.hub.resume_key != old_key and room.hub.asking is None
+    asking.commit(_moved(asking, -0.6))
+    poll(lambda: presenter.state.q[0] == -0.6 and other.state.q[0] == -0.6, what="the new presenter followed")
+
+
+@pytest.mark.parametrize("claimant_worker", [1, 2], ids=["same worker", "other worker"])
+def test_a_refused_hand_over_keeps_the_presenter_and_the_tab_may_ask_again(room, claimant_worker):
+    presenter, asking, other = _asked_room(room, claimant_worker)
+    room.workers[1].answer(1, accept=False)
+    poll(lambda: asking.role.note == KEPT and not asking.role.waiting, what="the asking tab told")
+    assert presenter.role.presenting and not presenter.role.asked and room.hub.asking is None
+    assert room.workers[claimant_worker].claim(2, TOKEN) == WAITING
+    poll(lambda: presenter.role.asked, what="asked again")
+
+
+@pytest.mark.parametrize("claimant_worker", [1, 2], ids=["same worker", "other worker"])
+def test_the_asking_tab_closing_withdraws_and_the_presenter_closing_drops_the_request(room, claimant_worker):
+    presenter, asking, other = _asked_room(room, claimant_worker)
+    room.workers[claimant_worker].closed(2)
+    poll(lambda: not presenter.role.asked and room.hub.asking is None, what="withdrawn")
+    room.workers[1].answer(1, accept=True)  # nothing to grant any more
+    again = room.tab(claimant_worker, 4)
+    assert room.workers[claimant_worker].claim(4, TOKEN) == WAITING
+    poll(lambda: presenter.role.asked, what="asked by the new tab")
+    room.workers[1].closed(1)  # the presenter's tab closes: the request is dropped ...
+    poll(
+        lambda: not again.role.waiting and not again.role.presenter and room.hub.asking is None,
+        what="dropped",
+    )
+    assert room.workers[claimant_worker].claim(4, TOKEN) == ""  # ... and a right token presents at once
+    poll(lambda: again.role.presenting and other.role.following, what="presents")
+
+
+def test_the_hub_drops_hand_over_messages_out_of_turn():
+    hub = RoomHub(TOKEN)
+    hub.started(1), hub.started(2)
+    assert hub.handle(1, {"op": "answer", "key": 5, "accept": True}) == []  # no presenter
+    hub.handle(1, {"op": "claim", "id": 1, "key": 5, "token": TOKEN})
+    assert hub.handle(1, {"op": "answer", "key": 5, "accept": True}) == []  # no request
+    out = hub.handle(2, {"op": "claim", "id": 2, "key": 6, "token": TOKEN})
+    assert out == [(2, {"op": "reply", "id": 2, "key": 6, "ok": True, "waiting": True}), (1, {"op": "ask"})]
+    assert hub.handle(2, {"op": "answer", "key": 6, "accept": True}) == []  # not the presenter's worker
+    assert hub.handle(1, {"op": "answer", "key": 4, "accept": True}) == []  # not the presenter's key
+    assert hub.handle(1, {"op": "withdraw", "key": 6}) == []  # not the asking tab's worker
+    for garbage in ({"op": "withdraw"}, {"op": "withdraw", "key": "six"}, {"op": "answer"}):
+        assert hub.handle(2, garbage) == [] and hub.asking == (2, 6)
+    assert hub.handle(1, {"op": "answer", "key": 5, "accept": "yes"}) == [(2, {"op": "refused", "key": 6})]
+    assert hub.presenter == (1, 5)  # only a real true accepts
+    hub.handle(2, {"op": "claim", "id": 3, "key": 6, "token": TOKEN})
+    assert hub.gone(2)[0] == (1, {"op": "unask"}) and hub.asking is None  # its worker ended
 
 
 def test_an_uploaded_urdf_robot_crosses_as_urdf_text():

@@ -5,19 +5,28 @@ no other click; the presenter link ``serve`` prints, ``…/?presenter=TOKEN``, f
 token from the address bar, so it is never typed or shown where the room can read it), one
 button that says what it does next ("Explore on my own", "Follow the presenter", "Stop presenting")
 and a line saying what the tab is: presenting (and how many tabs follow), following (read-only),
-or exploring alone.
+or exploring alone. When another tab typed the token, the presenter's box unfolds with the request and
+two buttons, "Hand over" and "Keep presenting"; the asking tab says it waits (its token box hidden).
 """
 
 from __future__ import annotations
 
+import html
 import json
 
 import viser
 
-from ...core.commands import ClaimPresenter, Command, ExploreAlone, FollowPresenter, StopPresenting
+from ...core.commands import (
+    AnswerHandover,
+    ClaimPresenter,
+    Command,
+    ExploreAlone,
+    FollowPresenter,
+    StopPresenting,
+)
 from ...core.i18n import LANGUAGES, N_, Translator, translations
 from ...core.role import Role
-from .common import Dispatch, bind, sync_value
+from .common import Dispatch, bind, bind_click, sync_value
 
 __all__ = ["ClassroomPanel", "compact_title", "token_js", "classroom_words_js", "CLASSROOM"]
 
@@ -91,6 +100,11 @@ class ClassroomPanel:
                 hint=_("The server's token: this tab then presents."),
             )
             bind(self.token, dispatch, lambda v: ClaimPresenter(str(v)) if str(v).strip() else None)
+            # A request to hand over (shown to the presenter only while another tab asks).
+            self.hand_over = gui.add_button(_("Hand over"), visible=False, color="green")
+            bind_click(self.hand_over, dispatch, lambda: AnswerHandover(True))
+            self.keep = gui.add_button(_("Keep presenting"), visible=False)
+            bind_click(self.keep, dispatch, lambda: AnswerHandover(False))
             self.button = gui.add_button(_("Explore on my own"), visible=False)
             self.button.on_click(lambda _: dispatch(self._next()))
 
@@ -110,7 +124,12 @@ class ClassroomPanel:
         self._shown = role
         tr = self.tr
         _ = tr.gettext
-        if role.presenting:
+        if role.presenting and role.asked:
+            text = "<b>{}</b>".format(
+                html.escape(_("Another tab typed the presenter token and asks to present."))
+            )
+            label = _("Stop presenting")
+        elif role.presenting:
             n = role.followers
             text = tr.ngettext(
                 "<b>You are presenting</b>: {n} tab follows.",
@@ -118,6 +137,11 @@ class ClassroomPanel:
                 n,
             ).format(n=n)
             label = _("Stop presenting")
+        elif role.waiting:
+            text = html.escape(
+                _("The presenting tab was asked to hand over: this tab presents as soon as it agrees.")
+            )
+            label = ""
         elif role.following:
             text = _("<b>Following the presenter</b>: your inputs are read-only.")
             label = _("Explore on my own")
@@ -134,8 +158,9 @@ class ClassroomPanel:
         self.button.visible = bool(label)
         if label:
             self.button.label = label
-        self.token.visible = not role.presenting
-        if role.presenting:
+        self.hand_over.visible = self.keep.visible = role.presenting and role.asked
+        self.token.visible = not role.presenting and not role.waiting
+        if role.presenting or role.waiting:
             sync_value(self.token, "")
 
     def remove(self) -> None:
@@ -144,9 +169,12 @@ class ClassroomPanel:
 
 def compact_title(role: Role, tr: Translator | None = None) -> str:
     """The box's title: "Classroom", or one line saying the role once the tab presents or follows
-    ("<title> · <role>": the layout script folds the box on that separator)."""
+    ("<title> · <role>": the layout script folds the box on that separator), or, while another tab asks
+    the presenter to hand over, "<title> — <request>" (the layout script unfolds it)."""
     tr = tr or translations()
     title = tr.gettext(CLASSROOM)
+    if role.presenting and role.asked:
+        return f"{title} — " + tr.gettext("another tab asks to present")
     if role.presenting:
         n = role.followers
         what = tr.ngettext("presenting: {n} tab follows", "presenting: {n} tabs follow", n).format(n=n)

@@ -190,12 +190,20 @@ LAYOUT_JS = """
     }
   };
   // The classroom box folds to its title line once the tab presents or follows (title "Classroom · …"),
-  // once per role: a teacher or student who opens it again keeps it open.
+  // once per role: a teacher or student who opens it again keeps it open. A request to hand over
+  // ("Classroom — …") unfolds it: the presenter must see the two buttons.
   const fold = () => {
     for (const head of document.querySelectorAll('[data-dock-region] div[style*="cursor: pointer"]')) {
       const title = head.textContent.trim();
       const role = title.split(":")[0];  // "Classroom · presenting", not the number of followers
       const words = window.__jacobianLabClassroomWords || ["Classroom"];
+      if (words.some((w) => title.startsWith(w + " —"))) {
+        const body = head.nextElementSibling;
+        const shut = body && body.getAttribute("aria-hidden") === "true";
+        if (head.dataset.jlFolded !== role && shut) head.click();
+        head.dataset.jlFolded = role;
+        continue;
+      }
       if (!words.some((w) => title.startsWith(w + " ·")) || head.dataset.jlFolded === role) continue;
       head.dataset.jlFolded = role;
       const body = head.nextElementSibling;

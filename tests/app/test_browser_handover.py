@@ -1,0 +1,85 @@
+"""Issue 28, item 7, in headless Chromium at 1280×720: a second tab typing the presenter token does not
+take the projector; the teacher's tab is asked (its Classroom box unfolds with "Hand over" and "Keep
+presenting", in view), and only its click hands over. Screenshots go to ``$APP_SCREENSHOT_DIR``
+(default: pytest's temporary directory)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from browser_helpers import app_page, new_page, wait
+
+from app.server import Lab
+from app.services.classroom import HANDED_OVER
+from app.viser_adapter import handle_uuid
+
+pytestmark = [pytest.mark.browser, pytest.mark.slow]
+
+TOKEN = "rK4-vq9T-w2Lm-8xPz"
+
+
+def _out(tmp_path) -> Path:
+    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def _in_view(page, locator) -> bool:
+    """Whether ``locator`` is drawn, whole, inside the page's viewport (a button the teacher can click)."""
+    box = locator.bounding_box()
+    size = page.viewport_size
+    return (
+        box is not None
+        and box["width"] > 0
+        and box["height"] > 0
+        and box["x"] >= 0
+        and box["y"] >= 0
+        and box["x"] + box["width"] <= size["width"]
+        and box["y"] + box["height"] <= size["height"]
+    )
+
+
+def test_the_teacher_is_asked_and_hands_over_by_a_click(tmp_path):
+    out = _out(tmp_path)
+    lab = Lab(port=0, presenter_token=TOKEN)
+    with app_page(lab, path=f"/?presenter={TOKEN}") as (teacher_page, teacher, errors):
+        wait(lambda: teacher.role.presenting)
+        # The teacher's own notices are shown in this test (app_page hides the start-up toasts).
+        teacher_page.add_style_tag(content=".mantine-Notifications-root { display: block !important; }")
+        student_page = new_page(teacher_page.context.browser)
+        student_page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
+        student_page.goto(lab.url)
+        student_page.wait_for_selector("[role=slider]")
+        wait(lambda: len(lab.sessions) == 2)
+        student = next(s for s in lab.sessions.values() if s is not teacher)
+        wait(lambda: student.role.following)
+        box = student_page.locator(f'label[for="{handle_uuid(student.panel.classroom.token)}"]').locator(
+            "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
+        )
+        if not box.is_visible():  # a follower's box is folded to its title line: open it
+            student_page.get_by_text("Classroom ·").first.click()
+        box.press_sequentially(TOKEN, delay=10)
+
+        wait(lambda: teacher.role.asked and student.role.waiting)
+        assert teacher.role.presenting and not student.role.presenting  # nothing switched yet
+        hand_over = teacher_page.get_by_role("button", name="Hand over", exact=True)
+        keep = teacher_page.get_by_role("button", name="Keep presenting", exact=True)
+        wait(lambda: hand_over.is_visible() and keep.is_visible())  # the folded box unfolded
+        wait(lambda: _in_view(teacher_page, hand_over) and _in_view(teacher_page, keep))
+        body = teacher_page.locator("body").inner_text()
+        assert "Another tab typed the presenter token and asks to present." in body
+        wait(lambda: not box.is_visible())  # the asking tab's token box is hidden while it waits
+        assert "this tab presents as soon as it agrees" in student_page.locator("body").inner_text()
+        teacher_page.screenshot(path=str(out / "handover_teacher_asked.png"))
+        student_page.screenshot(path=str(out / "handover_student_waiting.png"))
+
+        hand_over.click()
+        wait(lambda: student.role.presenting and teacher.role.following)
+        assert teacher.role.note == HANDED_OVER
+        wait(lambda: HANDED_OVER in teacher_page.locator("body").inner_text())
+        wait(lambda: not hand_over.is_visible())
+        teacher_page.screenshot(path=str(out / "handover_teacher_follows.png"))
+        student_page.screenshot(path=str(out / "handover_student_presents.png"))
+        assert not errors
