@@ -17,15 +17,25 @@ from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
 from fakes import poll
 from server_process import Server, printed_presenter_link
 
+from app.core.i18n import translations
+from app.core.role import Role
+from app.views.panel.classroom import compact_title
+
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
 
 @pytest.mark.parametrize(
-    "argv",
-    [["serve", "--host", "0.0.0.0", "--presenter"], ["serve", "--presenter", "--workers", "1"]],
-    ids=["default-workers", "one-process"],
+    ("argv", "lang"),
+    [
+        (["serve", "--host", "0.0.0.0", "--presenter"], ""),
+        (["serve", "--presenter", "--workers", "1"], ""),
+        # The panel is built again in the page's language (here ?lang=pl): the token must reach the new
+        # box (on fe3d267: the first box's script took it and the Polish box stayed empty, not presenting).
+        (["serve", "--presenter"], "pl"),
+    ],
+    ids=["default-workers", "one-process", "default-workers-pl"],
 )
-def test_the_printed_presenter_link_presents_and_leaves_no_token_in_the_address_bar(tmp_path, argv):
+def test_the_printed_presenter_link_presents_and_leaves_no_token_in_the_address_bar(tmp_path, argv, lang):
     out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out.mkdir(parents=True, exist_ok=True)
     sync_playwright = require_browser()
@@ -39,11 +49,12 @@ def test_the_printed_presenter_link_presents_and_leaves_no_token_in_the_address_
             try:
                 page = new_page(browser)
                 entries = page.evaluate("history.length")  # about:blank
-                page.goto(link)
+                page.goto(link + (f"&lang={lang}" if lang else ""))
                 page.wait_for_selector("[role=slider]")  # connected: the panel is drawn
-                title = page.get_by_text("Classroom · presenting", exact=False)
+                presenting = compact_title(Role(presenting=True), translations(lang or "en"))
+                title = page.get_by_text(presenting, exact=False)
                 poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
-                page.screenshot(path=str(out / f"presenter_link_{'-'.join(argv[1:])}.png"))
+                page.screenshot(path=str(out / f"presenter_link_{'-'.join(argv[1:])}{lang}.png"))
                 href = page.evaluate("location.href")
                 assert token not in href and "presenter" not in href and token not in page.url, href
                 # one entry for the link, rewritten in place: Back does not bring the token back

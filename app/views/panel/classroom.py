@@ -38,29 +38,40 @@ _TOKEN_JS = """(() => {
   // The presenter link (…/?presenter=TOKEN; a fragment would stop viser's websocket): taken from the
   // address, or from the page script that took it first, and never left in the address bar.
   const fields = new URLSearchParams(location.search);
-  const token = fields.get("presenter") || window.__jacobianLabPresenter || null;
-  window.__jacobianLabPresenter = null;
+  if (fields.get("presenter")) window.__jacobianLabPresenter = fields.get("presenter");
   if (fields.has("presenter")) {
     fields.delete("presenter");
     const rest = fields.toString();
     history.replaceState(null, "", location.pathname + (rest ? "?" + rest : ""));
   }
+  // The panel is built again when the page's language arrives (?lang=, the browser's languages): only
+  // the newest box's script fills the token in; an older box that took it and went hands it back.
+  window.__jacobianLabTokenBox = uuid;
+  let filled = "";
   // viser gives the text input a generated id (its label is for the handle's uuid), and React may
   // render a new input (a folded and unfolded box): mask whatever input is there, for the page's life.
-  let filled = false;
   setInterval(() => {
+    const newest = window.__jacobianLabTokenBox === uuid;
     const label = document.querySelector(`label[for="${uuid}"]`);
     const row = label && label.closest(".mantine-Flex-root");
     const input = row && row.querySelector("input");
-    if (!input) return;
+    if (!input) {
+      if (filled && !newest) {
+        window.__jacobianLabPresenter = filled;
+        filled = "";
+      }
+      return;
+    }
     if (input.type !== "password") {
       input.type = "password";
       input.autocomplete = "off";
       input.spellcheck = false;
       input.style.setProperty("-webkit-text-security", "disc");
     }
-    if (token && !filled) {
-      filled = true;
+    const token = window.__jacobianLabPresenter;
+    if (newest && token && !filled) {
+      filled = token;
+      window.__jacobianLabPresenter = null;
       const set = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, "value").set;
       set.call(input, token);
       input.dispatchEvent(new Event("input", {bubbles: true}));

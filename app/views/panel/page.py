@@ -138,7 +138,12 @@ _JS = r"""
   // The report of this (re)connection: the address, the kept key and the open tab.
   let tries = 0;
   const report = () => {
-    if (!LOAD) { reported = true; return; }
+    if (!LOAD) {  // the panel built again (another language): no report, but its channel is hidden too
+      reported = true;
+      const hide = () => { if (!findInput() && ++tries < 100) setTimeout(hide, 100); };
+      hide();
+      return;
+    }
     const f = new URLSearchParams(initial);
     const ok = send({
       kind: "load",
