@@ -183,3 +183,32 @@ class FakeSymbolicService(_ss.SymbolicService):
     def calls(self) -> list[tuple[str, tuple]]:
         """Every computation asked of the fake workers (panel first, then exports)."""
         return self._panel_worker.calls + self._export_worker.calls  # type: ignore[attr-defined]
+
+
+class MemberStub:
+    """A tab as the classroom sees it (no session; the :class:`~app.services.member.Member` calls): the
+    role it was told last, and every note it was told."""
+
+    latest = (None, None)
+    scene_messages = ()
+
+    def __init__(self) -> None:
+        self.role = None
+        self.notes: list[str] = []
+
+    def subscribe(self, fn):
+        return lambda: None
+
+    def mirror(self, state, snapshot, scene=(), shared=None):
+        pass
+
+    def mirror_camera(self, *pose):
+        pass
+
+    def mirror_tab(self, label):
+        pass
+
+    def role_changed(self, role):
+        self.role = role
+        if role.note:
+            self.notes.append(role.note)

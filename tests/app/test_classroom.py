@@ -8,7 +8,7 @@ import contextlib
 import numpy as np
 import pytest
 from app_helpers import assert_all_finite, running_lab
-from fakes import POLL_TIMEOUT, FakeClock, poll
+from fakes import POLL_TIMEOUT, FakeClock, MemberStub, poll
 from wsclient import ViserWsClient
 
 import robots
@@ -326,38 +326,12 @@ def test_the_presenter_closing_while_it_redraws_does_not_deadlock():
 
 
 # ---------------------------------------------------------------- issue 28, item 7: a hand-over
-class _Tab:
-    """A tab as the classroom sees it (no session): the role it was told last, and every note."""
-
-    latest = (None, None)
-    scene_messages = ()
-
-    def __init__(self) -> None:
-        self.role = None
-        self.notes: list[str] = []
-
-    def subscribe(self, fn):
-        return lambda: None
-
-    def mirror(self, state, snapshot, scene=()):
-        pass
-
-    def mirror_camera(self, *pose):
-        pass
-
-    def mirror_tab(self, label):
-        pass
-
-    def role_changed(self, role):
-        self.role = role
-        if role.note:
-            self.notes.append(role.note)
 
 
 def _handover_room(n: int = 4, clock=None):
     """A classroom with tabs 1..n; tab 1 presents (by token)."""
     room_ = Classroom(TOKEN, clock=clock) if clock else Classroom(TOKEN)
-    tabs = {k: _Tab() for k in range(1, n + 1)}
+    tabs = {k: MemberStub() for k in range(1, n + 1)}
     for k, tab in tabs.items():
         room_.join(k, tab)
     assert room_.claim(1, TOKEN) == ""
@@ -379,7 +353,7 @@ def test_a_right_token_asks_the_presenter_and_replaces_it_only_when_it_hands_ove
     new_key = room_.resume_key(2)
     assert new_key and new_key != old_key and room_.resume_key(1) == ""
     room_.closed(2)
-    room_.join(5, _Tab())
+    room_.join(5, MemberStub())
     assert room_.resume(5, old_key) is False and room_.resume(5, new_key) is None  # the new key only
 
 

@@ -12,6 +12,7 @@ import logging
 
 import pytest
 from app_helpers import running_lab, wait_until
+from fakes import MemberStub
 from hostile_helpers import RoundTrips, slider, widget, widgets
 from wsclient import ViserWsClient
 
@@ -79,29 +80,6 @@ def test_a_student_s_wrong_tokens_never_refuse_the_teacher_s_right_one():
             trips.check()
 
 
-class _Tab:
-    """A tab as the classroom sees it (the :class:`~app.services.classroom.Member` calls, recorded)."""
-
-    latest = (None, None)
-    scene_messages = ()
-    role = None
-
-    def subscribe(self, fn):
-        return lambda: None
-
-    def mirror(self, state, snapshot, scene=()):
-        pass
-
-    def mirror_camera(self, *pose):
-        pass
-
-    def mirror_tab(self, label):
-        pass
-
-    def role_changed(self, role):
-        self.role = role
-
-
 def test_thirty_wrong_tokens_from_twenty_addresses_leave_the_room_open():
     """Issue 26, point 3: 30 wrong tokens from 20 addresses locked the whole room for a minute (the
     old per-server count). Now each connection spends only its own tries: the teacher's right token is
@@ -109,11 +87,11 @@ def test_thirty_wrong_tokens_from_twenty_addresses_leave_the_room_open():
     addresses = {key: f"10.0.0.{key % 20}" for key in range(100)}
     room_ = Classroom(TOKEN, address_of=addresses.__getitem__)
     for key in range(30):
-        room_.join(key, _Tab())
+        room_.join(key, MemberStub())
         for _ in range(TOKEN_TRIES):
             assert room_.claim(key, f"guess-{key}") == WRONG_TOKEN
         assert "reload the page" in room_.claim(key, TOKEN)  # this connection is spent, no other
-    teacher = _Tab()
+    teacher = MemberStub()
     room_.join(99, teacher)  # 10.0.0.19: an address that guessed
     assert room_.claim(99, TOKEN) == "" and teacher.role.presenting
     room_.closed(3)  # a closed connection's count is forgotten: the classroom keeps none of it
@@ -122,7 +100,7 @@ def test_thirty_wrong_tokens_from_twenty_addresses_leave_the_room_open():
 
 def test_a_wrong_token_is_logged_with_the_tab_s_address(caplog):
     room_ = Classroom(TOKEN, address_of=lambda key: "203.0.113.7")
-    room_.join(1, _Tab())
+    room_.join(1, MemberStub())
     with caplog.at_level(logging.WARNING, logger="app.services.classroom"):
         room_.claim(1, "nope")
     assert "wrong presenter token from tab 1 at 203.0.113.7 (1 of 5)" in caplog.text
