@@ -5,15 +5,14 @@ lab through the proxy, its websocket passes through it too, and the arm is drawn
 from __future__ import annotations
 
 import os
-import re
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from browser_helpers import ARGS, CHROMIUM, image, new_page, poll, require_browser
 from fakes import FakeSymbolicService
+from jupyter_helpers import jupyter_server
 
 from app.notebook import show
 
@@ -23,30 +22,9 @@ PREFIX = "/user/ana/"
 
 
 def _jupyter_server(root: Path, log: Path) -> tuple[subprocess.Popen, int]:
-    """jupyter-server on 127.0.0.1 and a free port, at the hub's prefix, with its proxy extension."""
+    """jupyter-server on 127.0.0.1 and a free port, at the hub's prefix (tests/jupyter_helpers.py)."""
     pytest.importorskip("jupyter_server_proxy")
-    command = [
-        sys.executable,
-        "-m",
-        "jupyter_server",
-        "--allow-root",
-        "--ServerApp.ip=127.0.0.1",
-        "--ServerApp.port=0",
-        f"--ServerApp.base_url={PREFIX}",
-        "--IdentityProvider.token=",  # a test on 127.0.0.1: the hub's login is not what is tested
-        "--ServerApp.open_browser=False",
-        f"--ServerApp.root_dir={root}",
-    ]
-    out = log.open("w")
-    server = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, cwd=root)
-
-    def port() -> int | None:
-        if server.poll() is not None:
-            raise AssertionError(f"jupyter-server ended: {log.read_text()}")
-        found = re.search(rf"http://127\.0\.0\.1:(\d+){PREFIX}", log.read_text())
-        return int(found.group(1)) if found else None
-
-    return server, poll(port, what="jupyter-server listening")
+    return jupyter_server(root, log, PREFIX, token="")
 
 
 def test_show_behind_jupyterhub_loads_the_lab_through_jupyter_server_proxy(tmp_path, monkeypatch):

@@ -10,15 +10,14 @@ from __future__ import annotations
 import functools
 import http.server
 import os
-import re
 import subprocess
-import sys
 import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
 from browser_helpers import ARGS, CHROMIUM, image, new_page, poll, require_browser
+from jupyter_helpers import jupyter_server
 
 from app.demo.player import PLAYER_DIR, player_name
 
@@ -28,27 +27,8 @@ PREFIX = "/user/ana/"
 
 
 def _jupyter_server(root: Path, log: Path) -> tuple[subprocess.Popen, int]:
-    command = [
-        sys.executable,
-        "-m",
-        "jupyter_server",
-        "--allow-root",
-        "--ServerApp.ip=127.0.0.1",
-        "--ServerApp.port=0",
-        f"--ServerApp.base_url={PREFIX}",
-        "--IdentityProvider.token=secret",
-        "--ServerApp.open_browser=False",
-        f"--ServerApp.root_dir={root}",
-    ]
-    server = subprocess.Popen(command, stdout=log.open("w"), stderr=subprocess.STDOUT, cwd=root)
-
-    def port() -> int | None:
-        if server.poll() is not None:
-            raise AssertionError(f"jupyter-server ended: {log.read_text()}")
-        found = re.search(rf"http://127\.0\.0\.1:(\d+){PREFIX}", log.read_text())
-        return int(found.group(1)) if found else None
-
-    return server, poll(port, what="jupyter-server listening")
+    """jupyter-server on 127.0.0.1 and a free port, at the hub's prefix (tests/jupyter_helpers.py)."""
+    return jupyter_server(root, log, PREFIX, token="secret")
 
 
 def _plays(page, shot: Path) -> str:
