@@ -65,12 +65,20 @@ def image(png: bytes) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
 
 
-def new_page(browser, viewport: dict[str, int] | None = None, scale: float = 1.0, locale: str | None = None):
+def new_page(
+    browser,
+    viewport: dict[str, int] | None = None,
+    scale: float = 1.0,
+    locale: str | None = None,
+    touch: bool = False,
+):
     """A page of ``browser`` (default 1280×720, ``scale``: the device scale factor, 1.5 for a 150 %
     zoom; ``locale``: the browser's language, e.g. "pt-BR": its Accept-Language and navigator.language) whose Playwright waits (clicks, locators, screenshots, navigation) poll up to
     :data:`fakes.POLL_TIMEOUT` instead of Playwright's 30 s: a loaded machine makes a browser test
     slower, never red."""
     options: dict[str, Any] = {"locale": locale} if locale else {}
+    if touch:  # a phone or tablet: a mobile viewport and touch events
+        options.update(is_mobile=True, has_touch=True)
     page = browser.new_page(viewport=viewport or VIEWPORT, device_scale_factor=scale, **options)
     page.set_default_timeout(POLL_TIMEOUT * 1000)
     page.set_default_navigation_timeout(POLL_TIMEOUT * 1000)
@@ -115,11 +123,16 @@ def close_notifications(page) -> None:
 
 @contextlib.contextmanager
 def app_page(
-    lab, viewport: dict[str, int] | None = None, scale: float = 1.0, locale: str | None = None, path: str = ""
+    lab,
+    viewport: dict[str, int] | None = None,
+    scale: float = 1.0,
+    locale: str | None = None,
+    path: str = "",
+    touch: bool = False,
 ) -> Iterator[tuple[Any, Any, list[str]]]:
     """A headless-Chromium page (1280×720 unless ``viewport``; ``scale``: device pixels per CSS pixel,
     1.5 for a 150 % zoom; ``locale``: the browser's language; ``path``: after the address, e.g.
-    ``?lang=pl``) on ``lab``'s app, once its tab is drawn and its toasts are hidden:
+    ``?lang=pl``; ``touch``: a phone's or tablet's touch screen) on ``lab``'s app, once its tab is drawn and its toasts are hidden:
     ``(page, session, errors)``, ``errors`` collecting the page's script errors. The browser closes and
     the lab stops on the way out (also when the browser is missing: skipped, or failed in CI).
     """
@@ -129,7 +142,7 @@ def app_page(
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
             try:
-                page = new_page(browser, viewport, scale, locale)
+                page = new_page(browser, viewport, scale, locale, touch)
                 page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
                 page.goto(lab.url + path)
                 page.wait_for_selector("[role=slider]")

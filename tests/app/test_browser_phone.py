@@ -6,15 +6,13 @@ the arm on the server. Screenshots go to ``$APP_SCREENSHOT_DIR`` (default: pytes
 
 from __future__ import annotations
 
-import contextlib
 import os
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
-from browser_helpers import ARGS, CHROMIUM, close_notifications, require_browser, text_contrasts
-from fakes import POLL_TIMEOUT, poll
+from browser_helpers import app_page, text_contrasts
+from fakes import poll
 
 from app.server import Lab
 from app.views.panel.layout import MIN_TEXT_PX
@@ -38,33 +36,9 @@ _BOXES = """() => {
 }"""
 
 
-@contextlib.contextmanager
-def _touch_page(size: tuple[int, int]) -> Iterator[tuple[Any, Any, list[str]]]:
-    sync_playwright = require_browser()
-    lab = Lab(port=0)
-    errors: list[str] = []
-    try:
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                page = browser.new_page(
-                    viewport={"width": size[0], "height": size[1]},
-                    device_scale_factor=2,
-                    is_mobile=True,
-                    has_touch=True,
-                )
-                page.set_default_timeout(POLL_TIMEOUT * 1000)
-                page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
-                page.goto(lab.url)
-                poll(lambda: page.evaluate("document.querySelectorAll('[role=slider]').length") > 0)
-                session = lab.session()
-                poll(lambda: session.snapshot is not None)
-                close_notifications(page)
-                yield page, session, errors
-            finally:
-                browser.close()
-    finally:
-        lab.stop()
+def _touch_page(size: tuple[int, int]):
+    """The app on a touch screen of ``size`` CSS px at scale 2 (a phone's or tablet's)."""
+    return app_page(Lab(port=0), {"width": size[0], "height": size[1]}, scale=2, touch=True)
 
 
 def _overlap(a: dict[str, float], b: dict[str, float]) -> bool:
