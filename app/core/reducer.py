@@ -20,8 +20,6 @@ import numpy as np
 from kinematics import Robot
 from kinematics.analytic_jacobian import representation_singularity
 from kinematics.errors import ConfigurationError
-from kinematics.motion.branches import branches
-from kinematics.numeric import fk
 from kinematics.singularity.null_motion import null_motion
 
 from . import motion_rules
@@ -31,11 +29,11 @@ from .actions import (
     ClearWrench,
     DriveTool,
     EditRobot,
-    FindIkSolutions,
     FollowPath,
     FollowToolPath,
     GoTo,
     GoToRepresentationSingularity,
+    IkSolutionsFound,
     Play,
     PlayNullMotion,
     ReplaceState,
@@ -213,8 +211,8 @@ def _reduce(state: LabState, action: Action) -> LabState:
             configurations, said = followed(state, shape)
             rows = tuple(tuple(float(x) for x in row) for row in configurations)
             return motion_rules.follow_path(state, rows, said)
-        case FindIkSolutions():
-            return _ik_solutions(state)
+        case IkSolutionsFound():
+            return _ik_solutions(state, action)
         case SelectIkSolution(index=index):
             return _select_solution(state, index)
         case PlayNullMotion():
@@ -224,12 +222,22 @@ def _reduce(state: LabState, action: Action) -> LabState:
     raise InvalidAction(f"{action!r} is not a state change (a command is carried out by the session)")
 
 
-def _ik_solutions(state: LabState) -> LabState:
-    """The IK solutions of the tool's pose, kept in the motion state (the arm does not move)."""
-    T = fk(state.robot, np.array(state.q))
-    found = branches(state.robot, T, np.array(state.q))
-    solutions = readonly(np.array([b.q for b in found]).reshape(len(found), state.robot.dof))
-    return state.replace(motion=state.motion.replace(solutions=solutions, pose=readonly(T)))
+def _ik_solutions(state: LabState, found: IkSolutionsFound) -> LabState:
+    """The IK solutions found away from the drawing thread, kept in the motion state (the arm does not
+    move); dropped when the robot or the arm has moved since the search began (they belong to another
+    pose)."""
+    if found.robot != state.robot_name or tuple(found.q) != tuple(state.q):
+        return state
+    n = state.robot.dof
+    refused = InvalidAction(f"IK solutions need a 4×4 pose and rows of {n} finite joint values")
+    try:
+        solutions = np.array(found.solutions, dtype=float).reshape(len(found.solutions), n)
+        pose = np.array(found.pose, dtype=float).reshape(4, 4)
+    except (TypeError, ValueError):
+        raise refused from None
+    if not (np.isfinite(pose).all() and np.isfinite(solutions).all()):
+        raise refused
+    return state.replace(motion=state.motion.replace(solutions=readonly(solutions), pose=readonly(pose)))
 
 
 def _select_solution(state: LabState, index: object) -> LabState:
