@@ -21,6 +21,7 @@ from kinematics import Robot
 from kinematics.analytic_jacobian import representation_singularity
 from kinematics.errors import ConfigurationError
 from kinematics.singularity.null_motion import null_motion
+from kinematics.text import words
 
 from . import motion_rules
 from .actions import (
@@ -54,6 +55,7 @@ from .actions import (
     Wait,
 )
 from .build_table import edited_state
+from .i18n import N_
 from .motion_rules import FRAME_DT, MotionRefused
 from .motion_state import readonly
 from .options import OPTION
@@ -115,8 +117,8 @@ def reduce(state: LabState, action: Action) -> LabState:
     """
     try:
         after = _reduce(state, action)
-    except MotionRefused as exc:
-        raise InvalidAction(str(exc)) from None
+    except MotionRefused as exc:  # its words (a catalogs' sentence) kept for the tab's language
+        raise InvalidAction(exc.args[0] if len(exc.args) == 1 else str(exc)) from None
     if not after.started and after is not state and not isinstance(action, (ReplaceState, Step)):
         after = after.replace(started=True)  # the first change: the first hint goes
     m = after.motion
@@ -255,13 +257,13 @@ def _null_motion(state: LabState) -> LabState:
     """Play the null joint motion of Ker J back and forth (refused where J has full rank)."""
     m = null_motion(state.robot, np.array(state.q))
     if m.dimension == 0:
-        raise MotionRefused("no null motion here: J has full rank (go to a singularity first)")
+        raise MotionRefused(words(N_("no null motion here: J has full rank (go to a singularity first)")))
     ranges = joint_ranges(state.robot)
     lo = np.array([r.clamp_si(-math.inf) for r in ranges])
     hi = np.array([r.clamp_si(math.inf) for r in ranges])
     path = null_motion_path(np.array(state.q), m.direction, lo, hi)
     if float(np.ptp(path, axis=0).max()) < 1e-6:
-        raise MotionRefused("no null motion here: it would leave a joint's range")
+        raise MotionRefused(words(N_("no null motion here: it would leave a joint's range")))
     found = NULL_FOUND.format(motion=null_motion_text(m.direction))
     return motion_rules.follow_path(state, tuple(tuple(float(x) for x in row) for row in path), found)
 
