@@ -42,7 +42,7 @@ __all__ = [
     "FollowPath",
     "PlayNullMotion",
     "FollowToolPath",
-    "FindIkSolutions",
+    "IkSolutionsFound",
     "SelectIkSolution",
     "Wait",
     "GoToRepresentationSingularity",
@@ -222,9 +222,17 @@ class FollowToolPath:
     shape: str
 
 
-@dataclass(frozen=True)
-class FindIkSolutions:
-    """Find the several IK solutions of the tool's pose (elbow up / down, wrist flip …)."""
+@dataclass(frozen=True, eq=False)
+class IkSolutionsFound:
+    """The several IK solutions (elbow up / down, wrist flip …) of the pose ``pose`` (16 numbers, the
+    4×4 ⁰T_tool row by row) that robot ``robot`` reaches at ``q``, found away from the drawing thread
+    (:class:`~app.core.commands.FindIkSolutions`): the reducer only keeps them, and drops them when the
+    arm has moved since ``q``."""
+
+    robot: str
+    q: tuple[float, ...]
+    pose: tuple[float, ...]
+    solutions: tuple[tuple[float, ...], ...]
 
 
 @dataclass(frozen=True)
@@ -284,7 +292,7 @@ Action = (
     | FollowPath
     | PlayNullMotion
     | FollowToolPath
-    | FindIkSolutions
+    | IkSolutionsFound
     | SelectIkSolution
     | Wait
     | GoToRepresentationSingularity

@@ -2,10 +2,11 @@
 
 A command needs the world outside the pure core: the robot catalogue (:class:`ChooseRobot`,
 :class:`ChooseChain`, :class:`UploadRobot`), a worker (:class:`RequestDownload`,
-:class:`FindSingularity`, :class:`ToggleRecording`), the classroom (:data:`CLASSROOM`), or the
-session's own drawing (:class:`Mirror`, :class:`Redraw`, :class:`SymbolicResult`). The session's
-command runner (:class:`app.tab.commands.CommandRunner`) carries out the others; some end in a
-reducible action (:mod:`app.core.actions`), which the reducer then takes like any other.
+:class:`FindSingularity`, :class:`FindIkSolutions`, :class:`ToggleRecording`), the classroom
+(:data:`CLASSROOM`), or the session's own drawing (:class:`Mirror`, :class:`Redraw`,
+:class:`SymbolicResult`). The session's command runner (:class:`app.tab.commands.CommandRunner`)
+carries out the others; some end in a reducible action (:mod:`app.core.actions`), which the reducer
+then takes like any other.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ __all__ = [
     "UploadRobot",
     "RequestDownload",
     "FindSingularity",
+    "FindIkSolutions",
     "ToggleRecording",
     "ClaimPresenter",
     "StopPresenting",
@@ -63,6 +65,12 @@ class ChooseChain:
 class FindSingularity:
     """Find the nearest singularity from here (the session computes the descent away from the
     drawing thread, then dispatches :class:`~app.core.actions.FollowPath`)."""
+
+
+@dataclass(frozen=True)
+class FindIkSolutions:
+    """Find the several IK solutions of the tool's pose (elbow up / down, wrist flip …): the session
+    searches away from the drawing thread, then dispatches :class:`~app.core.actions.IkSolutionsFound`."""
 
 
 @dataclass(frozen=True)
@@ -197,6 +205,7 @@ Command = (
     | UploadRobot
     | RequestDownload
     | FindSingularity
+    | FindIkSolutions
     | ToggleRecording
     | ClaimPresenter
     | StopPresenting

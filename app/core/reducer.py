@@ -20,9 +20,8 @@ import numpy as np
 from kinematics import Robot
 from kinematics.analytic_jacobian import representation_singularity
 from kinematics.errors import ConfigurationError
-from kinematics.motion.branches import branches
-from kinematics.numeric import fk
 from kinematics.singularity.null_motion import null_motion
+from kinematics.text import words
 
 from . import motion_rules
 from .actions import (
@@ -31,11 +30,11 @@ from .actions import (
     ClearWrench,
     DriveTool,
     EditRobot,
-    FindIkSolutions,
     FollowPath,
     FollowToolPath,
     GoTo,
     GoToRepresentationSingularity,
+    IkSolutionsFound,
     Play,
     PlayNullMotion,
     ReplaceState,
@@ -56,6 +55,7 @@ from .actions import (
     Wait,
 )
 from .build_table import edited_state
+from .i18n import N_
 from .motion_rules import FRAME_DT, MotionRefused
 from .motion_state import readonly
 from .options import OPTION
@@ -117,8 +117,8 @@ def reduce(state: LabState, action: Action) -> LabState:
     """
     try:
         after = _reduce(state, action)
-    except MotionRefused as exc:
-        raise InvalidAction(str(exc)) from None
+    except MotionRefused as exc:  # its words (a catalogs' sentence) kept for the tab's language
+        raise InvalidAction(exc.args[0] if len(exc.args) == 1 else str(exc)) from None
     if not after.started and after is not state and not isinstance(action, (ReplaceState, Step)):
         after = after.replace(started=True)  # the first change: the first hint goes
     m = after.motion
@@ -213,8 +213,8 @@ def _reduce(state: LabState, action: Action) -> LabState:
             configurations, said = followed(state, shape)
             rows = tuple(tuple(float(x) for x in row) for row in configurations)
             return motion_rules.follow_path(state, rows, said)
-        case FindIkSolutions():
-            return _ik_solutions(state)
+        case IkSolutionsFound():
+            return _ik_solutions(state, action)
         case SelectIkSolution(index=index):
             return _select_solution(state, index)
         case PlayNullMotion():
@@ -224,12 +224,22 @@ def _reduce(state: LabState, action: Action) -> LabState:
     raise InvalidAction(f"{action!r} is not a state change (a command is carried out by the session)")
 
 
-def _ik_solutions(state: LabState) -> LabState:
-    """The IK solutions of the tool's pose, kept in the motion state (the arm does not move)."""
-    T = fk(state.robot, np.array(state.q))
-    found = branches(state.robot, T, np.array(state.q))
-    solutions = readonly(np.array([b.q for b in found]).reshape(len(found), state.robot.dof))
-    return state.replace(motion=state.motion.replace(solutions=solutions, pose=readonly(T)))
+def _ik_solutions(state: LabState, found: IkSolutionsFound) -> LabState:
+    """The IK solutions found away from the drawing thread, kept in the motion state (the arm does not
+    move); dropped when the robot or the arm has moved since the search began (they belong to another
+    pose)."""
+    if found.robot != state.robot_name or tuple(found.q) != tuple(state.q):
+        return state
+    n = state.robot.dof
+    refused = InvalidAction(f"IK solutions need a 4×4 pose and rows of {n} finite joint values")
+    try:
+        solutions = np.array(found.solutions, dtype=float).reshape(len(found.solutions), n)
+        pose = np.array(found.pose, dtype=float).reshape(4, 4)
+    except (TypeError, ValueError):
+        raise refused from None
+    if not (np.isfinite(pose).all() and np.isfinite(solutions).all()):
+        raise refused
+    return state.replace(motion=state.motion.replace(solutions=readonly(solutions), pose=readonly(pose)))
 
 
 def _select_solution(state: LabState, index: object) -> LabState:
@@ -247,13 +257,13 @@ def _null_motion(state: LabState) -> LabState:
     """Play the null joint motion of Ker J back and forth (refused where J has full rank)."""
     m = null_motion(state.robot, np.array(state.q))
     if m.dimension == 0:
-        raise MotionRefused("no null motion here: J has full rank (go to a singularity first)")
+        raise MotionRefused(words(N_("no null motion here: J has full rank (go to a singularity first)")))
     ranges = joint_ranges(state.robot)
     lo = np.array([r.clamp_si(-math.inf) for r in ranges])
     hi = np.array([r.clamp_si(math.inf) for r in ranges])
     path = null_motion_path(np.array(state.q), m.direction, lo, hi)
     if float(np.ptp(path, axis=0).max()) < 1e-6:
-        raise MotionRefused("no null motion here: it would leave a joint's range")
+        raise MotionRefused(words(N_("no null motion here: it would leave a joint's range")))
     found = NULL_FOUND.format(motion=null_motion_text(m.direction))
     return motion_rules.follow_path(state, tuple(tuple(float(x) for x in row) for row in path), found)
 

@@ -1,4 +1,5 @@
-"""Work a tab asks for that takes longer than a frame (the descent to the nearest singularity), run in
+"""Work a tab asks for that takes longer than a frame (the descent to the nearest singularity, the IK
+solutions of a pose), run in
 a small shared thread pool so the drawing thread keeps serving every tab; the result comes back to the
 tab as an action."""
 
@@ -10,12 +11,14 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from kinematics import Robot
+from kinematics.motion.branches import branches
+from kinematics.numeric import fk
 from kinematics.singularity import nearest
 
-from ..core.actions import FollowPath
+from ..core.actions import FollowPath, IkSolutionsFound
 from ..core.motion_rules import FRAME_DT, resample
 
-__all__ = ["background", "nearest_path", "DESCENT_SECONDS"]
+__all__ = ["background", "nearest_path", "ik_solutions", "DESCENT_SECONDS"]
 
 DESCENT_SECONDS = 2.0
 """The descent to the nearest singularity is played back in this many seconds (at speed 1)."""
@@ -42,3 +45,15 @@ def nearest_path(robot: Robot, q: np.ndarray) -> FollowPath:
         else f"closest found: σmin/σmax = {result.sigma_ratio:.1e} ({kinds} singularity nearby)"
     )
     return FollowPath(tuple(tuple(float(x) for x in row) for row in path), found)
+
+
+def ik_solutions(robot: Robot, name: str, q: np.ndarray) -> IkSolutionsFound:
+    """The IK solutions (elbow up / down, wrist flip …) of the pose robot ``name`` reaches at ``q``."""
+    T = fk(robot, q)
+    found = branches(robot, T, q)
+    return IkSolutionsFound(
+        name,
+        tuple(float(x) for x in q),
+        tuple(float(x) for x in T.ravel()),
+        tuple(tuple(float(x) for x in b.q) for b in found),
+    )

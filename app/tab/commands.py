@@ -4,9 +4,9 @@
 returns what the session's loop does next: a reducible action (a loaded robot becomes
 :class:`~app.core.actions.SetRobot`), :class:`~app.core.commands.Redraw` (the tab looks different
 though its state did not change: a recording started), or ``None``. Slow work (the nearest
-singularity, a symbolic export, a demo zip) runs away from the drawing thread and comes back as a
-dispatched action or a download. The runner touches no view: what it changes is drawn by the
-session's next draw.
+singularity, the IK solutions of a pose, a symbolic export, a demo zip) runs away from the drawing
+thread and comes back as a dispatched action or a download. The runner touches no view: what it
+changes is drawn by the session's next draw.
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ from ..core.commands import (
     ChooseChain,
     ChooseRobot,
     Command,
+    FindIkSolutions,
     FindSingularity,
     Message,
     Redraw,
@@ -35,7 +36,7 @@ from ..core.commands import (
 )
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
-from ..services.background import background, nearest_path
+from ..services.background import background, ik_solutions, nearest_path
 from ..services.symbolic_service import SymbolicService, SymbolicUnavailable
 from .following import Following
 from .notices import Notices
@@ -116,6 +117,9 @@ class CommandRunner:
         elif isinstance(command, FindSingularity):
             self._find_singularity(state)
             return Wait(LOOKING)
+        elif isinstance(command, FindIkSolutions):
+            self._find_ik_solutions(state)
+            return Wait("")  # the arm holds still: the solutions found belong to this pose
         else:
             raise ValueError(f"{type(command).__name__} is drawn by the session, not run as a command")
         return None
@@ -177,6 +181,20 @@ class CommandRunner:
                 self.notices.error(exc)
 
         background().submit(nearest_path, robot, q).add_done_callback(done)
+
+    def _find_ik_solutions(self, state: LabState) -> None:
+        """Search the IK solutions of the tool's pose away from the drawing thread, then show them."""
+        robot, q = state.robot, np.array(state.q)
+
+        def done(future: Future[Any]) -> None:
+            if self._closed() or self._shown()[0].robot is not robot:
+                return
+            try:
+                self._dispatch(future.result())
+            except Exception as exc:
+                self.notices.error(exc)
+
+        background().submit(ik_solutions, robot, state.robot_name, q).add_done_callback(done)
 
     # ------------------------------------------------------------------ recording
     def _toggle_recording(self, state: LabState) -> None:

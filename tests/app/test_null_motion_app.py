@@ -89,3 +89,14 @@ def test_the_motion_tab_says_the_null_motion_and_its_button_plays_it(session):
     assert np.abs(fk(state.robot, state.q) - T0).max() < 1e-12
     assert state.stopped.startswith("the null motion q̇4 = −q̇6")
     assert math.isfinite(state.time) and state.time > 0
+
+
+def test_the_null_motion_refusal_is_said_in_the_tab_language():
+    """The refusal reaches the error notice through the catalogs (Polish), not in English."""
+    from app.tab.notices import _said
+
+    state = LabState.initial("puma560", robots.load("puma560"))  # J has full rank at home
+    with pytest.raises(InvalidAction) as refused:
+        reduce(state, PlayNullMotion())
+    said = _said(refused.value, translations("pl"))
+    assert said == "brak ruchu zerowego: J ma tu pełny rząd (najpierw przejdź do osobliwości)"

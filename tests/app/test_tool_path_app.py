@@ -36,6 +36,8 @@ def test_the_planar_2r_follows_the_path_through_its_tool_point(shape):
     assert "following the path y(t)" in live_html(reduce(state, Step(FRAME_DT)))
     state, seen = played(state)
     assert len(seen) == 121  # 4 s at 30 frames per second
+    after = live_html(state)  # played out: not "stopped: following the path y(t)"
+    assert "the path y(t) was followed to its end" in after and "following the path" not in after
     for k, q in enumerate(seen):
         assert np.linalg.norm(fk(state.robot, q)[:2, 3] - path.point(k * FRAME_DT)[:2]) < 1e-6
     # the charted rate (a finite difference of the played q) is J⁻¹ ẏ at the middle of the step

@@ -17,7 +17,8 @@ import viser
 from kinematics import fk
 from kinematics.motion.ik import pose_error, target_rows
 
-from ...core.actions import FindIkSolutions, FollowToolPath, PlayNullMotion, SelectIkSolution
+from ...core.actions import FollowToolPath, PlayNullMotion, SelectIkSolution
+from ...core.commands import FindIkSolutions
 from ...core.i18n import N_, Translator
 from ...core.self_motion import null_motion_text
 from ...core.snapshot import Snapshot

@@ -80,6 +80,8 @@ def live_html(state: LabState, tr: Translator | None = None) -> str:
         f"<span>t <b>{fmt.fixed(state.time, 2, tr)}</b> s</span></div>"
     )
     what = _("{state}: {doing}").format(state=state_word, doing=doing) if doing else state_word
+    if is_tool_path(m) and not state.playing and state.stopped:  # played out: say so, not "following"
+        what = _("the path y(t) was followed to its end")
     foot = f'<div class="jl-live-foot">{what}{pace}</div>'
     return f'<div class="jl jl-live">{head}<div class="jl-live-rates">{"".join(cells)}</div>{foot}</div>'
 
