@@ -58,8 +58,11 @@ def test_the_teacher_is_asked_and_hands_over_by_a_click(tmp_path):
         box = student_page.locator(f'label[for="{handle_uuid(student.panel.classroom.token)}"]').locator(
             "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
         )
-        if not box.is_visible():  # a follower's box is folded to its title line: open it
-            student_page.get_by_text("Classroom ·").first.click()
+        # A follower's box folds to its title line (the layout script, once per role, whenever it runs:
+        # later on a busy machine): wait for the fold, then open it.
+        wait(lambda: student_page.locator("[data-jl-folded]").count() > 0)
+        student_page.get_by_text("Classroom ·").first.click()
+        wait(box.is_visible)
         box.press_sequentially(TOKEN, delay=10)
 
         wait(lambda: teacher.role.asked and student.role.waiting)
