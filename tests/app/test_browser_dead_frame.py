@@ -38,8 +38,13 @@ def test_a_saved_notebook_shows_the_cells_last_picture_and_how_to_start_it_again
     nb = nbformat.v4.new_notebook()
     nb.cells = [
         nbformat.v4.new_code_cell(
-            f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
-            "import app.server, fakes; app.server.SymbolicService = fakes.FakeSymbolicService"
+            # tests/fakes.py by its path: tests/ on sys.path would shadow the installed package
+            # kinematics with the folder tests/kinematics (a namespace package, in an editable install)
+            "import importlib.util, sys\n"
+            f"spec = importlib.util.spec_from_file_location('fakes', {str(TESTS / 'fakes.py')!r})\n"
+            "fakes = importlib.util.module_from_spec(spec); sys.modules['fakes'] = fakes\n"
+            "spec.loader.exec_module(fakes)\n"
+            "import app.server; app.server.SymbolicService = fakes.FakeSymbolicService"
         ),
         nbformat.v4.new_code_cell(
             'from app.notebook import show\nlab = show("planar2", height=420, lang="es")\nlab'

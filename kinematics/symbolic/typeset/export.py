@@ -245,6 +245,13 @@ def export_matlab(
     return matlab_source(K, model, frame=frame, function=function, notes=notes)
 
 
+PYTHON_LATE = (
+    "T(q) and Jdot(q, qd) not written: the time limit was reached while simplifying J "
+    "(export again with a longer --timeout for them)"
+)
+"""The note of a Python export whose J came late: only J, exact but unsimplified, keeps to the limit."""
+
+
 def _code(
     robot: Robot,
     fmt: str,
@@ -256,6 +263,14 @@ def _code(
     dJdq: bool,
     name: str | None,
 ) -> str:
+    if fmt not in ("c", "matlab"):
+        d = derive(
+            robot, frame, symbolic_params=symbolic_params, progress=progress, deadline=deadline, exact=exact
+        )
+        if deadline.expired():  # J unsimplified, late: T and Jdot would take minutes more; J alone, exact
+            model = build_model(robot, symbolic_params, exact)
+            late = (*d.notes, PYTHON_LATE)
+            return python_source(d.J, model, frame=frame, notes=late, share=False)
     K, model, notes = _code_kinematics(robot, frame, symbolic_params, deadline, progress, exact, dJdq)
     if fmt == "c":
         stem = c_identifier(f"{name or robot.name}_kinematics")
