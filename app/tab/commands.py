@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.actions import Action, FollowPath, SetRobot, Wait
+from ..core.actions import Action, SetRobot, Wait
 from ..core.build_table import robot_file
 from ..core.commands import (
     CLASSROOM,
@@ -170,21 +170,16 @@ class CommandRunner:
     # ------------------------------------------------------------------ the nearest singularity
     def _find_singularity(self, state: LabState) -> None:
         """Descend to the nearest singularity away from the drawing thread, then play the descent."""
-        robot, q = state.robot, np.array(state.q)
-
-        def done(future: Future[FollowPath]) -> None:
-            if self._closed() or self._shown()[0].robot is not robot:
-                return
-            try:
-                self._dispatch(future.result())
-            except Exception as exc:
-                self.notices.error(exc)
-
-        background().submit(nearest_path, robot, q).add_done_callback(done)
+        self._search(state, nearest_path, state.robot, np.array(state.q))
 
     def _find_ik_solutions(self, state: LabState) -> None:
         """Search the IK solutions of the tool's pose away from the drawing thread, then show them."""
-        robot, q = state.robot, np.array(state.q)
+        self._search(state, ik_solutions, state.robot, state.robot_name, np.array(state.q))
+
+    def _search(self, state: LabState, fn: Callable[..., Any], *args: Any) -> None:
+        """Run ``fn(*args)`` in the background pool and dispatch the action it returns, unless the tab
+        closed or shows another robot meanwhile (an error is said in the tab)."""
+        robot = state.robot
 
         def done(future: Future[Any]) -> None:
             if self._closed() or self._shown()[0].robot is not robot:
@@ -194,7 +189,7 @@ class CommandRunner:
             except Exception as exc:
                 self.notices.error(exc)
 
-        background().submit(ik_solutions, robot, state.robot_name, q).add_done_callback(done)
+        background().submit(fn, *args).add_done_callback(done)
 
     # ------------------------------------------------------------------ recording
     def _toggle_recording(self, state: LabState) -> None:
