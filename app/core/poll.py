@@ -39,6 +39,9 @@ __all__ = [
     "merge",
     "is_right",
     "csv_text",
+    "Seen",
+    "seen",
+    "labels",
 ]
 
 Phase = Literal["open", "closed", "revealed"]
@@ -220,3 +223,41 @@ def csv_text(question_words: str, t: Tally, bar_words: tuple[str, ...] | None = 
     shown = bar_words or t.labels
     rows += [f"{_cell(w)},{n}" for w, n in zip(shown, t.counts, strict=True)]
     return "\r\n".join(rows) + "\r\n"
+
+
+@dataclass(frozen=True)
+class Seen:
+    """What one tab shows of the room's question (carried in its :class:`~app.core.role.Role`).
+
+    Attributes:
+        number: The round's number (a follower's answer names it).
+        question: What is asked.
+        phase: Where the round is.
+        presenting: This tab asked (it sees the bars live, and closes and reveals).
+        mine: This tab's answer, or None (a follower that has not answered; the presenter).
+        right: After the reveal, whether ``mine`` was right (None: no answer, or a poll).
+        tally: The room's bars: live for the presenter, for everyone once revealed; else None.
+        room: How many tabs could answer (the presenter's "12 of 30 answered").
+    """
+
+    number: int
+    question: Question
+    phase: Phase
+    presenting: bool
+    mine: Answer | None = None
+    right: bool | None = None
+    tally: Tally | None = None
+    room: int = 0
+
+    @property
+    def masks(self) -> str:
+        """What the screens hide until the reveal: the question's kind while it is not revealed, else ""."""
+        return self.question.kind if self.phase != "revealed" else ""
+
+
+def seen(r: Round, tab: str, presenting: bool, room_tally: Tally, room: int) -> Seen:
+    """Round ``r`` as tab ``tab`` shows it (``room_tally``: the room's bars, from every worker)."""
+    mine = None if presenting else r.answers.get(tab)
+    right = is_right(r.question, mine) if mine is not None and r.phase == "revealed" else None
+    bars = room_tally if presenting or r.phase == "revealed" else None
+    return Seen(r.number, r.question, r.phase, presenting, mine, right, bars, room)

@@ -53,6 +53,10 @@ __all__ = [
     "number_question",
     "custom_question",
     "direction_is_right",
+    "to_wire",
+    "from_wire",
+    "ASKABLE",
+    "make",
 ]
 
 QuestionKind = Literal["kind", "blowup", "lost", "number", "custom"]
@@ -281,3 +285,106 @@ def custom_question(robot: Robot, q: object, prompt: object, choices: object, ri
     ):
         raise QuestionError(N_("the right answer must be one of the choices"))
     return Question("custom", text, options, frozenset(options[i] for i in right), robot.name, qt)
+
+
+def to_wire(question: Question) -> dict[str, object]:
+    """``question`` as JSON-ready data (the room's hub carries it to the other workers)."""
+
+    def arrow(a: Arrow) -> list[object]:
+        return [a.part, list(a.direction), list(a.point)]
+
+    return {
+        "kind": question.kind,
+        "prompt": question.prompt,
+        "choices": list(question.choices),
+        "right": sorted(question.right),
+        "robot": question.robot,
+        "q": list(question.q),
+        "value": question.value,
+        "tolerance": question.tolerance,
+        "quantity": question.quantity,
+        "arrows": [arrow(a) for a in question.arrows],
+        "lost": [arrow(a) for a in question.lost],
+    }
+
+
+def _triple(x: object) -> tuple[float, float, float]:
+    if not isinstance(x, list) or len(x) != 3:
+        raise QuestionError("a wire arrow needs three numbers")
+    a, b, c = (float(v) for v in x)
+    if not all(math.isfinite(v) for v in (a, b, c)):
+        raise QuestionError("a wire arrow needs finite numbers")
+    return a, b, c
+
+
+def _wire_arrow(x: object) -> Arrow:
+    if not isinstance(x, list) or len(x) != 3 or x[0] not in ("translation", "rotation"):
+        raise QuestionError("a wire arrow is [part, direction, point]")
+    return Arrow(x[0], _triple(x[1]), _triple(x[2]))
+
+
+def from_wire(data: object) -> Question:
+    """The question :func:`to_wire` wrote, checked (a malformed one raises :class:`QuestionError`)."""
+    if not isinstance(data, dict) or data.get("kind") not in ("kind", "blowup", "lost", "number", "custom"):
+        raise QuestionError("not a question")
+    choices = data.get("choices")
+    right = data.get("right")
+    q = data.get("q")
+    if not (isinstance(choices, list) and isinstance(right, list) and isinstance(q, list)):
+        raise QuestionError("a question's choices, right answers and q are lists")
+    if len(choices) > 8 or not all(isinstance(c, str) and len(c) <= MAX_CHOICE for c in choices):
+        raise QuestionError("a question's choices are at most 8 short texts")
+    if not set(right) <= set(choices) or not isinstance(data.get("prompt"), str):
+        raise QuestionError("a question's right answers are among its choices")
+    values = [float(v) for v in (data.get("value", 0.0), data.get("tolerance", 0.0), *q)]
+    if not all(math.isfinite(v) for v in values):
+        raise QuestionError("a question's numbers are finite")
+    arrows, lost = data.get("arrows", []), data.get("lost", [])
+    if not (isinstance(arrows, list) and isinstance(lost, list)) or len(arrows) > 8 or len(lost) > 6:
+        raise QuestionError("a question's arrows are lists")
+    return Question(
+        kind=data["kind"],
+        prompt=str(data["prompt"])[:MAX_PROMPT],
+        choices=tuple(choices),
+        right=frozenset(right),
+        robot=str(data.get("robot", ""))[:200],
+        q=tuple(values[2:]),
+        value=values[0],
+        tolerance=values[1],
+        quantity=str(data.get("quantity", ""))[:10],
+        arrows=tuple(_wire_arrow(a) for a in arrows),
+        lost=tuple(_wire_arrow(a) for a in lost),
+    )
+
+
+ASKABLE = ("kind", "blowup", "lost", "det", "kappa", "custom")
+"""What the presenter's menu offers (:class:`app.core.commands.AskRoom`'s ``kind``)."""
+
+
+def make(
+    kind: str,
+    robot: Robot,
+    q: object,
+    *,
+    configuration: str = "",
+    losses: tuple[Loss, ...] = (),
+    twist: object = None,
+    frame: str = "base",
+    prompt: object = "",
+    choices: object = (),
+    right: object = (),
+    seed: int = 0,
+) -> Question:
+    """The question ``kind`` (one of :data:`ASKABLE`) about ``robot`` at ``q``, as the presenter shows it:
+    ``losses`` the snapshot's, ``twist``/``frame`` the motion a "blowup" question is about."""
+    if kind == "kind":
+        return kind_question(robot, q, configuration)
+    if kind == "blowup":
+        return blowup_question(robot, q, np.zeros(6) if twist is None else twist, frame=frame)
+    if kind == "lost":
+        return lost_question(robot, q, losses, seed=seed)
+    if kind in ("det", "kappa"):
+        return number_question(robot, q, kind)
+    if kind == "custom":
+        return custom_question(robot, q, prompt, choices, right)
+    raise QuestionError(N_("that is not a question the lab asks"))

@@ -15,28 +15,39 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
+from ..core import questions
 from ..core.actions import Step
 from ..core.commands import (
     CLASSROOM,
     AnswerHandover,
+    AnswerRoom,
+    AskRoom,
     ClaimPresenter,
+    EndQuestion,
     ExploreAlone,
     FollowPresenter,
     Message,
     Mirror,
     OpenTab,
     PageReport,
+    QuestionShown,
     Redraw,
     RequestDownload,
     StopPresenting,
     ToggleRecording,
 )
+from ..core.poll import Seen
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
+from ..services.background import background
 from ..services.classroom import TOO_MANY_TRIES, WAITING, Classroom
+from ..services.question_desk import NOT_PRESENTING
 from .camera import TabCamera
 from .notices import Notices
 
@@ -159,7 +170,7 @@ class Following:
     def role_changed(self, role: Role) -> None:
         """The classroom says what this tab now is (redrawn on the renderer's next visit)."""
         before = self.role
-        self.role = role
+        self.role = role = replace(role, question=before.question)
         if role.note:
             _ = self._notices.tr.gettext
             self._notices.notify(_("Classroom"), _(role.note))
@@ -173,16 +184,24 @@ class Following:
                 self.classroom.tab(self.key, self.page.tab)
         self._dispatch(Redraw())
 
+    def question_changed(self, seen: Seen | None) -> None:
+        """The room's question as this tab shows it changed: its box is updated; the whole tab is drawn
+        again when what the screens hide until the reveal changed (a new question, its reveal)."""
+        before = self.role.question
+        self.role = replace(self.role, question=seen)
+        whole = (before.masks, before.number) if before else None, (seen.masks, seen.number) if seen else None
+        self._dispatch(Redraw() if whole[0] != whole[1] else QuestionShown())
+
     # ------------------------------------------------------------------ the tab's commands
-    def command(
-        self, command: ClaimPresenter | StopPresenting | ExploreAlone | FollowPresenter | AnswerHandover
-    ) -> None:
-        """Carry out a classroom command."""
+    def command(self, command: Any) -> None:
+        """Carry out a classroom command (:data:`app.core.commands.CLASSROOM`)."""
         if self.classroom is None:
             raise ValueError(
                 "this server has no presenter mode (start it with --presenter or --presenter-token)"
             )
-        if isinstance(command, ClaimPresenter):
+        if isinstance(command, (AskRoom, AnswerRoom, EndQuestion)):
+            self._question(command)
+        elif isinstance(command, ClaimPresenter):
             self._claim(command)
         elif isinstance(command, StopPresenting):
             self.classroom.resign(self.key)
@@ -194,6 +213,40 @@ class Following:
             self.classroom.follow(self.key)
         elif isinstance(command, AnswerHandover):  # the classroom ignores it unless this tab presents
             self.classroom.answer(self.key, command.accept)
+
+    def _question(self, command: AskRoom | AnswerRoom | EndQuestion) -> None:
+        """Ask the room (the question made away from the drawing thread), answer, close or reveal."""
+        assert self.classroom is not None
+        desk, tr = self.classroom.questions, self._notices.tr
+        if isinstance(command, AnswerRoom):
+            why = desk.answer(self.key, command.number, command.value, tr)
+        elif isinstance(command, EndQuestion):
+            why = desk.end(self.key, command.reveal)
+            why = tr.gettext(why) if why else ""
+        elif not self.role.presenting:
+            why = tr.gettext(NOT_PRESENTING)
+        else:
+            state, snap = self._shown()
+            job = background().submit(
+                questions.make, command.kind, state.robot, np.array(state.q),
+                configuration=state.configuration, losses=snap.losses if snap is not None else (),
+                twist=np.array(state.v_desired), frame=state.options.twist_frame, prompt=command.prompt,
+                choices=command.choices, right=command.right, seed=desk.next_number,
+            )  # fmt: skip
+            job.add_done_callback(lambda done: self._asked(done.result, desk))
+            return
+        if why:
+            self._notices.notify(tr.gettext("Question"), why, seconds=6.0)
+
+    def _asked(self, result: Callable[[], questions.Question], desk: Any) -> None:
+        tr = self._notices.tr
+        try:
+            why = desk.ask(self.key, result())
+        except questions.QuestionError as e:
+            why = str(e)
+        why = tr.gettext(why) if why else ""
+        if why and not self._closed:
+            self._notices.notify(tr.gettext("Question"), why, seconds=6.0)
 
     def _claim(self, command: ClaimPresenter) -> None:
         assert self.classroom is not None

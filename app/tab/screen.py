@@ -106,6 +106,7 @@ class Screen:
                     self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
                     self._foreign = False
                 self.scene.open_tab = self.panel.open_name  # a tab's own glyphs only while it is open
+                self.scene.question = role.question
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())
             self.panel.draw(state, snap)
@@ -128,7 +129,10 @@ class Screen:
                 self.client, self.dispatch, self.catalog.names(), state, self.classroom, tr, report=False
             )
 
-    def draw_symbols(self, symbols: TabSymbols) -> None:
-        """Put the symbolic results that arrived on the panel (nothing else changed)."""
+    def draw_symbols(self, symbols: TabSymbols, role: Role | None = None) -> None:
+        """Put the symbolic results that arrived on the panel, and the room's question if ``role`` is
+        given (nothing else changed)."""
         with self.client.atomic():
             symbols.draw(self.panel, everything=False)
+            if role is not None:
+                self.panel.show_role(role)

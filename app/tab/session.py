@@ -32,6 +32,7 @@ from ..core.commands import (
     Mirror,
     OpenTab,
     PageReport,
+    QuestionShown,
     Redraw,
     ResetView,
     SymbolicResult,
@@ -197,8 +198,8 @@ class ClientSession:
                         rebuild = batch.state.robot is not self.state.robot
                         lead = batch.lead if scene is None and snap is not None else None
                         self._commit(batch.state, rebuild, batch.jump, snap, scene, lead)
-                    elif batch.symbolic:
-                        self.screen.draw_symbols(self.symbols)
+                    elif batch.symbolic or batch.question:
+                        self.screen.draw_symbols(self.symbols, self.role if batch.question else None)
                 except Exception as exc:  # the tab keeps its last good state on screen
                     self.notices.error(exc)
         self.pace.finish()
@@ -218,6 +219,8 @@ class ClientSession:
             batch.take_mirror(message, self.screen.scene is not None, self.language)
         elif isinstance(message, Redraw):
             batch.force = True
+        elif isinstance(message, QuestionShown):
+            batch.question = True
         elif isinstance(message, SymbolicResult):
             batch.symbolic = self.symbols.take(message) or batch.symbolic
         elif isinstance(message, ChooseLanguage):  # the tab's own, a follower's too: never the state's

@@ -14,6 +14,7 @@ from the state in ``update``.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -24,6 +25,7 @@ import viser
 from kinematics import Robot
 
 from ...core.i18n import Translator, translations
+from ...core.poll import Seen
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ..panel.common import Dispatch
@@ -33,6 +35,7 @@ from .derive import DeriveScene
 from .drive import DriveView
 from .overlays import Overlays
 from .path import ToolPath
+from .question import QuestionScene
 
 __all__ = ["SceneView", "ArmGeometry", "Glyph", "GlyphView", "SceneContext", "GLYPHS"]
 
@@ -51,6 +54,7 @@ class SceneContext:
         tr: The tab's language (the words a glyph writes in the 3-D view).
         open_tab: The name of the panel tab the page has open at the update ("derive" …; "" when not
             known): a tab's own glyphs (the Derive tab's step) are drawn only while it is open.
+        question: The room's question as the tab shows it (:mod:`app.core.poll`), or None.
     """
 
     scene: viser.SceneApi
@@ -61,6 +65,7 @@ class SceneContext:
     joint_labels: Callable[[], np.ndarray] = lambda: np.zeros((0, 3))
     tr: Translator = field(default_factory=translations)
     open_tab: Callable[[], str] = lambda: ""
+    question: Callable[[], Seen | None] = lambda: None
 
 
 class GlyphView(Protocol):
@@ -102,9 +107,17 @@ GLYPHS: tuple[Glyph, ...] = (
             c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels, c.tr, c.open_tab
         ),
     ),
+    Glyph(
+        "candidates",
+        lambda c: QuestionScene(c.scene, c.geometry.size, f"{c.root}/question", c.tr, c.question),
+    ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
-J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step."""
+J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step;
+the room's candidate lost directions."""
+HIDDEN_UNTIL_REVEALED = ("kind", "lost")
+"""While the room answers one of these questions the arm's lost-direction glyph (its words name the
+kind, its arrow the direction) is not drawn: the reveal draws it."""
 _GLYPH_NAMES = frozenset(g.name for g in GLYPHS)
 
 
@@ -126,6 +139,8 @@ class SceneView:
         self.arm = ArmView(client, robot, f"{root}/arm")
         self.open_tab = ""
         """The name of the panel tab the page has open ("" when not known: every glyph is drawn)."""
+        self.question: Seen | None = None
+        """The room's question as the tab shows it (set by the tab before each update)."""
         ignore: Dispatch = lambda action: None  # noqa: E731  (a recorded scene takes no input)
         arm = self.arm
         context = SceneContext(
@@ -137,6 +152,7 @@ class SceneView:
             lambda: arm.label_points,
             tr or translations(),
             lambda: self.open_tab,
+            lambda: self.question,
         )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
 
@@ -160,6 +176,8 @@ class SceneView:
     def update(self, snap: Snapshot, state: LabState) -> None:
         """Move every node to ``snap`` (call inside ``client.atomic()``)."""
         self.arm.update(snap, state.options)
+        if self.question is not None and self.question.masks in HIDDEN_UNTIL_REVEALED and snap.losses:
+            snap = dataclasses.replace(snap, losses=())  # the room is answering: its answer is not drawn
         for glyph in self.glyphs.values():
             glyph.update(snap, state)
 
