@@ -53,8 +53,6 @@ __all__ = [
     "number_question",
     "custom_question",
     "direction_is_right",
-    "to_wire",
-    "from_wire",
     "ASKABLE",
     "make",
 ]
@@ -68,6 +66,7 @@ LOST_ANGLE = math.radians(20.0)
 NUMBER_REL_TOL = 0.05
 """A typed det J or κ counts within 5 % of the lab's (or an absolute floor, see :func:`number_question`)."""
 _DISTINCT = math.radians(30.0)
+_END_ON = math.radians(35.0)
 """Candidate arrows of a ``"lost"`` question are at least 30° apart, so each is told from the others."""
 _GROWTH = 3.0
 """A motion's joint rates "blow up" when the largest |q̇ᵢ| at its end is at least 3 times that at its start."""
@@ -190,13 +189,19 @@ def _arrow(loss: Loss) -> Arrow:
 
 
 def lost_question(
-    robot: Robot, q: object, losses: tuple[Loss, ...], seed: int = 0, count: int = 4
+    robot: Robot,
+    q: object,
+    losses: tuple[Loss, ...],
+    seed: int = 0,
+    count: int = 4,
+    sight: object = None,
 ) -> Question:
     """ "Which direction is lost?": ``count`` arrows A, B, … one of them a lost direction the view draws
     (``losses``: the snapshot's, the wrist's lost rotation axis at the wrist centre, the arm's lost
     translation there, or the tool's), the others lines of the base axes and of the joint axes at least
-    30° from every other arrow of the same part, all at the first loss's point; their order drawn from
-    ``seed`` (the round's number, so every worker draws the same)."""
+    30° from every other arrow of the same part, all at the first loss's point, and none within 35° of the
+    presenter's line of ``sight`` (its camera's look direction: a line seen end-on is a dot); their order
+    drawn from ``seed`` (the round's number, so every worker draws the same)."""
     _, qt = _q(robot, q)
     if not losses:
         raise QuestionError(N_("nothing is lost in a regular configuration: go to a singularity first"))
@@ -206,11 +211,17 @@ def lost_question(
     J = jacobian(robot, np.array(qt))
     axes += [J[3:, i] / np.linalg.norm(J[3:, i]) for i in range(robot.dof) if np.linalg.norm(J[3:, i]) > 1e-9]
     pool: list[Arrow] = []
+    line_of_sight = None if sight is None else np.asarray(sight, dtype=float).reshape(-1)
+    if line_of_sight is not None and (line_of_sight.shape != (3,) or not np.linalg.norm(line_of_sight) > 0):
+        line_of_sight = None
     other: Literal["translation", "rotation"] = "rotation" if answer.part == "translation" else "translation"
     for part in (answer.part, other):
         for a in axes:
             taken = [*lost, *pool]
-            if all(x.part != part or _angle(np.array(x.direction), a) >= _DISTINCT for x in taken):
+            end_on = line_of_sight is not None and _angle(line_of_sight, a) < _END_ON
+            if not end_on and all(
+                x.part != part or _angle(np.array(x.direction), a) >= _DISTINCT for x in taken
+            ):
                 pool.append(Arrow(part, (float(a[0]), float(a[1]), float(a[2])), answer.point))
     rng = np.random.default_rng(seed)
     picked = sorted(int(i) for i in rng.choice(len(pool), size=min(count - 1, len(pool)), replace=False))
@@ -287,76 +298,6 @@ def custom_question(robot: Robot, q: object, prompt: object, choices: object, ri
     return Question("custom", text, options, frozenset(options[i] for i in right), robot.name, qt)
 
 
-def to_wire(question: Question) -> dict[str, object]:
-    """``question`` as JSON-ready data (the room's hub carries it to the other workers)."""
-
-    def arrow(a: Arrow) -> list[object]:
-        return [a.part, list(a.direction), list(a.point)]
-
-    return {
-        "kind": question.kind,
-        "prompt": question.prompt,
-        "choices": list(question.choices),
-        "right": sorted(question.right),
-        "robot": question.robot,
-        "q": list(question.q),
-        "value": question.value,
-        "tolerance": question.tolerance,
-        "quantity": question.quantity,
-        "arrows": [arrow(a) for a in question.arrows],
-        "lost": [arrow(a) for a in question.lost],
-    }
-
-
-def _triple(x: object) -> tuple[float, float, float]:
-    if not isinstance(x, list) or len(x) != 3:
-        raise QuestionError("a wire arrow needs three numbers")
-    a, b, c = (float(v) for v in x)
-    if not all(math.isfinite(v) for v in (a, b, c)):
-        raise QuestionError("a wire arrow needs finite numbers")
-    return a, b, c
-
-
-def _wire_arrow(x: object) -> Arrow:
-    if not isinstance(x, list) or len(x) != 3 or x[0] not in ("translation", "rotation"):
-        raise QuestionError("a wire arrow is [part, direction, point]")
-    return Arrow(x[0], _triple(x[1]), _triple(x[2]))
-
-
-def from_wire(data: object) -> Question:
-    """The question :func:`to_wire` wrote, checked (a malformed one raises :class:`QuestionError`)."""
-    if not isinstance(data, dict) or data.get("kind") not in ("kind", "blowup", "lost", "number", "custom"):
-        raise QuestionError("not a question")
-    choices = data.get("choices")
-    right = data.get("right")
-    q = data.get("q")
-    if not (isinstance(choices, list) and isinstance(right, list) and isinstance(q, list)):
-        raise QuestionError("a question's choices, right answers and q are lists")
-    if len(choices) > 8 or not all(isinstance(c, str) and len(c) <= MAX_CHOICE for c in choices):
-        raise QuestionError("a question's choices are at most 8 short texts")
-    if not set(right) <= set(choices) or not isinstance(data.get("prompt"), str):
-        raise QuestionError("a question's right answers are among its choices")
-    values = [float(v) for v in (data.get("value", 0.0), data.get("tolerance", 0.0), *q)]
-    if not all(math.isfinite(v) for v in values):
-        raise QuestionError("a question's numbers are finite")
-    arrows, lost = data.get("arrows", []), data.get("lost", [])
-    if not (isinstance(arrows, list) and isinstance(lost, list)) or len(arrows) > 8 or len(lost) > 6:
-        raise QuestionError("a question's arrows are lists")
-    return Question(
-        kind=data["kind"],
-        prompt=str(data["prompt"])[:MAX_PROMPT],
-        choices=tuple(choices),
-        right=frozenset(right),
-        robot=str(data.get("robot", ""))[:200],
-        q=tuple(values[2:]),
-        value=values[0],
-        tolerance=values[1],
-        quantity=str(data.get("quantity", ""))[:10],
-        arrows=tuple(_wire_arrow(a) for a in arrows),
-        lost=tuple(_wire_arrow(a) for a in lost),
-    )
-
-
 ASKABLE = ("kind", "blowup", "lost", "det", "kappa", "custom")
 """What the presenter's menu offers (:class:`app.core.commands.AskRoom`'s ``kind``)."""
 
@@ -374,6 +315,7 @@ def make(
     choices: object = (),
     right: object = (),
     seed: int = 0,
+    sight: object = None,
 ) -> Question:
     """The question ``kind`` (one of :data:`ASKABLE`) about ``robot`` at ``q``, as the presenter shows it:
     ``losses`` the snapshot's, ``twist``/``frame`` the motion a "blowup" question is about."""
@@ -382,7 +324,7 @@ def make(
     if kind == "blowup":
         return blowup_question(robot, q, np.zeros(6) if twist is None else twist, frame=frame)
     if kind == "lost":
-        return lost_question(robot, q, losses, seed=seed)
+        return lost_question(robot, q, losses, seed=seed, sight=sight)
     if kind in ("det", "kappa"):
         return number_question(robot, q, kind)
     if kind == "custom":

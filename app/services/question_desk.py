@@ -28,7 +28,8 @@ from typing import TYPE_CHECKING, Any, Protocol
 from ..core import poll
 from ..core.i18n import N_, Translator
 from ..core.poll import AnswerRefused, Round, Seen, Tally
-from ..core.questions import Question, QuestionError, from_wire, to_wire
+from ..core.question_wire import from_wire, to_wire
+from ..core.questions import Question, QuestionError
 from .ratelimit import TokenBucket
 
 if TYPE_CHECKING:

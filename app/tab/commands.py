@@ -113,7 +113,7 @@ class CommandRunner:
         elif isinstance(command, RequestDownload):
             self._download(state, command.label)
         elif isinstance(command, CLASSROOM):
-            self.following.command(command)
+            self.following.command(command, state)
         elif isinstance(command, ToggleRecording):
             self._toggle_recording(state)
             return Redraw()  # the record button says what a click does next

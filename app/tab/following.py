@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..core import questions
-from ..core.actions import Step
+from ..core.actions import Play, Step
 from ..core.commands import (
     CLASSROOM,
     AnswerHandover,
@@ -43,7 +43,7 @@ from ..core.commands import (
 )
 from ..core.poll import Seen
 from ..core.role import Role
-from ..core.snapshot import Snapshot
+from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
 from ..services.background import background
 from ..services.classroom import TOO_MANY_TRIES, WAITING, Classroom
@@ -193,14 +193,15 @@ class Following:
         self._dispatch(Redraw() if whole[0] != whole[1] else QuestionShown())
 
     # ------------------------------------------------------------------ the tab's commands
-    def command(self, command: Any) -> None:
-        """Carry out a classroom command (:data:`app.core.commands.CLASSROOM`)."""
+    def command(self, command: Any, state: LabState | None = None) -> None:
+        """Carry out a classroom command (:data:`app.core.commands.CLASSROOM`; ``state``: the tab's, with
+        the messages taken before this one in the same batch)."""
         if self.classroom is None:
             raise ValueError(
                 "this server has no presenter mode (start it with --presenter or --presenter-token)"
             )
         if isinstance(command, (AskRoom, AnswerRoom, EndQuestion)):
-            self._question(command)
+            self._question(command, state)
         elif isinstance(command, ClaimPresenter):
             self._claim(command)
         elif isinstance(command, StopPresenting):
@@ -214,7 +215,7 @@ class Following:
         elif isinstance(command, AnswerHandover):  # the classroom ignores it unless this tab presents
             self.classroom.answer(self.key, command.accept)
 
-    def _question(self, command: AskRoom | AnswerRoom | EndQuestion) -> None:
+    def _question(self, command: AskRoom | AnswerRoom | EndQuestion, now: LabState | None) -> None:
         """Ask the room (the question made away from the drawing thread), answer, close or reveal."""
         assert self.classroom is not None
         desk, tr = self.classroom.questions, self._notices.tr
@@ -222,23 +223,27 @@ class Following:
             why = desk.answer(self.key, command.number, command.value, tr)
         elif isinstance(command, EndQuestion):
             why = desk.end(self.key, command.reveal)
+            asked = desk.round.question if desk.round is not None else None
+            if not why and command.reveal and asked is not None and asked.kind == "blowup":
+                self._dispatch(Play(True, "resolved_rate"))  # the picture settles it: the motion runs
             why = tr.gettext(why) if why else ""
         elif not self.role.presenting:
             why = tr.gettext(NOT_PRESENTING)
         else:
-            state, snap = self._shown()
+            shown, snap = self._shown()
+            state = now or shown
+            view = self._camera.view()
+            sight = None if view is None else view.look_at - view.position
             job = background().submit(
-                questions.make, command.kind, state.robot, np.array(state.q),
-                configuration=state.configuration, losses=snap.losses if snap is not None else (),
-                twist=np.array(state.v_desired), frame=state.options.twist_frame, prompt=command.prompt,
-                choices=command.choices, right=command.right, seed=desk.next_number,
-            )  # fmt: skip
+                _make, command, state, snap if state is shown else None, desk.next_number, sight
+            )
             job.add_done_callback(lambda done: self._asked(done.result, desk))
             return
         if why:
             self._notices.notify(tr.gettext("Question"), why, seconds=6.0)
 
     def _asked(self, result: Callable[[], questions.Question], desk: Any) -> None:
+        """The question is made: the room is asked (or the presenter told why not)."""
         tr = self._notices.tr
         try:
             why = desk.ask(self.key, result())
@@ -296,3 +301,15 @@ class Following:
         self._closed = True
         if self._token_timer is not None:
             self._token_timer.cancel()
+
+
+def _make(
+    command: AskRoom, state: LabState, snap: Snapshot | None, seed: int, sight: object = None
+) -> questions.Question:
+    """The question ``command`` asks about ``state`` (its snapshot computed here when not given)."""
+    snap = snap if snap is not None else compute(state)
+    return questions.make(
+        command.kind, state.robot, np.array(state.q), configuration=state.configuration, losses=snap.losses,
+        twist=np.array(state.v_desired), frame=state.options.twist_frame, prompt=command.prompt,
+        choices=command.choices, right=command.right, seed=seed, sight=sight,
+    )  # fmt: skip

@@ -10,6 +10,7 @@ collected for the room.
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import viser
@@ -20,6 +21,7 @@ from ..core.i18n import Translator, translations
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
+from ..views.camera import View
 from ..views.panel import PanelView
 from ..views.panel.common import Dispatch
 from ..views.scene import SceneView
@@ -65,8 +67,9 @@ class Screen:
         state: LabState,
         classroom: bool,
         tr: Translator | None = None,
+        view: Callable[[], View | None] = lambda: None,
     ) -> None:
-        self.client, self.dispatch, self.catalog = client, dispatch, catalog
+        self.client, self.dispatch, self.catalog, self.view = client, dispatch, catalog, view
         self.classroom, self.tr = classroom, tr or translations()
         self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene: SceneView | None = None
@@ -103,7 +106,9 @@ class Screen:
                 if rebuild or self.scene is None or self._foreign:
                     if self.scene is not None:
                         self.scene.remove()
-                    self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
+                    self.scene = SceneView(
+                        self.client, state.robot, self.dispatch, tr=self.tr, view=self.view
+                    )
                     self._foreign = False
                 self.scene.open_tab = self.panel.open_name  # a tab's own glyphs only while it is open
                 self.scene.question = role.question

@@ -123,8 +123,9 @@ class ClientSession:
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
             self.screen = Screen(
-                client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr
-            )
+                client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr,
+                self.camera.view,
+            )  # fmt: skip
             self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
 

@@ -8,18 +8,19 @@ import io
 
 import numpy as np
 import pytest
+from app_helpers import running_lab
 from fakes import poll
 from test_classroom import room, settle
 from test_room import Room, Tab
 
 from app.core import poll as rounds
 from app.core import questions as Q
-from app.core.actions import GoTo
+from app.core.actions import GoTo, SetJoint
 from app.core.commands import AnswerRoom, AskRoom, EndQuestion
 from app.core.i18n import translations
 from app.core.state import LabState
 from app.services.question_desk import NOT_PRESENTING, TOO_FAST
-from app.views.panel.question import HIDDEN_WORDS
+from app.views.panel.question import ASK_LABELS, HIDDEN_WORDS
 
 TOKEN = "Xq7-vR2pLw9sKd4TzY"
 
@@ -208,3 +209,71 @@ def test_sixty_followers_on_two_workers_every_answer_counted_once():
             assert tab.seen[-1].right == (last[k] in question.right)
     finally:
         r.close()
+
+
+def test_which_joint_blows_up_asked_from_the_box_before_play_and_revealed_by_playing():
+    with room(1) as (lab, presenter, followers):
+        box = presenter.panel.question
+        assert box.ask_box.visible and not followers[0].panel.question.ask_box.visible
+        assert presenter.state.motion.preset == ""  # the Motion tab shows its first preset, not applied
+        box.kind.value = translations().gettext(ASK_LABELS["blowup"])  # as chosen in the menu
+        box._ask()
+        seen = poll(lambda: followers[0].role.question, what="asked")
+        assert seen.question.right == {"q4", "q6"}  # the Puma's wrist: q̇4 = −q̇6 blow up together
+        assert presenter.state.motion.preset == "straight line into the wrist singularity"
+        followers[0].dispatch(AnswerRoom(seen.number, "q4"))
+        poll(
+            lambda: presenter.role.question.tally is not None and presenter.role.question.tally.answered == 1
+        )
+        assert not presenter.state.playing
+        presenter.dispatch(EndQuestion(True))
+        poll(lambda: presenter.state.playing, what="the reveal plays the motion")
+        poll(lambda: followers[0].role.question.right is True, what="told it was right")
+
+
+def test_what_no_browser_would_send_changes_nothing_and_the_room_keeps_going():
+    """Over a follower's real websocket: its hidden "Reveal the answer" and "Ask the room" buttons, a choice
+    button beyond the question's choices, a 50 000-character answer and a non-text answer."""
+    from hostile_helpers import widget
+    from wsclient import ViserWsClient
+
+    from app.viser_adapter import message_class
+
+    update = message_class("GuiUpdateMessage")
+
+    def button(ws, label):
+        return widget(
+            ws, lambda m: m["type"] == "GuiButtonMessage" and m.get("props", {}).get("label") == label
+        )
+
+    def text_box(ws, label):
+        return widget(
+            ws, lambda m: m["type"] == "GuiTextMessage" and m.get("props", {}).get("label") == label
+        )
+
+    with running_lab(presenter_token=TOKEN) as (lab, teacher, _ws):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws:
+            poll(lambda: len(lab.sessions) == 2)
+            student = next(s for s in lab.sessions.values() if s is not teacher)
+            assert lab.classroom.claim(teacher.key, TOKEN) == ""
+            poll(lambda: student.role.following)
+            teacher.dispatch(GoTo("wrist_singular"))
+            teacher.settle()
+            teacher.dispatch(AskRoom("lost"))
+            seen = poll(lambda: student.role.question, what="asked")
+            student.settle()  # its Question box shows the question (a click answers what it shows)
+            ws.send(update(button(ws, "Reveal the answer"), {"value": True}))  # hidden: only the presenter's
+            ws.send(update(button(ws, "Ask the room"), {"value": True}))
+            ws.send(update(button(ws, "5"), {"value": True}))  # a sixth choice of a four-choice question
+            ws.send(update(text_box(ws, "Your answer"), {"value": "9" * 50_000}))
+            ws.send(update(text_box(ws, "Your answer"), {"value": {"__class__": "os.system"}}))
+            ws.send(update(button(ws, "Send"), {"value": True}))
+            ws.send(update(button(ws, "0"), {"value": True}))  # then a real answer: choice A
+            poll(lambda: lab.classroom.questions.round.answers.get(str(student.key)) == "A", what="A taken")
+            student.settle()
+            assert lab.classroom.questions.round.number == seen.number  # nobody asked again
+            assert lab.classroom.questions.round.phase == "open"  # nobody revealed
+            assert len(lab.classroom.questions.round.answers) == 1
+            teacher.dispatch(SetJoint(1, 0.3))  # the room keeps going
+            teacher.settle()
+            poll(lambda: student.state.q[1] == pytest.approx(0.3), what="the follower still follows")

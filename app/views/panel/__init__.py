@@ -120,7 +120,7 @@ class PanelView:
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.hint = gui.add_html("", order=2.6, visible=False)  # what to do first, over the 3-D view
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5, tr=tr) if classroom else None
-        self.question = QuestionPanel(gui, dispatch, tr) if classroom else None
+        self.question = QuestionPanel(gui, dispatch, tr, self._apply_shown_preset) if classroom else None
         if self.classroom is not None:  # masked, and filled from the presenter link
             run_javascript(client, token_js(handle_uuid(self.classroom.token)))
         # The views of J live in a second panel docked under the joints: both stay in sight.
@@ -268,6 +268,14 @@ class PanelView:
         _ = self.tr.gettext
         self.record.label = _("Stop and download the demo") if recording else _("Record a demo")
         self.record.color = "red" if recording else None
+
+    def _apply_shown_preset(self) -> None:
+        """The preset the Motion tab shows, applied (a question about its motion is about that one)."""
+        motion = getattr(self, "parts", {}).get("motion")
+        pending = getattr(motion, "pending", None)
+        if motion is not None and pending is not None:
+            motion.pending = None
+            self.dispatch(pending)
 
     def show_role(self, role: Role) -> None:
         """The tab's classroom role (nothing without a presenter mode)."""

@@ -119,11 +119,18 @@ def bars_html(seen: Seen, tr: Translator) -> str:
     return f'<div class="jl-note" style="font-size:13px">{html.escape(head)}</div>' + "".join(rows)
 
 
+def _nothing() -> None:
+    return None
+
+
 class QuestionPanel:
     """The presenter's "Ask the room" box and a follower's "Question" box of one tab."""
 
-    def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, tr: Translator) -> None:
+    def __init__(
+        self, gui: viser.GuiApi, dispatch: Dispatch, tr: Translator, prepare: Callable[[], None] = _nothing
+    ) -> None:
         self.tr = tr
+        self._prepare = prepare  # before "which joint blows up?": the motion panel's shown preset applied
         _ = tr.gettext
         self._dispatch = dispatch
         self._seen: Seen | None = None
@@ -172,6 +179,8 @@ class QuestionPanel:
 
     def _ask(self) -> None:
         kind = self._kind_chosen()
+        if kind == "blowup":
+            self._prepare()
         if kind != "custom":
             self._dispatch(AskRoom(kind))
             return
@@ -223,7 +232,6 @@ class QuestionPanel:
             answer = f"<div><b>{html.escape(tr.gettext(N_('Answer')))}</b>: "
             answer += f"{html.escape(answer_words(seen.question, tr))}</div>"
         self.bars.content = f'<div style="font-size:14px"><b>{said}</b></div>{bars_html(seen, tr)}{answer}'
-        self.ask_box.expand_by_default = True
 
     def _show_follower(self, seen: Seen) -> None:
         tr = self.tr
@@ -234,14 +242,14 @@ class QuestionPanel:
         open_ = seen.phase == "open"
         words = bar_words(q, tr) if not number_question else ()
         for i, button in enumerate(self.buttons):
-            shown = i < len(q.choices) and not number_question
+            shown = i < len(q.choices) and not number_question and seen.phase != "revealed"
             button.visible = shown
             if shown:
                 label = words[i] if q.kind != "lost" else q.choices[i]
                 chosen = seen.mine == q.choices[i]
                 button.label = f"● {label}" if chosen else label
                 button.disabled = not open_
-        self.typed.visible = self.send.visible = number_question
+        self.typed.visible = self.send.visible = number_question and seen.phase != "revealed"
         self.typed.disabled = self.send.disabled = not open_
         if seen.phase == "revealed":
             if seen.right is True:

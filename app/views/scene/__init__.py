@@ -28,6 +28,7 @@ from ...core.i18n import Translator, translations
 from ...core.poll import Seen
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
+from ..camera import View
 from ..panel.common import Dispatch
 from .accel import AccelArrow
 from .arm import ArmGeometry, ArmView
@@ -55,6 +56,7 @@ class SceneContext:
         open_tab: The name of the panel tab the page has open at the update ("derive" …; "" when not
             known): a tab's own glyphs (the Derive tab's step) are drawn only while it is open.
         question: The room's question as the tab shows it (:mod:`app.core.poll`), or None.
+        view: The tab's camera as the browser last reported it, or None (a recording has none).
     """
 
     scene: viser.SceneApi
@@ -66,6 +68,7 @@ class SceneContext:
     tr: Translator = field(default_factory=translations)
     open_tab: Callable[[], str] = lambda: ""
     question: Callable[[], Seen | None] = lambda: None
+    view: Callable[[], View | None] = lambda: None
 
 
 class GlyphView(Protocol):
@@ -109,7 +112,9 @@ GLYPHS: tuple[Glyph, ...] = (
     ),
     Glyph(
         "candidates",
-        lambda c: QuestionScene(c.scene, c.geometry.size, f"{c.root}/question", c.tr, c.question),
+        lambda c: QuestionScene(
+            c.scene, c.geometry.size, f"{c.root}/question", c.tr, c.question, c.view, c.joint_labels
+        ),
     ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
@@ -135,6 +140,7 @@ class SceneView:
         dispatch: Dispatch | None = None,
         root: str = "/lab",
         tr: Translator | None = None,
+        view: Callable[[], View | None] | None = None,
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
         self.open_tab = ""
@@ -153,6 +159,7 @@ class SceneView:
             tr or translations(),
             lambda: self.open_tab,
             lambda: self.question,
+            lambda: view() if view is not None else None,
         )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
 

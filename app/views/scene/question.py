@@ -19,10 +19,11 @@ from ...core.poll import Seen
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
 from ...viser_adapter import set_pose
+from ..camera import View, project
 from ..palette import LOST_RGB, QUESTION_RGB
 from .geometry import LOST_LABEL_SCALE, finite, finite_tuple, set_if_changed
 
-__all__ = ["QuestionScene", "MAX_CANDIDATES", "candidate_segments"]
+__all__ = ["QuestionScene", "MAX_CANDIDATES", "candidate_segments", "label_points"]
 
 MAX_CANDIDATES = 6
 _WORDS = {"translation": N_("{letter}: translation"), "rotation": N_("{letter}: rotation axis")}
@@ -45,13 +46,49 @@ def candidate_segments(seen: Seen, half: float) -> tuple[np.ndarray, list[int]]:
     return (np.array(lines, dtype=float) if lines else np.zeros((0, 2, 3))), keep
 
 
+def label_points(
+    segments: np.ndarray, taken: np.ndarray, view: View | None, width: float = 1280.0, height: float = 720.0
+) -> np.ndarray:
+    """Where each candidate's letter goes (k, 3): on its line, at whichever of a few points along it
+    (either end, or three quarters out) lies farthest on screen from the letters already placed and from
+    ``taken`` (the joints' labels), so two candidates' words never sit on each other whatever the camera.
+    Without a view (a recording), the lines' far ends."""
+    if view is None or not len(segments):
+        return segments[:, 1] if len(segments) else np.zeros((0, 3))
+    centre = 0.5 * (segments[:, 0] + segments[:, 1])
+    placed: list[np.ndarray] = [project(view, taken, width, height)] if len(taken) else []
+    out = []
+    for k in range(len(segments)):
+        tries = np.array([segments[k, 1], segments[k, 0]] + [centre[k] + f * (segments[k, e] - centre[k])
+                         for e in (1, 0) for f in (0.75, 0.55)])  # fmt: skip
+        screen = project(view, tries, width, height)
+        others = np.concatenate(placed) if placed else np.zeros((0, 2))
+        gap = (
+            np.min(np.linalg.norm(screen[:, None, :] - others[None, :, :], axis=2), axis=1)
+            if len(others)
+            else np.zeros(len(tries))
+        )
+        best = int(np.argmax(np.where(np.isfinite(gap), gap, -1.0)))
+        out.append(tries[best])
+        placed.append(screen[best : best + 1])
+    return np.array(out)
+
+
 class QuestionScene:
     """The candidate lines of a "lost" question for one tab's scene."""
 
     def __init__(
-        self, scene: viser.SceneApi, size: float, root: str, tr: Translator, seen: Callable[[], Seen | None]
+        self,
+        scene: viser.SceneApi,
+        size: float,
+        root: str,
+        tr: Translator,
+        seen: Callable[[], Seen | None],
+        view: Callable[[], View | None] = lambda: None,
+        joint_labels: Callable[[], np.ndarray] = lambda: np.zeros((0, 3)),
     ) -> None:
         self._seen, self._tr, self._half = seen, tr, 0.45 * size
+        self._view, self._joint_labels = view, joint_labels
         self.lines = scene.add_line_segments(
             f"{root}/question_lines",
             points=np.zeros((1, 2, 3), dtype=np.float32),
@@ -81,6 +118,7 @@ class QuestionScene:
             self.extent = segments.reshape(-1, 3)
         else:
             self.extent = np.zeros((0, 3))
+        at = label_points(segments, self._joint_labels(), self._view()) if segments is not None else None
         for j, label in enumerate(self.labels):
             visible = j < len(keep)
             set_if_changed(label, "visible", visible)
@@ -90,7 +128,7 @@ class QuestionScene:
                 text = self._tr.gettext(_WORDS[arrow.part]).format(letter=seen.question.choices[i])
                 if label.text != text:
                     label.text = text
-                set_pose(label, finite_tuple(segments[j][1]))
+                set_pose(label, finite_tuple(at[j] if at is not None else segments[j][1]))
 
     def remove(self) -> None:
         self.lines.remove()
