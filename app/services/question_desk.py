@@ -227,7 +227,10 @@ class QuestionDesk:
             self._sent_tally = mine
         if send and self.send is not None:
             self.send({"op": "tally", "round": r.number, "counts": list(mine.counts)})
-        self._tell()
+        with self._lock:  # new bars: only a presenting tab shows them before the reveal
+            revealed = r.phase == "revealed"
+            keys = [k for k, v in self._shown.items() if revealed or (v is not None and v.presenting)]
+        self._tell(keys)
 
     def flush(self) -> None:
         """Send what is due now (tests, and a presenter's reveal)."""

@@ -243,12 +243,15 @@ class QuestionPanel:
         words = bar_words(q, tr) if not number_question else ()
         for i, button in enumerate(self.buttons):
             shown = i < len(q.choices) and not number_question and seen.phase != "revealed"
-            button.visible = shown
+            if button.visible != shown:
+                button.visible = shown
             if shown:
                 label = words[i] if q.kind != "lost" else q.choices[i]
-                chosen = seen.mine == q.choices[i]
-                button.label = f"● {label}" if chosen else label
-                button.disabled = not open_
+                label = f"● {label}" if seen.mine == q.choices[i] else label
+                if button.label != label:
+                    button.label = label
+                if button.disabled != (not open_):
+                    button.disabled = not open_
         self.typed.visible = self.send.visible = number_question and seen.phase != "revealed"
         self.typed.disabled = self.send.disabled = not open_
         if seen.phase == "revealed":

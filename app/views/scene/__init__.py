@@ -14,7 +14,6 @@ from the state in ``update``.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -36,7 +35,7 @@ from .derive import DeriveScene
 from .drive import DriveView
 from .overlays import Overlays
 from .path import ToolPath
-from .question import QuestionScene
+from .question import QuestionScene, hide_lost
 
 __all__ = ["SceneView", "ArmGeometry", "Glyph", "GlyphView", "SceneContext", "GLYPHS"]
 
@@ -183,10 +182,10 @@ class SceneView:
     def update(self, snap: Snapshot, state: LabState) -> None:
         """Move every node to ``snap`` (call inside ``client.atomic()``)."""
         self.arm.update(snap, state.options)
-        if self.question is not None and self.question.masks in HIDDEN_UNTIL_REVEALED and snap.losses:
-            snap = dataclasses.replace(snap, losses=())  # the room is answering: its answer is not drawn
         for glyph in self.glyphs.values():
             glyph.update(snap, state)
+        if self.question is not None and self.question.masks in HIDDEN_UNTIL_REVEALED:
+            hide_lost(self.glyphs["overlays"])  # the room is answering: its answer is not drawn
 
     def remove(self) -> None:
         """Remove every node (on robot switch or disconnect)."""

@@ -10,6 +10,7 @@ for the other questions.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import viser
@@ -23,7 +24,7 @@ from ..camera import View, project
 from ..palette import LOST_RGB, QUESTION_RGB
 from .geometry import LOST_LABEL_SCALE, finite, finite_tuple, set_if_changed
 
-__all__ = ["QuestionScene", "MAX_CANDIDATES", "candidate_segments", "label_points"]
+__all__ = ["QuestionScene", "MAX_CANDIDATES", "candidate_segments", "label_points", "hide_lost"]
 
 MAX_CANDIDATES = 6
 _WORDS = {"translation": N_("{letter}: translation"), "rotation": N_("{letter}: rotation axis")}
@@ -44,6 +45,16 @@ def candidate_segments(seen: Seen, half: float) -> tuple[np.ndarray, list[int]]:
         for i in keep
     ]  # fmt: skip
     return (np.array(lines, dtype=float) if lines else np.zeros((0, 2, 3))), keep
+
+
+def hide_lost(overlays: Any) -> None:
+    """Hide the arm's lost-direction glyph (its arrow, its axis and ring, its words) until the reveal; the
+    ellipsoids and everything else stay as they are."""
+    overlays.lost_v.hide()
+    set_if_changed(overlays.lost_w, "visible", False)
+    for label in overlays.lost_labels:
+        set_if_changed(label, "visible", False)
+    overlays.lost_tips = np.zeros((0, 3))
 
 
 def label_points(
