@@ -86,9 +86,12 @@ class Screen:
         recording: bool,
         symbols: TabSymbols,
         capture: bool = False,
+        keep_scene: bool = False,
     ) -> None:
         """Draw ``state`` and ``snap`` (``replay``: the presenter's scene messages instead of our scene;
-        ``capture``: keep our scene messages for others, as a presenter's are)."""
+        ``capture``: keep our scene messages for others, as a presenter's are; ``keep_scene``: the state
+        on screen drawn again for a role or question change: a follower showing the presenter's scene keeps
+        it, the presenter's next frame brings what changes)."""
         capturing: contextlib.AbstractContextManager[list] = (
             capture_scene(self.client) if role.presenting or capture else contextlib.nullcontext([])
         )
@@ -102,6 +105,8 @@ class Screen:
             if replay is not None and self.scene is not None:
                 replay_scene(self.client, replay)  # the presenter's scene, drawn once for the room
                 self._foreign = True  # our SceneView no longer knows what the browser shows
+            elif keep_scene and self._foreign and role.following:
+                pass  # the state shown, drawn again for its panel: a follower's view stays the presenter's
             else:
                 if rebuild or self.scene is None or self._foreign:
                     if self.scene is not None:

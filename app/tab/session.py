@@ -282,8 +282,9 @@ class ClientSession:
             self._drawing.active = True
             try:
                 recording = self.recorder.recording
+                same = state is old and scene is None and lead is None  # a forced redraw of what is shown
                 self.screen.draw(
-                    state, snap, rebuild, scene, self.role, recording, self.symbols, lead is not None
+                    state, snap, rebuild, scene, self.role, recording, self.symbols, lead is not None, same
                 )
             finally:
                 self._drawing.active = False
