@@ -20,8 +20,10 @@ _BAD_TEXT = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)
 
 
 @contextlib.contextmanager
-def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClient]]:
-    """A Lab on a free port with one connected websocket client; always stopped.
+def running_lab(
+    size: tuple[int, int] = (800, 600), **kwargs: Any
+) -> Iterator[tuple[Lab, ClientSession, ViserWsClient]]:
+    """A Lab on a free port with one connected websocket client (its canvas ``size`` [px]); always stopped.
 
     Its symbolic service is :class:`fakes.FakeSymbolicService` (immediate placeholders, no worker
     process) unless ``symbolic=`` is given: pass ``SymbolicService()`` to test the symbolic J itself.
@@ -29,7 +31,7 @@ def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClie
     kwargs.setdefault("symbolic", FakeSymbolicService())
     lab = Lab(port=0, **kwargs)
     try:
-        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws:
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}", *size) as ws:
             session = lab.session()
             yield lab, session, ws
     finally:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import threading
 import time
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -31,6 +32,7 @@ from ..views.camera import (
     arm_axis,
     facing,
     framing,
+    framing_in,
     label_pairs,
     lost_axes,
     needs_framing,
@@ -132,6 +134,11 @@ class TabCamera:
         self.mover = CameraMove(self._set)
         self._aspect = 0.0
         self._closed = False
+        self.moved: Callable[[], None] = lambda: None
+        self.layout: Callable[[], Any] = lambda: None
+        """The canvas and the part of it the panel leaves visible (a :class:`~app.views.scene.labels.Layout`
+        or None): what the camera frames into."""
+        """Called after each pose the tab sets (its labels are placed again)."""
 
     def view(self) -> View | None:
         """The browser's current view, or None before its first camera message."""
@@ -157,7 +164,11 @@ class TabCamera:
         view = self.view()
         if view is None:  # no camera message yet: assume a 16:9 canvas and viser's default fov
             view = View(np.array([1.3, -1.5, 0.9]), np.zeros(3), np.array([0.0, 0, 1]), 1.3, 1.4)
-        end = framing(view, points, direction, pad=pad)
+        layout = self.layout()
+        if layout is None:
+            end = framing(view, points, direction, pad=pad)
+        else:
+            end = framing_in(view, points, direction, pad, (layout.width, layout.height), layout.rect)
         if glide:
             self.mover.to((view.position, view.look_at), end)
         else:
@@ -241,3 +252,4 @@ class TabCamera:
         cam.up_direction = (0.0, 0.0, 1.0)
         cam.position = np.asarray(position, float)
         cam.look_at = np.asarray(look_at, float)  # after position: setting position moves look_at
+        self.moved()

@@ -21,6 +21,7 @@ __all__ = [
     "PHONE_CSS",
     "SHEET_MAX",
     "Rect",
+    "canvas_size",
     "is_phone_layout",
     "panel_zoom",
     "visible_view_rect",
@@ -66,6 +67,14 @@ def visible_view_rect(width: float, height: float, touch: bool = False) -> Rect:
         return Rect(0.0, 0.0, float(width), float(height) * (1 - SHEET_MAX))
     column = COLUMN * panel_zoom(width, height, touch)
     return Rect(0.0, 0.0, max(0.0, float(width) - column), float(height))
+
+
+def canvas_size(width: float, height: float) -> tuple[float, float]:
+    """The 3-D view's canvas [CSS px] in a window of ``width``×``height``: the whole window, but on a
+    phone held upright only the part above the sheet (:data:`PHONE_CSS` ends the canvas there)."""
+    if is_phone_layout(width):
+        return float(width), float(height) * (1 - SHEET_MAX)
+    return float(width), float(height)
 
 
 PHONE_CSS = f"""

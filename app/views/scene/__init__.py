@@ -31,6 +31,7 @@ from .accel import AccelArrow
 from .arm import ArmGeometry, ArmView
 from .derive import DeriveScene
 from .drive import DriveView
+from .labels import Layout, ScreenLabels
 from .overlays import Overlays
 from .path import ToolPath
 
@@ -139,6 +140,13 @@ class SceneView:
             lambda: self.open_tab,
         )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
+        overlays, derive = self.glyphs["overlays"], self.glyphs["derive"]
+        self.labels = ScreenLabels(
+            [*arm.labels, *getattr(overlays, "lost_labels", []), *getattr(derive, "labels", [])]
+        )
+        """The 3-D labels, placed on the screen after each update (joints first: they keep their spots)."""
+        self.layout: Callable[[], Layout | None] = lambda: None
+        """Where the tab's labels are seen (its camera and canvas; None: at their anchors)."""
 
     def __getattr__(self, name: str) -> Any:
         """``scene.overlays``, ``scene.derive`` …: the view of glyph ``name``."""
@@ -162,6 +170,11 @@ class SceneView:
         self.arm.update(snap, state.options)
         for glyph in self.glyphs.values():
             glyph.update(snap, state)
+        self.labels.place(self.layout())
+
+    def place_labels(self) -> None:
+        """Place the labels again (the camera or the canvas changed; call inside ``client.atomic()``)."""
+        self.labels.place(self.layout())
 
     def remove(self) -> None:
         """Remove every node (on robot switch or disconnect)."""
