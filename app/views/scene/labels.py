@@ -42,7 +42,7 @@ class Layout:
     rect: tuple[float, float, float, float]
 
 
-def anchor_label(handle: Any, position: Sequence[float]) -> None:
+def anchor_label(handle: Any, position: Sequence[float] | np.ndarray) -> None:
     """Say where ``handle`` (a label) belongs; :meth:`ScreenLabels.place` moves it."""
     handle.__dict__["_jl_anchor"] = tuple(float(x) for x in position)
 
@@ -100,7 +100,7 @@ class ScreenLabels:
         shown = [h for h in self.handles if _shown(h)]
         anchors = np.array([label_anchor(h) for h in shown]).reshape(-1, 3)
         spots = anchors
-        self.layout, self.placed, self.boxes = layout, shown, np.zeros((0, 4))
+        boxes = np.zeros((0, 4))
         if layout is not None and shown:
             for h in shown:
                 _words(h, layout.rect[2] - layout.rect[0])
@@ -114,7 +114,7 @@ class ScreenLabels:
                 if np.isfinite(px[k]).all():
                     at = boxes[k, [0, 3]] + offsets[k]
                     spots[k] = lift(layout.view, at, anchor, layout.width, layout.height)
-            self.boxes = boxes
         for handle, spot in zip(shown, spots, strict=True):
             if np.isfinite(spot).all():
                 set_pose(handle, [float(x) for x in spot])
+        self.placed, self.boxes, self.layout = shown, boxes, layout  # the layout last: what it is placed for

@@ -1,0 +1,110 @@
+"""Issue 28, stumble 2, in the app: the tab's 3-D labels placed on its screen at every named configuration
+of every robot and at every Derive step, on a projector (1280×720) and on a phone held upright (390×844,
+touch: the canvas is the upper half, above the sheet).
+
+Each tab is a real lab with a websocket client whose canvas has that size and whose page reports its
+window (as the page script does). Once the camera the app chose has stopped and the labels were placed
+for it, every shown label's box is worked out here from its 3-D position, through that camera
+(:func:`app.views.camera.project`), with viser's layout of its text (:func:`label_box`): no two boxes
+overlap and every box lies inside the part of the canvas the panel leaves visible
+(:func:`app.views.panel.viewport.visible_view_rect`)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from app_helpers import derive_walk, running_lab
+from fakes import poll
+
+import robots
+from app.core.actions import GoTo
+from app.core.commands import ChooseRobot, PageReport
+from app.views.camera import View, project
+from app.views.methods import METHODS
+from app.views.panel.viewport import canvas_size, visible_view_rect
+from app.views.scene.labels import label_box
+from app.views.scene.placement import overlaps
+
+SCREENS = {"projector": (1280, 720, False), "phone": (390, 844, True)}
+TOL = 1e-6  # [px]: the lift back to 3-D and the projection agree to round-off
+
+
+@pytest.fixture(scope="module", params=list(SCREENS))
+def tab(request):
+    width, height, touch = SCREENS[request.param]
+    cw, ch = canvas_size(width, height)
+    with running_lab((int(cw), int(ch))) as (_, session, _ws):
+        report = {"kind": "view", "width": width, "height": height, "touch": touch}
+        session.dispatch(PageReport(json.dumps(report)))
+        session.settle()
+        session.screen_size = (width, height, touch)
+        yield session
+
+
+def settled_boxes(session) -> tuple[np.ndarray, list[str]]:
+    """The shown labels' boxes [px] through the tab's camera once it has stopped and they were placed
+    for it; their texts."""
+    labels, last = session.scene.labels, [None]
+
+    def done():
+        cam = session.client.camera
+        now = (*np.round(cam.position, 9), *np.round(cam.look_at, 9))
+        lay = labels.layout
+        ok = (
+            lay is not None
+            and now == last[0]
+            and np.allclose(lay.view.position, cam.position, atol=1e-9)
+            and np.allclose(lay.view.look_at, cam.look_at, atol=1e-9)
+            and not session.pending
+        )
+        last[0] = now
+        return ok
+
+    poll(done, what="the camera stopped and the labels placed for it", interval=0.05)
+    cam = session.client.camera
+    width, height, _ = session.screen_size
+    cw, ch = canvas_size(width, height)
+    view = View(np.asarray(cam.position), np.asarray(cam.look_at), np.array([0.0, 0, 1]), cam.fov, cw / ch)
+    shown = [h for h in session.scene.labels.handles if h.visible]
+    at = project(view, np.array([h.position for h in shown]).reshape(-1, 3), cw, ch)
+    boxes = np.array([label_box(h, p) for h, p in zip(shown, at, strict=True)]).reshape(-1, 4)
+    return boxes, [h.text for h in shown]
+
+
+def check(session, what) -> None:
+    boxes, texts = settled_boxes(session)
+    assert len(boxes), what
+    r = visible_view_rect(*session.screen_size)
+    inside = (
+        (boxes[:, 0] >= r.x - TOL)
+        & (boxes[:, 1] >= r.y - TOL)
+        & (boxes[:, 2] <= r.x + r.width + TOL)
+        & (boxes[:, 3] <= r.y + r.height + TOL)
+    )
+    assert inside.all(), (what, [(t, b) for t, b, ok in zip(texts, boxes, inside, strict=True) if not ok], r)
+    shrunk = boxes + np.array([TOL, TOL, -TOL, -TOL])
+    assert not overlaps(shrunk), (what, [(texts[i], texts[j]) for i, j in overlaps(shrunk)])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("robot_name", robots.names())
+def test_labels_apart_and_in_view_at_every_named_configuration(tab, robot_name):
+    tab.dispatch(ChooseRobot(robot_name))
+    tab.settle()
+    for conf in robots.load(robot_name).configurations:
+        tab.dispatch(GoTo(conf.name))
+        tab.settle()
+        check(tab, (robot_name, conf.name))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("method", [m for m in METHODS if m])
+@pytest.mark.parametrize("robot_name", robots.names())
+def test_labels_apart_and_in_view_at_every_derive_step(tab, robot_name, method):
+    tab.dispatch(ChooseRobot(robot_name))
+    tab.settle()
+    for step in range(tab.state.robot.dof):
+        derive_walk(tab, method, step)
+        check(tab, (robot_name, method, step))
