@@ -32,7 +32,6 @@ from ..views.camera import (
     arm_axis,
     facing,
     framing,
-    framing_in,
     label_pairs,
     lost_axes,
     needs_framing,
@@ -135,9 +134,6 @@ class TabCamera:
         self._aspect = 0.0
         self._closed = False
         self.moved: Callable[[], None] = lambda: None
-        self.layout: Callable[[], Any] = lambda: None
-        """The canvas and the part of it the panel leaves visible (a :class:`~app.views.scene.labels.Layout`
-        or None): what the camera frames into."""
         """Called after each pose the tab sets (its labels are placed again)."""
 
     def view(self) -> View | None:
@@ -164,11 +160,7 @@ class TabCamera:
         view = self.view()
         if view is None:  # no camera message yet: assume a 16:9 canvas and viser's default fov
             view = View(np.array([1.3, -1.5, 0.9]), np.zeros(3), np.array([0.0, 0, 1]), 1.3, 1.4)
-        layout = self.layout()
-        if layout is None:
-            end = framing(view, points, direction, pad=pad)
-        else:
-            end = framing_in(view, points, direction, pad, (layout.width, layout.height), layout.rect)
+        end = framing(view, points, direction, pad=pad)
         if glide:
             self.mover.to((view.position, view.look_at), end)
         else:

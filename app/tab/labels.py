@@ -2,10 +2,10 @@
 every :data:`PLACE_EVERY` seconds, while its camera moves (an orbit, the app's glide) — the last
 position always placed.
 
-The layout (:class:`app.views.scene.labels.Layout`) is the browser's camera (its aspect is the
-canvas's), the window size the page reported (the canvas and the part of it the panel leaves visible,
-:mod:`app.views.panel.viewport`), or before that report the camera's canvas in its pixels (720 px
-high if it has not said).
+The layout (:class:`app.views.scene.labels.Layout`) is the browser's camera and its canvas [CSS px]:
+the part of the window the panel leaves (:func:`app.views.panel.viewport.visible_view_rect`, from the
+window size the page reported), or before that report the camera's canvas in its pixels (720 px high
+if it has not said). Labels are placed inside the whole canvas.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ..services.later import Call, later
-from ..views.panel.viewport import canvas_size, visible_view_rect
+from ..views.panel.viewport import visible_view_rect
 from ..views.scene.labels import Layout
 
 __all__ = ["TabLabels", "PLACE_EVERY", "ASSUMED_HEIGHT"]
@@ -63,12 +63,11 @@ class TabLabels:
         if window is None:  # the camera's canvas as a device of pixel ratio 1 (a bare websocket client)
             cam = self.camera.client.camera
             height = float(getattr(cam, "image_height", 0) or ASSUMED_HEIGHT)
-            width, touch = height * view.aspect, False
+            width = height * view.aspect
         else:
-            width, height, touch = window
-        cw, ch = canvas_size(width, height)
-        r = visible_view_rect(width, height, touch)
-        return Layout(view, cw, ch, (r.x, r.y, r.x + r.width, r.y + r.height))
+            r = visible_view_rect(*window)
+            width, height = r.width, r.height
+        return Layout(view, width, height, (0.0, 0.0, width, height))
 
     def moved(self) -> None:
         """The camera moved: place the labels now, or once :data:`PLACE_EVERY` has passed."""

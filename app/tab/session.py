@@ -117,7 +117,7 @@ class ClientSession:
             client, self.camera, lambda: self.page.window, self.lock, lambda: self.screen.own_scene,
             lambda: self._closed,
         )  # fmt: skip
-        self.camera.moved, self.camera.layout = self.labels.moved, self.labels.layout
+        self.camera.moved = self.labels.moved
         self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify, lambda: self.notices.tr)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(

@@ -19,7 +19,6 @@ __all__ = [
     "project",
     "needs_framing",
     "framing",
-    "framing_in",
     "facing",
     "across",
     "lost_axes",
@@ -128,37 +127,6 @@ def framing(
     direction = direction / max(np.linalg.norm(direction), 1e-12)
     half = min(view.fov, 2 * np.arctan(np.tan(view.fov / 2) * view.aspect)) / 2
     return center + direction * radius / np.sin(half), center
-
-
-def framing_in(
-    view: View,
-    points: np.ndarray,
-    direction: np.ndarray | None,
-    pad: float,
-    canvas: tuple[float, float],
-    rect: tuple[float, float, float, float],
-) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`framing` into the part ``rect`` (x0, y0, x1, y1) [px] of a ``canvas`` (width, height) [px]
-    the panel leaves visible: the points fit that part's narrower field of view and their centre
-    projects to its centre (the camera moved sideways, its direction kept)."""
-    width, height = canvas
-    x0, y0, x1, y1 = rect
-    pts = np.asarray(points, float)
-    pts = pts[np.isfinite(pts).all(axis=1)]
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    center = (lo + hi) / 2
-    radius = max(float(np.linalg.norm(pts - center, axis=1).max()), 0.05) * 1.1 + pad
-    if direction is None:
-        direction = view.position - view.look_at
-    direction = np.asarray(direction, float)
-    direction = direction / max(np.linalg.norm(direction), 1e-12)
-    f = height / 2 / np.tan(view.fov / 2)  # [px] per unit of tangent
-    half = np.arctan(min(x1 - x0, y1 - y0) / 2 / f)
-    distance = radius / np.sin(half)
-    _, right, up = _basis(View(center + direction, center, view.up, view.fov, view.aspect))
-    shift = right * (width / 2 - (x0 + x1) / 2) + up * ((y0 + y1) / 2 - height / 2)
-    look_at = center + shift * distance / f
-    return look_at + direction * distance, look_at
 
 
 def facing(points: np.ndarray) -> np.ndarray:

@@ -23,7 +23,7 @@ from app.core.actions import GoTo
 from app.core.commands import ChooseRobot, PageReport
 from app.views.camera import View, project
 from app.views.methods import METHODS
-from app.views.panel.viewport import canvas_size, visible_view_rect
+from app.views.panel.viewport import visible_view_rect
 from app.views.scene.labels import label_box
 from app.views.scene.placement import overlaps
 
@@ -34,8 +34,8 @@ TOL = 1e-6  # [px]: the lift back to 3-D and the projection agree to round-off
 @pytest.fixture(scope="module", params=list(SCREENS))
 def tab(request):
     width, height, touch = SCREENS[request.param]
-    cw, ch = canvas_size(width, height)
-    with running_lab((int(cw), int(ch))) as (_, session, _ws):
+    r = visible_view_rect(width, height, touch)  # the canvas: beside the docked panel, above the sheet
+    with running_lab((int(r.width), int(r.height))) as (_, session, _ws):
         report = {"kind": "view", "width": width, "height": height, "touch": touch}
         session.dispatch(PageReport(json.dumps(report)))
         session.settle()
@@ -64,8 +64,8 @@ def settled_boxes(session) -> tuple[np.ndarray, list[str]]:
 
     poll(done, what="the camera stopped and the labels placed for it", interval=0.05)
     cam = session.client.camera
-    width, height, _ = session.screen_size
-    cw, ch = canvas_size(width, height)
+    r = visible_view_rect(*session.screen_size)
+    cw, ch = r.width, r.height
     view = View(np.asarray(cam.position), np.asarray(cam.look_at), np.array([0.0, 0, 1]), cam.fov, cw / ch)
     shown = [h for h in session.scene.labels.handles if h.visible]
     at = project(view, np.array([h.position for h in shown]).reshape(-1, 3), cw, ch)
@@ -76,12 +76,12 @@ def settled_boxes(session) -> tuple[np.ndarray, list[str]]:
 def check(session, what) -> None:
     boxes, texts = settled_boxes(session)
     assert len(boxes), what
-    r = visible_view_rect(*session.screen_size)
+    r = visible_view_rect(*session.screen_size)  # the canvas, from its top-left corner
     inside = (
-        (boxes[:, 0] >= r.x - TOL)
-        & (boxes[:, 1] >= r.y - TOL)
-        & (boxes[:, 2] <= r.x + r.width + TOL)
-        & (boxes[:, 3] <= r.y + r.height + TOL)
+        (boxes[:, 0] >= -TOL)
+        & (boxes[:, 1] >= -TOL)
+        & (boxes[:, 2] <= r.width + TOL)
+        & (boxes[:, 3] <= r.height + TOL)
     )
     assert inside.all(), (what, [(t, b) for t, b, ok in zip(texts, boxes, inside, strict=True) if not ok], r)
     shrunk = boxes + np.array([TOL, TOL, -TOL, -TOL])
