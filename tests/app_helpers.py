@@ -140,3 +140,27 @@ def scene_update_to(name: str, want: np.ndarray):
         )
 
     return got
+
+
+def labels_placed(session: ClientSession, still: int = 2, interval: float = 0.05) -> None:
+    """Wait until the tab's camera has stood still for ``still`` polls ``interval`` s apart and its labels
+    were placed for it (:class:`app.views.scene.labels.ScreenLabels`: its ``layout`` is recorded last)."""
+    from fakes import poll
+
+    labels, last, count = session.scene.labels, [None], [0]
+
+    def done() -> bool:
+        cam = session.client.camera
+        now = (*np.round(cam.position, 9), *np.round(cam.look_at, 9))
+        count[0] = count[0] + 1 if now == last[0] else 0
+        last[0] = now
+        lay = labels.layout
+        return (
+            lay is not None
+            and count[0] >= still
+            and np.allclose(lay.view.position, cam.position, atol=1e-9)
+            and np.allclose(lay.view.look_at, cam.look_at, atol=1e-9)
+            and not session.pending
+        )
+
+    poll(done, what="the camera stopped and the labels placed for it", interval=interval)

@@ -48,7 +48,8 @@ class PageReport:
         lang: The language the address asks for (``?lang=``), as written there ("" when none; an
             unknown one is kept so the tab can say it speaks English instead).
         browser: The browser's languages (``navigator.languages``), most wanted first.
-        window: A "view" report's window: (width, height) [CSS px] and whether it is a touch screen.
+        window: A "view" report's window: (width, height) [CSS px] and whether it is a touch screen
+            (None: not a size).
     """
 
     kind: str
@@ -98,12 +99,13 @@ def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
     return PageReport("load", resume, robot, q, tab_in_address or tab, lang, tags)
 
 
-def _window(data: dict) -> tuple[float, float, bool]:
-    """A view report's window size [CSS px] (each 1 to 20000) and touch flag."""
+def _window(data: dict) -> tuple[float, float, bool] | None:
+    """A view report's window size [CSS px] (each 1 to 20000) and touch flag; None when it is not a
+    size (nothing to tell the user: the labels stay placed for the camera's canvas)."""
     width, height = data.get("width"), data.get("height")
     for x in (width, height):
         if isinstance(x, bool) or not isinstance(x, (int, float)) or not 1 <= x <= 20000:
-            raise PageError("the page's window size is not a size")
+            return None
     return float(width), float(height), data.get("touch") is True  # type: ignore[arg-type]
 
 

@@ -102,7 +102,7 @@ class PageLink:
             self._notify(self.tr.gettext("The page's address was not used"), str(exc))
             return
         if report.kind == "view":
-            self.window = report.window
+            self.window = report.window or self.window
             return
         if report.tab:
             self.tab = TAB_KEYS[report.tab]

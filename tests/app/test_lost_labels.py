@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from app_helpers import running_lab, scene_node
-from fakes import poll
+from app_helpers import labels_placed, running_lab, scene_node
 
 from app.core.actions import GoTo
 from app.core.commands import ChooseRobot
@@ -43,7 +42,7 @@ def test_both_lost_translations_of_the_candle_are_labelled(projector):
     # arrow's tip, within a line of it (a long label kept inside the view moves along it, its box
     # still over or beside the tip), and nearer its own tip than the other's.
     placed = session.scene.labels
-    poll(lambda: placed.layout is not None)
+    labels_placed(session)
     tips_px = project(placed.layout.view, tips, placed.layout.width, placed.layout.height)
     near = set()
     for label, box in zip(placed.placed, placed.boxes, strict=True):

@@ -15,8 +15,7 @@ import json
 
 import numpy as np
 import pytest
-from app_helpers import derive_walk, running_lab
-from fakes import poll
+from app_helpers import derive_walk, labels_placed, running_lab
 
 import robots
 from app.core.actions import GoTo
@@ -46,23 +45,7 @@ def tab(request):
 def settled_boxes(session) -> tuple[np.ndarray, list[str]]:
     """The shown labels' boxes [px] through the tab's camera once it has stopped and they were placed
     for it; their texts."""
-    labels, last = session.scene.labels, [None]
-
-    def done():
-        cam = session.client.camera
-        now = (*np.round(cam.position, 9), *np.round(cam.look_at, 9))
-        lay = labels.layout
-        ok = (
-            lay is not None
-            and now == last[0]
-            and np.allclose(lay.view.position, cam.position, atol=1e-9)
-            and np.allclose(lay.view.look_at, cam.look_at, atol=1e-9)
-            and not session.pending
-        )
-        last[0] = now
-        return ok
-
-    poll(done, what="the camera stopped and the labels placed for it", interval=0.05)
+    labels_placed(session)
     cam = session.client.camera
     r = visible_view_rect(*session.screen_size)
     cw, ch = r.width, r.height
