@@ -49,12 +49,12 @@ def _placed(session) -> None:
     labels_placed(session, still=10, interval=0.1)
 
 
-def _boxes(session) -> tuple[list, np.ndarray]:
+def _boxes(session, canvas=CANVAS) -> tuple[list, np.ndarray]:
     cam = session.client.camera
     view = View(np.asarray(cam.position), np.asarray(cam.look_at), np.array([0.0, 0, 1]), cam.fov, cam.aspect)
     shown = [h for h in session.scene.labels.handles if h.visible]
     points = np.array([h.position for h in shown]).reshape(-1, 3)
-    at = project(view, points, CANVAS.width, CANVAS.height)
+    at = project(view, points, canvas.width, canvas.height)
     return shown, np.array([label_box(h, p) for h, p in zip(shown, at, strict=True)]).reshape(-1, 4)
 
 
@@ -127,4 +127,28 @@ def test_the_five_moments_have_their_labels_apart_in_view_and_sized_as_drawn(tmp
                     box,
                 )
                 assert ink[2] - ink[0] >= 0.75 * (box[2] - box[0]), (handle.text, ink, box)
+        assert not errors, errors
+
+
+def test_the_climax_on_a_phone_has_its_labels_apart_above_the_sheet(tmp_path):
+    out_dir = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out_dir.mkdir(parents=True, exist_ok=True)
+    phone = {"width": 390, "height": 844}
+    with app_page(Lab(port=0), viewport=phone, touch=True, path="?fixedDpr=1") as (page, session, errors):
+        poll(lambda: session.page.window == (390, 844, True), what="the phone reported its window")
+        canvas = visible_view_rect(390, 844, touch=True)
+        assert canvas_box(page) == {"x": 0, "y": 0, "width": canvas.width, "height": canvas.height}
+        session.dispatch(ChooseRobot("puma560"))
+        session.dispatch(GoTo("wrist_singular"))
+        session.settle()
+        _placed(session)
+        shown, boxes = _boxes(session, canvas)
+        texts = [h.text for h in shown]
+        assert any("lost" in t for t in texts), texts
+        shrunk = boxes + np.array([1e-6, 1e-6, -1e-6, -1e-6])
+        assert not overlaps(shrunk), [(texts[i], texts[j]) for i, j in overlaps(shrunk)]
+        assert (boxes[:, :2] >= -1e-6).all(), (texts, boxes)
+        assert (boxes[:, 2] <= canvas.width + 1e-6).all() and (boxes[:, 3] <= canvas.height + 1e-6).all()
+        steady_canvas(page)
+        page.screenshot(path=str(out_dir / "labels_climax_phone_390.png"))
         assert not errors, errors

@@ -23,7 +23,7 @@ from app.core.commands import ChooseRobot, PageReport
 from app.views.camera import View, project
 from app.views.methods import METHODS
 from app.views.panel.viewport import visible_view_rect
-from app.views.scene.labels import label_box
+from app.views.scene.labels import LEADER_PX, label_anchor, label_box
 from app.views.scene.placement import overlaps
 
 SCREENS = {"projector": (1280, 720, False), "phone": (390, 844, True)}
@@ -53,7 +53,25 @@ def settled_boxes(session) -> tuple[np.ndarray, list[str]]:
     shown = [h for h in session.scene.labels.handles if h.visible]
     at = project(view, np.array([h.position for h in shown]).reshape(-1, 3), cw, ch)
     boxes = np.array([label_box(h, p) for h, p in zip(shown, at, strict=True)]).reshape(-1, 4)
+    check_leaders(session, view, shown, boxes, cw, ch, [h.text for h in shown])
     return boxes, [h.text for h in shown]
+
+
+def check_leaders(session, view: View, shown: list, boxes: np.ndarray, cw: float, ch: float, what) -> None:
+    """A label whose box ends more than LEADER_PX from its anchor has a leader line from its box to it."""
+    anchors = np.array([label_anchor(h) for h in shown]).reshape(-1, 3)
+    at = project(view, anchors, cw, ch)
+    gap = np.hypot(*(np.clip(at, boxes[:, :2], boxes[:, 2:]) - at).T)
+    far = np.flatnonzero(gap > LEADER_PX + 1e-6)
+    leaders = session.scene.labels.leaders
+    assert leaders.visible == bool(len(far)), what
+    segments = np.asarray(leaders.points, float)
+    for k in far:
+        ends = np.flatnonzero(np.linalg.norm(segments[:, 1] - anchors[k], axis=1) < 1e-5)
+        assert len(ends), (what, shown[k].text)
+        starts = project(view, segments[ends, 0], cw, ch)
+        on_box = (starts >= boxes[k, :2] - 0.01).all(axis=1) & (starts <= boxes[k, 2:] + 0.01).all(axis=1)
+        assert on_box.any(), (what, shown[k].text, starts, boxes[k])
 
 
 def check(session, what) -> None:

@@ -142,7 +142,9 @@ class SceneView:
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
         overlays, derive = self.glyphs["overlays"], self.glyphs["derive"]
         self.labels = ScreenLabels(
-            [*arm.labels, *getattr(overlays, "lost_labels", []), *getattr(derive, "labels", [])]
+            [*arm.labels, *getattr(overlays, "lost_labels", []), *getattr(derive, "labels", [])],
+            client.scene,
+            f"{root}/labels",
         )
         """The 3-D labels, placed on the screen after each update (joints first: they keep their spots)."""
         self.layout: Callable[[], Layout | None] = lambda: None
@@ -180,4 +182,6 @@ class SceneView:
         """Remove every node (on robot switch or disconnect)."""
         for glyph in reversed(self.glyphs.values()):
             glyph.remove()
+        if self.labels.leaders is not None:
+            self.labels.leaders.remove()
         self.arm.remove()

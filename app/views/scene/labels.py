@@ -19,8 +19,9 @@ from typing import Any
 
 import numpy as np
 
-from ...viser_adapter import set_pose
+from ...viser_adapter import set_pose, update_props
 from ..camera import View, project
+from .geometry import finite, set_if_changed
 from .placement import EM_PX, label_size, lift, place, wrap
 
 __all__ = ["Layout", "ScreenLabels", "anchor_label", "label_anchor", "label_box"]
@@ -83,11 +84,35 @@ def _shown(handle: Any) -> bool:
     return bool(cache.get("visible", handle.visible))
 
 
-class ScreenLabels:
-    """The labels of one scene, in the order they take their places (the first keep their spots)."""
+LEADER_PX = 12.0
+"""A label whose box ends farther than this [px] from its anchor gets a leader line to it."""
+LEADER_RGB = (120, 120, 120)
 
-    def __init__(self, handles: Sequence[Any]) -> None:
+
+class ScreenLabels:
+    """The labels of one scene, in the order they take their places (the first keep their spots).
+
+    ``scene``: where to draw the leader lines (a thin grey line from a label moved away from its
+    anchor to the anchor), under ``root``; none without it."""
+
+    def __init__(self, handles: Sequence[Any], scene: Any = None, root: str = "/lab/labels") -> None:
         self.handles = list(handles)
+        self.leaders = (
+            None
+            if scene is None
+            else scene.add_line_segments(
+                f"{root}/leaders",
+                points=np.zeros(
+                    (len(self.handles), 2, 3), np.float32
+                ),  # always this many: the page keeps the count
+                colors=LEADER_RGB,
+                thickness=1.5,
+                thickness_units="screen",
+                visible=False,
+            )
+        )
+        self.leader_count = 0
+        """How many leader lines the last placement drew."""
         self.boxes: np.ndarray = np.zeros((0, 4))
         """The shown labels' boxes [px] at the last placement with a camera."""
         self.placed: list[Any] = []
@@ -110,11 +135,31 @@ class ScreenLabels:
             boxes = place(natural[:, [0, 3]], sizes, layout.rect)  # bottom-left corners
             offsets = px - natural[:, [0, 3]]  # from a box's bottom-left corner to its label's point
             spots = anchors.copy()
+            leaders = []
             for k, anchor in enumerate(anchors):
                 if np.isfinite(px[k]).all():
                     at = boxes[k, [0, 3]] + offsets[k]
                     spots[k] = lift(layout.view, at, anchor, layout.width, layout.height)
+                    near = np.clip(px[k], boxes[k, :2], boxes[k, 2:])  # the box's point nearest its anchor
+                    if np.hypot(*(near - px[k])) > LEADER_PX:
+                        start = lift(layout.view, near, anchor, layout.width, layout.height)
+                        leaders.append((start, anchor))
+            self._lead(leaders)
         for handle, spot in zip(shown, spots, strict=True):
             if np.isfinite(spot).all():
                 set_pose(handle, [float(x) for x in spot])
+        if layout is None or not shown:
+            self._lead([])
         self.placed, self.boxes, self.layout = shown, boxes, layout  # the layout last: what it is placed for
+
+    def _lead(self, leaders: list) -> None:
+        """Draw ``leaders`` ((start, end) in 3-D [m]); the unused segments at zero length."""
+        self.leader_count = len(leaders)
+        if self.leaders is None:
+            return
+        set_if_changed(self.leaders, "visible", bool(leaders))
+        if leaders:
+            pts = np.zeros((len(self.handles), 2, 3))
+            pts[: len(leaders)] = np.array(leaders)
+            pts[len(leaders) :] = pts[0, 0]
+            update_props(self.leaders, points=finite(pts).astype(np.float32))
