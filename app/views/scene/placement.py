@@ -127,15 +127,18 @@ def overlaps(boxes: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
+_DIRECTIONS = np.array([(1, 0), (0, -1), (-1, 0), (0, 1), (1, -1), (-1, -1), (-1, 1), (1, 1)], float)
+"""The spots of a ring, in the order they are tried: right, up, left, down, then the corners."""
+
+
 def _candidates(anchor: np.ndarray, size: np.ndarray, step: float, rings: int) -> np.ndarray:
     """Top-left corners (K, 2) around ``anchor``: right above it first, then around it, ring by ring."""
     w, h = size
-    out = [anchor + (0.0, -h)]  # bottom-left corner on the anchor, as viser's labels are anchored
-    for r in range(1, rings + 1):
-        d = r * step
-        for dx, dy in ((1, 0), (0, -1), (-1, 0), (0, 1), (1, -1), (-1, -1), (-1, 1), (1, 1)):
-            out.append(anchor + (dx * d, dy * d - h) + ((-w if dx < 0 else 0.0), 0.0))
-    return np.array(out)
+    d = np.tile(_DIRECTIONS, (rings, 1))
+    out = anchor + d * (np.repeat(np.arange(1, rings + 1), len(_DIRECTIONS)) * step)[:, None]
+    out[:, 1] -= h
+    out[:, 0] -= np.where(d[:, 0] < 0, w, 0.0)  # a spot to the left ends there
+    return np.vstack([anchor + (0.0, -h), out])  # first: the bottom-left corner on the anchor, as viser's
 
 
 def place(
