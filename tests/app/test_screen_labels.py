@@ -16,6 +16,7 @@ import json
 import numpy as np
 import pytest
 from app_helpers import derive_walk, labels_placed, running_lab
+from fakes import poll
 
 import robots
 from app.core.actions import GoTo
@@ -25,6 +26,7 @@ from app.views.methods import METHODS
 from app.views.panel.viewport import visible_view_rect
 from app.views.scene.labels import LEADER_PX, label_anchor, label_box
 from app.views.scene.placement import overlaps
+from app.viser_adapter import message_class
 
 SCREENS = {"projector": (1280, 720, False), "phone": (390, 844, True)}
 TOL = 1e-6  # [px]: the lift back to 3-D and the projection agree to round-off
@@ -39,6 +41,7 @@ def tab(request):
         session.dispatch(PageReport(json.dumps(report)))
         session.settle()
         session.screen_size = (width, height, touch)
+        session.ws = _ws
         yield session
 
 
@@ -109,3 +112,26 @@ def test_labels_apart_and_in_view_at_every_derive_step(tab, robot_name, method):
     for step in range(tab.state.robot.dof):
         derive_walk(tab, method, step)
         check(tab, (robot_name, method, step))
+
+
+@pytest.mark.slow
+def test_labels_placed_again_when_the_user_turns_the_camera(tab):
+    """An orbit in the browser (its camera message, no redraw): the labels are placed again for it."""
+    tab.dispatch(ChooseRobot("puma560"))
+    tab.dispatch(GoTo("wrist_singular"))
+    tab.settle()
+    check(tab, "before the turn")
+    cam = tab.client.camera
+    look, start = np.asarray(cam.look_at, float), np.asarray(cam.position, float)
+    c, s = np.cos(np.radians(120)), np.sin(np.radians(120))
+    turned = look + np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ (start - look)  # 120° about the vertical
+    r = visible_view_rect(*tab.screen_size)
+    tab.ws.send(
+        message_class("ViewerCameraMessage")(
+            wxyz=(1.0, 0.0, 0.0, 0.0), position=tuple(turned), fov=float(cam.fov), near=0.01, far=100.0,
+            image_height=int(r.height), image_width=int(r.width), look_at=tuple(look), up_direction=(0.0, 0, 1),
+        )
+    )  # fmt: skip
+    placed = tab.scene.labels
+    poll(lambda: np.allclose(placed.layout.view.position, turned, atol=1e-6), what="the labels placed again")
+    check(tab, "after the turn")
