@@ -212,6 +212,7 @@ class Lab:
             return
         if self.classroom is not None:
             self.classroom.join(client.client_id, session.following)
+            self.classroom.questions.join(client.client_id, session.following)
         for hook in list(self._session_hooks):
             try:
                 hook(session)
@@ -235,6 +236,7 @@ class Lab:
         if session is not None:
             if self.classroom is not None:
                 self.classroom.closed(client.client_id)
+                self.classroom.questions.leave(client.client_id)
             session.close()
 
     def _address(self, client_id: int) -> str:

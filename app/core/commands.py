@@ -42,6 +42,10 @@ __all__ = [
     "PageReport",
     "OpenTab",
     "SymbolicResult",
+    "AskRoom",
+    "AnswerRoom",
+    "EndQuestion",
+    "QuestionShown",
 ]
 
 
@@ -196,7 +200,49 @@ class SymbolicResult:
     note: str
 
 
-CLASSROOM = (ClaimPresenter, StopPresenting, ExploreAlone, FollowPresenter, AnswerHandover)
+@dataclass(frozen=True)
+class AskRoom:
+    """The presenter asks the room about what is on screen (:mod:`app.core.questions`): ``kind`` is
+    "kind", "blowup", "lost", "det", "kappa" or "custom" (``prompt``, ``choices`` and the indices of the
+    ``right`` ones typed by the teacher). Only the presenting tab's question is asked."""
+
+    kind: str
+    prompt: str = ""
+    choices: tuple[str, ...] = ()
+    right: tuple[int, ...] = ()
+
+
+@dataclass(frozen=True)
+class AnswerRoom:
+    """A follower answers round ``number``: a choice's id, a typed number as text, or a pointed direction
+    (checked where it enters: :func:`app.core.poll.answer`)."""
+
+    number: int
+    value: object
+
+
+@dataclass(frozen=True)
+class EndQuestion:
+    """The presenter closes the question (``reveal`` False: the counts are final) or reveals its answer."""
+
+    reveal: bool
+
+
+@dataclass(frozen=True)
+class QuestionShown:
+    """The room's question changed for this tab (new bars, its own answer taken): update its box only."""
+
+
+CLASSROOM = (
+    ClaimPresenter,
+    StopPresenting,
+    ExploreAlone,
+    FollowPresenter,
+    AnswerHandover,
+    AskRoom,
+    AnswerRoom,
+    EndQuestion,
+)
 """Classroom commands: a follower may always send these (its other inputs are read-only)."""
 
 Command = (
@@ -219,6 +265,10 @@ Command = (
     | OpenTab
     | ChooseLanguage
     | SymbolicResult
+    | AskRoom
+    | AnswerRoom
+    | EndQuestion
+    | QuestionShown
 )
 """Everything the session carries out itself (a union, told apart by type)."""
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .poll import Seen
+
 __all__ = ["Role"]
 
 
@@ -20,6 +22,7 @@ class Role:
         asked: This tab presents and another tab asks it to hand over.
         waiting: This tab typed the token and waits for the presenter to hand over.
         note: A sentence for this tab ("the presenter has left", ...), "" when none.
+        question: The room's question as this tab shows it (:mod:`app.core.poll`), or None.
     """
 
     presenting: bool = False
@@ -29,3 +32,4 @@ class Role:
     asked: bool = False
     waiting: bool = False
     note: str = ""
+    question: Seen | None = None

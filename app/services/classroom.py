@@ -8,11 +8,10 @@ keeps guessing hopeless). A right token typed while another tab presents (and is
 replace it: the presenting tab is asked, and the asking tab presents only if it hands over (no answer
 changes nothing; a reconnect key, which only the presenter's browser has, takes over at once). The
 replaced presenter and the room are told.
-Every other tab follows by default: each state the presenter's tab commits, with the snapshot it
-computed, is handed to the followers, which draw it without computing it again (one computation per
-presenter change, not one per follower). The presenter's camera is relayed too. A follower can leave
-("explore on my own") and come back; when the presenter's tab closes, followers keep the last state
-and are told.
+Every other tab follows by default: each state the presenter's tab commits, with its snapshot, is
+handed to the followers, which draw it without computing it again. The presenter's camera is relayed
+too. A follower can explore on its own and come back; when the presenter's tab closes, followers keep
+the last state and are told. The room's questions: :mod:`app.services.question_desk`.
 
 The classroom never touches viser: it calls the small :class:`Member` interface a session provides.
 """
@@ -40,6 +39,7 @@ from .presenter_token import (
     random_token,
     token_weakness,
 )
+from .question_desk import QuestionDesk
 
 __all__ = [
     "Classroom",
@@ -116,6 +116,7 @@ class Classroom:
         self._last: tuple[LabState, Snapshot] | None = None
         self._tab = ""
         self._asking: int | None = None  # the tab that typed the token and waits for the presenter
+        self.questions = QuestionDesk(self, clock)
 
     # ---------------------------------------------------------------- membership
     def join(self, key: int, member: Member) -> None:

@@ -156,6 +156,7 @@ class RelayedClassroom(Classroom):
         self._told_count = -1
         self.computed = 0  # snapshots computed for states of another worker
         self._asked = False  # this worker's presenter is asked to hand over (the hub keeps who asks)
+        self.questions.send = channel.send  # its rounds (presenting) and bars (following) go to the hub
         channel.on_message = self._message
 
     # ---------------------------------------------------------------- the seam of Classroom
@@ -328,6 +329,8 @@ class RelayedClassroom(Classroom):
             self._tell_replaced(replaced, message.get("handover") is True)
         elif op in ("ask", "unask", "granted", "refused"):
             self._handover(op, message)
+        elif op in ("question", "tally"):  # the room's question (app.services.question_desk)
+            self.questions.from_hub(message)
         elif op == "state":
             self._remote_state(message.get("state"))
         elif op == "camera":

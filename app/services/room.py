@@ -14,12 +14,14 @@ it returns.
 Worker → hub: ``claim`` (id, key, token), ``resume`` (id, key, resume), ``state`` (the
 presenter's commit, :mod:`app.services.state_codec`), ``camera``, ``tab``, ``away`` (the presenter's
 tab closed), ``resign``, ``count`` (its followers), ``answer`` (key, accept: the presenter's answer
-to a hand-over), ``withdraw`` (key: the asking tab closed). Hub → worker: ``reply`` (id, …; ``waiting``
-when the presenter was asked), ``presenter`` (a tab of another worker presents now; ``handover`` when
-its presenter agreed), ``state``, ``camera``, ``tab``, ``away``, ``resigned``, ``others`` (followers
-in the other workers), ``ask`` / ``unask`` (to the presenter's worker: a tab asks to present, or no
-longer), ``granted`` (key, resume: the asking tab presents) / ``refused`` (key; ``quiet`` when a newer
-request replaced it).
+to a hand-over), ``withdraw`` (key: the asking tab closed), ``question`` (the presenter's round of the
+room's question changed: :mod:`app.services.question_desk`), ``tally`` (a worker's bars of it). Hub →
+worker: ``reply`` (id, …; ``waiting`` when the presenter was asked), ``presenter`` (a tab of another
+worker presents now; ``handover`` when its presenter agreed), ``state``, ``camera``, ``tab``, ``away``,
+``resigned``, ``others`` (followers in the other workers), ``ask`` / ``unask`` (to the presenter's
+worker: a tab asks to present, or no longer), ``granted`` (key, resume: the asking tab presents) /
+``refused`` (key; ``quiet`` when a newer request replaced it), ``question`` (to every other worker),
+``tally`` (worker, round, counts: to the presenter's worker).
 
 A hand-over: a right token typed while a tab presents (and is connected) is kept as ``asking``
 (worker, key), one at a time, and the presenter's worker is asked; only the presenter's worker's
@@ -64,6 +66,7 @@ class RoomHub:
         self.tab = ""
         self.asking: tuple[int, int] | None = None  # (worker, tab key) that asks the presenter to hand over
         self.counts: dict[int, int] = {}
+        self.question: dict[str, Any] | None = None  # the room's question, as the presenter's worker sent it
         self._told_others: dict[int, int] = {}
         self.relayed = 0
 
@@ -80,6 +83,8 @@ class RoomHub:
                 out.append((worker, {"op": "state", "state": self.last}))
             if self.tab:
                 out.append((worker, {"op": "tab", "label": self.tab}))
+            if self.question is not None:
+                out.append((worker, {"op": "question", **self.question}))
         return out + self._counts()
 
     def gone(self, worker: int) -> Outgoing:
@@ -109,6 +114,11 @@ class RoomHub:
                 return self._counts()
             if op == "withdraw" and self.asking == (worker, int(message["key"])):
                 return self._withdraw()
+            if op == "tally":  # a worker's bars of the room's question, to the presenter's worker
+                if self.presenter is None or self.presenter[0] == worker:
+                    return []
+                tally = {"op": "tally", "worker": worker, "round": int(message["round"])}
+                return [(self.presenter[0], {**tally, "counts": message.get("counts")})]
         except (TypeError, ValueError, KeyError):
             return []
         if self.presenter is None or self.presenter[0] != worker:
@@ -121,6 +131,9 @@ class RoomHub:
         if op == "tab":
             self.tab = str(message.get("label", ""))
             return self._others(worker, {"op": "tab", "label": self.tab})
+        if op == "question":  # the room's question changed: every other worker's tabs are told
+            self.question = {k: message.get(k) for k in ("round", "phase", "question")}
+            return self._others(worker, {"op": "question", **self.question})
         if op == "away" and message.get("key") == self.presenter[1]:
             return self._away(worker)
         if op == "resign" and message.get("key") == self.presenter[1]:

@@ -33,6 +33,7 @@ class Batch:
 
     def __init__(self, state: LabState) -> None:
         self.state, self.jump, self.force, self.symbolic = state, False, False, False
+        self.question = False  # the room's question changed for this tab: its box is drawn
         self._mirror: Mirror | None = None  # the presenter's last state, drawn as it is
         self._replay: list | None = []  # the presenter's scene messages, in order (None: draw our own)
         self.lead: SceneSlot | None = None  # a relayed state's slot this tab's own drawing fills

@@ -38,6 +38,7 @@ from ..core.snapshot import Snapshot
 from ..core.state import LabState
 from ..services.background import background, ik_solutions, nearest_path
 from ..services.symbolic_service import SymbolicService, SymbolicUnavailable
+from ..views.panel.question import COUNTS, bar_words, question_words
 from .following import Following
 from .notices import Notices
 from .recorder import TabRecorder, demo_zip
@@ -107,10 +108,12 @@ class CommandRunner:
         if isinstance(command, UploadRobot):
             self._upload(command)
             return None
-        if isinstance(command, RequestDownload):
+        if isinstance(command, RequestDownload) and command.label == COUNTS:
+            self._download_counts()
+        elif isinstance(command, RequestDownload):
             self._download(state, command.label)
         elif isinstance(command, CLASSROOM):
-            self.following.command(command)
+            self.following.command(command, state)
         elif isinstance(command, ToggleRecording):
             self._toggle_recording(state)
             return Redraw()  # the record button says what a click does next
@@ -225,6 +228,18 @@ class CommandRunner:
         background().submit(demo_zip, frames, title, self.notices.tr).add_done_callback(done)
 
     # ------------------------------------------------------------------ downloads
+    def _download_counts(self) -> None:
+        """The presenter's download of the room's counts (no names, no answers): CSV."""
+        classroom = self.following.classroom
+        if classroom is None:
+            return
+        tr = self.notices.tr
+        text = classroom.questions.csv(
+            self.following.key, lambda q: (question_words(q, tr), bar_words(q, tr))
+        )
+        if text is not None:
+            self.client.send_file_download(COUNTS, text.encode("utf-8"), save_immediately=True)
+
     def _download(self, state: LabState, label: str) -> None:
         """Send the robot's file at once, or queue its symbolic J: one of this tab's exports is with the
         symbolic worker at a time, the others wait here (at most :data:`MAX_QUEUED_DOWNLOADS`), so one

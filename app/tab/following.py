@@ -15,28 +15,39 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
-from ..core.actions import Step
+import numpy as np
+
+from ..core import questions
+from ..core.actions import Play, Step
 from ..core.commands import (
     CLASSROOM,
     AnswerHandover,
+    AnswerRoom,
+    AskRoom,
     ClaimPresenter,
+    EndQuestion,
     ExploreAlone,
     FollowPresenter,
     Message,
     Mirror,
     OpenTab,
     PageReport,
+    QuestionShown,
     Redraw,
     RequestDownload,
     StopPresenting,
     ToggleRecording,
 )
+from ..core.poll import Seen
 from ..core.role import Role
-from ..core.snapshot import Snapshot
+from ..core.snapshot import Snapshot, compute
 from ..core.state import LabState
+from ..services.background import background
 from ..services.classroom import TOO_MANY_TRIES, WAITING, Classroom
+from ..services.question_desk import NOT_PRESENTING
 from .camera import TabCamera
 from .notices import Notices
 
@@ -159,7 +170,7 @@ class Following:
     def role_changed(self, role: Role) -> None:
         """The classroom says what this tab now is (redrawn on the renderer's next visit)."""
         before = self.role
-        self.role = role
+        self.role = role = replace(role, question=before.question)
         if role.note:
             _ = self._notices.tr.gettext
             self._notices.notify(_("Classroom"), _(role.note))
@@ -173,16 +184,25 @@ class Following:
                 self.classroom.tab(self.key, self.page.tab)
         self._dispatch(Redraw())
 
+    def question_changed(self, seen: Seen | None) -> None:
+        """The room's question as this tab shows it changed: its box is updated; the whole tab is drawn
+        again when what the screens hide until the reveal changed (a new question, its reveal)."""
+        before = self.role.question
+        self.role = replace(self.role, question=seen)
+        whole = (before.masks, before.number) if before else None, (seen.masks, seen.number) if seen else None
+        self._dispatch(Redraw() if whole[0] != whole[1] else QuestionShown())
+
     # ------------------------------------------------------------------ the tab's commands
-    def command(
-        self, command: ClaimPresenter | StopPresenting | ExploreAlone | FollowPresenter | AnswerHandover
-    ) -> None:
-        """Carry out a classroom command."""
+    def command(self, command: Any, state: LabState | None = None) -> None:
+        """Carry out a classroom command (:data:`app.core.commands.CLASSROOM`; ``state``: the tab's, with
+        the messages taken before this one in the same batch)."""
         if self.classroom is None:
             raise ValueError(
                 "this server has no presenter mode (start it with --presenter or --presenter-token)"
             )
-        if isinstance(command, ClaimPresenter):
+        if isinstance(command, (AskRoom, AnswerRoom, EndQuestion)):
+            self._question(command, state)
+        elif isinstance(command, ClaimPresenter):
             self._claim(command)
         elif isinstance(command, StopPresenting):
             self.classroom.resign(self.key)
@@ -194,6 +214,44 @@ class Following:
             self.classroom.follow(self.key)
         elif isinstance(command, AnswerHandover):  # the classroom ignores it unless this tab presents
             self.classroom.answer(self.key, command.accept)
+
+    def _question(self, command: AskRoom | AnswerRoom | EndQuestion, now: LabState | None) -> None:
+        """Ask the room (the question made away from the drawing thread), answer, close or reveal."""
+        assert self.classroom is not None
+        desk, tr = self.classroom.questions, self._notices.tr
+        if isinstance(command, AnswerRoom):
+            why = desk.answer(self.key, command.number, command.value, tr)
+        elif isinstance(command, EndQuestion):
+            why = desk.end(self.key, command.reveal)
+            asked = desk.round.question if desk.round is not None else None
+            if not why and command.reveal and asked is not None and asked.kind == "blowup":
+                self._dispatch(Play(True, "resolved_rate"))  # the picture settles it: the motion runs
+            why = tr.gettext(why) if why else ""
+        elif not self.role.presenting:
+            why = tr.gettext(NOT_PRESENTING)
+        else:
+            shown, snap = self._shown()
+            state = now or shown
+            view = self._camera.view()
+            sight = None if view is None else view.look_at - view.position
+            job = background().submit(
+                _make, command, state, snap if state is shown else None, desk.next_number, sight
+            )
+            job.add_done_callback(lambda done: self._asked(done.result, desk))
+            return
+        if why:
+            self._notices.notify(tr.gettext("Question"), why, seconds=6.0)
+
+    def _asked(self, result: Callable[[], questions.Question], desk: Any) -> None:
+        """The question is made: the room is asked (or the presenter told why not)."""
+        tr = self._notices.tr
+        try:
+            why = desk.ask(self.key, result())
+        except questions.QuestionError as e:
+            why = str(e)
+        why = tr.gettext(why) if why else ""
+        if why and not self._closed:
+            self._notices.notify(tr.gettext("Question"), why, seconds=6.0)
 
     def _claim(self, command: ClaimPresenter) -> None:
         assert self.classroom is not None
@@ -243,3 +301,15 @@ class Following:
         self._closed = True
         if self._token_timer is not None:
             self._token_timer.cancel()
+
+
+def _make(
+    command: AskRoom, state: LabState, snap: Snapshot | None, seed: int, sight: object = None
+) -> questions.Question:
+    """The question ``command`` asks about ``state`` (its snapshot computed here when not given)."""
+    snap = snap if snap is not None else compute(state)
+    return questions.make(
+        command.kind, state.robot, np.array(state.q), configuration=state.configuration, losses=snap.losses,
+        twist=np.array(state.v_desired), frame=state.options.twist_frame, prompt=command.prompt,
+        choices=command.choices, right=command.right, seed=seed, sight=sight,
+    )  # fmt: skip

@@ -21,6 +21,7 @@ from ..core.i18n import Translator, translations
 from ..core.role import Role
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
+from ..views.camera import View
 from ..views.panel import PanelView
 from ..views.panel.common import Dispatch
 from ..views.scene import SceneView
@@ -67,8 +68,9 @@ class Screen:
         state: LabState,
         classroom: bool,
         tr: Translator | None = None,
+        view: Callable[[], View | None] = lambda: None,
     ) -> None:
-        self.client, self.dispatch, self.catalog = client, dispatch, catalog
+        self.client, self.dispatch, self.catalog, self.view = client, dispatch, catalog, view
         self.classroom, self.tr = classroom, tr or translations()
         self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene: SceneView | None = None
@@ -106,10 +108,13 @@ class Screen:
                 if rebuild or self.scene is None or self._foreign:
                     if self.scene is not None:
                         self.scene.remove()
-                    self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
+                    self.scene = SceneView(
+                        self.client, state.robot, self.dispatch, tr=self.tr, view=self.view
+                    )
                     self._foreign = False
                 self.scene.open_tab = self.panel.open_name  # a tab's own glyphs only while it is open
                 self.scene.layout = self.layout  # where its labels are seen
+                self.scene.question = role.question
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())
             self.panel.draw(state, snap)
@@ -137,7 +142,10 @@ class Screen:
                 self.client, self.dispatch, self.catalog.names(), state, self.classroom, tr, report=False
             )
 
-    def draw_symbols(self, symbols: TabSymbols) -> None:
-        """Put the symbolic results that arrived on the panel (nothing else changed)."""
+    def draw_symbols(self, symbols: TabSymbols, role: Role | None = None) -> None:
+        """Put the symbolic results that arrived on the panel, and the room's question if ``role`` is
+        given (nothing else changed)."""
         with self.client.atomic():
             symbols.draw(self.panel, everything=False)
+            if role is not None:
+                self.panel.show_role(role)

@@ -32,6 +32,7 @@ from ..core.commands import (
     Mirror,
     OpenTab,
     PageReport,
+    QuestionShown,
     Redraw,
     ResetView,
     SymbolicResult,
@@ -128,8 +129,9 @@ class ClientSession:
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
             self.screen = Screen(
-                client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr
-            )
+                client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr,
+                self.camera.view,
+            )  # fmt: skip
             self.screen.layout = self.labels.layout
             self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
@@ -204,8 +206,8 @@ class ClientSession:
                         rebuild = batch.state.robot is not self.state.robot
                         lead = batch.lead if scene is None and snap is not None else None
                         self._commit(batch.state, rebuild, batch.jump, snap, scene, lead)
-                    elif batch.symbolic:
-                        self.screen.draw_symbols(self.symbols)
+                    elif batch.symbolic or batch.question:
+                        self.screen.draw_symbols(self.symbols, self.role if batch.question else None)
                 except Exception as exc:  # the tab keeps its last good state on screen
                     self.notices.error(exc)
         self.pace.finish()
@@ -225,6 +227,8 @@ class ClientSession:
             batch.take_mirror(message, self.screen.scene is not None, self.language)
         elif isinstance(message, Redraw):
             batch.force = True
+        elif isinstance(message, QuestionShown):
+            batch.question = True
         elif isinstance(message, SymbolicResult):
             batch.symbolic = self.symbols.take(message) or batch.symbolic
         elif isinstance(message, ChooseLanguage):  # the tab's own, a follower's too: never the state's

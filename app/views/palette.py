@@ -34,6 +34,7 @@ __all__ = [
     "ROTATION_ELLIPSOID_RGB",
     "FORCE_ELLIPSOID_RGB",
     "GLYPH_RGB",
+    "QUESTION_RGB",
     "hex_of",
     "contrast",
     "delta_e",
@@ -66,6 +67,7 @@ DESIRED_RGB = (200, 204, 212)  # the desired tool velocity: light grey (what J q
 FORCE_RGB = (0, 45, 98)  # the applied force and moment: navy
 PATH_RGB = (0, 95, 115)  # the tool's traced path: dark teal (no joint, status or glyph uses it)
 ACCEL_RGB = (180, 0, 255)  # J̇ q̇, the tool's acceleration at constant joint rates: violet
+QUESTION_RGB = (60, 60, 60)  # the room's candidate lost directions A–D: charcoal, until one is revealed
 JQDD_RGB = (200, 0, 110)  # J q̈, the tool's acceleration from the joint accelerations: magenta
 ROTATION_ELLIPSOID_RGB = (0, 120, 90)
 FORCE_ELLIPSOID_RGB = (90, 20, 120)

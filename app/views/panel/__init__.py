@@ -14,6 +14,7 @@ screen.
 
 from __future__ import annotations
 
+import html
 from collections.abc import Sequence
 from typing import Any
 
@@ -54,6 +55,7 @@ from .matrix import MatrixPanel
 from .motion import MotionPanel
 from .page import LOST_WORDS
 from .page import page_js as page_state_js
+from .question import HIDDEN_WORDS, HIDES_STATUS, QuestionPanel
 from .readouts import hint_html, source_html, status_html
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import number_guard_js
@@ -118,6 +120,7 @@ class PanelView:
         self.live = gui.add_html("", order=2.5, visible=False)  # the motion's rates and κ, as numbers
         self.hint = gui.add_html("", order=2.6, visible=False)  # what to do first, over the 3-D view
         self.classroom = ClassroomPanel(gui, dispatch, order=0.5, tr=tr) if classroom else None
+        self.question = QuestionPanel(gui, dispatch, tr, self._apply_shown_preset) if classroom else None
         if self.classroom is not None:  # masked, and filled from the presenter link
             run_javascript(client, token_js(handle_uuid(self.classroom.token)))
         # The views of J live in a second panel docked under the joints: both stay in sight.
@@ -266,10 +269,25 @@ class PanelView:
         self.record.label = _("Stop and download the demo") if recording else _("Record a demo")
         self.record.color = "red" if recording else None
 
+    def _apply_shown_preset(self) -> None:
+        """The preset the Motion tab shows, applied (a question about its motion is about that one)."""
+        motion = getattr(self, "parts", {}).get("motion")
+        pending = getattr(motion, "pending", None)
+        if motion is not None and pending is not None:
+            motion.pending = None
+            self.dispatch(pending)
+
     def show_role(self, role: Role) -> None:
         """The tab's classroom role (nothing without a presenter mode)."""
         if self.classroom is not None:
             self.classroom.show(role)
+        if self.question is not None:
+            self.question.show(role)
+        masks = role.question.masks if role.question is not None else ""
+        if masks in HIDES_STATUS:  # the room is answering: what would give the answer away waits
+            hidden = self.tr.gettext(HIDDEN_WORDS)
+            self.status.content = f'<div class="jl-note">{html.escape(hidden)}</div>'
+            self.live.visible = False
 
     def _show_options(self, options: Options) -> None:
         for key, box in self.toggles.items():

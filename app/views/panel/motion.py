@@ -109,7 +109,7 @@ class MotionPanel:
                 )
                 bind(self.preset, dispatch, self._preset)
                 self._own = not self.presets  # the user chose "your own v"
-                self._pending: ApplyPreset | None = None  # the preset shown but not applied yet
+                self.pending: ApplyPreset | None = None  # the preset shown but not applied yet
                 self.buttons = gui.add_button_group("", tuple(self._buttons))
                 self.buttons.on_click(
                     lambda event: self._click(dispatch, self._buttons.get(str(event.target.value), ""))
@@ -210,9 +210,9 @@ class MotionPanel:
 
     def _click(self, dispatch: Dispatch, label: str) -> None:  # label: the button's English key
         """Play or Step with a preset shown but not applied applies it first; then the button's action."""
-        pending = self._pending
+        pending = self.pending
         if pending is not None and label in ("Play", "Step"):
-            self._pending = None
+            self.pending = None
             dispatch(pending)
         dispatch(_button(label))
 
@@ -230,7 +230,7 @@ class MotionPanel:
         o, m = state.options, state.motion
         shown = self.shown_preset(state)
         sync_value(self.preset, self._labels.get(shown, shown))
-        self._pending = self._apply(shown) if shown != m.preset else None
+        self.pending = self._apply(shown) if shown != m.preset else None
         for handle, name in ((self.frame, "twist_frame"), (self.speed, "speed"), (self.gizmo, "gizmo")):
             show_option(handle, name, getattr(o, name), self.tr)
         show_option(self.method, "ik_method", o.ik_method, self.tr)
@@ -248,7 +248,7 @@ class MotionPanel:
         if key != self._shown:
             self._shown = key
             self.about.content = self._about(shown)
-            self.readout.content = _readout(state, snap, self._pending is not None, self.tr)
+            self.readout.content = _readout(state, snap, self.pending is not None, self.tr)
         self.ik.content = _ik_html(state, self.tr)
         self.course.draw(state, snap)
         # Charts at most every third frame while playing (each update resends the whole series).

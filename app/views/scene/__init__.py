@@ -24,8 +24,10 @@ import viser
 from kinematics import Robot
 
 from ...core.i18n import Translator, translations
+from ...core.poll import Seen
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
+from ..camera import View
 from ..panel.common import Dispatch
 from .accel import AccelArrow
 from .arm import ArmGeometry, ArmView
@@ -34,6 +36,7 @@ from .drive import DriveView
 from .labels import Layout, ScreenLabels
 from .overlays import Overlays
 from .path import ToolPath
+from .question import QuestionScene, hide_lost
 
 __all__ = ["SceneView", "ArmGeometry", "Glyph", "GlyphView", "SceneContext", "GLYPHS"]
 
@@ -52,6 +55,8 @@ class SceneContext:
         tr: The tab's language (the words a glyph writes in the 3-D view).
         open_tab: The name of the panel tab the page has open at the update ("derive" …; "" when not
             known): a tab's own glyphs (the Derive tab's step) are drawn only while it is open.
+        question: The room's question as the tab shows it (:mod:`app.core.poll`), or None.
+        view: The tab's camera as the browser last reported it, or None (a recording has none).
     """
 
     scene: viser.SceneApi
@@ -62,6 +67,8 @@ class SceneContext:
     joint_labels: Callable[[], np.ndarray] = lambda: np.zeros((0, 3))
     tr: Translator = field(default_factory=translations)
     open_tab: Callable[[], str] = lambda: ""
+    question: Callable[[], Seen | None] = lambda: None
+    view: Callable[[], View | None] = lambda: None
 
 
 class GlyphView(Protocol):
@@ -103,9 +110,19 @@ GLYPHS: tuple[Glyph, ...] = (
             c.scene, c.robot, c.geometry, f"{c.root}/derive", c.joint_labels, c.tr, c.open_tab
         ),
     ),
+    Glyph(
+        "candidates",
+        lambda c: QuestionScene(
+            c.scene, c.geometry.size, f"{c.root}/question", c.tr, c.question, c.view, c.joint_labels
+        ),
+    ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
-J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step."""
+J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step;
+the room's candidate lost directions."""
+HIDDEN_UNTIL_REVEALED = ("kind", "lost")
+"""While the room answers one of these questions the arm's lost-direction glyph (its words name the
+kind, its arrow the direction) is not drawn: the reveal draws it."""
 _GLYPH_NAMES = frozenset(g.name for g in GLYPHS)
 
 
@@ -123,10 +140,13 @@ class SceneView:
         dispatch: Dispatch | None = None,
         root: str = "/lab",
         tr: Translator | None = None,
+        view: Callable[[], View | None] | None = None,
     ) -> None:
         self.arm = ArmView(client, robot, f"{root}/arm")
         self.open_tab = ""
         """The name of the panel tab the page has open ("" when not known: every glyph is drawn)."""
+        self.question: Seen | None = None
+        """The room's question as the tab shows it (set by the tab before each update)."""
         ignore: Dispatch = lambda action: None  # noqa: E731  (a recorded scene takes no input)
         arm = self.arm
         context = SceneContext(
@@ -138,11 +158,18 @@ class SceneView:
             lambda: arm.label_points,
             tr or translations(),
             lambda: self.open_tab,
+            lambda: self.question,
+            lambda: view() if view is not None else None,
         )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
-        overlays, derive = self.glyphs["overlays"], self.glyphs["derive"]
+        overlays, derive, question = self.glyphs["overlays"], self.glyphs["derive"], self.glyphs["candidates"]
         self.labels = ScreenLabels(
-            [*arm.labels, *getattr(overlays, "lost_labels", []), *getattr(derive, "labels", [])],
+            [
+                *arm.labels,
+                *getattr(overlays, "lost_labels", []),
+                *getattr(question, "labels", []),
+                *getattr(derive, "labels", []),
+            ],
             client.scene,
             f"{root}/labels",
         )
@@ -172,6 +199,8 @@ class SceneView:
         self.arm.update(snap, state.options)
         for glyph in self.glyphs.values():
             glyph.update(snap, state)
+        if self.question is not None and self.question.masks in HIDDEN_UNTIL_REVEALED:
+            hide_lost(self.glyphs["overlays"])  # the room is answering: its answer is not drawn
         self.labels.place(self.layout())
 
     def place_labels(self) -> None:
