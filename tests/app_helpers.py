@@ -20,8 +20,10 @@ _BAD_TEXT = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)
 
 
 @contextlib.contextmanager
-def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClient]]:
-    """A Lab on a free port with one connected websocket client; always stopped.
+def running_lab(
+    size: tuple[int, int] = (800, 600), **kwargs: Any
+) -> Iterator[tuple[Lab, ClientSession, ViserWsClient]]:
+    """A Lab on a free port with one connected websocket client (its canvas ``size`` [px]); always stopped.
 
     Its symbolic service is :class:`fakes.FakeSymbolicService` (immediate placeholders, no worker
     process) unless ``symbolic=`` is given: pass ``SymbolicService()`` to test the symbolic J itself.
@@ -29,7 +31,7 @@ def running_lab(**kwargs: Any) -> Iterator[tuple[Lab, ClientSession, ViserWsClie
     kwargs.setdefault("symbolic", FakeSymbolicService())
     lab = Lab(port=0, **kwargs)
     try:
-        with ViserWsClient(f"ws://127.0.0.1:{lab.port}") as ws:
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}", *size) as ws:
             session = lab.session()
             yield lab, session, ws
     finally:
@@ -138,3 +140,27 @@ def scene_update_to(name: str, want: np.ndarray):
         )
 
     return got
+
+
+def labels_placed(session: ClientSession, still: int = 2, interval: float = 0.05) -> None:
+    """Wait until the tab's camera has stood still for ``still`` polls ``interval`` s apart and its labels
+    were placed for it (:class:`app.views.scene.labels.ScreenLabels`: its ``layout`` is recorded last)."""
+    from fakes import poll
+
+    labels, last, count = session.scene.labels, [None], [0]
+
+    def done() -> bool:
+        cam = session.client.camera
+        now = (*np.round(cam.position, 9), *np.round(cam.look_at, 9))
+        count[0] = count[0] + 1 if now == last[0] else 0
+        last[0] = now
+        lay = labels.layout
+        return (
+            lay is not None
+            and count[0] >= still
+            and np.allclose(lay.view.position, cam.position, atol=1e-9)
+            and np.allclose(lay.view.look_at, cam.look_at, atol=1e-9)
+            and not session.pending
+        )
+
+    poll(done, what="the camera stopped and the labels placed for it", interval=interval)

@@ -39,7 +39,8 @@ class PageReport:
     """One report of the page.
 
     Attributes:
-        kind: "load" (the page (re)connected: restore) or "tab" (the user opened a tab).
+        kind: "load" (the page (re)connected: restore), "tab" (the user opened a tab) or "view" (the
+            window's size, on load and when it changes).
         resume: The presenter's reconnect key kept by the page ("" when none).
         robot: The robot named in the address ("" when none).
         q: The joint values of the address [rad | m] (unchecked against a robot), or ``None``.
@@ -47,6 +48,8 @@ class PageReport:
         lang: The language the address asks for (``?lang=``), as written there ("" when none; an
             unknown one is kept so the tab can say it speaks English instead).
         browser: The browser's languages (``navigator.languages``), most wanted first.
+        window: A "view" report's window: (width, height) [CSS px] and whether it is a touch screen
+            (None: not a size).
     """
 
     kind: str
@@ -56,6 +59,7 @@ class PageReport:
     tab: str = ""
     lang: str = ""
     browser: tuple[str, ...] = ()
+    window: tuple[float, float, bool] | None = None
 
 
 def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
@@ -70,8 +74,10 @@ def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
         data = json.loads(text)
     except ValueError:
         raise PageError("the page's report is not JSON") from None
-    if not isinstance(data, dict) or data.get("kind") not in ("load", "tab"):
-        raise PageError("the page's report is not a load or tab report")
+    if not isinstance(data, dict) or data.get("kind") not in ("load", "tab", "view"):
+        raise PageError("the page's report is not a load, tab or view report")
+    if data["kind"] == "view":
+        return PageReport("view", window=_window(data))
     tab = data.get("tab", "")
     if not isinstance(tab, str) or (tab and tab not in tabs):
         raise PageError(f"there is no tab {str(tab)[:40]!r}")
@@ -91,6 +97,16 @@ def parse_report(text: object, tabs: tuple[str, ...]) -> PageReport:
         browser = []
     tags = tuple(t for t in browser[:16] if isinstance(t, str) and _TAG.fullmatch(t))
     return PageReport("load", resume, robot, q, tab_in_address or tab, lang, tags)
+
+
+def _window(data: dict) -> tuple[float, float, bool] | None:
+    """A view report's window size [CSS px] (each 1 to 20000) and touch flag; None when it is not a
+    size (nothing to tell the user: the labels stay placed for the camera's canvas)."""
+    width, height = data.get("width"), data.get("height")
+    for x in (width, height):
+        if isinstance(x, bool) or not isinstance(x, (int, float)) or not 1 <= x <= 20000:
+            return None
+    return float(width), float(height), data.get("touch") is True  # type: ignore[arg-type]
 
 
 def _address(address: str) -> tuple[str, tuple[float, ...] | None, str, str]:

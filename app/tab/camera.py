@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import threading
 import time
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -132,6 +133,8 @@ class TabCamera:
         self.mover = CameraMove(self._set)
         self._aspect = 0.0
         self._closed = False
+        self.moved: Callable[[], None] = lambda: None
+        """Called after each pose the tab sets (its labels are placed again)."""
 
     def view(self) -> View | None:
         """The browser's current view, or None before its first camera message."""
@@ -241,3 +244,4 @@ class TabCamera:
         cam.up_direction = (0.0, 0.0, 1.0)
         cam.position = np.asarray(position, float)
         cam.look_at = np.asarray(look_at, float)  # after position: setting position moves look_at
+        self.moved()

@@ -85,6 +85,7 @@ class PageLink:
         self.following: Any = None  # the tab's Following, set by the session
         self.address = ""  # the last address written into the page
         self.tab = ""  # the tab the page has open (as last reported)
+        self.window: tuple[float, float, bool] | None = None  # its window (width, height, touch)
         self._wanted = ""
         self._written_at = 0.0
         self._loaded = False  # the address is written only once the page has told its own
@@ -99,6 +100,9 @@ class PageLink:
             report = parse_report(text, tuple(TAB_KEYS))
         except PageError as exc:
             self._notify(self.tr.gettext("The page's address was not used"), str(exc))
+            return
+        if report.kind == "view":
+            self.window = report.window or self.window
             return
         if report.tab:
             self.tab = TAB_KEYS[report.tab]

@@ -25,6 +25,7 @@ from ..views.camera import View
 from ..views.panel import PanelView
 from ..views.panel.common import Dispatch
 from ..views.scene import SceneView
+from ..views.scene.labels import Layout
 from ..viser_adapter import capture_scene, replay_scene
 
 if TYPE_CHECKING:
@@ -75,6 +76,7 @@ class Screen:
         self.scene: SceneView | None = None
         self.scene_messages: tuple = ()
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
+        self.layout: Callable[[], Layout | None] = lambda: None  # the labels' camera and canvas
 
     def draw(
         self,
@@ -116,6 +118,7 @@ class Screen:
                     )
                     self._foreign = False
                 self.scene.open_tab = self.panel.open_name  # a tab's own glyphs only while it is open
+                self.scene.layout = self.layout  # where its labels are seen
                 self.scene.question = role.question
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())
@@ -125,6 +128,11 @@ class Screen:
             symbols.draw(self.panel, everything=rebuild)
         self.scene_messages = SceneMessages(captured)
         self.scene_messages.language = self.tr.code
+
+    @property
+    def own_scene(self) -> SceneView | None:
+        """The scene this tab draws, None while the browser shows the presenter's nodes (a follower)."""
+        return None if self._foreign else self.scene
 
     def relanguage(self, tr: Translator, state: LabState) -> None:
         """Speak ``tr``'s language: the whole panel is built again in it (its widgets' labels are set

@@ -52,6 +52,7 @@ from .batch import MAX_REDRAWS_PER_SECOND, Batch, VisitPace, coalesced
 from .camera import TabCamera
 from .commands import CommandRunner
 from .following import Following
+from .labels import TabLabels
 from .notices import Notices
 from .page import PageLink
 from .recorder import TabRecorder
@@ -113,6 +114,11 @@ class ClientSession:
         self.language = self._wanted_language = self._decide_language()
         self.page.tr = self.notices.tr = translations(self.language)
         self.page.following, self.following.page = self.following, self.page
+        self.labels = TabLabels(
+            client, self.camera, lambda: self.page.window, self.lock, lambda: self.screen.own_scene,
+            lambda: self._closed,
+        )  # fmt: skip
+        self.camera.moved = self.labels.moved
         self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify, lambda: self.notices.tr)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
@@ -126,6 +132,7 @@ class ClientSession:
                 client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr,
                 self.camera.view,
             )  # fmt: skip
+            self.screen.layout = self.labels.layout
             self._commit(self.state, rebuild=True, jump=True)
         client.camera.on_update(self._camera_moved)
 
@@ -240,8 +247,10 @@ class ClientSession:
         elif isinstance(message, ResetView):
             self.camera.reset(self.screen.scene, batch.state)
         elif isinstance(message, PageReport):
-            shown = self.page.tab
+            shown, window = self.page.tab, self.page.window
             self.page.take(message.text)
+            if self.page.window != window:
+                self.labels.place()  # another canvas: the labels placed in it
             if self.page.tab != shown or self._wanted_language != self.language:
                 batch.force = True  # the tab opened is drawn with the state on screen
         else:
@@ -356,6 +365,7 @@ class ClientSession:
             with self.lock:
                 if not self._closed:
                     self.camera.canvas_moved(float(camera.aspect), self.screen.scene)
+            self.labels.moved()
         except Exception as exc:
             self.notices.error(exc)
 
@@ -378,6 +388,7 @@ class ClientSession:
         if self._own_renderer:
             self.renderer.close()
         self.camera.close()
+        self.labels.close()
         self.page.close()
         with self.lock:
             self.symbols.release()

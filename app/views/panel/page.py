@@ -117,6 +117,18 @@ _JS = r"""
     }, true);
   }
   w.__jacobianLabSend = send;
+  // The window's size (the 3-D view's canvas and the panel follow it): on load and when it changes.
+  const sendView = () => send({ kind: "view", width: w.innerWidth, height: w.innerHeight,
+    touch: Boolean(w.matchMedia && w.matchMedia("(pointer: coarse)").matches) });
+  if (!w.__jacobianLabViewWatch) {
+    let timer = 0;
+    w.__jacobianLabViewWatch = true;
+    w.addEventListener("resize", () => {
+      clearTimeout(timer);
+      timer = setTimeout(() => w.__jacobianLabSendView && w.__jacobianLabSendView(), 150);
+    });
+  }
+  w.__jacobianLabSendView = sendView;
   // Connection lost, in words: viser's client shows no message when its websocket drops. Its
   // connection state is not reachable from the page; the server's tab beats (see app.tab.page).
   w.__jacobianLabBeat = Date.now();
@@ -154,6 +166,7 @@ _JS = r"""
     });
     if (!ok && ++tries < 100) { setTimeout(report, 100); return; }
     reported = true;
+    sendView();
     if (ok && f.get("tab")) api.showTab(f.get("tab"));
   };
   report();

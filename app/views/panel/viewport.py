@@ -4,9 +4,10 @@ viser lays its control panel out in one of two ways (its client, ``App.tsx``): f
 panel is docked in a right column (:data:`~app.views.panel.layout.COLUMN` px wide, zoomed by the page
 script in :mod:`app.views.panel.layout`); up to Mantine's ``xs`` breakpoint (36 em = 576 px, a phone
 held upright) it is a sheet at the bottom of the screen, which our CSS makes as wide as the window and
-at most :data:`SHEET_MAX` of its height. The 3-D view's canvas always covers the whole window; what is
-seen of it is the part left of the column or above the sheet. Labels in screen space are placed inside
-:func:`visible_view_rect` (pure: the same numbers as the page script's, tested in Chromium).
+at most :data:`SHEET_MAX` of its height. The 3-D view's canvas is the part left of the column (viser
+lays it beside the docked panel: 876×720 in a 1280×720 window, measured in Chromium) or above the sheet
+(:data:`PHONE_CSS` ends it there): :func:`visible_view_rect` is the canvas, and the tab's labels are
+placed inside it (pure: the same numbers as the page script's, tested in Chromium).
 """
 
 from __future__ import annotations

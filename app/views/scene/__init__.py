@@ -33,6 +33,7 @@ from .accel import AccelArrow
 from .arm import ArmGeometry, ArmView
 from .derive import DeriveScene
 from .drive import DriveView
+from .labels import Layout, ScreenLabels
 from .overlays import Overlays
 from .path import ToolPath
 from .question import QuestionScene, hide_lost
@@ -161,6 +162,20 @@ class SceneView:
             lambda: view() if view is not None else None,
         )
         self.glyphs: dict[str, GlyphView] = {g.name: g.build(context) for g in GLYPHS}
+        overlays, derive, question = self.glyphs["overlays"], self.glyphs["derive"], self.glyphs["candidates"]
+        self.labels = ScreenLabels(
+            [
+                *arm.labels,
+                *getattr(overlays, "lost_labels", []),
+                *getattr(question, "labels", []),
+                *getattr(derive, "labels", []),
+            ],
+            client.scene,
+            f"{root}/labels",
+        )
+        """The 3-D labels, placed on the screen after each update (joints first: they keep their spots)."""
+        self.layout: Callable[[], Layout | None] = lambda: None
+        """Where the tab's labels are seen (its camera and canvas; None: at their anchors)."""
 
     def __getattr__(self, name: str) -> Any:
         """``scene.overlays``, ``scene.derive`` …: the view of glyph ``name``."""
@@ -186,9 +201,16 @@ class SceneView:
             glyph.update(snap, state)
         if self.question is not None and self.question.masks in HIDDEN_UNTIL_REVEALED:
             hide_lost(self.glyphs["overlays"])  # the room is answering: its answer is not drawn
+        self.labels.place(self.layout())
+
+    def place_labels(self) -> None:
+        """Place the labels again (the camera or the canvas changed; call inside ``client.atomic()``)."""
+        self.labels.place(self.layout())
 
     def remove(self) -> None:
         """Remove every node (on robot switch or disconnect)."""
         for glyph in reversed(self.glyphs.values()):
             glyph.remove()
+        if self.labels.leaders is not None:
+            self.labels.leaders.remove()
         self.arm.remove()

@@ -25,7 +25,7 @@ from kinematics.urdf import is_xacro, mesh_filename_handler, read_description
 
 from ...core.snapshot import Snapshot
 from ...core.state import Options
-from ...viser_adapter import set_pose, update_props
+from ...viser_adapter import update_props
 from ..palette import LINK_RGB, STATUS_RGB, joint_color
 from .geometry import (
     LABEL_SCALE,
@@ -36,6 +36,7 @@ from .geometry import (
     unit_cylinder,
     wxyz,
 )
+from .labels import anchor_label
 
 __all__ = ["ArmGeometry", "ArmView"]
 
@@ -255,7 +256,7 @@ class ArmView:
             k = g.first_axis
             at = finite(o[k] + z[k] * self._label_offset).tolist()  # plain floats: viser's setter is cheaper
             for label, position in zip(self.labels, at, strict=True):
-                set_pose(label, position)
+                anchor_label(label, position)
             self.label_points = np.asarray(at, dtype=float).reshape(-1, 3)
         else:
             self.label_points = np.zeros((0, 3))

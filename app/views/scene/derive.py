@@ -27,6 +27,7 @@ from ..methods import METHODS
 from ..methods.common import AXIS_RGB, LEVER_RGB
 from .arm import ArmGeometry
 from .geometry import LABEL_CLEARANCE, LABEL_SCALE, clear_of, finite, set_if_changed
+from .labels import anchor_label
 from .overlays import LINEAR_SECONDS, Arrows
 
 __all__ = ["DeriveScene", "AXIS_RGB", "LEVER_RGB"]
@@ -102,7 +103,7 @@ class DeriveScene:
                 where = clear_of(np.asarray(where, float), taken, gap, self.robot.planar)
                 taken = np.vstack([taken, where])
                 set_if_changed(label, "text", text)
-                label.position = finite(where).astype(float)
+                anchor_label(label, finite(where))
         tips = [self.arrows.tips, self.thin.tips] + [np.array([a, b]) for a, b, _ in lines]
         self.extent = (
             np.concatenate([t for t in tips if len(t)]) if any(len(t) for t in tips) else np.zeros((0, 3))

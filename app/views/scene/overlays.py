@@ -40,6 +40,7 @@ from ..palette import (
     joint_color,
 )
 from .arm import ArmGeometry
+from .arrows import Arrows
 from .geometry import (
     LABEL_CLEARANCE,
     LOST_LABEL_SCALE,
@@ -52,6 +53,7 @@ from .geometry import (
     set_if_changed,
     wxyz_one,
 )
+from .labels import anchor_label
 
 __all__ = ["Overlays", "Arrows", "LINEAR_SECONDS", "ELLIPSOID_CAP", "SHOWN_SHARE", "MAX_LOSSES", "GAP"]
 
@@ -62,7 +64,6 @@ ELLIPSOID_CAP = 1.2
 FORCE_SIGMA_REF = 0.4
 SHOWN_SHARE = 0.1
 """A lost translation (rotation) is drawn when it carries at least this share of the lost direction."""
-_MIN_LENGTH = 1e-3
 MAX_LOSSES = 3
 """Lost directions drawn at most (a rank-3 loss: the iiwa's candle)."""
 GAP = 0.3
@@ -86,54 +87,6 @@ _EYE, _ZERO3 = np.eye(3), np.zeros(3)
 _LOST_COLORS = np.array([LOST_RGB], np.uint8)
 for _a in (_NO_POINTS, _EYE, _ZERO3, _LOST_COLORS):
     _a.flags.writeable = False
-
-
-class Arrows:
-    """One batched arrows node: only the arrows long enough to see are sent."""
-
-    def __init__(self, scene: viser.SceneApi, name: str, radius: float) -> None:
-        self.radius = radius
-        self.node = scene.add_arrows(
-            name,
-            points=np.zeros((1, 2, 3), np.float32),
-            colors=np.zeros((1, 3), np.uint8),
-            shaft_radius=radius,
-            head_radius=2.4 * radius,
-            head_length=6 * radius,
-            visible=False,
-        )
-        self._mask = b""
-        self._colors: np.ndarray = np.zeros((0, 3), np.uint8)
-        self.tips: np.ndarray = _NO_POINTS
-
-    def hide(self) -> None:
-        self.tips = _NO_POINTS
-        set_if_changed(self.node, "visible", False)
-
-    def set(self, starts: np.ndarray, vectors: np.ndarray, colors: np.ndarray, show: bool = True) -> None:
-        """Arrows from ``starts`` (N, 3), or one start (3,) shared by all, along ``vectors`` (N, 3)."""
-        if not show or not len(vectors):  # hidden: nothing to work out
-            return self.hide()
-        lengths = np.sqrt(np.einsum("ij,ij->i", vectors, vectors))  # NaN stays NaN, so it is not kept
-        keep = (lengths > max(_MIN_LENGTH, self.radius)) & (lengths < np.inf)
-        if not keep.any():
-            return self.hide()
-        ends = starts + vectors
-        points = np.empty((len(vectors), 2, 3))
-        points[:, 0] = starts
-        points[:, 1] = ends
-        mask = keep.tobytes()
-        if not keep.all():
-            points, ends, lengths = points[keep], ends[keep], lengths[keep]
-        self.tips = ends
-        head = round(min(6 * self.radius, 0.4 * float(lengths.min())), 4)
-        change: dict = {"points": finite(points), "head_length": head}
-        kept = np.asarray(colors[keep], np.uint8)
-        if mask != self._mask or not np.array_equal(kept, self._colors):  # colours sent only when they change
-            change["colors"] = kept
-            self._mask, self._colors = mask, kept
-        update_props(self.node, **change)  # points, colours and head together: one message
-        set_if_changed(self.node, "visible", True)
 
 
 class _Ellipsoid:
@@ -392,7 +345,7 @@ class Overlays:
                     self._label_texts[i] = texts[i]
                 tips[i] = clear_of(tips[i], taken, gap, self.planar)  # not on a joint's label (q6's)
                 taken = np.vstack([taken, tips[i]])
-                set_pose(label, finite_tuple(tips[i]))
+                anchor_label(label, finite_tuple(tips[i]))
         self.lost_tips = np.array(tips) if tips else _NO_POINTS
 
     def remove(self) -> None:

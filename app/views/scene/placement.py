@@ -6,10 +6,8 @@ anchors already projected (:func:`app.views.camera.project`), each label's size 
 (:func:`label_size`) and the part of the canvas the panel leaves free (:func:`visible_rect`), and
 returns each label's box: near its anchor, inside the rectangle, apart from the others.
 :func:`lift` gives the 3-D point at the anchor's depth that projects to a placed spot, so the scene's
-label can be put there.
-
-Not yet wired to the scene (the server would re-place on each camera message, throttled): see the
-branch's report.
+label can be put there. :mod:`app.views.scene.labels` does so for a tab's scene after each redraw
+and camera move.
 """
 
 from __future__ import annotations
@@ -18,15 +16,62 @@ import numpy as np
 
 from ..camera import View, _basis
 
-__all__ = ["visible_rect", "label_size", "wrap", "place", "lift", "overlaps", "CHAR_EM", "LINE_EM"]
+__all__ = [
+    "visible_rect",
+    "label_size",
+    "text_width",
+    "wrap",
+    "place",
+    "lift",
+    "overlaps",
+    "ADVANCE_EM",
+    "CHAR_EM",
+    "LINE_EM",
+    "EM_PX",
+]
 
+_ADVANCES = {
+    0.0: "\u0307",
+    0.18: "ᵢ",
+    0.191: "'",
+    0.222: "ijlł‘’",
+    0.26: "|",
+    0.278: " !,./:;I[\\]ftíÍ·",
+    0.334: "()-`r¹²³“”{}",
+    0.355: '"',
+    0.389: "*ᵀ",
+    0.401: "ₙ°₀₁₂₃₄₅₆₇₈₉⁰⁴⁵⁶⁷⁸⁹",
+    0.448: "ₑξ",
+    0.5: "^∂Jcksvxyzçśźżć‖γλκν",
+    0.556: "0123456789#$?L_abdeghnopquáéóúãõñąęńŁθ–δ√≈≤≥",
+    0.584: "+<=>~×−βμα",
+    0.617: "FTZŻσ",
+    0.668: "&ABEKPSVXYÁÉŚΔπ",
+    0.722: "CDHNRUwÚ",
+    0.781: "GOQÓω",
+    0.833: "Mm",
+    0.889: "%",
+    0.944: "W",
+    1.015: "→←—…@",
+}
+ADVANCE_EM: dict[str, float] = {c: w for w, chars in _ADVANCES.items() for c in chars}
+"""Advance width of a character [em] in the font viser's labels are drawn with: Arial's metrics
+(viser's stack ends in Arial; Chromium on Linux draws it as the metric-compatible Liberation Sans),
+measured with ``measureText`` in Chromium (GlyphAtlas.ts measures the same way), rounded up to the
+next width of the table."""
 CHAR_EM = 0.62
-"""Estimated width of one character of a label, in font sizes (a wide average: not yet calibrated
-against Chromium's boxes)."""
-LINE_EM = 1.3
-"""Height of one line of a label, in font sizes."""
-PAD_PX = 4.0
-"""Padding around a label's text [px] (viser draws labels on a small rounded box)."""
+"""Advance of a character not in :data:`ADVANCE_EM` [em] (a wide average)."""
+FONT_SLACK = 1.06
+"""Widths grown by this: Segoe UI, Roboto and the Apple system font, ahead of Arial in viser's stack,
+are up to a few per cent wider."""
+LINE_EM = 1.2
+"""Height of one line of a label [em]: the font's ascent + descent (Arial 0.91 + 0.21; Segoe UI
+and Roboto up to 1.2)."""
+PAD_LINES = 0.2
+"""viser's background box is one ``BACKGROUND_PADDING_FRACTION`` (0.2) of a line wider and higher than
+its text (labelLayout.ts)."""
+EM_PX = 12.0
+"""A label's em [CSS px] at ``font_screen_scale`` 1 (viser's ``SCREEN_EM_CSS_PX``)."""
 
 
 def visible_rect(width: float, height: float, panel: float = 400.0) -> tuple[float, float, float, float]:
@@ -38,27 +83,35 @@ def visible_rect(width: float, height: float, panel: float = 400.0) -> tuple[flo
     return 0.0, 0.0, float(width), 0.55 * float(height)
 
 
+def text_width(line: str, font_px: float) -> float:
+    """Estimated advance width [px] of one line of text at ``font_px``."""
+    return sum(ADVANCE_EM.get(c, CHAR_EM) for c in line) * font_px * FONT_SLACK
+
+
 def label_size(text: str, font_px: float) -> tuple[float, float]:
-    """Estimated (width, height) [px] of a label showing ``text`` (its lines) at ``font_px``."""
+    """Estimated (width, height) [px] of the box viser draws behind a label showing ``text`` (its
+    lines) at ``font_px``: the text block plus :data:`PAD_LINES` of a line each way."""
     lines = text.split("\n") or [""]
-    width = max(len(line) for line in lines) * CHAR_EM * font_px + 2 * PAD_PX
-    return width, len(lines) * LINE_EM * font_px + 2 * PAD_PX
+    pad = PAD_LINES * LINE_EM * font_px
+    width = max(text_width(line, font_px) for line in lines) + pad
+    return width, len(lines) * LINE_EM * font_px + pad
 
 
 def wrap(text: str, font_px: float, max_px: float) -> str:
     """``text`` with its lines broken at spaces so that each fits ``max_px`` [px] (by
     :func:`label_size`'s estimate; a single word longer than that stays whole): a phone's view is
     narrower than "traslación perdida (centro de la muñeca)"."""
-    most = max(1, int((max_px - 2 * PAD_PX) / (CHAR_EM * font_px)))
+    most = max_px - PAD_LINES * LINE_EM * font_px
     out: list[str] = []
     for line in text.split("\n"):
         current = ""
         for word in line.split(" "):
-            if current and len(current) + 1 + len(word) > most:
+            longer = f"{current} {word}"
+            if current and text_width(longer, font_px) > most:
                 out.append(current)
                 current = word
             else:
-                current = f"{current} {word}" if current else word
+                current = longer if current else word
         out.append(current)
     return "\n".join(out)
 
@@ -74,15 +127,18 @@ def overlaps(boxes: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
+_DIRECTIONS = np.array([(1, 0), (0, -1), (-1, 0), (0, 1), (1, -1), (-1, -1), (-1, 1), (1, 1)], float)
+"""The spots of a ring, in the order they are tried: right, up, left, down, then the corners."""
+
+
 def _candidates(anchor: np.ndarray, size: np.ndarray, step: float, rings: int) -> np.ndarray:
     """Top-left corners (K, 2) around ``anchor``: right above it first, then around it, ring by ring."""
     w, h = size
-    out = [anchor + (0.0, -h)]  # bottom-left corner on the anchor, as viser's labels are anchored
-    for r in range(1, rings + 1):
-        d = r * step
-        for dx, dy in ((1, 0), (0, -1), (-1, 0), (0, 1), (1, -1), (-1, -1), (-1, 1), (1, 1)):
-            out.append(anchor + (dx * d, dy * d - h) + ((-w if dx < 0 else 0.0), 0.0))
-    return np.array(out)
+    d = np.tile(_DIRECTIONS, (rings, 1))
+    out = anchor + d * (np.repeat(np.arange(1, rings + 1), len(_DIRECTIONS)) * step)[:, None]
+    out[:, 1] -= h
+    out[:, 0] -= np.where(d[:, 0] < 0, w, 0.0)  # a spot to the left ends there
+    return np.vstack([anchor + (0.0, -h), out])  # first: the bottom-left corner on the anchor, as viser's
 
 
 def place(

@@ -19,10 +19,10 @@ from ...core.i18n import N_, Translator
 from ...core.poll import Seen
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
-from ...viser_adapter import set_pose
 from ..camera import View, project
 from ..palette import LOST_RGB, QUESTION_RGB
 from .geometry import LOST_LABEL_SCALE, finite, finite_tuple, set_if_changed
+from .labels import anchor_label
 
 __all__ = ["QuestionScene", "MAX_CANDIDATES", "candidate_segments", "label_points", "hide_lost"]
 
@@ -139,7 +139,7 @@ class QuestionScene:
                 text = self._tr.gettext(_WORDS[arrow.part]).format(letter=seen.question.choices[i])
                 if label.text != text:
                     label.text = text
-                set_pose(label, finite_tuple(at[j] if at is not None else segments[j][1]))
+                anchor_label(label, finite_tuple(at[j] if at is not None else segments[j][1]))
 
     def remove(self) -> None:
         self.lines.remove()
