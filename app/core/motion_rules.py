@@ -180,7 +180,8 @@ def _joints(state: LabState, dt: float) -> LabState:
 
 def _resolved_rate(state: LabState, clock_dt: float) -> LabState:
     """One step of q_{k+1} = q_k + Δt J⁺ v, paced (:mod:`app.core.pacing`: slower near a singularity);
-    stops at a slider end or when a rate passes its bound."""
+    stops at a slider end, when a rate passes its bound, or AT a joint limit (the step's part up to it:
+    a critical point, which the status then names)."""
     o = state.options
     q_next, qd, stop, dt = pacing.paced_step(
         state.robot,
@@ -195,6 +196,10 @@ def _resolved_rate(state: LabState, clock_dt: float) -> LabState:
     )
     m = state.motion.replace(pace=dt / (clock_dt * o.speed) if o.speed > 0 else 1.0)
     t = state.time + dt
+    if stop is not None and stop.share > 0.0:  # the step up to the joint limit: the motion ends AT it
+        rates = np.asarray(qd, float)
+        moved = _moved(state.replace(motion=m), q_next, t, lambda q: sample(state, q, rates, m.trace, t))[0]
+        return _stop(moved, f"stopped: {stop.message}")
     if stop is not None:
         trace = sample(state, np.array(state.q), np.asarray(qd, float), m.trace, t)
         return _stop(state, f"stopped: {stop.message}", motion=m.replace(trace=trace))
