@@ -33,9 +33,26 @@ def test_a_slider_at_its_end_names_the_critical_point_and_the_one_sense_left():
     moved = (fk(state.robot, q)[:3, 3] - fk(state.robot, state.q)[:3, 3]) / h
     assert np.allclose(moved, c.column[:3], atol=1e-5)
     html = status_html(snap, state)
-    assert "Critical point" in html and "joint 2" in html and "upper limit" in html and "q̇2 ≤ 0" in html
+    assert "Critical point" in html and "upper limit" in html and "q̇2 ≤ 0" in html
     es = status_html(snap, state, translations("es"))
     assert "Punto crítico" in es and "límite articular superior" in es
+
+
+@pytest.mark.parametrize(
+    ("code", "joint"),
+    [
+        ("en", "joint q2 shoulder is at"),
+        ("pt", "a junta q2 shoulder está"),
+        ("es", "la articulación q2 shoulder está"),
+        ("pl", "przegub q2 shoulder jest"),
+    ],
+)
+def test_the_critical_point_names_the_joint_once_in_each_language(code, joint):
+    """The joint's name carries its number ("q2 shoulder"): the line says it once, never "joint 2 (q2 shoulder)"."""
+    state = reduce(LabState.initial("puma560", robots.load("puma560")), SetJoint(1, 10.0))
+    html = status_html(compute(state), state, translations(code))
+    line = next(x for x in html.split("<br>") if "q̇2 ≤ 0" in x)
+    assert joint in line and line.count("q2 shoulder") == 1 and "2 (" not in line, line
 
 
 def test_the_lower_limit_says_the_joint_can_only_increase():
