@@ -16,7 +16,9 @@ from kinematics.analysis import manipulability, task_rows
 from kinematics.errors import JacobianLabError
 from kinematics.motion import ik, redundancy
 from kinematics.numeric import fk
+from kinematics.text import words
 
+from .i18n import N_
 from .motion_state import IkInfo, MotionRefused, readonly, slider_bounds
 from .state import LabState, frozen
 
@@ -56,7 +58,7 @@ def drive_tool(state: LabState, values: tuple[float, ...]) -> LabState:
     robot = state.robot
     T = np.array(values, dtype=float)
     if T.shape != (16,) or not np.isfinite(T).all():
-        raise MotionRefused("the dragged target must be 16 finite numbers (a 4×4 pose)")
+        raise MotionRefused(words(N_("the dragged target must be 16 finite numbers (a 4×4 pose)")))
     T = T.reshape(4, 4)
     rows = task_rows(robot)
     o = state.options
@@ -100,7 +102,9 @@ def self_move(state: LabState, s: float) -> LabState:
     robot = state.robot
     rows = redundancy_rows(robot)
     if rows is None:
-        raise MotionRefused(f"{robot.name} has no self-motion: no joint to spare on its task")
+        raise MotionRefused(
+            words(N_("{robot} has no self-motion: no joint to spare on its task"), robot=robot.name)
+        )
     m = state.motion
     ds = s - m.s
     if ds == 0.0:

@@ -18,8 +18,10 @@ from kinematics.analysis import condition_number, manipulability, singular_value
 from kinematics.conventions import FRAMES
 from kinematics.motion import redundancy
 from kinematics.numeric import fk
+from kinematics.text import words
 
 from . import pacing
+from .i18n import N_
 from .motion_hand import (
     IK_DAMPING,
     IK_ITERATIONS,
@@ -94,7 +96,13 @@ def play(state: LabState, playing: bool, kind: str) -> LabState:
     if not playing:
         return state.replace(playing=False)
     if kind not in MOTIONS or kind == "path":
-        raise MotionRefused(f"unknown motion {kind!r}; motions are {MOTIONS[:3]}")
+        raise MotionRefused(
+            words(
+                N_("unknown motion {kind}; the motions are {motions}"),
+                kind=repr(kind),
+                motions=", ".join(MOTIONS[:3]),
+            )
+        )
     if kind == "joints" and not np.any(state.qd):
         return state.replace(playing=False, stopped="set a joint rate q̇ first")
     if kind == "resolved_rate" and not np.any(state.v_desired[list(task_rows(state.robot))]):
@@ -266,13 +274,17 @@ def apply_preset(
     """The arm at the preset's start, its twist desired, ready to Play (resolved rate)."""
     robot = state.robot
     if len(q) != robot.dof or len(twist) != 6 or frame not in FRAMES:
-        raise MotionRefused(f"preset {name!r} does not fit {robot.name}")
+        raise MotionRefused(
+            words(N_("preset {name} does not fit {robot}"), name=repr(name), robot=robot.name)
+        )
     lo, hi = _bounds(state)
     qa = np.clip(np.array(q, dtype=float), lo, hi)
     ranges = twist_ranges(robot)
     v = np.array([r.clamp_si(float(x)) for r, x in zip(ranges, twist, strict=True)])
     if not (np.isfinite(qa).all() and np.isfinite(v).all()):
-        raise MotionRefused(f"preset {name!r} holds a value that is not a finite number")
+        raise MotionRefused(
+            words(N_("preset {name} holds a value that is not a finite number"), name=repr(name))
+        )
     options = dataclasses.replace(
         state.options, twist_frame="tool" if frame == "tool" else "base", speed=speed
     )
@@ -302,7 +314,9 @@ def follow_path(state: LabState, path: tuple[tuple[float, ...], ...], found: str
     """Start playing back ``path`` (k, n) from its first configuration."""
     P = np.array(path, dtype=float)
     if P.ndim != 2 or P.shape[1] != state.robot.dof or len(P) == 0 or not np.isfinite(P).all():
-        raise MotionRefused(f"a path needs rows of {state.robot.dof} finite joint values")
+        raise MotionRefused(
+            words(N_("a path needs rows of {count} finite joint values"), count=state.robot.dof)
+        )
     m = MotionState(
         kind="path",
         start=readonly(state.q),
