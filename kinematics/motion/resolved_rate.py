@@ -174,11 +174,12 @@ def _step(
         need = f"|q̇| = {abs(qd[i]):.4g} {unit} > {limit:g} {unit}"
         msg = f"joint {i + 1} {robot.joints[i].name!r} would need {need}"
         return q, qd, Stop("rate bound", i, 0, msg)
-    q_next, i, side, share = _to_limit(robot, q, dt * qd)
-    if i is not None:
-        value = robot.qlim[0 if side == "lower" else 1, i]
-        msg = f"joint {i + 1} {robot.joints[i].name!r} would pass its {side} limit {_value(robot, i, value)}"
-        return q_next, qd, Stop("joint limit", i, 0, msg, share)
+    q_next, met, side, share = _to_limit(robot, q, dt * qd)
+    if met is not None:
+        value = robot.qlim[0 if side == "lower" else 1, met]
+        name, where = robot.joints[met].name, _value(robot, met, value)
+        msg = f"joint {met + 1} {name!r} would pass its {side} limit {where}"
+        return q_next, qd, Stop("joint limit", met, 0, msg, share)
     return q_next, qd, None
 
 
