@@ -32,7 +32,7 @@ from .arm import ArmGeometry, ArmView
 from .derive import DeriveScene
 from .drive import DriveView
 from .overlays import Overlays
-from .path import ToolPath
+from .path import PlannedPath, ToolPath
 
 __all__ = ["SceneView", "ArmGeometry", "Glyph", "GlyphView", "SceneContext", "GLYPHS"]
 
@@ -95,6 +95,7 @@ GLYPHS: tuple[Glyph, ...] = (
     Glyph(
         "drive", lambda c: DriveView(c.scene, c.dispatch, c.geometry.size, c.robot.planar, f"{c.root}/drive")
     ),
+    Glyph("planned", lambda c: PlannedPath(c.scene, f"{c.root}/motion")),
     Glyph("path", lambda c: ToolPath(c.scene, f"{c.root}/motion")),
     Glyph(
         "derive",
@@ -104,7 +105,8 @@ GLYPHS: tuple[Glyph, ...] = (
     ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
-J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step."""
+J̇ q̇; the drag handle and motion traces; the chosen path y(t); the tool's path while a motion plays; the
+Derive tab's step."""
 _GLYPH_NAMES = frozenset(g.name for g in GLYPHS)
 
 
