@@ -42,6 +42,7 @@ __all__ = [
     "FollowPath",
     "PlayNullMotion",
     "FollowToolPath",
+    "ChooseToolPath",
     "IkSolutionsFound",
     "SelectIkSolution",
     "Wait",
@@ -222,6 +223,14 @@ class FollowToolPath:
     shape: str
 
 
+@dataclass(frozen=True)
+class ChooseToolPath:
+    """Choose the path y(t) ``shape`` ("line", "circle"; "" for none) of the path folder: it is drawn in
+    the 3-D view from the tool point (where the tool would go), before it is followed."""
+
+    shape: str
+
+
 @dataclass(frozen=True, eq=False)
 class IkSolutionsFound:
     """The several IK solutions (elbow up / down, wrist flip …) of the pose ``pose`` (16 numbers, the
@@ -292,6 +301,7 @@ Action = (
     | FollowPath
     | PlayNullMotion
     | FollowToolPath
+    | ChooseToolPath
     | IkSolutionsFound
     | SelectIkSolution
     | Wait

@@ -13,16 +13,26 @@ from collections.abc import Callable
 
 import numpy as np
 
-from kinematics import Robot, jacobian
+from kinematics import jacobian
 from kinematics.analysis import condition_number, manipulability, singular_values, task_rows
 from kinematics.conventions import FRAMES
-from kinematics.errors import JacobianLabError
-from kinematics.motion import ik, redundancy
+from kinematics.motion import redundancy
 from kinematics.numeric import fk
+from kinematics.text import words
 
 from . import pacing
-from .motion_state import MOTIONS, IkInfo, MotionState, Trace, readonly
-from .ranges import joint_ranges, twist_ranges
+from .i18n import N_
+from .motion_hand import (
+    IK_DAMPING,
+    IK_ITERATIONS,
+    IK_STEP,
+    SELF_STEP,
+    drive_tool,
+    redundancy_rows,
+    self_move,
+)
+from .motion_state import MOTIONS, MotionRefused, MotionState, Trace, readonly, slider_bounds
+from .ranges import twist_ranges
 from .self_motion import ROW_WORDS, climbed_along
 from .state import LabState, frozen
 
@@ -39,33 +49,21 @@ __all__ = [
     "FRAME_DT",
     "IK_DAMPING",
     "IK_ITERATIONS",
+    "IK_STEP",
+    "SELF_STEP",
+    "MotionRefused",
 ]
 
 FRAME_DT = 1.0 / 30.0
 """One frame of a motion [s] (the Step button's step, the ticker's period)."""
-IK_DAMPING = 0.02
-"""λ of "drive the tool" by damped least squares [m] (the View option's λ when larger)."""
-IK_ITERATIONS = 25
-"""Iterations per drag event: warm-started from the last q, a few suffice away from singularities."""
-IK_STEP = 0.25
-"""Largest joint step of one IK iteration [rad | m]: a far target pulls the arm, never flings it."""
-SELF_STEP = 0.02
-"""Largest self-motion step [rad | m along the null space]; larger moves are split."""
 CLIMB_GAIN = 1.0
 """Gain of the manipulability climb q̇ = k (I − J⁺J) ∇w."""
 CLIMB_STEP = 0.02
 """Largest climb step per frame [rad | m]: slow enough to watch."""
 
 
-class MotionRefused(ValueError):
-    """A motion that cannot start here (the message says why, in words)."""
-
-
 def _bounds(state: LabState) -> tuple[np.ndarray, np.ndarray]:
-    ranges = joint_ranges(state.robot)
-    lo = np.array([r.clamp_si(-math.inf) for r in ranges])
-    hi = np.array([r.clamp_si(math.inf) for r in ranges])
-    return lo, hi
+    return slider_bounds(state.robot)
 
 
 RATE_BOUND = 4.0 * math.pi
@@ -98,7 +96,13 @@ def play(state: LabState, playing: bool, kind: str) -> LabState:
     if not playing:
         return state.replace(playing=False)
     if kind not in MOTIONS or kind == "path":
-        raise MotionRefused(f"unknown motion {kind!r}; motions are {MOTIONS[:3]}")
+        raise MotionRefused(
+            words(
+                N_("unknown motion {kind}; the motions are {motions}"),
+                kind=repr(kind),
+                motions=", ".join(MOTIONS[:3]),
+            )
+        )
     if kind == "joints" and not np.any(state.qd):
         return state.replace(playing=False, stopped="set a joint rate q̇ first")
     if kind == "resolved_rate" and not np.any(state.v_desired[list(task_rows(state.robot))]):
@@ -123,17 +127,6 @@ def play(state: LabState, playing: bool, kind: str) -> LabState:
             anchor=readonly(fk(state.robot, state.q)) if kind == "climb" else None,
         )
     return state.replace(playing=True, stopped="", motion=m, time=0.0 if fresh else state.time)
-
-
-def redundancy_rows(robot: Robot) -> tuple[int, ...] | None:
-    """The task rows self-motion and the climb hold: the robot's task rows when it has more joints
-    than rows (the Panda, the iiwa), else its position rows when that leaves exactly one spare joint
-    (the 3R planar arm holding only its tool point); ``None`` when neither."""
-    rows = task_rows(robot)
-    if robot.dof > len(rows):
-        return rows
-    linear = tuple(r for r in rows if r < 3)
-    return linear if linear != rows and robot.dof - len(linear) == 1 else None
 
 
 def step(state: LabState, dt: float, force: bool = False) -> LabState:
@@ -195,7 +188,8 @@ def _joints(state: LabState, dt: float) -> LabState:
 
 def _resolved_rate(state: LabState, clock_dt: float) -> LabState:
     """One step of q_{k+1} = q_k + Δt J⁺ v, paced (:mod:`app.core.pacing`: slower near a singularity);
-    stops at a slider end or when a rate passes its bound."""
+    stops at a slider end, when a rate passes its bound, or AT a joint limit (the step's part up to it:
+    a critical point, which the status then names)."""
     o = state.options
     q_next, qd, stop, dt = pacing.paced_step(
         state.robot,
@@ -210,6 +204,10 @@ def _resolved_rate(state: LabState, clock_dt: float) -> LabState:
     )
     m = state.motion.replace(pace=dt / (clock_dt * o.speed) if o.speed > 0 else 1.0)
     t = state.time + dt
+    if stop is not None and stop.share > 0.0:  # the step up to the joint limit: the motion ends AT it
+        rates = np.asarray(qd, float)
+        moved = _moved(state.replace(motion=m), q_next, t, lambda q: sample(state, q, rates, m.trace, t))[0]
+        return _stop(moved, f"stopped: {stop.message}")
     if stop is not None:
         trace = sample(state, np.array(state.q), np.asarray(qd, float), m.trace, t)
         return _stop(state, f"stopped: {stop.message}", motion=m.replace(trace=trace))
@@ -276,13 +274,17 @@ def apply_preset(
     """The arm at the preset's start, its twist desired, ready to Play (resolved rate)."""
     robot = state.robot
     if len(q) != robot.dof or len(twist) != 6 or frame not in FRAMES:
-        raise MotionRefused(f"preset {name!r} does not fit {robot.name}")
+        raise MotionRefused(
+            words(N_("preset {name} does not fit {robot}"), name=repr(name), robot=robot.name)
+        )
     lo, hi = _bounds(state)
     qa = np.clip(np.array(q, dtype=float), lo, hi)
     ranges = twist_ranges(robot)
     v = np.array([r.clamp_si(float(x)) for r, x in zip(ranges, twist, strict=True)])
     if not (np.isfinite(qa).all() and np.isfinite(v).all()):
-        raise MotionRefused(f"preset {name!r} holds a value that is not a finite number")
+        raise MotionRefused(
+            words(N_("preset {name} holds a value that is not a finite number"), name=repr(name))
+        )
     options = dataclasses.replace(
         state.options, twist_frame="tool" if frame == "tool" else "base", speed=speed
     )
@@ -294,81 +296,6 @@ def apply_preset(
         trace=sample(fresh, qa, np.zeros(robot.dof), None, 0.0),
     )
     return fresh.replace(playing=False, stopped="", time=0.0, configuration="", motion=m)
-
-
-def drive_tool(state: LabState, values: tuple[float, ...]) -> LabState:
-    """Solve IK towards the dragged target from the current q and move there (clamped to the sliders)."""
-    robot = state.robot
-    T = np.array(values, dtype=float)
-    if T.shape != (16,) or not np.isfinite(T).all():
-        raise MotionRefused("the dragged target must be 16 finite numbers (a 4×4 pose)")
-    T = T.reshape(4, 4)
-    rows = task_rows(robot)
-    o = state.options
-    pose = o.ik_mode == "pose" and any(r >= 3 for r in rows)
-    target = T if pose else T[:3, 3]
-    damping = max(o.damping, IK_DAMPING) if o.ik_method == "dls" else 0.0
-    try:
-        result = ik.solve(
-            robot,
-            target,
-            state.q,
-            method=o.ik_method,
-            damping=damping,
-            max_iterations=IK_ITERATIONS,
-            step_limit=IK_STEP,
-        )
-    except JacobianLabError as exc:
-        raise MotionRefused(str(exc)) from None
-    if result.iterations == 0 and result.converged and state.motion.ik is not None:
-        # The handle's release repeats the last pose, already reached: the readout keeps the solve
-        # that got there (else every drag would end on "0 iterations").
-        return state
-    lo, hi = _bounds(state)
-    q = np.clip(np.array(result.q, dtype=float), lo, hi)
-    reached = fk(robot, q)[:3, 3]
-    linear = [r for r in rows if r < 3]
-    departure = float(np.linalg.norm((T[:3, 3] - reached)[linear]))
-    info = IkInfo(
-        method=o.ik_method,
-        iterations=int(result.iterations),
-        converged=bool(result.converged),
-        residual=float(np.linalg.norm(result.residual)),
-        departure=departure,
-        target=(float(T[0, 3]), float(T[1, 3]), float(T[2, 3])),
-    )
-    return state.replace(q=frozen(q), configuration="", playing=False, motion=state.motion.replace(ik=info))
-
-
-def self_move(state: LabState, s: float) -> LabState:
-    """Move along the null space to parameter ``s``, the tool held at the anchor (set on the first move)."""
-    robot = state.robot
-    rows = redundancy_rows(robot)
-    if rows is None:
-        raise MotionRefused(f"{robot.name} has no self-motion: no joint to spare on its task")
-    m = state.motion
-    ds = s - m.s
-    if ds == 0.0:
-        return state
-    steps = max(1, math.ceil(abs(ds) / SELF_STEP))
-    anchor = m.anchor if m.anchor is not None else readonly(fk(robot, state.q))
-    q, direction = np.array(state.q), m.direction
-    for _ in range(steps):
-        q, d = redundancy.self_motion_step(
-            robot, q, step=ds / steps, rows=rows, direction=direction, hold=anchor
-        )
-        direction = d  # the positive direction of s, kept from step to step
-    lo, hi = _bounds(state)
-    if ((q < lo) | (q > hi)).any():
-        bad = ", ".join(robot.joints[i].name for i in np.flatnonzero((q < lo) | (q > hi)))
-        return state.replace(stopped=f"self-motion stops here: {bad} would leave its range")
-    w = float(manipulability(jacobian(robot, q), rows))
-    st = m.self_trace
-    if len(st) == 0:
-        st = np.array([[m.s, float(manipulability(jacobian(robot, state.q), rows))]])
-    trace = readonly(np.vstack([st, [[s, w]]])[-600:])
-    motion_state = m.replace(s=float(s), anchor=anchor, self_trace=trace, direction=readonly(direction))
-    return state.replace(q=frozen(q), configuration="", stopped="", motion=motion_state)
 
 
 def resample(path: np.ndarray, count: int, eased: bool = False) -> np.ndarray | None:
@@ -387,7 +314,9 @@ def follow_path(state: LabState, path: tuple[tuple[float, ...], ...], found: str
     """Start playing back ``path`` (k, n) from its first configuration."""
     P = np.array(path, dtype=float)
     if P.ndim != 2 or P.shape[1] != state.robot.dof or len(P) == 0 or not np.isfinite(P).all():
-        raise MotionRefused(f"a path needs rows of {state.robot.dof} finite joint values")
+        raise MotionRefused(
+            words(N_("a path needs rows of {count} finite joint values"), count=state.robot.dof)
+        )
     m = MotionState(
         kind="path",
         start=readonly(state.q),

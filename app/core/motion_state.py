@@ -14,11 +14,26 @@ infinity ever reaches a chart.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-__all__ = ["MotionState", "Trace", "IkInfo", "MOTIONS", "TRACE_LENGTH", "KAPPA_CAP", "readonly"]
+from kinematics import Robot
+
+from .ranges import joint_ranges
+
+__all__ = [
+    "MotionState",
+    "Trace",
+    "IkInfo",
+    "MOTIONS",
+    "TRACE_LENGTH",
+    "KAPPA_CAP",
+    "readonly",
+    "MotionRefused",
+    "slider_bounds",
+]
 
 MOTIONS = ("joints", "resolved_rate", "climb", "path")
 TRACE_LENGTH = 900
@@ -151,3 +166,16 @@ class MotionState:
 
     def replace(self, **changes: object) -> MotionState:
         return replace(self, **changes)  # type: ignore[arg-type]
+
+
+class MotionRefused(ValueError):
+    """A motion that cannot start here (the message says why, in words: a catalogs' sentence made with
+    :func:`kinematics.text.words`, so a tab says it in its language)."""
+
+
+def slider_bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
+    """The joints' slider ends [rad | m] (lower, upper): where a motion stops."""
+    ranges = joint_ranges(robot)
+    lo = np.array([r.clamp_si(-math.inf) for r in ranges])
+    hi = np.array([r.clamp_si(math.inf) for r in ranges])
+    return lo, hi

@@ -68,8 +68,8 @@ def paced_step(
     dt = clock_dt * speed
     q_next, qd, stop = step(q, dt)
     allowed = RATE_GROWTH * clock_dt
-    if stop is not None or not np.any(qd):
-        return q_next, qd, stop, dt
+    if stop is not None or not np.any(qd):  # a joint limit's step ends at the limit: its part of dt
+        return q_next, qd, stop, dt * stop.share if stop is not None else dt
     # The local growth per second of the motion's time, from a tiny step: the first guess of the pace.
     h = min(dt, 1e-4)
     slope = rate_growth(qd, step(q + h * qd, h)[1]) / h

@@ -27,6 +27,7 @@ from . import motion_rules
 from .actions import (
     Action,
     ApplyPreset,
+    ChooseToolPath,
     ClearWrench,
     DriveTool,
     EditRobot,
@@ -212,7 +213,13 @@ def _reduce(state: LabState, action: Action) -> LabState:
                 raise InvalidAction(f"shape must be one of {', '.join(SHAPES)}, got {str(shape)[:40]!r}")
             configurations, said = followed(state, shape)
             rows = tuple(tuple(float(x) for x in row) for row in configurations)
-            return motion_rules.follow_path(state, rows, said)
+            return motion_rules.follow_path(state.replace(tool_path=shape), rows, said)
+        case ChooseToolPath(shape=shape):
+            if shape not in ("", *SHAPES):
+                raise InvalidAction(
+                    f"shape must be one of {', '.join(SHAPES)} or none, got {str(shape)[:40]!r}"
+                )
+            return state.replace(tool_path=shape)
         case IkSolutionsFound():
             return _ik_solutions(state, action)
         case SelectIkSolution(index=index):

@@ -37,6 +37,8 @@ TEMPLATES: tuple[str, ...] = (
     N_("the tool followed the circle: q̇ = J⁺ẏ(t) held the error below {error} m"),
     N_("the tool left the line near a singularity: the error reached {error} m, a joint rate {rate} rad/s"),
     N_("the tool left the circle near a singularity: the error reached {error} m, a joint rate {rate} rad/s"),
+    # app.tab.commands, while the search runs
+    N_("looking for the nearest singularity…"),
     # app.services.background.nearest_path
     N_("found: a singularity here (σmin/σmax = {ratio})"),
     N_("closest found: σmin/σmax = {ratio} (a singularity nearby)"),

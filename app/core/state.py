@@ -83,6 +83,8 @@ class LabState:
             (:class:`~app.core.motion_state.MotionState`).
         started: The tab has changed something since it opened (the first hint, "what to do first",
             is gone for good).
+        tool_path: The path y(t) chosen in the Motion tab's path folder ("line", "circle"; "" none):
+            drawn in the 3-D view before and while it is followed; a new robot has none.
     """
 
     robot_name: str
@@ -100,6 +102,7 @@ class LabState:
     chain: str = ""
     motion: MotionState = field(default_factory=MotionState)
     started: bool = False
+    tool_path: str = ""
 
     def __post_init__(self) -> None:
         n = self.robot.dof

@@ -18,7 +18,19 @@ from .motion_state import MotionState, readonly
 from .ranges import reach
 from .state import LabState
 
-__all__ = ["SHAPES", "SECONDS", "HELD", "LOST", "FOLLOWED", "LEFT", "laid_out", "followed", "is_tool_path"]
+__all__ = [
+    "SHAPES",
+    "SECONDS",
+    "HELD",
+    "LOST",
+    "FOLLOWED",
+    "LEFT",
+    "SAMPLES",
+    "laid_out",
+    "followed",
+    "is_tool_path",
+    "planned",
+]
 
 SHAPES = ("line", "circle")
 """The paths the Motion tab offers."""
@@ -26,6 +38,8 @@ SECONDS = 4.0
 """t_k − t₀ [s]: played back at one configuration per frame (30 per second)."""
 SIZE = 0.15
 """Half the line's length and the circle's radius [m] (less for a small arm: a fifth of its reach)."""
+SAMPLES = 121
+"""Points of y(t) drawn for the chosen path (t₀ … t_k evenly, both ends included)."""
 HELD = 1e-4
 """Largest error [m] still said to be held; beyond it the path was lost."""
 LOST = 0.02
@@ -77,3 +91,30 @@ def followed(state: LabState, shape: str) -> tuple[np.ndarray, str]:
 def is_tool_path(m: MotionState) -> bool:
     """Whether ``m`` plays a path of :func:`followed` (it says one of :data:`FOLLOWED`, :data:`LEFT`)."""
     return m.kind == "path" and m.found.startswith("the tool ")
+
+
+def followed_shape(m: MotionState) -> str:
+    """The shape ``m`` plays (a path of :func:`followed`), else ""."""
+    if m.kind != "path":
+        return ""
+    return next(
+        (s for s in SHAPES if m.found.startswith((f"the tool followed the {s}", f"the tool left the {s}"))),
+        "",
+    )
+
+
+def planned(state: LabState) -> np.ndarray | None:
+    """y(t) of the chosen path (``state.tool_path``) at :data:`SAMPLES` evenly spaced times (SAMPLES, 3) [m]:
+    laid out from where its playback started while the arm is on that playback (the path being or just
+    followed stays put), else from the tool point (where the tool will go when it is followed from here);
+    ``None`` when no path is chosen."""
+    shape = state.tool_path
+    if shape not in SHAPES:
+        return None
+    m = state.motion
+    at = state
+    if followed_shape(m) == shape and m.start is not None and m.path is not None and len(m.path):
+        if np.array_equal(np.asarray(state.q), m.path[min(m.index, len(m.path) - 1)]):
+            at = state.replace(q=m.start)
+    path = laid_out(at, shape)
+    return np.array([path.point(float(t)) for t in np.linspace(0.0, path.duration, SAMPLES)])

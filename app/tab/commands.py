@@ -34,6 +34,7 @@ from ..core.commands import (
     ToggleRecording,
     UploadRobot,
 )
+from ..core.i18n import N_
 from ..core.snapshot import Snapshot
 from ..core.state import LabState
 from ..services.background import background, ik_solutions, nearest_path
@@ -47,8 +48,9 @@ from .symbolic_words import told
 
 __all__ = ["CommandRunner", "LOOKING", "MAX_QUEUED_DOWNLOADS"]
 
-LOOKING = "looking for the nearest singularity…"
-"""What the status says while the nearest singularity is looked for."""
+LOOKING = N_("looking for the nearest singularity…")
+"""What the status says while the nearest singularity is looked for (in the state in English, like every
+``stopped``; :func:`app.core.refusals.say` finds it in the catalogs)."""
 
 
 MAX_QUEUED_DOWNLOADS = 4

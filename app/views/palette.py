@@ -31,6 +31,7 @@ __all__ = [
     "ACCEL_RGB",
     "JQDD_RGB",
     "PATH_RGB",
+    "PLANNED_RGB",
     "ROTATION_ELLIPSOID_RGB",
     "FORCE_ELLIPSOID_RGB",
     "GLYPH_RGB",
@@ -66,6 +67,7 @@ TWIST_ANGULAR_RGB = (95, 61, 0)  # ω = J q̇: dark umber
 DESIRED_RGB = (200, 204, 212)  # the desired tool velocity: light grey (what J q̇ should reach)
 FORCE_RGB = (0, 45, 98)  # the applied force and moment: navy
 PATH_RGB = (0, 95, 115)  # the tool's traced path: dark teal (no joint, status or glyph uses it)
+PLANNED_RGB = (0, 160, 135)  # the path y(t) to follow: sea green, wider, under the dark teal trace
 ACCEL_RGB = (180, 0, 255)  # J̇ q̇, the tool's acceleration at constant joint rates: violet
 QUESTION_RGB = (60, 60, 60)  # the room's candidate lost directions A–D: charcoal, until one is revealed
 JQDD_RGB = (200, 0, 110)  # J q̈, the tool's acceleration from the joint accelerations: magenta
@@ -79,6 +81,7 @@ GLYPH_RGB = {
     "force": FORCE_RGB,
     "acceleration J̇ q̇": ACCEL_RGB,
     "acceleration J q̈": JQDD_RGB,
+    "path y(t)": PLANNED_RGB,
 }
 
 

@@ -10,8 +10,10 @@ A step is *refused* (q stays where it is, and a :class:`Stop` says why) when
   used: J⁻¹ does not exist, the course's scheme has no answer;
 * ``"rate bound"``: some |q̇ᵢ| exceeds ``rate_limit`` [rad/s | m/s] (the joint named is the one
   with the largest |q̇ᵢ| / rate_limit);
-* ``"joint limit"``: q + Δt q̇ would cross a joint limit (the step is not taken, so q never
-  leaves the limits; a joint already outside its limits only stops when moving further out).
+* ``"joint limit"``: q + Δt q̇ would cross a joint limit: the part of the step up to the first limit
+  met is taken, so the motion ends exactly AT that limit (that joint on its bound, the others moved
+  along the same step: a critical point of the course's 002) and q never leaves the limits; a joint
+  already outside its limits only stops when moving further out (then q stays).
 """
 
 from __future__ import annotations
@@ -49,14 +51,18 @@ class Stop:
         kind: ``"joint limit"``, ``"rate bound"`` or ``"singular"``.
         joint: Index (0-based) of the joint concerned, or None (``"singular"``).
         step: Index of the refused step (0 for a lone :func:`resolved_rate_step`); the
-            trajectory holds q_0 … q_step.
+            trajectory holds q_0 … q_step (and a joint limit's partial step after them, if it
+            moved).
         message: One line for a status bar, e.g. ``"joint 3 'q3' would pass its upper limit 170°"``.
+        share: The part s ∈ [0, 1) of the refused step taken before stopping: a joint limit's step up
+            to the limit (q + s·Δt·q̇); 0 for the other kinds.
     """
 
     kind: StopKind
     joint: int | None
     step: int
     message: str
+    share: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -72,7 +78,8 @@ class Trajectory:
             (σmin ≤ 1e-9 · max(σmax, 1), as :func:`kinematics.analysis.condition_number`).
         inverse_kappa: (k+1,) σmin/σmax in [0, 1], always finite: plot this.
         w: (k+1,) manipulability √det(J Jᵀ) of the task rows.
-        stopped: None if every step was taken, else the :class:`Stop` of the refused step.
+        stopped: None if every step was taken, else the :class:`Stop` of the refused step (a joint
+            limit's partial step, when it moved, is the last row of ``q``, ``qd`` and ``time``).
     """
 
     q: FloatArray
@@ -167,16 +174,41 @@ def _step(
         need = f"|q̇| = {abs(qd[i]):.4g} {unit} > {limit:g} {unit}"
         msg = f"joint {i + 1} {robot.joints[i].name!r} would need {need}"
         return q, qd, Stop("rate bound", i, 0, msg)
-    q_next = q + dt * qd
-    lim = robot.qlim
-    over = (q_next > lim[1]) & (qd > 0)
-    under = (q_next < lim[0]) & (qd < 0)
-    if over.any() or under.any():
-        i = int(np.argmax(over | under))
-        side, value = ("upper", lim[1, i]) if over[i] else ("lower", lim[0, i])
-        msg = f"joint {i + 1} {robot.joints[i].name!r} would pass its {side} limit {_value(robot, i, value)}"
-        return q, qd, Stop("joint limit", i, 0, msg)
+    q_next, met, side, share = _to_limit(robot, q, dt * qd)
+    if met is not None:
+        value = robot.qlim[0 if side == "lower" else 1, met]
+        name, where = robot.joints[met].name, _value(robot, met, value)
+        msg = f"joint {met + 1} {name!r} would pass its {side} limit {where}"
+        return q_next, qd, Stop("joint limit", met, 0, msg, share)
     return q_next, qd, None
+
+
+def _to_limit(robot: Robot, q: FloatArray, dq: FloatArray) -> tuple[FloatArray, int | None, str, float]:
+    """q + dq, or when that would cross a joint limit the part s·dq (0 ≤ s < 1) that ends exactly at the
+    first limit met, that joint set to its bound and the others moved along the same step (a joint
+    already outside its limits and moving further out: s = 0).
+
+    Returns it, the joint met (None: none), its side and s (1 when none is met)."""
+    lo, hi = robot.qlim
+    q_full = q + dq
+    over = (q_full > hi) & (dq > 0)
+    under = (q_full < lo) & (dq < 0)
+    if not (over.any() or under.any()):
+        return q_full, None, "", 1.0
+    bound = np.where(over, hi, lo)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        share = np.where(over | under, (bound - q) / np.where(dq != 0, dq, 1.0), np.inf)
+    i = int(np.argmin(share))
+    s = float(min(max(share[i], 0.0), 1.0))
+    side = "upper" if over[i] else "lower"
+    if s == 0.0:
+        return q.copy(), i, side, 0.0
+    q_next = q + s * dq
+    inside = (q >= lo) & (q <= hi)
+    q_next = np.where(inside & over, np.minimum(q_next, hi), q_next)
+    q_next = np.where(inside & under, np.maximum(q_next, lo), q_next)
+    q_next[i] = bound[i]
+    return q_next, i, side, s
 
 
 def resolved_rate_step(
@@ -207,8 +239,9 @@ def resolved_rate_step(
     Returns:
         ``(q_next, qd, stop)``: the next configuration, the joint rates of this step (those the
         step would have needed when refused for a rate bound or joint limit; zeros when
-        singular), and None or the :class:`Stop` (with ``step`` = 0). When refused,
-        ``q_next`` equals ``q``.
+        singular), and None or the :class:`Stop` (with ``step`` = 0). When refused, ``q_next``
+        equals ``q``, except at a joint limit: then it is q + s·Δt·q̇ (``stop.share`` = s), ending
+        exactly at the limit met.
     """
     qa, v, dt_, frame_, lam, limit, chosen = _check(robot, q, twist, dt, frame, damping, rate_limit, rows)
     return _step(robot, qa, v, dt_, frame_, lam, limit, chosen)
@@ -234,22 +267,27 @@ def resolved_rate(
     q, v, dt_, frame_, lam, limit, chosen = _check(robot, q0, twist, dt, frame, damping, rate_limit, rows)
     if not (isinstance(steps, (int, np.integer)) and not isinstance(steps, bool) and steps >= 0):
         raise OptionError(f"steps must be an int ≥ 0, got {show(steps)}")
-    qs, qds = [q], []
+    qs, qds, times = [q], [], [0.0]
     stopped = None
     for k in range(int(steps)):
         q_next, qd, stop = _step(robot, q, v, dt_, frame_, lam, limit, chosen)
         if stop is not None:
             stopped = dataclasses.replace(stop, step=k)
+            if stop.share > 0.0:  # the part of the step up to the joint limit
+                qs.append(q_next)
+                qds.append(qd)
+                times.append(dt_ * (k + stop.share))
             break
         q = q_next
         qs.append(q)
         qds.append(qd)
+        times.append(dt_ * (k + 1))
     Q = np.array(qs)
     sigma_min, kappa, inverse_kappa, w = measures(robot, Q, chosen)
     return Trajectory(
         q=Q,
         qd=np.array(qds).reshape(len(qds), robot.dof),
-        time=dt_ * np.arange(len(Q), dtype=np.float64),
+        time=np.array(times, dtype=np.float64),
         sigma_min=sigma_min,
         kappa=kappa,
         inverse_kappa=inverse_kappa,

@@ -33,7 +33,12 @@ def test_a_joint_at_its_limit_is_named_a_critical_point(tmp_path):
         line = page.get_by_text("Critical point").first
         line.wait_for()
         text = line.evaluate("e => e.parentElement.innerText")
-        assert "joint 2" in text and "q̇2 ≤ 0" in text and "opposite sense only" in text
+        assert (
+            "joint q2 shoulder is at" in text
+            and text.count("q2 shoulder") == 1
+            and "q̇2 ≤ 0" in text
+            and "opposite sense only" in text
+        )
         box = line.evaluate(
             "e => { const r = e.parentElement.getBoundingClientRect(); return [r.left, r.right]; }"
         )

@@ -5,9 +5,11 @@ in, and that the tool velocity along its column of J is possible in that sense o
 from __future__ import annotations
 
 import numpy as np
+import pytest
+from fakes import poll
 
 import robots
-from app.core.actions import SetJoint
+from app.core.actions import Play, SetConfiguration, SetDesired, SetJoint, SetRobot
 from app.core.i18n import translations
 from app.core.reducer import reduce
 from app.core.snapshot import compute
@@ -31,9 +33,26 @@ def test_a_slider_at_its_end_names_the_critical_point_and_the_one_sense_left():
     moved = (fk(state.robot, q)[:3, 3] - fk(state.robot, state.q)[:3, 3]) / h
     assert np.allclose(moved, c.column[:3], atol=1e-5)
     html = status_html(snap, state)
-    assert "Critical point" in html and "joint 2" in html and "upper limit" in html and "q̇2 ≤ 0" in html
+    assert "Critical point" in html and "upper limit" in html and "q̇2 ≤ 0" in html
     es = status_html(snap, state, translations("es"))
     assert "Punto crítico" in es and "límite articular superior" in es
+
+
+@pytest.mark.parametrize(
+    ("code", "joint"),
+    [
+        ("en", "joint q2 shoulder is at"),
+        ("pt", "a junta q2 shoulder está"),
+        ("es", "la articulación q2 shoulder está"),
+        ("pl", "przegub q2 shoulder jest"),
+    ],
+)
+def test_the_critical_point_names_the_joint_once_in_each_language(code, joint):
+    """The joint's name carries its number ("q2 shoulder"): the line says it once, never "joint 2 (q2 shoulder)"."""
+    state = reduce(LabState.initial("puma560", robots.load("puma560")), SetJoint(1, 10.0))
+    html = status_html(compute(state), state, translations(code))
+    line = next(x for x in html.split("<br>") if "q̇2 ≤ 0" in x)
+    assert joint in line and line.count("q2 shoulder") == 1 and "2 (" not in line, line
 
 
 def test_the_lower_limit_says_the_joint_can_only_increase():
@@ -41,3 +60,32 @@ def test_the_lower_limit_says_the_joint_can_only_increase():
     (c,) = compute(state).limits
     assert (c.joint, c.side, c.sense) == (0, "lower", 1)
     assert "q̇1 ≥ 0" in status_html(compute(state), state)
+
+
+def test_a_resolved_rate_motion_that_meets_a_limit_stops_at_it_and_the_status_names_it_critical(session):
+    """The Puma raising its tool (vz = 0.2 m/s) from a bent elbow meets q3's upper limit (45°) during
+    Play: the motion ends ON the limit (not a step before it), so the status names the configuration
+    critical, as 002 does, and says why; the tool moved along the twist asked for."""
+    puma = robots.load("puma560")
+    q0 = np.zeros(6)
+    q0[1], q0[2], q0[4] = puma.qlim[1, 1] - 0.3, 0.5, 0.6
+    session.dispatch(SetRobot("puma560", puma))
+    session.dispatch(SetConfiguration(tuple(float(x) for x in q0)))
+    session.dispatch(SetDesired(2, 0.2))
+    session.settle()
+    assert "Critical point" not in session.panel.status.content
+    session.dispatch(Play(True, "resolved_rate"))
+    poll(lambda: session.state.motion.kind == "resolved_rate" and not session.state.playing, what="the stop")
+    state = session.state
+    assert "would pass its upper limit 45°" in state.stopped
+    assert state.q[2] == pytest.approx(puma.qlim[1, 2], abs=1e-12)  # AT the limit
+    assert (np.array(state.q) <= puma.qlim[1] + 1e-12).all() and (
+        np.array(state.q) >= puma.qlim[0] - 1e-12
+    ).all()
+    rise = fk(puma, state.q)[:3, 3] - fk(puma, q0)[:3, 3]  # up; Euler steps drift sideways a little
+    assert rise[2] > 0.05 and np.abs(rise[:2]).max() < 1e-2 * rise[2]
+    (c,) = compute(state).limits
+    assert (c.joint, c.side, c.sense) == (2, "upper", -1)
+    session.settle()
+    status = poll(lambda: "Critical point" in session.panel.status.content and session.panel.status.content)
+    assert "upper limit" in status and "q̇3 ≤ 0" in status

@@ -90,6 +90,39 @@ def test_joint_limit_stop_never_crosses():
     assert np.allclose(traj.q[-1], [16.0, 60 * DEG, -15 * DEG])
 
 
+def test_a_motion_that_meets_a_limit_ends_exactly_at_it_along_the_same_step():
+    """The Puma raising its tool at 0.2 m/s meets the elbow's upper limit (45°) inside a step: the motion
+    takes that step's part up to the limit (the course's 002: a critical point), so q3 ends ON its bound,
+    the step's direction is the one J⁻¹v gave (every joint scaled alike) and the time is where it got there."""
+    puma = robots.load("puma560")
+    q0 = np.zeros(6)
+    q0[1], q0[2], q0[4] = puma.qlim[1, 1] - 0.3, 0.5, 0.6
+    v, dt = np.array([0, 0, 0.2, 0, 0, 0]), 0.05
+    traj = resolved_rate(puma, q0, v, dt=dt, steps=400)
+    stop = traj.stopped
+    assert (
+        stop is not None
+        and stop.kind == "joint limit"
+        and stop.joint == 2
+        and "upper limit 45°" in stop.message
+    )
+    before, end = traj.q[-2], traj.q[-1]
+    assert end[2] == pytest.approx(puma.qlim[1, 2], abs=1e-12)  # at the limit, not a step before it
+    assert (traj.q >= puma.qlim[0] - 1e-12).all() and (traj.q <= puma.qlim[1] + 1e-12).all()
+    qd = np.linalg.solve(jacobian(puma, before), v)  # the full step from the last q inside
+    assert before[2] + dt * qd[2] > puma.qlim[1, 2]  # would have passed it
+    share = (puma.qlim[1, 2] - before[2]) / (dt * qd[2])
+    assert 0 < share < 1 and stop.share == pytest.approx(share, rel=1e-12)
+    assert np.allclose(end - before, share * dt * qd, atol=1e-12)  # the direction kept, every joint
+    assert np.allclose(traj.qd[-1], qd, atol=1e-9)
+    assert traj.time[-1] == pytest.approx(traj.time[-2] + share * dt, rel=1e-12)
+    # one step alone from there: at the limit and still pushing out, it stays
+    q_next, _, again = resolved_rate_step(puma, end, v, dt=dt)
+    assert (
+        again is not None and again.kind == "joint limit" and again.share == 0 and np.array_equal(q_next, end)
+    )
+
+
 def test_rate_bound_stop_names_the_joint():
     """Planar 2R arm pushed outward toward its stretched singularity: q̇ grows like 1/sin q2."""
     arm = robots.load("planar2")

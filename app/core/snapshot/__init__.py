@@ -34,6 +34,7 @@ from kinematics.singularity.null_motion import NullMotion, null_motion
 
 from ..ranges import reach
 from ..state import LabState
+from ..tool_path import planned
 from .course import AnalyticView, InverseView, analytic_view, inverse_view, with_closed_form
 from .derive import Derivation, derivation
 from .losses import Loss, block_ellipsoids, losses
@@ -95,6 +96,8 @@ class Snapshot:
             the arm or the wrist block loses a direction (they are drawn only then), else ``None``.
         limits: The joints at a limit (a critical point of the course's 002: each can move one way only).
         null: A null joint motion (Ker J of the task rows) at a singularity, else ``None``.
+        planned: The chosen path y(t) (k, 3) [m], base axes (:func:`app.core.tool_path.planned`), drawn
+            before and while it is followed; ``None`` when no path is chosen.
         T_tool: T_base_tool (4, 4): the tool pose (where the drag handle sits).
     """
 
@@ -139,6 +142,7 @@ class Snapshot:
     wrist_ellipsoid: Ellipsoid | None = None
     null: NullMotion | None = None
     limits: tuple[LimitContact, ...] = ()
+    planned: np.ndarray | None = None
 
     @property
     def T_tool(self) -> np.ndarray:
@@ -230,6 +234,7 @@ def compute(state: LabState) -> Snapshot:
         wrist_ellipsoid=wrist_e,
         null=_null(robot, q) if report.status != "regular" else None,
         limits=limit_contacts(robot, q),
+        planned=planned(state),
     )
 
 

@@ -17,7 +17,7 @@ import viser
 from kinematics import fk
 from kinematics.motion.ik import pose_error, target_rows
 
-from ...core.actions import FollowToolPath, PlayNullMotion, SelectIkSolution
+from ...core.actions import ChooseToolPath, FollowToolPath, PlayNullMotion, SelectIkSolution
 from ...core.commands import FindIkSolutions
 from ...core.i18n import N_, Translator
 from ...core.self_motion import null_motion_text
@@ -67,16 +67,17 @@ class NullMotionPanel:
         return f'<div class="jl"><div class="jl-note">{fmt.escape(text)}</div></div>'
 
 
-SHAPE_WORDS = {"line": N_("a line"), "circle": N_("a circle")}
-"""The path menu's entries, in English (shown in the tab's language)."""
+SHAPE_WORDS = {"": N_("no path"), "line": N_("a line"), "circle": N_("a circle")}
+"""The path menu's entries, in English (shown in the tab's language); "" chooses none."""
 
 
 class PathPanel:
-    """The path folder: the course's method in words, a menu of paths and a Follow button."""
+    """The path folder: the course's method in words, a menu of paths (the one chosen is drawn in the 3-D
+    view from the tool point) and a Follow button (disabled until a path is chosen)."""
 
     def __init__(self, gui: viser.GuiApi, dispatch: Dispatch, tr: Translator) -> None:
         _ = tr.gettext
-        self._shapes = {_(SHAPE_WORDS[s]): s for s in SHAPES}  # the menu's words → the shape
+        self._shapes = {_(SHAPE_WORDS[s]): s for s in ("", *SHAPES)}  # the menu's words → the shape
         with gui.add_folder(_("Follow a path y(t): the Jacobian method"), expand_by_default=False):
             text = _(
                 "Newton finds q(t₀) with k(q(t₀)) = y(t₀); then q̇ = J⁻¹ẏ(t) (J⁺ẏ(t) + (I − J⁺J)ω(t) "
@@ -87,13 +88,25 @@ class PathPanel:
             self.shape = gui.add_dropdown(
                 _("Path"), tuple(self._shapes), initial_value=next(iter(self._shapes))
             )
-            self.button = gui.add_button(_("Follow the path"), icon=viser.Icon.ROUTE)
+            bind(self.shape, dispatch, self._choose)
+            self.button = gui.add_button(_("Follow the path"), icon=viser.Icon.ROUTE, disabled=True)
             self.button.on_click(lambda _: self._follow(dispatch))
+        self._words = {s: w for w, s in self._shapes.items()}
+
+    def _choose(self, value: object) -> ChooseToolPath | None:
+        shape = self._shapes.get(str(value))  # a value the menu offers, else nothing
+        return None if shape is None else ChooseToolPath(shape)
 
     def _follow(self, dispatch: Dispatch) -> None:
         shape = self._shapes.get(str(self.shape.value))  # a value the menu offers, else nothing
-        if shape is not None:
+        if shape:
             dispatch(FollowToolPath(shape))
+
+    def draw(self, state: LabState) -> None:
+        """The menu shows the state's path (a follower's, a new robot's: none); Follow needs one."""
+        sync_value(self.shape, self._words.get(state.tool_path, self._words[""]))
+        if self.button.disabled != (not state.tool_path):
+            self.button.disabled = not state.tool_path
 
 
 class SolutionsPanel:
@@ -185,4 +198,5 @@ class CourseMotion:
 
     def draw(self, state: LabState, snap: Snapshot) -> None:
         self.null.draw(snap)
+        self.path.draw(state)
         self.solutions.draw(state)

@@ -326,19 +326,20 @@ def source_html(robot: Robot, chain: object | None, meshes: tuple[int, list[str]
 
 def limit_text(snap: Snapshot, robot: Robot, tr: Translator) -> str:
     """Why a configuration with a joint at a limit is critical (002: the joint-limit points), one sentence
-    per such joint; empty when none is."""
+    per such joint; empty when none is. The joint is named once, by its name ("q2 shoulder", "A2"), which
+    carries its number."""
     _ = tr.gettext
     lines = []
     for c in snap.limits:
         template = (
             _(
-                "<b>Critical point</b>: joint {number} ({name}) is at its lower limit, so it can only "
+                "<b>Critical point</b>: joint {name} is at its lower limit, so it can only "
                 "increase (q̇{number} ≥ 0): the tool velocity along column {number} of J is possible in "
                 "that sense only."
             )
             if c.side == "lower"
             else _(
-                "<b>Critical point</b>: joint {number} ({name}) is at its upper limit, so it can only "
+                "<b>Critical point</b>: joint {name} is at its upper limit, so it can only "
                 "decrease (q̇{number} ≤ 0): the tool velocity along column {number} of J is possible in "
                 "the opposite sense only."
             )

@@ -35,7 +35,7 @@ from .derive import DeriveScene
 from .drive import DriveView
 from .labels import Layout, ScreenLabels
 from .overlays import Overlays
-from .path import ToolPath
+from .path import PlannedPath, ToolPath
 from .question import QuestionScene, hide_lost
 
 __all__ = ["SceneView", "ArmGeometry", "Glyph", "GlyphView", "SceneContext", "GLYPHS"]
@@ -103,6 +103,7 @@ GLYPHS: tuple[Glyph, ...] = (
     Glyph(
         "drive", lambda c: DriveView(c.scene, c.dispatch, c.geometry.size, c.robot.planar, f"{c.root}/drive")
     ),
+    Glyph("planned", lambda c: PlannedPath(c.scene, f"{c.root}/motion")),
     Glyph("path", lambda c: ToolPath(c.scene, f"{c.root}/motion")),
     Glyph(
         "derive",
@@ -118,8 +119,8 @@ GLYPHS: tuple[Glyph, ...] = (
     ),
 )
 """What is drawn on the arm, in update order: J's columns, ellipsoids, twist, force and lost direction;
-J̇ q̇; the drag handle and motion traces; the tool's path while a motion plays; the Derive tab's step;
-the room's candidate lost directions."""
+J̇ q̇; the drag handle and motion traces; the chosen path y(t); the tool's path while a motion plays; the
+Derive tab's step; the room's candidate lost directions."""
 HIDDEN_UNTIL_REVEALED = ("kind", "lost")
 """While the room answers one of these questions the arm's lost-direction glyph (its words name the
 kind, its arrow the direction) is not drawn: the reveal draws it."""

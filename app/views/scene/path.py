@@ -1,4 +1,5 @@
-"""The tool's path in the 3-D view: the points the tool went through during the running motion.
+"""The tool's path in the 3-D view: the points the tool went through during the running motion, and the
+path y(t) chosen in the Motion tab (:class:`PlannedPath`), drawn before it is followed.
 
 A resolved-rate preset holds a constant v, so the path is the straight line the course promises (until
 the singularity stops it); the self-motion's ghost and the path descent show their own. Drawn as one
@@ -13,10 +14,10 @@ import viser
 
 from ...core.snapshot import Snapshot
 from ...core.state import LabState
-from ..palette import PATH_RGB
+from ..palette import PATH_RGB, PLANNED_RGB
 from .geometry import finite, set_if_changed
 
-__all__ = ["ToolPath", "MAX_POINTS", "path_points"]
+__all__ = ["ToolPath", "PlannedPath", "MAX_POINTS", "path_points"]
 
 MAX_POINTS = 300
 """Points sent for one path (the trace keeps up to 900): every k-th, and the last."""
@@ -59,6 +60,38 @@ class ToolPath:
             p = path_points(trace.tool)
             self.line.points = finite(np.stack([p[:-1], p[1:]], axis=1))
             self.extent = p
+
+    def remove(self) -> None:
+        self.line.remove()
+
+
+class PlannedPath:
+    """The chosen path y(t) for one tab (``snap.planned``): a wide sea-green polyline the tool's dark
+    trace runs inside while it is followed; hidden when no path is chosen."""
+
+    def __init__(self, scene: viser.SceneApi, root: str) -> None:
+        self.line = scene.add_line_segments(
+            f"{root}/planned_path",
+            points=np.zeros((1, 2, 3), dtype=np.float32),
+            colors=np.array(PLANNED_RGB, dtype=np.uint8),
+            thickness=8.0,
+            thickness_units="screen",
+            visible=False,
+        )
+        self.points: np.ndarray | None = None
+        """The polyline's points (k, 3) [m] as last drawn (``None``: hidden)."""
+        self.extent: np.ndarray = np.zeros((0, 3))
+
+    def update(self, snap: Snapshot, state: LabState) -> None:
+        p = snap.planned
+        set_if_changed(self.line, "visible", p is not None)
+        if p is None:
+            self.points, self.extent = None, np.zeros((0, 3))
+            return
+        if self.points is None or not np.array_equal(self.points, p):
+            self.points = np.array(p, dtype=float)
+            self.line.points = finite(np.stack([p[:-1], p[1:]], axis=1))
+            self.extent = self.points
 
     def remove(self) -> None:
         self.line.remove()
