@@ -9,7 +9,8 @@ import os
 from pathlib import Path
 
 import pytest
-from browser_helpers import app_page, close_notifications, new_page, wait
+from browser_helpers import ARGS, CHROMIUM, app_page, close_notifications, new_page, require_browser, wait
+from server_process import Server, printed_presenter_link
 
 from app.core.actions import GoTo
 from app.core.i18n import translations
@@ -140,3 +141,56 @@ def test_a_peer_instruction_round_on_laptops_and_a_phone(tmp_path):
         wait(lambda: "Right!" in _text(phone_page))  # det J = 0 at the singularity, within the tolerance
         phone_page.screenshot(path=str(out / "room_det_phone_right.png"))
         assert not errors
+
+
+def test_a_round_on_the_default_serve_revealed_by_play_with_a_polish_phone(tmp_path):
+    """What the docs print: ``jacobian-lab serve --presenter`` (a worker per core; the followers may land
+    on either), the printed link for the teacher, a laptop in English and a phone in Polish (``?lang=pl``).
+    The teacher asks which joint's rate blows up before Play; the reveal plays the motion on every screen."""
+    out = _out(tmp_path)
+    sync_playwright = require_browser()
+    server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
+    try:
+        link = printed_presenter_link(server)
+        base = link.split("?", 1)[0]
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            try:
+                teacher = new_page(browser)
+                teacher.goto(link)
+                title = teacher.get_by_text("Classroom · presenting", exact=False)
+                wait(lambda: title.count() > 0 and title.first.is_visible())
+                laptop = new_page(browser)
+                laptop.goto(base)
+                phone = new_page(browser, PHONE, scale=2.0, touch=True)
+                phone.goto(base + "?lang=pl")
+                for page in (laptop, phone):
+                    page.wait_for_selector("[role=slider]", state="attached")
+                    close_notifications(page)
+                wait(lambda: "2 tabs follow" in _text(teacher))
+                teacher.get_by_text("Ask the room", exact=True).first.click()
+                _choose(teacher, "blowup")
+                teacher.get_by_role("button", name="Ask the room", exact=True).click()
+                q4 = laptop.get_by_role("button", name="q4", exact=True)
+                wait(lambda: q4.is_visible())
+                pl = translations("pl").gettext
+                wait(lambda: pl("Which joint's rate blows up first?") in _text(phone))
+                q2 = phone.get_by_role("button", name="q2", exact=True)
+                q2.scroll_into_view_if_needed()
+                q2.tap()
+                q4.click()
+                wait(lambda: "2 of 2 tabs answered" in _text(teacher))
+                teacher.screenshot(path=str(out / "room_blowup_teacher_bars.png"))
+                phone.screenshot(path=str(out / "room_blowup_phone_pl.png"))
+                before = laptop.locator("[role=slider]").nth(3).get_attribute("aria-valuenow")
+                teacher.get_by_role("button", name="Reveal the answer", exact=True).click()
+                wait(lambda: "Right!" in _text(laptop))
+                wait(lambda: pl("Not this time: the answer is {answer}.").split(":")[0] in _text(phone))
+                # Play runs: the followers' q4 slider moves with the presenter's motion.
+                wait(lambda: laptop.locator("[role=slider]").nth(3).get_attribute("aria-valuenow") != before)
+                laptop.screenshot(path=str(out / "room_blowup_laptop_playing.png"))
+                phone.screenshot(path=str(out / "room_blowup_phone_pl_revealed.png"))
+            finally:
+                browser.close()
+    finally:
+        server.cleanup()
