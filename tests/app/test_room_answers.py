@@ -277,3 +277,41 @@ def test_what_no_browser_would_send_changes_nothing_and_the_room_keeps_going():
             teacher.dispatch(SetJoint(1, 0.3))  # the room keeps going
             teacher.settle()
             poll(lambda: student.state.q[1] == pytest.approx(0.3), what="the follower still follows")
+
+
+def test_the_teachers_own_question_from_the_box():
+    with room(2) as (lab, presenter, followers):
+        box = presenter.panel.question
+        box.kind.value = translations().gettext(ASK_LABELS["custom"])
+        box._kind_changed()
+        assert box.own.visible and box.own_choices.visible and box.own_right.visible
+        box.own.value = "Where does <b>q5 = 0</b> put the wrist?"
+        box.own_choices.value = "a singularity; a regular pose ;  ; a joint limit"
+        box.own_right.value = "1"
+        box._ask()
+        seen = poll(lambda: followers[0].role.question, what="asked")
+        assert seen.question.kind == "custom" and seen.question.choices == (
+            "a singularity",
+            "a regular pose",
+            "a joint limit",
+        )
+        assert seen.question.right == {"a singularity"}
+        settle(*followers)
+        assert (
+            "&lt;b&gt;q5 = 0&lt;/b&gt;" in followers[0].panel.question.text.content
+        )  # shown as typed, escaped
+        followers[0].dispatch(AnswerRoom(seen.number, "a singularity"))
+        followers[1].dispatch(AnswerRoom(seen.number, "a joint limit"))
+        poll(lambda: (t := presenter.role.question.tally) is not None and t.answered == 2, what="answered")
+        presenter.dispatch(EndQuestion(True))
+        poll(lambda: followers[1].role.question.right is False and followers[0].role.question.right is True)
+        # A question with no right answer is a poll: nobody is told right or wrong.
+        box.own_right.value = ""
+        box._ask()
+        poll(lambda: followers[0].role.question.number == seen.number + 1, what="a second round")
+        assert not followers[0].role.question.question.right
+        followers[0].dispatch(AnswerRoom(seen.number + 1, "a joint limit"))
+        followers[0].settle()
+        presenter.dispatch(EndQuestion(True))
+        poll(lambda: followers[0].role.question.phase == "revealed")
+        assert followers[0].role.question.right is None
