@@ -104,7 +104,7 @@ def test_the_configuration_menu_stays_in_view_at_every_named_configuration(tmp_p
             robot = robots.load(name)
             if session.state.robot_name != name:
                 session.dispatch(ChooseRobot(name))
-                poll(lambda: session.state.robot_name == name and session.snapshot is not None)
+                poll(lambda name=name: session.state.robot_name == name and session.snapshot is not None)
             for conf in robot.configurations:
                 session.dispatch(GoTo(conf.name))
                 m = _settled(page, _label(conf))
