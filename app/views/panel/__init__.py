@@ -1,8 +1,10 @@
 """The GUI of one tab: robot choice, status, joints, and one tab per view of J.
 
 Layout (one panel, docked right, so the 3-D view keeps most of the window):
-the robot dropdown, the status banner (with the visited configuration's
-description and the lost direction in words), the joint sliders, then tabs
+the robot dropdown, the Configuration menu (above the status: a singularity's
+description must not push it below the fold), the status banner (with the
+visited configuration's description and the lost direction in words), the
+joint sliders, then tabs
 for J(q) (numeric J, measures, symbolic J and downloads), v = J q̇,
 q̇ = J⁺ v, τ = Jᵀ F and the View options. The joint sliders stay visible
 whichever tab is open, so a student moves a joint while watching any view.
@@ -206,7 +208,7 @@ class PanelView:
             bind(self.chain, self.dispatch, lambda v: ChooseChain(labels[str(v)]) if v in labels else None)
         self.source.content = source_html(robot, shown, meshes)
         self.source.visible = bool(robot.urdf_path)
-        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3, tr=self.tr)
+        self.joints = JointsPanel(self.gui, self.dispatch, robot, order=3, tr=self.tr, menu_order=1.3)
         context = TabContext(
             self.gui, self.dispatch, robot, rows, presets, slider_ids(self.joints.sliders), self.tr
         )

@@ -7,6 +7,7 @@ column arrow; its range, step and snapping come from :mod:`app.core.ranges`.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 from typing import Any
 
@@ -45,13 +46,23 @@ class JointsPanel:
     """Sliders for q and buttons for the robot's named configurations."""
 
     def __init__(
-        self, gui: viser.GuiApi, dispatch: Dispatch, robot: Robot, order: float, tr: Translator | None = None
+        self,
+        gui: viser.GuiApi,
+        dispatch: Dispatch,
+        robot: Robot,
+        order: float,
+        tr: Translator | None = None,
+        menu_order: float | None = None,
     ) -> None:
+        """``order``: the sliders' place in the panel; ``menu_order``: the Configuration menu's (default:
+        under the sliders). The panel puts the menu above the status (issue 28, stumble 3): a singularity's
+        description and decoupling lines pushed it below the fold."""
         self.tr = tr = tr or translations()
         _ = tr.gettext
         self.robot = robot
         self.ranges = joint_ranges(robot)
         self.root = gui.add_folder(None, order=order)
+        self._menu_apart = menu_order is not None
         css = []
         with self.root:
             self.sliders = []
@@ -78,6 +89,7 @@ class JointsPanel:
                 css.append(slider_css(handle_uuid(slider), i))
                 self.sliders.append(slider)
             gui.add_html(f"<style>{''.join(css)}</style>")
+        with contextlib.nullcontext() if menu_order is not None else self.root:
             names = ["home", *(c.name for c in robot.configurations if c.name != "home")]
             singular = {c.name for c in robot.configurations if c.singular}
             self._labels = {
@@ -93,6 +105,7 @@ class JointsPanel:
                 (self._moved, *self._labels.values()),
                 initial_value=self._labels["home"],
                 hint=_("Go to a named configuration; its description shows under the status."),
+                order=menu_order,
             )
             bind(self.configuration, dispatch, lambda v: GoTo(by_label[str(v)]) if v in by_label else None)
 
@@ -104,6 +117,8 @@ class JointsPanel:
 
     def remove(self) -> None:
         self.root.remove()
+        if self._menu_apart:  # else removed with the folder
+            self.configuration.remove()
 
 
 def configurations_html(robot: Robot, tr: Translator | None = None) -> str:

@@ -8,9 +8,11 @@ unchanged ones).
 from __future__ import annotations
 
 from kinematics import Robot
+from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_HTML
 
 from ...core.i18n import N_, Translator, translations
+from ...core.motion_rules import redundancy_rows
 from ...core.refusals import say
 from ...core.robot_texts import configuration_description
 from ...core.snapshot import Loss, Snapshot
@@ -181,10 +183,12 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
     r = snap.report
     icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
     words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration, tr)
+    climb = _climb(state, tr)
+    beside = f" · {climb[0]}" if climb else ""  # the measure the climb raises, beside the task rows' κ
     banner = (
         f'<div class="jl-status" style="background:{status_hex(r.status)}" data-status="{r.status}">'
         f"<span>{icon}</span><span>{fmt.escape(words)}</span>"
-        f'<small style="margin-left:auto">κ = {fmt.number(r.condition, tr=tr)}</small></div>'
+        f'<small style="margin-left:auto">κ = {fmt.number(r.condition, tr=tr)}{beside}</small></div>'
     )
     robot = state.robot
     sub = ""
@@ -218,13 +222,38 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
     # the pointer as a drag leaves a named configuration (or down as a "lost" line comes and goes).
     lines = "".join(
         _description(x) if x is sub and not state.stopped else f'<div class="jl-sub">{x}</div>'
-        for x in (representation, sub, lost, limit_text(snap, robot, tr))
+        for x in (representation, climb[1] if climb else "", sub, lost, limit_text(snap, robot, tr))
         if x
     )
     # While a motion plays and once it has stopped, the lines keep the height of four (the stop in two, the
     # lost direction, the representation), so the sliders do not step as they come (issue 28, 4).
     held = " jl-held" if state.playing or state.stopped else ""
     return f'<div class="jl">{banner}<div class="jl-lines{held}">{lines}</div></div>'
+
+
+def _climb(state: LabState, tr: Translator) -> tuple[str, str] | None:
+    """While the manipulability climb plays (and once it stopped): the measure it raises, w of the rows it
+    holds, for the banner ("w(vₓ, v_y) = 0.45"), and the line saying it climbs from its start to now and
+    that the banner's κ, of all task rows, may rise meanwhile (issue 28, stumble 8: the 3R arm's κ went
+    16.6 → 21.1 while the screen said "climbing"); None otherwise."""
+    m = state.motion
+    if m.kind != "climb" or m.trace is None or len(m.trace) < 1 or not (state.playing or state.stopped):
+        return None
+    rows = redundancy_rows(state.robot)
+    if rows is None:
+        return None
+    held = ", ".join(ROW_HTML[r] for r in rows)
+    measure = f"w({held})"
+    start, now = (fmt.number(float(m.trace.w[i]), tr=tr) for i in (0, -1))
+    line = tr.gettext("<b>Climbing</b> {measure} = √det(J Jᵀ) of the held rows: {start} → {now}.").format(
+        measure=measure, start=start, now=now
+    )
+    if rows != task_rows(state.robot):
+        task = ", ".join(ROW_HTML[r] for r in task_rows(state.robot))
+        line += " " + tr.gettext(
+            "The banner's κ is of all task rows ({rows}): it may rise meanwhile."
+        ).format(rows=task)
+    return f"{measure} = {now}", line
 
 
 def _description(html: str) -> str:
