@@ -7,6 +7,8 @@ unchanged ones).
 
 from __future__ import annotations
 
+import re
+
 from kinematics import Robot
 from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_HTML
@@ -191,9 +193,11 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
         f'<small style="margin-left:auto">κ = {fmt.number(r.condition, tr=tr)}{beside}</small></div>'
     )
     robot = state.robot
-    sub = ""
+    sub, at_limit = "", False
     if state.stopped:
-        sub = fmt.escape(say(state.stopped, tr))
+        # A motion that met a joint limit ends at it: the critical-point line below says why it stopped.
+        at_limit = bool(snap.limits) and _LIMIT_STOP.match(state.stopped) is not None
+        sub = "" if at_limit else fmt.escape(say(state.stopped, tr))
     elif state.configuration:
         conf = next((c for c in robot.configurations if c.name == state.configuration), None)
         text = configuration_description(conf, tr) if conf is not None else ""
@@ -220,9 +224,16 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
     # (a checkbox and its label: no script), until the next change redraws the status. The lines keep
     # the height of such a description when fewer are shown, so the sliders below do not jump up under
     # the pointer as a drag leaves a named configuration (or down as a "lost" line comes and goes).
+    limits = limit_text(snap, robot, tr, stopped=at_limit)
     lines = "".join(
         _description(x) if x is sub and not state.stopped else f'<div class="jl-sub">{x}</div>'
-        for x in (representation, climb[1] if climb else "", sub, lost, limit_text(snap, robot, tr))
+        for x in (
+            representation,
+            climb[1] if climb else "",
+            sub,
+            lost,
+            limits,
+        )
         if x
     )
     # While a motion plays and once it has stopped, the lines keep the height of four (the stop in two, the
@@ -353,13 +364,25 @@ def source_html(robot: Robot, chain: object | None, meshes: tuple[int, list[str]
     return f'<div class="jl jl-note">{"; ".join(parts)}.</div>'
 
 
-def limit_text(snap: Snapshot, robot: Robot, tr: Translator) -> str:
+_LIMIT_STOP = re.compile(r"stopped: joint \d+ .* would pass its (upper|lower) limit ")
+"""The resolved-rate stop at a joint limit (kinematics' Stop message after motion_rules' "stopped: ")."""
+
+
+def limit_text(snap: Snapshot, robot: Robot, tr: Translator, stopped: bool = False) -> str:
     """Why a configuration with a joint at a limit is critical (002: the joint-limit points), one sentence
     per such joint; empty when none is. The joint is named once, by its name ("q2 shoulder", "A2"), which
-    carries its number."""
+    carries its number. ``stopped``: a motion ended there (the short form says why it stopped, in the
+    height the stop's own sentence took)."""
     _ = tr.gettext
     lines = []
-    for c in snap.limits:
+    for c in snap.limits if stopped else ():
+        template = (
+            _("<b>Critical point</b>: {name} at its lower limit, q̇{number} ≥ 0.")
+            if c.side == "lower"
+            else _("<b>Critical point</b>: {name} at its upper limit, q̇{number} ≤ 0.")
+        )  # fmt: skip
+        lines.append(template.format(number=c.joint + 1, name=fmt.escape(robot.joint_names[c.joint])))
+    for c in snap.limits if not stopped else ():
         template = (
             _(
                 "<b>Critical point</b>: joint {name} is at its lower limit, so it can only "
