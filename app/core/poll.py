@@ -70,13 +70,18 @@ class Round:
         question: What is asked.
         phase: ``"open"`` (answers taken), ``"closed"`` (counts final, no answer shown yet) or
             ``"revealed"`` (the right answer drawn and said; each tab told whether it was right).
-        answers: Tab key → its answer (a choice id, a number, or a pointed direction).
+        answers: Tab key → its answer (a choice id, a number, or a pointed direction), while open.
+        verdicts: Once closed, tab key → whether its answer was right (None: a poll); the answers
+            themselves are dropped when the question closes, only these and the counts stay.
+        final: Once closed, the counts (the answers they came from are gone).
     """
 
     number: int
     question: Question
     phase: Phase = "open"
     answers: dict[str, Answer] = field(default_factory=dict, compare=False)
+    verdicts: dict[str, bool | None] = field(default_factory=dict, compare=False)
+    final: Tally | None = field(default=None, compare=False)
 
 
 def open_round(number: int, question: Question) -> Round:
@@ -133,13 +138,17 @@ def withdraw(r: Round, tab: str) -> Round:
 
 
 def close(r: Round) -> Round:
-    """No more answers; the counts are final."""
-    return replace(r, phase="closed") if r.phase == "open" else r
+    """No more answers; the counts are final. What each tab answered is dropped: only the counts and
+    whether each tab was right stay (to tell it at the reveal)."""
+    if r.phase != "open":
+        return r
+    verdicts = {tab: is_right(r.question, value) for tab, value in r.answers.items()}
+    return replace(r, phase="closed", answers={}, verdicts=verdicts, final=tally(r))
 
 
 def reveal(r: Round) -> Round:
     """The right answer shown (closing the round first if it was open)."""
-    return replace(r, phase="revealed")
+    return replace(close(r), phase="revealed")
 
 
 def _bin(question: Question, value: Answer) -> str:
@@ -181,6 +190,8 @@ def labels(question: Question) -> tuple[str, ...]:
 
 def tally(r: Round) -> Tally:
     """How the room answered: a count per bar (no names, no values)."""
+    if r.final is not None:
+        return r.final
     keys = labels(r.question)
     counts = dict.fromkeys(keys, 0)
     for value in r.answers.values():
@@ -258,6 +269,6 @@ class Seen:
 def seen(r: Round, tab: str, presenting: bool, room_tally: Tally, room: int) -> Seen:
     """Round ``r`` as tab ``tab`` shows it (``room_tally``: the room's bars, from every worker)."""
     mine = None if presenting else r.answers.get(tab)
-    right = is_right(r.question, mine) if mine is not None and r.phase == "revealed" else None
+    right = r.verdicts.get(tab) if r.phase == "revealed" and not presenting else None
     bars = room_tally if presenting or r.phase == "revealed" else None
     return Seen(r.number, r.question, r.phase, presenting, mine, right, bars, room)

@@ -183,7 +183,10 @@ class QuestionDesk:
                     if self.round is None or self.round.number != number:
                         self.round = poll.open_round(number, question)
                         self._number = max(self._number, number)
-                    self.round = poll.Round(number, self.round.question, phase, self.round.answers)
+                    if phase != "open":  # this worker's answers become counts and verdicts
+                        self.round = (
+                            poll.reveal(self.round) if phase == "revealed" else poll.close(self.round)
+                        )
                 self._tell()
             elif op == "tally":
                 counts = message["counts"]

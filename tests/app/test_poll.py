@@ -143,3 +143,15 @@ def test_csv_has_only_counts_and_defuses_formulas() -> None:
     rows = list(csv.reader(io.StringIO(text)))
     assert rows[0] == ["question", '\'=HYPERLINK("x") "quoted"']
     assert rows[2:] == [["'=1+1", "1"], ["'@SUM(A1)", "0"], ["plain", "2"]]
+
+
+def test_closing_drops_what_each_tab_answered_and_keeps_counts_and_verdicts() -> None:
+    r = _kind_round()
+    r = poll.answer(poll.answer(r, "a", 1, "wrist"), "b", 1, "elbow")
+    counts = poll.tally(r)
+    closed = poll.close(r)
+    assert closed.answers == {} and closed.verdicts == {"a": True, "b": False}
+    assert poll.tally(closed) == counts
+    shown = poll.seen(poll.reveal(closed), "a", False, counts, 2)
+    assert shown.right is True and shown.mine is None and shown.tally == counts
+    assert poll.seen(closed, "b", False, counts, 2).right is None  # said only at the reveal
