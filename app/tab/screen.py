@@ -10,6 +10,7 @@ collected for the room.
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import viser
@@ -65,11 +66,19 @@ class Screen:
         state: LabState,
         classroom: bool,
         tr: Translator | None = None,
+        first: Callable[[SceneView], None] | None = None,
     ) -> None:
         self.client, self.dispatch, self.catalog = client, dispatch, catalog
         self.classroom, self.tr = classroom, tr or translations()
-        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene: SceneView | None = None
+        self._first: object = None  # the robot of the scene drawn before the panel (its first draw keeps it)
+        if first is not None:  # the arm first, in a frame of its own: a phone draws it before the panel
+            with client.atomic():
+                self.scene = SceneView(client, state.robot, dispatch, tr=self.tr)
+                first(self.scene)
+            client.flush()
+            self._first = state.robot
+        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene_messages: tuple = ()
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
 
@@ -100,7 +109,8 @@ class Screen:
                 replay_scene(self.client, replay)  # the presenter's scene, drawn once for the room
                 self._foreign = True  # our SceneView no longer knows what the browser shows
             else:
-                if rebuild or self.scene is None or self._foreign:
+                kept, self._first = state.robot is self._first, None
+                if (rebuild and not kept) or self.scene is None or self._foreign:
                     if self.scene is not None:
                         self.scene.remove()
                     self.scene = SceneView(self.client, state.robot, self.dispatch, tr=self.tr)
