@@ -24,7 +24,12 @@ Usage::
     python bench/bench_first_picture.py --runs 9 --throttle 1 4 6
 
 Target (issue 28): the app's first picture ≤ 1.5× the floor's, throttled 4×.
-Figures: docs/performance.md, "A phone's first picture".
+
+Figures (2026-12-05, f4475ae, ``--runs 7 --scene --before <copy of 0a7a633>``, load average 4–11: single
+pages vary 2–5×, read the ratios and the main-thread times): app / floor 1.19 at 1×, 0.94 at 4× (before
+the arm came first: 1.19 and 1.06; other runs 1.1–1.5 after, 1.0–1.9 before); the page's main thread until
+the first picture at 4×: app 1864 ms, floor 1962, before 2145. docs/performance.md, "A phone's first
+picture", has the table.
 """
 
 from __future__ import annotations
