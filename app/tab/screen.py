@@ -69,11 +69,19 @@ class Screen:
         classroom: bool,
         tr: Translator | None = None,
         view: Callable[[], View | None] = lambda: None,
+        first: Callable[[SceneView], None] | None = None,
     ) -> None:
         self.client, self.dispatch, self.catalog, self.view = client, dispatch, catalog, view
         self.classroom, self.tr = classroom, tr or translations()
-        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene: SceneView | None = None
+        self._first: object = None  # the robot of the scene drawn before the panel (its first draw keeps it)
+        if first is not None:  # the arm first, in a frame of its own: a phone draws it before the panel
+            with client.atomic():
+                self.scene = SceneView(client, state.robot, dispatch, tr=self.tr, view=view)
+                first(self.scene)
+            client.flush()
+            self._first = state.robot
+        self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene_messages: tuple = ()
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
         self.layout: Callable[[], Layout | None] = lambda: None  # the labels' camera and canvas
@@ -110,7 +118,8 @@ class Screen:
             elif keep_scene and self._foreign and role.following:
                 pass  # the state shown, drawn again for its panel: a follower's view stays the presenter's
             else:
-                if rebuild or self.scene is None or self._foreign:
+                kept, self._first = state.robot is self._first, None
+                if (rebuild and not kept) or self.scene is None or self._foreign:
                     if self.scene is not None:
                         self.scene.remove()
                     self.scene = SceneView(

@@ -128,12 +128,18 @@ class ClientSession:
         self.snapshot: Snapshot | None = None
         with self.lock:
             self.state = LabState.initial(robot_name, catalog.load(robot_name))
+            first = compute(self.state)
+
+            def arm_first(scene: SceneView) -> None:  # a phone's first picture: the arm before the panel
+                scene.update(first, self.state)
+                self.camera.after_commit(scene, self.state, self.state, True, True, first)
+
             self.screen = Screen(
                 client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr,
-                self.camera.view,
+                self.camera.view, first=arm_first,
             )  # fmt: skip
             self.screen.layout = self.labels.layout
-            self._commit(self.state, rebuild=True, jump=True)
+            self._commit(self.state, rebuild=True, jump=True, snap=first)
         client.camera.on_update(self._camera_moved)
 
     # ------------------------------------------------------------------ queue

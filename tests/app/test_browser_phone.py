@@ -10,6 +10,7 @@ import os
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 from browser_helpers import app_page, text_contrasts
 from fakes import poll
@@ -17,10 +18,13 @@ from fakes import poll
 from app.server import Lab
 from app.views.panel.layout import MIN_TEXT_PX
 from app.views.panel.viewport import visible_view_rect
+from kinematics import jacobian
 
 pytestmark = pytest.mark.browser
 
 SIZES = {"phone": (390, 844), "landscape": (844, 390), "tablet": (768, 1024)}
+LAYOUTS = [*SIZES, "phone-pl", "phone-pt"]
+"""Each size in English, and the phone in Polish and Portuguese (longer words: the labels must still fit)."""
 
 _BOXES = """() => {
   const box = (e) => { if (!e) return null; const b = e.getBoundingClientRect();
@@ -36,9 +40,10 @@ _BOXES = """() => {
 }"""
 
 
-def _touch_page(size: tuple[int, int]):
-    """The app on a touch screen of ``size`` CSS px at scale 2 (a phone's or tablet's)."""
-    return app_page(Lab(port=0), {"width": size[0], "height": size[1]}, scale=2, touch=True)
+def _touch_page(size: tuple[int, int], path: str = ""):
+    """The app on a touch screen of ``size`` CSS px at scale 2 (a phone's or tablet's); ``path``: after
+    the address (``?lang=pl``)."""
+    return app_page(Lab(port=0), {"width": size[0], "height": size[1]}, scale=2, touch=True, path=path)
 
 
 def _overlap(a: dict[str, float], b: dict[str, float]) -> bool:
@@ -49,12 +54,16 @@ def _overlap(a: dict[str, float], b: dict[str, float]) -> bool:
     )
 
 
-@pytest.mark.parametrize("name", list(SIZES))
-def test_the_view_keeps_what_visible_view_rect_says_and_nothing_overlaps(tmp_path, name):
+@pytest.mark.parametrize("layout", LAYOUTS)
+def test_the_view_keeps_what_visible_view_rect_says_and_nothing_overlaps(tmp_path, layout):
     out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out.mkdir(parents=True, exist_ok=True)
+    name, _, lang = layout.partition("-")
     width, height = SIZES[name]
-    with _touch_page(SIZES[name]) as (page, session, errors):
+    with _touch_page(SIZES[name], f"?lang={lang}" if lang else "") as (page, session, errors):
+        if lang:
+            poll(lambda: session.language == lang, what="the page's language")
+
         # The page script settles the split and the zoom (it polls every 0.4 s): wait for the panel.
         def settled() -> dict[str, Any] | None:
             m = page.evaluate(_BOXES)
@@ -64,7 +73,7 @@ def test_the_view_keeps_what_visible_view_rect_says_and_nothing_overlaps(tmp_pat
         m = poll(settled, what="the panel laid out")
         page.wait_for_timeout(1000)  # two more rounds of the page script; then read again
         m = poll(settled, what="the panel laid out")
-        page.screenshot(path=str(out / f"phone-layout-{name}.png"))
+        page.screenshot(path=str(out / f"phone-layout-{layout}.png"))
         rect = visible_view_rect(width, height, touch=True)
         assert rect.width * rect.height >= 0.45 * width * height
         if name == "phone":
@@ -82,6 +91,8 @@ def test_the_view_keeps_what_visible_view_rect_says_and_nothing_overlaps(tmp_pat
             assert not _overlap(m["hint"], other), (m["hint"], other)
         for thumb in m["thumbs"]:
             assert 0 <= thumb["x"] and thumb["x"] + thumb["w"] <= width + 0.5
+        if lang:  # the panel speaks the language (its labels were built again in it)
+            assert page.get_by_text("Configuration", exact=True).count() == 0
         small = [t for t in text_contrasts(page) if t["px"] < MIN_TEXT_PX - 0.05]
         assert not small, [(t["t"], t["px"]) for t in small]
         assert not errors
@@ -108,4 +119,31 @@ def test_a_touch_drag_on_a_slider_moves_the_arm():
         poll(lambda: abs(float(session.state.q[0]) - before) > 1e-3, what="q1 moved by the touch drag")
         # Dragged right: the joint's value grew.
         assert float(session.state.q[0]) > before
+        assert not errors
+
+
+def test_taps_open_the_configuration_menu_and_pick_a_singularity(tmp_path):
+    """Touch on a menu (not only a slider): taps, as a finger gives them (touchstart/end, no mouse), on the
+    Configuration menu and one of its named singularities. Before PHONE_CSS fixed the menu's list to the
+    screen, the list flickered shut under the tap (it opened below the menu at the sheet's foot)."""
+    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    with _touch_page(SIZES["phone"]) as (page, session, errors):
+        page.evaluate(
+            "() => { window.__taps = []; addEventListener('touchend', (e) => __taps.push(e.type), true); }"
+        )
+        page.get_by_label("Configuration", exact=True).first.tap()
+        option = page.get_by_role("option", name="wrist singular (singular)", exact=True)
+        option.tap()
+        poll(lambda: session.state.configuration == "wrist_singular", what="the tapped configuration")
+        # The arm is at a singularity: J, computed here from the server's q, has lost rank.
+        sigma = np.linalg.svd(jacobian(session.state.robot, session.state.q), compute_uv=False)
+        assert sigma[-1] < 1e-9 * sigma[0]
+        poll(
+            lambda: "singular: wrist" in page.locator(".jl-status").first.inner_text(),
+            what="the status says so",
+        )
+        page.screenshot(path=str(out / "phone-tap-wrist-singular.png"))
+        taps = page.evaluate("() => window.__taps")
+        assert len(taps) >= 2, taps  # both steps above were touches, not mouse clicks
         assert not errors

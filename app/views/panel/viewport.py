@@ -92,6 +92,11 @@ PHONE_CSS = f"""
   /* Thumbs large enough for a finger. */
   .mantine-Slider-thumb {{ width: 20px !important; height: 20px !important; border-radius: 50% !important; }}
   .mantine-Slider-root {{ min-height: 2.4em; }}
+  /* A menu's list (Configuration, Robot) fixed to the screen: placed absolutely, the list opened below a
+     menu at the sheet's foot made the page taller, which hid the menu from the list's placement, which
+     closed the list: it flickered shut under a tap (hundreds of times a second). Fixed, it makes nothing
+     taller and flips above the menu when the screen ends below it. */
+  .mantine-Popover-dropdown {{ position: fixed !important; }}
 }}
 </style>
 """
