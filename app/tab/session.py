@@ -11,8 +11,7 @@ most :data:`MAX_REDRAWS_PER_SECOND`). Actions (:mod:`app.core.actions`) go to th
 commands (:mod:`app.core.commands`) to the :class:`~app.tab.commands.CommandRunner`; no view is
 touched until the draw (:class:`~app.tab.screen.Screen`). After the draw: the ticker, the symbolic
 results wanted (:class:`~app.tab.symbols.TabSymbols`), the camera (:class:`~app.tab.camera.TabCamera`)
-and the subscribers (the classroom via :class:`~app.tab.following.Following`, a recorder). An error
-in any message is logged and shown to this tab only (:class:`~app.tab.notices.Notices`).
+and the subscribers (the classroom, a recorder). An error in any message is shown to this tab only.
 """
 
 from __future__ import annotations
@@ -118,7 +117,6 @@ class ClientSession:
             client, self.camera, lambda: self.page.window, self.lock, lambda: self.screen.own_scene,
             lambda: self._closed,
         )  # fmt: skip
-        self.camera.moved = self.labels.moved
         self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify, lambda: self.notices.tr)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
@@ -139,6 +137,7 @@ class ClientSession:
                 self.camera.view, first=arm_first,
             )  # fmt: skip
             self.screen.layout = self.labels.layout
+            self.camera.moved = self.labels.moved  # from the first frame on (placed before the panel)
             self._commit(self.state, rebuild=True, jump=True, snap=first)
         client.camera.on_update(self._camera_moved)
 
