@@ -83,7 +83,11 @@ def run(followers: int, workers: int, moves: int, period: float, log: Path) -> d
             c.set_value(gui(c, "GuiTextMessage", "page"), PAGE_LOADED)
             clients.append(c)
             room.append(c)
-            choices.append([_button(c, str(i)) for i in range(6)])  # the Question box's six buttons
+            _, folder = c.wait_for(
+                lambda m: m["type"] == "GuiFolderMessage" and m["props"].get("label") == "Question",
+                timeout=60,
+            )
+            choices.append((folder["uuid"], [_button(c, str(i)) for i in range(6)]))  # the Question box
         for c in room:
             c.wait_for(is_arm_update, timeout=120)
         time.sleep(1.0)  # the joining burst settles
@@ -98,10 +102,18 @@ def run(followers: int, workers: int, moves: int, period: float, log: Path) -> d
         done = {"last_sent": 0.0}
 
         def answer(k: int, c: ViserWsClient, mark: int) -> None:
-            asked = lambda m: m["type"] == "GuiUpdateMessage" and "regular" in str(m.get("updates"))  # noqa: E731
-            c.wait_for(asked, after=mark, timeout=60)
+            box, buttons = choices[k]
+            c.wait_for(  # its Question box opened: the question reached it
+                lambda m: (
+                    m["type"] == "GuiUpdateMessage"
+                    and m.get("uuid") == box
+                    and m.get("updates", {}).get("visible") is True
+                ),
+                after=mark,
+                timeout=60,
+            )
             time.sleep(float(rng.uniform(0.0, 2.0)))
-            t = c.set_value(choices[k][int(k % 6)], True)
+            t = c.set_value(buttons[k % 6], True)
             done["last_sent"] = max(done["last_sent"], t)
 
         threads = [
