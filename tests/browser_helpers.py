@@ -195,3 +195,28 @@ def text_contrasts(page) -> list[dict[str, Any]]:
 
 wait = poll
 """The name of :func:`fakes.poll` here before tests/fakes.py (for tests written before it)."""
+
+
+def screenshot_dir(tmp_path) -> Any:
+    """Where a browser test saves its screenshots: ``$APP_SCREENSHOT_DIR``, else pytest's ``tmp_path``."""
+    import os
+    from pathlib import Path
+
+    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def whole_in_view(page, locator) -> bool:
+    """Whether ``locator`` is drawn, whole, inside the page's viewport (a button one can click)."""
+    box = locator.bounding_box()
+    size = page.viewport_size
+    return (
+        box is not None
+        and box["width"] > 0
+        and box["height"] > 0
+        and box["x"] >= 0
+        and box["y"] >= 0
+        and box["x"] + box["width"] <= size["width"]
+        and box["y"] + box["height"] <= size["height"]
+    )

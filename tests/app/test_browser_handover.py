@@ -5,11 +5,8 @@ presenting", in view), and only its click hands over. Screenshots go to ``$APP_S
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import pytest
-from browser_helpers import app_page, new_page, wait
+from browser_helpers import app_page, new_page, screenshot_dir, wait, whole_in_view
 
 from app.server import Lab
 from app.services.classroom import HANDED_OVER
@@ -20,29 +17,8 @@ pytestmark = [pytest.mark.browser, pytest.mark.slow]
 TOKEN = "rK4-vq9T-w2Lm-8xPz"
 
 
-def _out(tmp_path) -> Path:
-    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
-    out.mkdir(parents=True, exist_ok=True)
-    return out
-
-
-def _in_view(page, locator) -> bool:
-    """Whether ``locator`` is drawn, whole, inside the page's viewport (a button the teacher can click)."""
-    box = locator.bounding_box()
-    size = page.viewport_size
-    return (
-        box is not None
-        and box["width"] > 0
-        and box["height"] > 0
-        and box["x"] >= 0
-        and box["y"] >= 0
-        and box["x"] + box["width"] <= size["width"]
-        and box["y"] + box["height"] <= size["height"]
-    )
-
-
 def test_the_teacher_is_asked_and_hands_over_by_a_click(tmp_path):
-    out = _out(tmp_path)
+    out = screenshot_dir(tmp_path)
     lab = Lab(port=0, presenter_token=TOKEN)
     with app_page(lab, path=f"/?presenter={TOKEN}") as (teacher_page, teacher, errors):
         wait(lambda: teacher.role.presenting)
@@ -70,7 +46,7 @@ def test_the_teacher_is_asked_and_hands_over_by_a_click(tmp_path):
         hand_over = teacher_page.get_by_role("button", name="Hand over", exact=True)
         keep = teacher_page.get_by_role("button", name="Keep presenting", exact=True)
         wait(lambda: hand_over.is_visible() and keep.is_visible())  # the folded box unfolded
-        wait(lambda: _in_view(teacher_page, hand_over) and _in_view(teacher_page, keep))
+        wait(lambda: whole_in_view(teacher_page, hand_over) and whole_in_view(teacher_page, keep))
         body = teacher_page.locator("body").inner_text()
         assert "Another tab typed the presenter token and asks to present." in body
         wait(lambda: not box.is_visible())  # the asking tab's token box is hidden while it waits

@@ -5,11 +5,18 @@ watches the bars and reveals. Every kind of question goes round once. Screenshot
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import pytest
-from browser_helpers import ARGS, CHROMIUM, app_page, close_notifications, new_page, require_browser, wait
+from browser_helpers import (
+    ARGS,
+    CHROMIUM,
+    app_page,
+    close_notifications,
+    new_page,
+    require_browser,
+    screenshot_dir,
+    wait,
+    whole_in_view,
+)
 from server_process import Server, printed_presenter_link
 
 from app.core.actions import GoTo
@@ -24,25 +31,6 @@ TOKEN = "qA7-rT3m-Zk9w-4LpX"
 PHONE = {"width": 390, "height": 844}
 
 
-def _out(tmp_path) -> Path:
-    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
-    out.mkdir(parents=True, exist_ok=True)
-    return out
-
-
-def _in_view(page, locator) -> bool:
-    box = locator.bounding_box()
-    size = page.viewport_size
-    return (
-        box is not None
-        and box["width"] > 0
-        and box["x"] >= 0
-        and box["y"] >= 0
-        and box["x"] + box["width"] <= size["width"]
-        and box["y"] + box["height"] <= size["height"]
-    )
-
-
 def _text(page) -> str:
     return page.locator("body").inner_text()
 
@@ -55,7 +43,7 @@ def _choose(page, kind: str) -> None:
 
 
 def test_a_peer_instruction_round_on_laptops_and_a_phone(tmp_path):
-    out = _out(tmp_path)
+    out = screenshot_dir(tmp_path)
     lab = Lab(port=0, presenter_token=TOKEN)
     with app_page(lab, path=f"/?presenter={TOKEN}") as (teacher_page, teacher, errors):
         wait(lambda: teacher.role.presenting)
@@ -80,7 +68,7 @@ def test_a_peer_instruction_round_on_laptops_and_a_phone(tmp_path):
         ask.click()
         wait(lambda: laptop.role.question is not None and phone.role.question is not None)
         wrist = laptop_page.get_by_role("button", name="wrist", exact=True)
-        wait(lambda: wrist.is_visible() and _in_view(laptop_page, wrist))
+        wait(lambda: wrist.is_visible() and whole_in_view(laptop_page, wrist))
         assert "The room is answering" in _text(teacher_page)  # the status line's "wrist" is hidden
         assert "singular: wrist" not in _text(teacher_page)
         elbow = phone_page.get_by_role("button", name="elbow", exact=True)
@@ -147,7 +135,7 @@ def test_a_round_on_the_default_serve_revealed_by_play_with_a_polish_phone(tmp_p
     """What the docs print: ``jacobian-lab serve --presenter`` (a worker per core; the followers may land
     on either), the printed link for the teacher, a laptop in English and a phone in Polish (``?lang=pl``).
     The teacher asks which joint's rate blows up before Play; the reveal plays the motion on every screen."""
-    out = _out(tmp_path)
+    out = screenshot_dir(tmp_path)
     sync_playwright = require_browser()
     server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
     try:
