@@ -392,9 +392,8 @@ class Classroom:
     def _tell_all(self, note: str = "", personal: dict[int, str] | None = None) -> None:
         """Tell every tab its role, with its own note in ``personal``, else ``note`` unless it presents."""
         personal = personal or {}
-        with self._lock:
-            members = list(self._members.items())
-        for key, member in members:
-            role = self.role(key)
-            said = personal[key] if key in personal else note if not role.presenting else ""
-            member.role_changed(Role(**{**role.__dict__, "note": said}))
+        with self._lock:  # computed and told in one go: two tells at once never leave a stale role last
+            for key, member in list(self._members.items()):
+                role = self.role(key)
+                said = personal[key] if key in personal else note if not role.presenting else ""
+                member.role_changed(Role(**{**role.__dict__, "note": said}))

@@ -182,3 +182,76 @@ def test_a_round_on_the_default_serve_revealed_by_play_with_a_polish_phone(tmp_p
                 browser.close()
     finally:
         server.cleanup()
+
+
+def test_kappa_and_the_teachers_own_question_in_portuguese_and_spanish(tmp_path):
+    """The two kinds the first test leaves out: κ typed on a Portuguese phone with a decimal comma, and the
+    teacher's own question (typed in the presenter's box) answered on a Spanish laptop and the phone."""
+    out = screenshot_dir(tmp_path)
+    lab = Lab(port=0, presenter_token=TOKEN)
+    with app_page(lab, path=f"/?presenter={TOKEN}") as (teacher_page, teacher, errors):
+        wait(lambda: teacher.role.presenting)
+        browser = teacher_page.context.browser
+        laptop_page = new_page(browser)
+        phone_page = new_page(browser, PHONE, scale=2.0, touch=True)
+        for page, lang in ((laptop_page, "es"), (phone_page, "pt")):
+            page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
+            page.goto(lab.url + f"?lang={lang}")
+            page.wait_for_selector("[role=slider]")
+            close_notifications(page)
+        wait(lambda: len(lab.sessions) == 3)
+        laptop, phone = (s for s in lab.sessions.values() if s is not teacher)
+        wait(lambda: laptop.role.following and phone.role.following)
+        teacher_page.get_by_text("Ask the room", exact=True).first.click()
+        ask = teacher_page.get_by_role("button", name="Ask the room", exact=True)
+        reveal = teacher_page.get_by_role("button", name="Reveal the answer", exact=True)
+
+        # κ at home, typed as Portuguese writes numbers.
+        _choose(teacher_page, "kappa")
+        ask.click()
+        wait(lambda: phone.role.question is not None and phone.role.question.question.quantity == "kappa")
+        kappa = phone.role.question.question.value
+        box = phone_page.locator(f'label[for="{handle_uuid(phone.panel.question.typed)}"]').locator(
+            "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
+        )
+        wait(lambda: box.is_visible())
+        box.scroll_into_view_if_needed()
+        box.tap()
+        box.fill(f"{kappa:.2f}".replace(".", ","))
+        pt = translations("pt").gettext
+        phone_page.get_by_role("button", name=pt("Send"), exact=True).tap()
+        wait(lambda: "1 of 2 tabs answered" in _text(teacher_page))
+        reveal.click()
+        wait(lambda: pt("Right!") in _text(phone_page))
+        phone_page.screenshot(path=str(out / "room_kappa_phone_pt.png"))
+
+        # The teacher's own question, with its choices and the right one by number.
+        _choose(teacher_page, "custom")
+        for handle, text in (
+            (teacher.panel.question.own, "Where is the Puma's tool at home?"),
+            (teacher.panel.question.own_choices, "in front of the base; above the base; behind it"),
+            (teacher.panel.question.own_right, "1"),
+        ):
+            field = teacher_page.locator(f'label[for="{handle_uuid(handle)}"]').locator(
+                "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
+            )
+            wait(lambda field=field: field.is_visible())
+            field.fill(text)
+        wait(lambda: str(teacher.panel.question.own_right.value) == "1")
+        ask.click()
+        wait(lambda: laptop.role.question is not None and laptop.role.question.question.kind == "custom")
+        front = laptop_page.get_by_role("button", name="in front of the base", exact=True)
+        wait(lambda: front.is_visible())
+        front.click()
+        above = phone_page.get_by_role("button", name="above the base", exact=True)
+        wait(lambda: above.is_visible())
+        above.scroll_into_view_if_needed()
+        above.tap()
+        wait(lambda: "2 of 2 tabs answered" in _text(teacher_page))
+        teacher_page.screenshot(path=str(out / "room_custom_teacher_bars.png"))
+        reveal.click()
+        es = translations("es").gettext
+        wait(lambda: es("Right!") in _text(laptop_page))
+        wait(lambda: pt("Not this time: the answer is {answer}.").split(":")[0] in _text(phone_page))
+        laptop_page.screenshot(path=str(out / "room_custom_laptop_es.png"))
+        assert not errors

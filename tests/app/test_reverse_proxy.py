@@ -126,7 +126,15 @@ def test_the_documented_nginx_configuration_serves_the_page_and_its_websocket_ov
             assert "<html" in poll(page, what="the page through nginx").lower()
             # A tab on 127.0.0.2 that wrote its own X-Forwarded-For: nginx appends the address it was
             # reached from, and the lab (trusting only nginx, 127.0.0.1) reads that one.
-            tab_address = lambda: lab.classroom.address(max(lab.sessions))  # noqa: E731
+            # Read once the tab's session is registered and its handshake's headers are (the slider can
+            # reach the page first; read before, the address was the proxy's, 127.0.0.1, in one CI run).
+            tab_address = lambda: (
+                poll(  # noqa: E731
+                    lambda: lab.sessions and lab.classroom.address(max(lab.sessions)) == "127.0.0.2",
+                    what="the tab's address read through the proxy",
+                )
+                and lab.classroom.address(max(lab.sessions))
+            )
             assert asyncio.run(_websocket(port, context, tab_address)) == "127.0.0.2"
         finally:
             nginx.terminate()
