@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from app_helpers import scene_node
+from app_helpers import labels_placed, scene_node
 from fakes import poll
 
 import robots
@@ -98,6 +98,7 @@ def test_a_jump_to_a_singularity_shows_the_loss_and_the_arm(session, robot_name,
     arm = arm_axis(snap.link_frames[:, :3, 3])
     seen = settled(session, np.vstack([lost, arm]))
     assert seen.min() >= LEAST, seen
+    labels_placed(session)  # the labels placed for the camera that stopped (a busy machine places them later)
     assert joint_label_gap(session) >= 14.0  # apart: a label is ~14 px high
 
 
