@@ -26,6 +26,8 @@ __all__ = [
     "steady_canvas",
     "close_notifications",
     "app_page",
+    "text_input",
+    "type_into",
 ]
 
 CHROMIUM = "/usr/bin/chromium"
@@ -220,3 +222,24 @@ def whole_in_view(page, locator) -> bool:
         and box["x"] + box["width"] <= size["width"]
         and box["y"] + box["height"] <= size["height"]
     )
+
+
+def text_input(page, handle, kind: str = "input") -> Any:
+    """The ``<input>`` of a viser text or number field (``handle``) on ``page``: the one in the row of
+    its label (``kind``: a class to narrow it, e.g. ``input[contains(@class,'mantine-NumberInput-input')]``)."""
+    from app.viser_adapter import handle_uuid
+
+    return page.locator(f'label[for="{handle_uuid(handle)}"]').locator(
+        f"xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//{kind}"
+    )
+
+
+def type_into(page, handle, text: str) -> None:
+    """Type ``text`` into ``handle``'s field as a person does: the field shown, filled, and the server
+    holding the text before the next field is touched. (viser's panel sends every field's edits through
+    one sender throttled to 50 ms, keeping only the latest message: two fields filled within 50 ms lose
+    the first one's text, which no hand is quick enough to do.)"""
+    field = text_input(page, handle)
+    poll(field.is_visible, what=f"the field {handle.label!r} shown")
+    field.fill(text)
+    poll(lambda: str(handle.value) == text, what=f"the server holding {text!r} in {handle.label!r}")

@@ -6,11 +6,10 @@ presenting", in view), and only its click hands over. Screenshots go to ``$APP_S
 from __future__ import annotations
 
 import pytest
-from browser_helpers import app_page, new_page, screenshot_dir, wait, whole_in_view
+from browser_helpers import app_page, new_page, screenshot_dir, text_input, wait, whole_in_view
 
 from app.server import Lab
 from app.services.classroom import HANDED_OVER
-from app.viser_adapter import handle_uuid
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -31,9 +30,7 @@ def test_the_teacher_is_asked_and_hands_over_by_a_click(tmp_path):
         wait(lambda: len(lab.sessions) == 2)
         student = next(s for s in lab.sessions.values() if s is not teacher)
         wait(lambda: student.role.following)
-        box = student_page.locator(f'label[for="{handle_uuid(student.panel.classroom.token)}"]').locator(
-            "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
-        )
+        box = text_input(student_page, student.panel.classroom.token)
         # A follower's box folds to its title line (the layout script, once per role, whenever it runs:
         # later on a busy machine): wait for the fold, then open it.
         wait(lambda: student_page.locator("[data-jl-folded]").count() > 0)

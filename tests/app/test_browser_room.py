@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from browser_helpers import app_page, close_notifications, new_page, wait
+from browser_helpers import app_page, close_notifications, new_page, text_input, wait
 
 from app.core.actions import SetJoint
 from app.core.commands import ChooseRobot
@@ -92,9 +92,7 @@ def test_the_token_box_is_masked_typing_tries_once_and_the_presenter_link_leaves
     token = "rK4-vq9T-w2Lm"
     lab = Lab(port=0, presenter_token=token)
     with app_page(lab) as (page, student, errors):
-        box = page.locator(f'label[for="{handle_uuid(student.panel.classroom.token)}"]').locator(
-            "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
-        )
+        box = text_input(page, student.panel.classroom.token)
         wait(lambda: box.get_attribute("type") == "password")
         box.press_sequentially("nope", delay=20)  # a loaded machine may pause mid-word: a try or two
         wait(lambda: lab.classroom.wrong_tries(student.key) >= 1)  # once the typing paused, not per key

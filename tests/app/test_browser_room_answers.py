@@ -14,6 +14,8 @@ from browser_helpers import (
     new_page,
     require_browser,
     screenshot_dir,
+    text_input,
+    type_into,
     wait,
     whole_in_view,
 )
@@ -23,7 +25,6 @@ from app.core.actions import GoTo
 from app.core.i18n import translations
 from app.server import Lab
 from app.views.panel.question import ASK_LABELS
-from app.viser_adapter import handle_uuid
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -114,13 +115,12 @@ def test_a_peer_instruction_round_on_laptops_and_a_phone(tmp_path):
         _choose(teacher_page, "det")
         ask.click()
         wait(lambda: phone.role.question is not None and phone.role.question.question.kind == "number")
-        box = phone_page.locator(f'label[for="{handle_uuid(phone.panel.question.typed)}"]').locator(
-            "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
-        )
+        box = text_input(phone_page, phone.panel.question.typed)
         wait(lambda: box.is_visible())
         box.scroll_into_view_if_needed()
         box.tap()
         box.fill("0")
+        wait(lambda: str(phone.panel.question.typed.value) == "0")  # held before Send: see type_into
         phone_page.get_by_role("button", name="Send", exact=True).tap()
         wait(lambda: "1 of 2 tabs answered" in _text(teacher_page))
         teacher_page.get_by_role("button", name="Close", exact=True).click()
@@ -211,13 +211,12 @@ def test_kappa_and_the_teachers_own_question_in_portuguese_and_spanish(tmp_path)
         ask.click()
         wait(lambda: phone.role.question is not None and phone.role.question.question.quantity == "kappa")
         kappa = phone.role.question.question.value
-        box = phone_page.locator(f'label[for="{handle_uuid(phone.panel.question.typed)}"]').locator(
-            "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
-        )
+        box = text_input(phone_page, phone.panel.question.typed)
         wait(lambda: box.is_visible())
         box.scroll_into_view_if_needed()
         box.tap()
-        box.fill(f"{kappa:.2f}".replace(".", ","))
+        box.fill(typed := f"{kappa:.2f}".replace(".", ","))
+        wait(lambda: str(phone.panel.question.typed.value) == typed)
         pt = translations("pt").gettext
         phone_page.get_by_role("button", name=pt("Send"), exact=True).tap()
         wait(lambda: "1 of 2 tabs answered" in _text(teacher_page))
@@ -232,12 +231,7 @@ def test_kappa_and_the_teachers_own_question_in_portuguese_and_spanish(tmp_path)
             (teacher.panel.question.own_choices, "in front of the base; above the base; behind it"),
             (teacher.panel.question.own_right, "1"),
         ):
-            field = teacher_page.locator(f'label[for="{handle_uuid(handle)}"]').locator(
-                "xpath=ancestor::div[contains(@class,'mantine-Flex-root')][1]//input"
-            )
-            wait(lambda field=field: field.is_visible())
-            field.fill(text)
-        wait(lambda: str(teacher.panel.question.own_right.value) == "1")
+            type_into(teacher_page, handle, text)
         ask.click()
         wait(lambda: laptop.role.question is not None and laptop.role.question.question.kind == "custom")
         front = laptop_page.get_by_role("button", name="in front of the base", exact=True)
