@@ -7,12 +7,10 @@ temporary directory)."""
 
 from __future__ import annotations
 
-import os
 import re
-from pathlib import Path
 
 import pytest
-from browser_helpers import ARGS, CHROMIUM, close_notifications, new_page, require_browser
+from browser_helpers import ARGS, CHROMIUM, close_notifications, new_page, require_browser, screenshot_dir
 from fakes import poll
 from server_process import Server, printed_presenter_link
 
@@ -30,8 +28,7 @@ def _rates(text: str) -> list[str]:
 
 
 def test_a_follower_on_a_phone_shows_the_presenters_wrist_blow_up_with_its_rates(tmp_path):
-    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
-    out.mkdir(parents=True, exist_ok=True)
+    out = screenshot_dir(tmp_path)
     sync_playwright = require_browser()
     server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
     try:
