@@ -7,13 +7,15 @@ the arm on the server. Screenshots go to ``$APP_SCREENSHOT_DIR`` (default: pytes
 from __future__ import annotations
 
 import os
+import re
+import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
-from browser_helpers import app_page, text_contrasts
-from fakes import poll
+from browser_helpers import app_page, screenshot_dir, text_contrasts, whole_in_view
+from fakes import POLL_TIMEOUT, poll
 
 from app.server import Lab
 from app.views.panel.layout import MIN_TEXT_PX
@@ -146,4 +148,45 @@ def test_taps_open_the_configuration_menu_and_pick_a_singularity(tmp_path):
         page.screenshot(path=str(out / "phone-tap-wrist-singular.png"))
         taps = page.evaluate("() => window.__taps")
         assert len(taps) >= 2, taps  # both steps above were touches, not mouse clicks
+        assert not errors
+
+
+def test_a_tap_on_play_plays_the_blow_up_and_the_button_stays_under_the_finger(tmp_path):
+    """On a phone the views of J are one folded line at the sheet's foot: a tap unfolds it, a tap opens
+    Motion, a tap on Play plays the Puma's preset into its wrist singularity. Under the finger the Play
+    button does not move while the motion plays and stops (the status above it grows out of sight: the
+    sheet keeps its scroll anchored), and the joint-rate overlay shows the six rates above the arm."""
+    out = screenshot_dir(tmp_path)
+    with _touch_page(SIZES["phone"]) as (page, session, errors):
+        unfold = page.locator('[aria-label^="Expand panel"]').first
+        unfold.scroll_into_view_if_needed()
+        unfold.tap()
+        motion = page.get_by_role("tab", name="Motion").first
+        poll(motion.is_visible, what="the views unfolded")
+        motion.tap()
+        play = page.get_by_role("button", name="Play", exact=True).first
+        poll(play.is_visible, what="the Motion view open")
+        play.scroll_into_view_if_needed()
+        poll(lambda: whole_in_view(page, play), what="Play whole on the screen")
+        start = play.bounding_box()
+        assert start is not None
+        q0 = np.array(session.state.q)
+        play.tap()
+        poll(lambda: session.state.playing, what="the motion plays")
+        tops = []
+        deadline = time.monotonic() + 10 * POLL_TIMEOUT  # a safety net: the preset stops in ~10 s
+        while (session.state.playing or not session.state.stopped) and time.monotonic() < deadline:
+            box = play.bounding_box()  # each read is a round trip to the page: no busy loop
+            assert box is not None
+            tops.append(box["y"])
+        assert session.state.stopped, "the motion did not stop"
+        assert max(abs(y - start["y"]) for y in tops) <= 1.0, sorted(set(tops))
+        assert np.linalg.norm(np.array(session.state.q) - q0) > 0.1  # the arm went somewhere
+        live = page.locator(".jl-live").first
+        poll(lambda: "stopped" in live.inner_text(), what="the overlay says the motion stopped")
+        text = live.inner_text()
+        assert len(re.findall(r"q̇[₁-₆]\s*[−-]?\d+\.\d\s*°/s", text)) == 6, text
+        box = live.bounding_box()
+        assert box is not None and box["y"] >= 0 and box["y"] + box["height"] <= SIZES["phone"][1] / 2
+        page.screenshot(path=str(out / "phone-tap-play-stopped.png"))
         assert not errors
