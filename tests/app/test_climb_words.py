@@ -68,7 +68,8 @@ def test_the_climb_says_what_climbs_and_it_climbs(session, language):
     kappa = session.snapshot.report.condition
     assert kappa > kappa_before
     status = str(session.panel.status.content)
-    text = _plain(status)
+    # The lines of a motion on screen are beside its rates, over the 3-D view (issue 28, stumble 4).
+    text = _plain(str(session.panel.live.content))
     held = "w(vx, vy)"
     start, now = fmt.number(ws[0], tr=tr), fmt.number(ws[-1], tr=tr)
     # The banner: κ and, beside it, the climbing measure at its value now.

@@ -50,7 +50,7 @@ from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
 from .joints import JointsPanel, configurations_html
 from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
-from .live import live_html
+from .live import live_html, shows_motion
 from .mappings import ForcePanel, ForwardPanel, InversePanel
 from .maps import MapsPanel, slider_ids
 from .matrix import MatrixPanel
@@ -58,7 +58,7 @@ from .motion import MotionPanel
 from .page import LOST_WORDS
 from .page import page_js as page_state_js
 from .question import HIDDEN_WORDS, HIDES_STATUS, QuestionPanel
-from .readouts import hint_html, source_html, status_html
+from .readouts import hint_html, source_html, status_html, status_lines
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import number_guard_js
 from .viewport import PHONE_CSS
@@ -254,7 +254,8 @@ class PanelView:
         for name, part in self.parts.items():
             if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)
-        live = live_html(state, self.tr)
+        lines = once(snap, status_lines, snap, state, self.tr) if shows_motion(state) else ""
+        live = live_html(state, self.tr, lines)
         if live != self.live.content:
             self.live.content = live
         if self.live.visible != bool(live):

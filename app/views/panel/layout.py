@@ -133,6 +133,9 @@ body:has(.mantine-Modal-root .jl-big) .jl-hint {{ display: none; }}
 .jl-live-rate small {{ font-size: 12px; font-weight: 600; }}
 .jl-live-foot {{ font-size: 13px; color: {_C["readout head"]}; }}
 .jl-live-slow {{ color: {_C["slowed"]}; font-weight: 700; }}
+/* The status's lines while a motion is on screen (the lost direction, why it stopped): under the rates. */
+.jl-live-lines {{ border-top: 1px solid #dee2e6; margin-top: 3px; padding-top: 3px; }}
+.jl-live-lines .jl-sub {{ margin: 0 0 2px 0; }}
 @media (max-height: 600px) {{
   .mantine-Slider-root {{ min-height: 1.4em !important; }}
   .jl-status {{ font-size: 16px !important; padding: 0.15em 0.5em !important;

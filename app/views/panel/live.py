@@ -22,7 +22,7 @@ from ...core.tool_path import is_tool_path
 from .. import fmt
 from ..palette import joint_text_hex
 
-__all__ = ["live_html"]
+__all__ = ["live_html", "shows_motion"]
 
 
 def _doing(kind: str, tr: Translator) -> str:
@@ -40,8 +40,16 @@ def _doing(kind: str, tr: Translator) -> str:
     return _("moving at q̇") if kind == "joints" else ""
 
 
-def live_html(state: LabState, tr: Translator | None = None) -> str:
-    """Rates [°/s | m/s], κ, σmin, the motion's time and its pace; "" when nothing is traced."""
+def shows_motion(state: LabState) -> bool:
+    """Whether the readout is on screen: a motion plays or has stopped, and has traced two steps."""
+    trace = state.motion.trace
+    return (state.playing or bool(state.stopped)) and trace is not None and len(trace) >= 2
+
+
+def live_html(state: LabState, tr: Translator | None = None, lines: str = "") -> str:
+    """Rates [°/s | m/s], κ, σmin, the motion's time and its pace, then ``lines`` (the status's lines,
+    :func:`app.views.panel.readouts.status_lines`: the lost direction, why it stopped); "" when nothing
+    is traced."""
     tr = tr or translations()
     _ = tr.gettext
     m = state.motion
@@ -83,7 +91,9 @@ def live_html(state: LabState, tr: Translator | None = None) -> str:
     if is_tool_path(m) and not state.playing and state.stopped:  # played out: say so, not "following"
         what = _("the path y(t) was followed to its end")
     foot = f'<div class="jl-live-foot">{what}{pace}</div>'
-    return f'<div class="jl jl-live">{head}<div class="jl-live-rates">{"".join(cells)}</div>{foot}</div>'
+    more = f'<div class="jl-live-lines">{lines}</div>' if lines and shows_motion(state) else ""
+    rates = f'<div class="jl-live-rates">{"".join(cells)}</div>'
+    return f'<div class="jl jl-live">{head}{rates}{foot}{more}</div>'
 
 
 def _sub(n: int) -> str:

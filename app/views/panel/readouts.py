@@ -22,6 +22,7 @@ from ...core.state import LabState
 from ...core.words import status_word, status_words
 from .. import fmt
 from ..palette import status_hex
+from .live import shows_motion
 
 __all__ = [
     "status_html",
@@ -181,7 +182,6 @@ _LAST_STATUS: list[tuple[Snapshot, LabState, Translator, str] | None] = [None]
 
 
 def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
-    _ = tr.gettext
     r = snap.report
     icon = "●" if r.status == "regular" else "▲" if r.status == "near singular" else "■"
     words = status_words(state.robot, r.status, tuple(r.kinds), state.configuration, tr)
@@ -192,6 +192,20 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
         f"<span>{icon}</span><span>{fmt.escape(words)}</span>"
         f'<small style="margin-left:auto">κ = {fmt.number(r.condition, tr=tr)}{beside}</small></div>'
     )
+    # While a motion plays and once it has stopped, its lines are in the readout over the 3-D view
+    # (status_lines, beside the rates) and the block here keeps the height it had at the click on Play
+    # (the page script holds it), so nothing in the panel moves under the pointer (issue 28, 4).
+    lines = "" if shows_motion(state) else status_lines(snap, state, tr)
+    held = " jl-held" if state.playing or state.stopped else ""
+    return f'<div class="jl">{banner}<div class="jl-lines{held}">{lines}</div></div>'
+
+
+def status_lines(snap: Snapshot, state: LabState, tr: Translator) -> str:
+    """The lines under the banner: the representation's singularity, the climb, the configuration's
+    description or why a motion stopped, the lost direction, the critical points at joint limits."""
+    _ = tr.gettext
+    r = snap.report
+    climb = _climb(state, tr)
     robot = state.robot
     sub, at_limit = "", False
     if state.stopped:
@@ -225,7 +239,7 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
     # the height of such a description when fewer are shown, so the sliders below do not jump up under
     # the pointer as a drag leaves a named configuration (or down as a "lost" line comes and goes).
     limits = limit_text(snap, robot, tr, stopped=at_limit)
-    lines = "".join(
+    return "".join(
         _description(x) if x is sub and not state.stopped else f'<div class="jl-sub">{x}</div>'
         for x in (
             representation,
@@ -236,10 +250,6 @@ def _status_html(snap: Snapshot, state: LabState, tr: Translator) -> str:
         )
         if x
     )
-    # While a motion plays and once it has stopped, the lines keep the height of four (the stop in two, the
-    # lost direction, the representation), so the sliders do not step as they come (issue 28, 4).
-    held = " jl-held" if state.playing or state.stopped else ""
-    return f'<div class="jl">{banner}<div class="jl-lines{held}">{lines}</div></div>'
 
 
 def _climb(state: LabState, tr: Translator) -> tuple[str, str] | None:

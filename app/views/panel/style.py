@@ -25,8 +25,8 @@ BASE_CSS = """
 .jl-desc { display: -webkit-box; -webkit-line-clamp: 2; -webkit-box-orient: vertical; overflow: hidden;
   line-height: 1.2; margin-bottom: 2px; cursor: pointer; }
 .jl-desc-all:checked + .jl-desc { -webkit-line-clamp: unset; }
-.jl-lines { min-height: 29px; }
-.jl-lines.jl-held { min-height: 78px; display: flow-root; }  /* flow-root: the first line's -4 px margin stays inside */
+.jl-lines { min-height: 29px; display: flow-root; }  /* flow-root: its lines' margins stay inside, so its
+  top does not move as they come and go; while a motion is on screen ("jl-held") the page script holds its height */
 /* The first hint: one line over the 3-D view's lower edge (out of the panel's flow: no slider moves). */
 .jl-hint { position: fixed; left: 72px; bottom: 14px; max-width: min(640px, calc(100vw - 500px)); z-index: 20;
   color: #1f3a93; background: #eef2ff; font-size: 15px; border: 1px solid #8ea2e6; border-radius: 8px;
@@ -125,6 +125,21 @@ PAGE_JS = """
   // The split of the right-hand column is app.views.panel.layout's.
   if (window.__jacobianLabKeys) return;
   window.__jacobianLabKeys = true;
+  // While a motion plays (and once it stopped) the status's lines are in the readout over the 3-D view
+  // and the block under the banner is empty: it keeps the height it had before ("jl-held"), so the
+  // sliders and the Play button do not move under the pointer. Set before the page is painted.
+  // Each status drawn is a new element: each is looked at once, when it comes.
+  let free = null;
+  const looked = new WeakSet();
+  const hold = () => {
+    for (const lines of document.querySelectorAll(".jl-lines")) {
+      if (looked.has(lines) || !lines.getClientRects().length) continue;  // seen, or not shown
+      looked.add(lines);
+      if (!lines.classList.contains("jl-held")) free = lines.getBoundingClientRect().height;
+      else if (free !== null) lines.style.minHeight = `${free}px`;
+    }
+  };
+  new MutationObserver(hold).observe(document.body, { childList: true, subtree: true });
   const CLOSE_WORDS = window.__jacobianLabCloseWords || ["Close"];
   const modalClose = () => {
     for (const content of document.querySelectorAll(".mantine-Modal-content")) {
