@@ -11,7 +11,7 @@ import robots
 from app.core.actions import SetJoint
 from app.core.commands import ChooseRobot
 from app.core.robot_menu import robot_label, robot_menu
-from app.views.panel.readouts import FIRST_HINT
+from app.views.panel.hint import FIRST_HINT
 from app.viser_adapter import message_class
 
 UPDATE = message_class("GuiUpdateMessage")

@@ -48,6 +48,7 @@ from .classroom import ClassroomPanel, classroom_words_js, token_js
 from .common import Dispatch, Tab, TabContext, TabView, bind, option_widget, show_option, sync_value
 from .derive import DerivePanel
 from .editor import EditorPanel, library_dh_robots
+from .hint import hint_html
 from .joints import JointsPanel, configurations_html
 from .layout import LAYOUT_CSS, LAYOUT_JS, PANEL_WIDTH
 from .live import live_html, shows_motion
@@ -58,7 +59,7 @@ from .motion import MotionPanel
 from .page import LOST_WORDS
 from .page import page_js as page_state_js
 from .question import HIDDEN_WORDS, HIDES_STATUS, QuestionPanel
-from .readouts import hint_html, source_html, status_html, status_lines
+from .readouts import source_html, status_html, status_lines
 from .style import BASE_CSS, PAGE_TITLE, page_js, status_css, steps_js
 from .typed import number_guard_js
 from .viewport import PHONE_CSS

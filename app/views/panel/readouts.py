@@ -13,7 +13,7 @@ from kinematics import Robot
 from kinematics.analysis import task_rows
 from kinematics.conventions import ROW_HTML
 
-from ...core.i18n import N_, Translator, translations
+from ...core.i18n import Translator, translations
 from ...core.motion_rules import redundancy_rows
 from ...core.refusals import say
 from ...core.robot_texts import configuration_description
@@ -26,6 +26,7 @@ from .live import shows_motion
 
 __all__ = [
     "status_html",
+    "status_lines",
     "measures_html",
     "source_html",
     "ROW_NAMES",
@@ -283,18 +284,6 @@ def _description(html: str) -> str:
         '<input type="checkbox" id="jl-desc-all" class="jl-desc-all" hidden>'
         f'<label for="jl-desc-all" class="jl-sub jl-desc" title="{fmt.escape(_plain(html))}">{html}</label>'
     )
-
-
-FIRST_HINT = N_(
-    "<b>First:</b> drag a joint slider and watch J(q) change; then pick a singularity under Configuration."
-)
-"""What a new tab says to do first, in the 3-D view's lower corner, until its first change."""
-
-
-def hint_html(state: LabState, tr: Translator | None = None) -> str:
-    """The first hint ("" once the tab has changed anything: gone for good)."""
-    hint = (tr or translations()).gettext(FIRST_HINT)
-    return "" if state.started else f'<div class="jl jl-hint">{hint}</div>'
 
 
 def measures_html(snap: Snapshot, robot: Robot, tr: Translator | None = None) -> str:
