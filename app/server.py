@@ -41,8 +41,10 @@ from .viser_adapter import (
     install_input_checks,
     install_loop_safe_events,
     install_message_limits,
+    install_shared_frames,
     listen_on,
     quiet_banner,
+    share_owner,
     trusted_proxies,
     welcome_tabs,
 )
@@ -131,6 +133,7 @@ class Lab:
         install_fast_prop_casts()
         install_loop_safe_events()  # the renderer thread's sends never touch the event loop's waiters
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
+        install_shared_frames()  # a scene frame replayed to a room is serialised once, not once per tab
         self.symbolic = symbolic if symbolic is not None else SymbolicService()
         self.symbolic.on_restart(self._symbolic_restarted)
         self.host = host
@@ -179,6 +182,7 @@ class Lab:
         return f"http://{host}:{self.port}"
 
     def _connect(self, client: viser.ClientHandle) -> None:
+        share_owner(client)  # every tab's scene one owner: a frame drawn for one tab is valid for all
         try:
             session = ClientSession(
                 client,

@@ -36,6 +36,9 @@ Wrapped:
   that connects before :func:`welcome_tabs` (the worker's Lab not built yet) is told to try again.
 * :func:`capture_scene` and :func:`replay_scene` — a client's scene messages (its connection's
   ``queue_message`` and the messages' ``owner``), for a presenter's followers.
+* :func:`share_owner` and :func:`install_shared_frames` — every tab's scene messages stamped with one
+  ``owner`` (``SceneApi._owner_id``), and viser's ``_message_producer`` replaced by one that packs a
+  :class:`SharedFrame` (a presenter's scene frame replayed to a room) once for every socket (:mod:`.frames`).
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
   type aliases built once.
 * :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``
@@ -52,9 +55,9 @@ Wrapped:
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
 
-A package of ten modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.uploads`, :mod:`.handshake`,
-:mod:`.props`, :mod:`.mirror`, :mod:`.icons`, :mod:`.events`, :mod:`.inline`), so each stays short;
- nothing outside this package touches viser's private API.
+A package of eleven modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.uploads`,
+:mod:`.handshake`, :mod:`.props`, :mod:`.mirror`, :mod:`.frames`, :mod:`.icons`, :mod:`.events`,
+:mod:`.inline`), so each stays short; nothing outside this package touches viser's private API.
 """
 
 from .core import (
@@ -75,6 +78,7 @@ from .core import (
     trusted_proxies,
 )
 from .events import LoopSafeEvent, install_loop_safe_events
+from .frames import SHARED_OWNER, SharedFrame, install_shared_frames, share_owner, uninstall_shared_frames
 from .gate import check_gui_value, check_message, install_input_checks, room_limits, uninstall_input_checks
 from .handshake import allow_origins, handshake_refusal
 from .icons import install_icon_cache
@@ -123,6 +127,11 @@ __all__ = [
     "LoopSafeEvent",
     "capture_scene",
     "replay_scene",
+    "SHARED_OWNER",
+    "SharedFrame",
+    "share_owner",
+    "install_shared_frames",
+    "uninstall_shared_frames",
     "update_props",
     "on_event_loop",
     "set_pose",

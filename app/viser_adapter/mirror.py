@@ -1,9 +1,11 @@
 """viser's private API, part 4: the scene messages of one tab, replayed to others (see the package).
 
-A presenter's redraw changes its scene nodes with messages addressed to its own client (each carries
-an ``owner``: the client id). :func:`capture_scene` collects them while the presenter draws;
-:func:`replay_scene` sends copies, re-addressed, to a follower whose scene has the same nodes, so a
-room of followers costs one scene computation, not one per follower.
+A presenter's redraw changes its scene nodes with messages addressed to its own scene (each carries
+an ``owner``: :data:`~.frames.SHARED_OWNER` for every tab given :func:`~.frames.share_owner`, else the
+client id). :func:`capture_scene` collects them while the presenter draws, as one
+:class:`~.frames.SharedFrame`; :func:`replay_scene` queues the very same messages for a follower whose
+scene has the same nodes (copies, re-addressed, for a tab with an owner of its own), so a room of
+followers costs one scene computation and one serialisation, not one per follower.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from typing import Any
 import viser
 
 from .core import ViserApiChanged, _private
+from .frames import SharedFrame
 
 __all__ = ["capture_scene", "replay_scene"]
 
@@ -31,7 +34,7 @@ def _connection(client: viser.ClientHandle, function: str) -> Any:
 def capture_scene(client: viser.ClientHandle) -> Iterator[list[Any]]:
     """Collect (and still send) the scene messages queued for ``client`` inside the block."""
     conn = _connection(client, "capture_scene")
-    owner = str(client.client_id)
+    owner = _owner(client)
     captured: list[Any] = []
     original = conn.queue_message
 
@@ -46,13 +49,23 @@ def capture_scene(client: viser.ClientHandle) -> Iterator[list[Any]]:
     finally:
         with contextlib.suppress(AttributeError):
             del conn.queue_message
+    if captured:
+        SharedFrame(captured)  # tags the messages: serialised once for every socket that sends them
 
 
 def replay_scene(client: viser.ClientHandle, messages: Sequence[Any]) -> None:
     """Send copies of ``messages`` (captured for another client) to ``client``'s scene."""
     conn = _connection(client, "replay_scene")
-    owner = str(client.client_id)
+    owner = _owner(client)
     for message in messages:
-        clone = copy.copy(message)
-        clone.owner = owner
-        conn.queue_message(clone)
+        if getattr(message, "owner", owner) != owner:  # drawn for a tab with another owner: re-addressed
+            message = copy.copy(message)
+            message.owner = owner
+        conn.queue_message(message)
+
+
+def _owner(client: viser.ClientHandle) -> str:
+    owner = _private("replay_scene", "SceneApi._owner_id", lambda: client.scene._owner_id)
+    if not isinstance(owner, str):
+        raise ViserApiChanged("replay_scene", "SceneApi._owner_id is not a string")
+    return owner

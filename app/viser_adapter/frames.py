@@ -1,0 +1,172 @@
+"""viser's private API, part 11: a room's scene frame serialised once for every socket that sends it.
+
+viser serialises every message once per client: each connection's producer task
+(``viser.infra._infra._message_producer``) turns the messages of a window into dicts
+(``Message.as_serializable_dict``, in Python), packs them with msgpack and compresses them. A presenter's
+scene frame replayed to 300 followers was therefore turned into dicts 300 times.
+
+Here the frame's messages are the *same objects* in every follower's buffer (:func:`share_owner` gives
+every tab's scene one owner, so a message drawn for one tab is valid for all), tagged with their
+:class:`SharedFrame`. :func:`install_shared_frames` replaces viser's producer (looked up by viser's
+connection handler at call time) with one that serialises a frame's messages once per process — each
+message packed once, its arrays once — and, for every socket, only places the packed bytes in that
+socket's window: the wire format is viser's (zstd-compressed msgpack of ``messages``, ``timestampSec``,
+``binaryBufferLengths``, then the arrays, 8-byte aligned), with the socket's own timestamp (the client
+paces batches by it). A window is still what viser's buffer holds for that socket: a socket that fell
+behind got its older frame's messages replaced, node by node, by the newer ones (viser's redundancy
+keys), so a frame that is no longer whole in a window is serialised as viser would, for that socket
+only; the others are not held back.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Sequence
+from typing import Any
+
+import msgspec
+import viser
+import zstandard
+
+from .core import ViserApiChanged, _private
+
+__all__ = ["SHARED_OWNER", "SharedFrame", "share_owner", "install_shared_frames", "frame_of"]
+
+SHARED_OWNER = "tab"
+"""The owner stamped on every tab's scene messages (viser's client only tells "" — the broadcast scope —
+from any other string)."""
+
+_TAG = "_jl_frame"
+_original: dict[str, Any] = {}
+
+
+class SharedFrame:
+    """The scene messages of one drawing, sent to many tabs: each message packed once (lazily)."""
+
+    packed_count = 0
+    """How many frames have been packed in this process (for tests: once per frame, whatever the room)."""
+
+    def __init__(self, messages: Sequence[Any]) -> None:
+        self.messages = tuple(messages)
+        self._packed: tuple[tuple[msgspec.Raw, ...], list[memoryview]] | None = None
+        for i, message in enumerate(self.messages):
+            setattr(message, _TAG, (self, i))
+
+    def packed(self) -> tuple[tuple[msgspec.Raw, ...], list[memoryview]]:
+        """Each message as msgpack (arrays as placeholders numbered from 0) and the arrays' bytes."""
+        if self._packed is None:  # only the event loop's thread packs: no lock needed
+            buffers: list[memoryview] = []
+            raws = tuple(msgspec.Raw(_ENCODE(m.as_serializable_dict(buffers))) for m in self.messages)
+            self._packed = (raws, buffers)
+            SharedFrame.packed_count += 1
+        return self._packed
+
+    def __len__(self) -> int:
+        return len(self.messages)
+
+
+_ENCODE = msgspec.msgpack.Encoder().encode
+
+
+def frame_of(messages: Sequence[Any]) -> SharedFrame:
+    """The frame ``messages`` were tagged with by a previous call, or a new one tagging them."""
+    first = getattr(messages[0], _TAG, None) if messages else None
+    if first is not None and first[1] == 0 and len(first[0]) == len(messages):
+        if all(getattr(m, _TAG, None) == (first[0], i) for i, m in enumerate(messages)):
+            return first[0]
+    return SharedFrame(messages)
+
+
+def share_owner(client: viser.ClientHandle) -> None:
+    """Stamp ``client``'s scene messages with :data:`SHARED_OWNER` (call before it has any node)."""
+    scene = client.scene
+    if not isinstance(_private("share_owner", "SceneApi._owner_id", lambda: scene._owner_id), str):
+        raise ViserApiChanged("share_owner", "SceneApi._owner_id is not a string")
+    scene._owner_id = SHARED_OWNER
+
+
+def _whole_frame(window: Sequence[Any]) -> tuple[int, SharedFrame] | None:
+    """(start, frame) of the first frame whose messages all lie in ``window`` in order, else None."""
+    for start, message in enumerate(window):
+        tag = getattr(message, _TAG, None)
+        if tag is None or tag[1] != 0:
+            continue
+        frame = tag[0]
+        run = window[start : start + len(frame)]
+        if len(run) == len(frame) and all(a is b for a, b in zip(run, frame.messages, strict=True)):
+            return start, frame
+    return None
+
+
+def _wire(infra: Any, zstd: Any, window: Sequence[Any]) -> bytes:
+    """viser's wire bytes of ``window``: a whole shared frame in it placed as packed once."""
+    found = _whole_frame(window)
+    binary: list[memoryview] = []
+    if found is None:
+        serialized: Sequence[Any] = tuple(m.as_serializable_dict(binary) for m in window)
+    else:
+        start, frame = found
+        raws, frame_buffers = frame.packed()
+        binary.extend(frame_buffers)  # the frame's placeholders count from 0: its arrays come first
+        before = [m.as_serializable_dict(binary) for m in window[:start]]
+        after = [m.as_serializable_dict(binary) for m in window[start + len(frame) :]]
+        serialized = tuple(itertools.chain(before, raws, after))
+    inner = _ENCODE(
+        {
+            "messages": serialized,
+            "timestampSec": time.perf_counter(),
+            "binaryBufferLengths": tuple(b.nbytes for b in binary),
+        }
+    )
+    compressed = zstd.compress(inner)
+    parts: list[bytes | memoryview] = [
+        len(inner).to_bytes(8, "little"),
+        len(compressed).to_bytes(8, "little"),
+        compressed,
+    ]
+    infra._append_aligned_buffers(parts, binary, 16 + len(compressed))
+    return b"".join(parts)
+
+
+async def _producer(websocket: Any, buffer: Any, client_id: int, backlog_done_message: Any = None) -> None:
+    """viser's ``_message_producer`` (same windows, same wire format), shared frames packed once."""
+    infra = _infra_module()
+    window_generator = buffer.window_generator(client_id, backlog_done_message=backlog_done_message)
+    zstd = zstandard.ZstdCompressor(level=1)
+    try:
+        while not buffer.done:
+            try:
+                outgoing = await window_generator.__anext__()
+            except StopAsyncIteration:
+                break
+            await websocket.send(_wire(infra, zstd, outgoing))
+    finally:
+        await window_generator.aclose()
+
+
+def install_shared_frames() -> None:
+    """Replace viser's message producer with :func:`_producer` (idempotent).
+
+    Raises:
+        ViserApiChanged: the producer, its window generator or the buffer alignment helper moved.
+    """
+    infra = _private("install_shared_frames", "viser.infra._infra", _infra_module)
+    producer = getattr(infra, "_message_producer", None)
+    if not callable(producer) or not callable(getattr(infra, "_append_aligned_buffers", None)):
+        raise ViserApiChanged("install_shared_frames", "viser.infra._infra._message_producer moved")
+    if "_message_producer" not in _original:
+        _original["_message_producer"] = producer
+        infra._message_producer = _producer
+
+
+def uninstall_shared_frames() -> None:
+    """Give viser back its own producer (for tests)."""
+    if "_message_producer" in _original:
+        _infra_module()._message_producer = _original.pop("_message_producer")
+
+
+def _infra_module() -> Any:
+    from viser.infra import _infra
+
+    return _infra
