@@ -7,6 +7,7 @@ a path. Robot files are read by :mod:`robots.files`; URDF and xacro files by :mo
 from __future__ import annotations
 
 import functools
+import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -28,12 +29,23 @@ def names() -> list[str]:
     """Names of the robots in the library (the stems of ``robots/data/*.toml``), sorted.
 
     The folder is listed again only when its modification time changed (a file added, removed or
-    renamed): every redraw of every tab asks for the robot menu's entries."""
-    try:
-        stamp = DATA_DIR.stat().st_mtime_ns
-    except OSError:
-        stamp = -1
+    renamed), and its time is read at most every :data:`NAMES_CHECK_EVERY` seconds: every redraw of
+    every tab asks for the robot menu's entries (a room of 300 followers, 300 system calls a move)."""
+    global _checked
+    now = time.monotonic()
+    checked_at, stamp = _checked
+    if now - checked_at >= NAMES_CHECK_EVERY:
+        try:
+            stamp = DATA_DIR.stat().st_mtime_ns
+        except OSError:
+            stamp = -1
+        _checked = (now, stamp)
     return list(_names(DATA_DIR, stamp))
+
+
+NAMES_CHECK_EVERY = 1.0
+"""[s] How stale the library's list of names may be."""
+_checked: tuple[float, int] = (-NAMES_CHECK_EVERY, -1)
 
 
 @functools.lru_cache(maxsize=1)

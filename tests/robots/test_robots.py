@@ -63,12 +63,20 @@ def test_names_lists_the_library():
 
 
 def test_names_follow_files_added_and_removed(tmp_path, monkeypatch):
-    """The listing is kept between calls, and listed again when the folder changes."""
+    """The listing is kept between calls, and listed again when the folder changes (its time read at
+    most every NAMES_CHECK_EVERY seconds: here a fake clock passes that much between calls)."""
     import os
 
     from robots import library
 
+    clock = [1000.0]
+
+    def monotonic() -> float:
+        clock[0] += library.NAMES_CHECK_EVERY
+        return clock[0]
+
     monkeypatch.setattr(library, "DATA_DIR", tmp_path)
+    monkeypatch.setattr(library.time, "monotonic", monotonic)
     (tmp_path / "b.toml").write_text("")
     (tmp_path / "notes.txt").write_text("")
     os.utime(tmp_path, ns=(1_000_000_000, 1_000_000_000))
@@ -82,6 +90,38 @@ def test_names_follow_files_added_and_removed(tmp_path, monkeypatch):
     (tmp_path / "b.toml").unlink()
     os.utime(tmp_path, ns=(3_000_000_000, 3_000_000_000))
     assert robots.names() == ["a"]
+
+
+def test_names_read_the_folder_time_at_most_once_a_second(tmp_path, monkeypatch):
+    """A room's redraws ask for the names hundreds of times a second: one system call per second."""
+    import os
+
+    from robots import library
+
+    clock = [5000.0]
+    stats = []
+    real_stat = Path.stat
+
+    def stat(self, *args, **kwargs):
+        if self == tmp_path:
+            stats.append(clock[0])
+        return real_stat(self, *args, **kwargs)
+
+    monkeypatch.setattr(library, "DATA_DIR", tmp_path)
+    monkeypatch.setattr(library.time, "monotonic", lambda: clock[0])
+    monkeypatch.setattr(Path, "stat", stat)
+    (tmp_path / "b.toml").write_text("")
+    os.utime(tmp_path, ns=(1_000_000_000, 1_000_000_000))
+    assert robots.names() == ["b"] and stats
+    read = len(stats)
+    (tmp_path / "a.toml").write_text("")
+    os.utime(tmp_path, ns=(2_000_000_000, 2_000_000_000))
+    for _ in range(100):
+        clock[0] += 0.005
+        assert robots.names() == ["b"]  # within the second: the list as it was, the folder not read
+    assert len(stats) == read
+    clock[0] += library.NAMES_CHECK_EVERY
+    assert robots.names() == ["a", "b"] and len(stats) > read
 
 
 @pytest.mark.parametrize("name", NAMES)
