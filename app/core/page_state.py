@@ -10,6 +10,7 @@ the robot's joint count, finite, clamped to its slider ranges, and a tab of the 
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import re
@@ -144,8 +145,14 @@ def checked_q(robot: Robot, q: tuple[float, ...]) -> tuple[float, ...]:
 
 def page_address(robot_name: str, q: tuple[float, ...] | list[float], lang: str = "") -> str:
     """The address fragment of a robot, q (6 decimals: µrad and µm) and the tab's chosen language
-    (left out when "": the browser's), e.g. ``robot=trr&q=5,1.047198,…&lang=pt``."""
-    values = ",".join(_short(float(x)) for x in q)
+    (left out when "": the browser's), e.g. ``robot=trr&q=5,1.047198,…&lang=pt``. Kept for the last
+    addresses asked for: a room's followers ask for the presenter's, each after each move."""
+    return _page_address(robot_name, tuple(float(x) for x in q), lang)
+
+
+@functools.lru_cache(maxsize=64)
+def _page_address(robot_name: str, q: tuple[float, ...], lang: str) -> str:
+    values = ",".join(_short(x) for x in q)
     chosen = f"&lang={quote(lang, safe='')}" if lang else ""
     return f"robot={quote(robot_name, safe='')}&q={values}{chosen}"
 

@@ -66,8 +66,34 @@ def install_fast_prop_casts() -> None:
 
     base._jl_original_cast = base._cast_value_recursive
     base._cast_value_recursive = cast
+    _install_unchanged_skip(base)
     _install_fast_pose_setter()
     _FAST_CAST_INSTALLED = True
+
+
+_PLAIN = (str, bool, int, float)
+
+
+def _install_unchanged_skip(base: Any) -> None:
+    """``AssignablePropsBase.__setattr__`` returning at once when a plain prop (a string, bool or number,
+    not a property such as an input's ``value``) is given the value it holds, of the same type: viser
+    skips it too, after casting it. A follower's panel draw assigns ~15 props a move, ~10 unchanged."""
+    original = base.__setattr__
+
+    def setattr_unless_unchanged(self: Any, name: str, value: Any) -> None:
+        if type(value) in _PLAIN and name in self._prop_hints:
+            impl = self.__dict__.get("_impl")
+            if (
+                impl is not None
+                and not impl.removed
+                and not isinstance(getattr(type(self), name, None), property)
+            ):
+                current = getattr(impl.props, name, None)
+                if type(current) is type(value) and current == value:
+                    return
+        original(self, name, value)
+
+    base.__setattr__ = setattr_unless_unchanged
 
 
 def _install_fast_pose_setter() -> None:

@@ -379,3 +379,35 @@ def test_a_shared_widget_still_relays_a_tabs_value_to_the_other_tabs(checked):
         )
         assert msg["updates"] == {"value": 0.75}
         poll(lambda: slider.value == 0.75)
+
+
+def test_an_unchanged_plain_prop_queues_nothing_and_a_changed_one_is_sent(connected):
+    """install_fast_prop_casts returns early for a string, bool or number a handle already holds (viser
+    skips it too, after casting); a changed one, a property such as an input's value, and a removed
+    handle behave as viser's own assignment."""
+    _, client, ws = connected
+    va.install_fast_prop_casts()
+    html = client.gui.add_html("<b>one</b>")
+    slider = client.gui.add_slider("s", min=0.0, max=1.0, step=0.01, initial_value=0.5)
+    queued: list = []
+    conn = client.gui._websock_interface
+    original = conn.queue_message
+    conn.queue_message = lambda m: (queued.append(m), original(m))[1]
+    try:
+        html.content = "<b>one</b>"
+        html.visible = True
+        slider.max = 1.0
+        assert queued == []
+        html.content = "<b>two</b>"
+        slider.max = 2  # an int for a float prop: cast and sent, as viser does
+        slider.value = 0.5  # a property: viser's own setter decides
+        updates = [m.updates for m in queued]
+        assert {"content": "<b>two</b>"} in updates and {"max": 2.0} in updates
+        assert html.content == "<b>two</b>" and slider.max == 2.0
+        _, sent = ws.wait_for(lambda m: m["type"] == "GuiUpdateMessage" and "content" in m["updates"])
+        assert sent["updates"]["content"] == "<b>two</b>"
+    finally:
+        del conn.queue_message
+    html.remove()
+    with pytest.raises(RuntimeError, match="removed"):
+        html.content = "<b>two</b>"  # the value it held, but removed: refused as viser refuses it
