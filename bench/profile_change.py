@@ -9,6 +9,10 @@ then the functions of the renderer's visit that cost most (:mod:`cProfile`, enab
 ``ClientSession.visit``: profiling slows it, so read the shares). Linux only. E.g.::
 
     PYTHONPATH=. python bench/profile_change.py --changes 200 --top 40
+    PYTHONPATH=. python bench/profile_change.py --followers 60 --changes 100   # a presenter and a room
+
+With ``--followers N`` the lab is in classroom mode: the first tab types the presenter token, the N
+others follow it, and the presenter's slider moves (the figures are then per presenter move).
 """
 
 from __future__ import annotations
@@ -44,14 +48,18 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robot", default="panda")
     parser.add_argument("--tabs", type=int, default=1, help="tabs connected (only the last one moves)")
+    parser.add_argument("--followers", type=int, default=0, help="classroom: a presenter and N followers")
     parser.add_argument("--changes", type=int, default=200)
     parser.add_argument("--top", type=int, default=30, help="functions of the visit printed (0: none)")
     parser.add_argument(
         "--loop", action="store_true", help="profile viser's event loop (serializing, sending) instead"
     )
     parser.add_argument("--tottime", action="store_true", help="order the visit's functions by own time")
+    parser.add_argument(
+        "--cpu", action="store_true", help="profile with the thread's CPU clock (waits for the GIL left out)"
+    )
     args = parser.parse_args()
-    profile = cProfile.Profile()
+    profile = cProfile.Profile(time.thread_time) if args.cpu else cProfile.Profile()
     visit = ClientSession.visit
 
     def profiled(self: ClientSession) -> bool:
@@ -63,16 +71,26 @@ def main() -> int:
 
     if args.top and not args.loop:  # else the per-thread figures are the app's own, unprofiled
         ClientSession.visit = profiled  # type: ignore[method-assign]
-    lab = Lab(robot=args.robot, port=0)
+    token = "profile-token" if args.followers else None
+    lab = Lab(robot=args.robot, port=0, presenter_token=token)
     if args.top and args.loop:  # the loop's thread profiles itself from now on (its waits included)
         lab.server._websock_server._background_event_loop.call_soon_threadsafe(profile.enable)
-    clients = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(args.tabs)]
+    tabs = args.followers + 1 if args.followers else args.tabs
+    clients = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(tabs)]
     try:
         for client in clients:
             client.start()
         time.sleep(1.0)
         session = lab.session()
         session.settle()
+        if args.followers:  # the first tab types the token and presents, the others follow it
+            session = lab.sessions[min(lab.sessions)]
+            clients.append(clients.pop(0))  # clients[-1] is the one that moves
+            clients[-1].set_value(session.panel.classroom.token._impl.uuid, token)  # type: ignore[union-attr]
+            time.sleep(1.0)
+            session.settle()
+            following = sum(each.following.following for each in lab.sessions.values())
+            print(f"{following} of {args.followers} tabs follow the presenter")
         for each in lab.sessions.values():  # as a browser's page script: the page loaded, on its first tab
             each.panel.report.value = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
         session.settle()
