@@ -243,3 +243,24 @@ def type_into(page, handle, text: str) -> None:
     poll(field.is_visible, what=f"the field {handle.label!r} shown")
     field.fill(text)
     poll(lambda: str(handle.value) == text, what=f"the server holding {text!r} in {handle.label!r}")
+
+
+@contextlib.contextmanager
+def served_browser(tmp_path, argv: list[str]) -> Iterator[tuple[str, Any]]:
+    """The app started as a user starts it (``jacobian-lab`` with ``argv``, e.g. ``serve --presenter``:
+    :class:`server_process.Server`), the presenter link it printed, and a headless Chromium; both closed
+    after the block. Yields ``(link, browser)``."""
+    from server_process import Server, printed_presenter_link
+
+    sync_playwright = require_browser()
+    server = Server(tmp_path, argv=argv)
+    try:
+        link = printed_presenter_link(server)
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            try:
+                yield link, browser
+            finally:
+                browser.close()
+    finally:
+        server.cleanup()

@@ -11,9 +11,8 @@ import os
 from pathlib import Path
 
 import pytest
-from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
+from browser_helpers import new_page, served_browser
 from fakes import poll
-from server_process import Server, printed_presenter_link
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -26,44 +25,30 @@ FIRST_TABLE = """() => {
 def test_followers_show_the_presenters_readouts_after_a_move(tmp_path):
     out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out.mkdir(parents=True, exist_ok=True)
-    sync_playwright = require_browser()
-    server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
-    try:
-        link = printed_presenter_link(server)
+    with served_browser(tmp_path, ["serve", "--presenter", "--port", "0"]) as (link, browser):
         base = link.split("?", 1)[0]
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                presenter = new_page(browser)
-                presenter.goto(link)
-                title = presenter.get_by_text("Classroom · presenting", exact=False)
-                poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
-                followers = []
-                for _ in range(3):
-                    page = new_page(browser)
-                    page.goto(base)
-                    page.wait_for_selector("[role=slider]", state="attached")
-                    followers.append(page)
-                before = presenter.evaluate(FIRST_TABLE)
-                assert before
-                poll(
-                    lambda: all(f.evaluate(FIRST_TABLE) == before for f in followers), what="followers agree"
-                )
-                thumb = presenter.locator("[role=slider]").first
-                thumb.focus()
-                for _ in range(8):
-                    thumb.press("ArrowRight")
-                poll(lambda: presenter.evaluate(FIRST_TABLE) != before, what="the presenter's J moved")
-                poll(
-                    lambda: all(
-                        f.evaluate(FIRST_TABLE) == presenter.evaluate(FIRST_TABLE) for f in followers
-                    ),
-                    what="every follower shows the presenter's J",
-                )
-                presenter.screenshot(path=str(out / "hall_presenter.png"))
-                followers[0].screenshot(path=str(out / "hall_follower.png"))
-                followers[2].screenshot(path=str(out / "hall_follower_2.png"))
-            finally:
-                browser.close()
-    finally:
-        server.cleanup()
+        presenter = new_page(browser)
+        presenter.goto(link)
+        title = presenter.get_by_text("Classroom · presenting", exact=False)
+        poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
+        followers = []
+        for _ in range(3):
+            page = new_page(browser)
+            page.goto(base)
+            page.wait_for_selector("[role=slider]", state="attached")
+            followers.append(page)
+        before = presenter.evaluate(FIRST_TABLE)
+        assert before
+        poll(lambda: all(f.evaluate(FIRST_TABLE) == before for f in followers), what="followers agree")
+        thumb = presenter.locator("[role=slider]").first
+        thumb.focus()
+        for _ in range(8):
+            thumb.press("ArrowRight")
+        poll(lambda: presenter.evaluate(FIRST_TABLE) != before, what="the presenter's J moved")
+        poll(
+            lambda: all(f.evaluate(FIRST_TABLE) == presenter.evaluate(FIRST_TABLE) for f in followers),
+            what="every follower shows the presenter's J",
+        )
+        presenter.screenshot(path=str(out / "hall_presenter.png"))
+        followers[0].screenshot(path=str(out / "hall_follower.png"))
+        followers[2].screenshot(path=str(out / "hall_follower_2.png"))

@@ -10,9 +10,13 @@ from __future__ import annotations
 import re
 
 import pytest
-from browser_helpers import ARGS, CHROMIUM, close_notifications, new_page, require_browser, screenshot_dir
+from browser_helpers import (
+    close_notifications,
+    new_page,
+    screenshot_dir,
+    served_browser,
+)
 from fakes import poll
-from server_process import Server, printed_presenter_link
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -29,77 +33,60 @@ def _rates(text: str) -> list[str]:
 
 def test_a_follower_on_a_phone_shows_the_presenters_wrist_blow_up_with_its_rates(tmp_path):
     out = screenshot_dir(tmp_path)
-    sync_playwright = require_browser()
-    server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
-    try:
-        link = printed_presenter_link(server)
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                presenter = new_page(browser)
-                presenter.goto(link)
-                title = presenter.get_by_text("Classroom · presenting", exact=False)
-                poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
-                close_notifications(presenter)
-                phone = new_page(browser, {"width": 390, "height": 844}, scale=2, touch=True)
-                phone.goto(link.split("?", 1)[0])
-                phone.wait_for_selector("[role=slider]", state="attached")
-                close_notifications(phone)
-                following = phone.get_by_text("following", exact=False)
-                poll(lambda: following.count() > 0, what="the phone follows")
-                presenter.locator('[role=tab][title="Motion"]').first.click()
-                presenter.get_by_role("button", name="Play", exact=True).click()
-                # At the climax the motion is slowed down; the phone shows the overlay with the six rates.
-                seen: dict[str, dict] = {}
+    with served_browser(tmp_path, ["serve", "--presenter", "--port", "0"]) as (link, browser):
+        presenter = new_page(browser)
+        presenter.goto(link)
+        title = presenter.get_by_text("Classroom · presenting", exact=False)
+        poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
+        close_notifications(presenter)
+        phone = new_page(browser, {"width": 390, "height": 844}, scale=2, touch=True)
+        phone.goto(link.split("?", 1)[0])
+        phone.wait_for_selector("[role=slider]", state="attached")
+        close_notifications(phone)
+        following = phone.get_by_text("following", exact=False)
+        poll(lambda: following.count() > 0, what="the phone follows")
+        presenter.locator('[role=tab][title="Motion"]').first.click()
+        presenter.get_by_role("button", name="Play", exact=True).click()
+        # At the climax the motion is slowed down; the phone shows the overlay with the six rates.
+        seen: dict[str, dict] = {}
 
-                def climax() -> bool:
-                    ours = presenter.evaluate(LIVE)
-                    live = phone.evaluate(LIVE)
-                    seen["last"] = {"presenter": ours, "phone": live}
-                    if ours is None or "slowed ×" not in ours["text"]:
-                        return False
-                    if live is not None and len(_rates(live["text"])) == 6:
-                        seen["phone"] = live
-                        phone.screenshot(path=str(out / "phone_follower_climax.png"))
-                        presenter.screenshot(path=str(out / "phone_follower_presenter_climax.png"))
-                        return True
-                    return False
+        def climax() -> bool:
+            ours = presenter.evaluate(LIVE)
+            live = phone.evaluate(LIVE)
+            seen["last"] = {"presenter": ours, "phone": live}
+            if ours is None or "slowed ×" not in ours["text"]:
+                return False
+            if live is not None and len(_rates(live["text"])) == 6:
+                seen["phone"] = live
+                phone.screenshot(path=str(out / "phone_follower_climax.png"))
+                presenter.screenshot(path=str(out / "phone_follower_presenter_climax.png"))
+                return True
+            return False
 
-                try:
-                    poll(
-                        climax, timeout=240, what="the phone shows the rates while the presenter's is slowed"
-                    )
-                except AssertionError as exc:
-                    raise AssertionError(f"{exc}: last seen {seen.get('last')}") from None
-                live = seen["phone"]
-                # Beside the arm: in the phone's 3-D view (the upper half), whole on the screen.
-                assert (
-                    0 <= live["x"]
-                    and live["right"] <= 390
-                    and 0 <= live["y"]
-                    and live["bottom"] <= 844 / 2 + 1
-                )
-                assert "κ" in live["text"] and "σ" in live["text"]
-                # Once it stops, the phone shows the presenter's very readout and status.
-                poll(
-                    lambda: "stopped" in ((presenter.evaluate(LIVE) or {}).get("text") or ""),
-                    timeout=240,
-                    what="the presenter's motion stopped (its readout says so)",
-                )
-                poll(
-                    lambda: (
-                        (p := presenter.evaluate(LIVE)) is not None
-                        and (f := phone.evaluate(LIVE)) is not None
-                        and f["text"] == p["text"]
-                    ),
-                    what="the phone's overlay reads as the presenter's",
-                )
-                final = presenter.evaluate(LIVE)["text"]
-                assert len(_rates(final)) == 6, final
-                poll(lambda: phone.evaluate(STATUS) == presenter.evaluate(STATUS), what="the same status")
-                phone.screenshot(path=str(out / "phone_follower_stopped.png"))
-                presenter.screenshot(path=str(out / "phone_follower_presenter_stopped.png"))
-            finally:
-                browser.close()
-    finally:
-        server.cleanup()
+        try:
+            poll(climax, timeout=240, what="the phone shows the rates while the presenter's is slowed")
+        except AssertionError as exc:
+            raise AssertionError(f"{exc}: last seen {seen.get('last')}") from None
+        live = seen["phone"]
+        # Beside the arm: in the phone's 3-D view (the upper half), whole on the screen.
+        assert 0 <= live["x"] and live["right"] <= 390 and 0 <= live["y"] and live["bottom"] <= 844 / 2 + 1
+        assert "κ" in live["text"] and "σ" in live["text"]
+        # Once it stops, the phone shows the presenter's very readout and status.
+        poll(
+            lambda: "stopped" in ((presenter.evaluate(LIVE) or {}).get("text") or ""),
+            timeout=240,
+            what="the presenter's motion stopped (its readout says so)",
+        )
+        poll(
+            lambda: (
+                (p := presenter.evaluate(LIVE)) is not None
+                and (f := phone.evaluate(LIVE)) is not None
+                and f["text"] == p["text"]
+            ),
+            what="the phone's overlay reads as the presenter's",
+        )
+        final = presenter.evaluate(LIVE)["text"]
+        assert len(_rates(final)) == 6, final
+        poll(lambda: phone.evaluate(STATUS) == presenter.evaluate(STATUS), what="the same status")
+        phone.screenshot(path=str(out / "phone_follower_stopped.png"))
+        presenter.screenshot(path=str(out / "phone_follower_presenter_stopped.png"))

@@ -13,9 +13,8 @@ import urllib.parse
 from pathlib import Path
 
 import pytest
-from browser_helpers import ARGS, CHROMIUM, new_page, require_browser
+from browser_helpers import new_page, served_browser
 from fakes import poll
-from server_process import Server, printed_presenter_link
 
 from app.core.i18n import translations
 from app.core.role import Role
@@ -38,28 +37,18 @@ pytestmark = [pytest.mark.browser, pytest.mark.slow]
 def test_the_printed_presenter_link_presents_and_leaves_no_token_in_the_address_bar(tmp_path, argv, lang):
     out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
     out.mkdir(parents=True, exist_ok=True)
-    sync_playwright = require_browser()
-    server = Server(tmp_path, argv=[*argv, "--port", "0"])
-    try:
-        link = printed_presenter_link(server)
+    with served_browser(tmp_path, [*argv, "--port", "0"]) as (link, browser):
         token = urllib.parse.parse_qs(urllib.parse.urlsplit(link).query)["presenter"][0]
         assert "#" not in link and len(token) == 22  # 128 random bits, in the query
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                page = new_page(browser)
-                entries = page.evaluate("history.length")  # about:blank
-                page.goto(link + (f"&lang={lang}" if lang else ""))
-                page.wait_for_selector("[role=slider]")  # connected: the panel is drawn
-                presenting = compact_title(Role(presenting=True), translations(lang or "en"))
-                title = page.get_by_text(presenting, exact=False)
-                poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
-                page.screenshot(path=str(out / f"presenter_link_{'-'.join(argv[1:])}{lang}.png"))
-                href = page.evaluate("location.href")
-                assert token not in href and "presenter" not in href and token not in page.url, href
-                # one entry for the link, rewritten in place: Back does not bring the token back
-                assert page.evaluate("history.length") == entries + 1
-            finally:
-                browser.close()
-    finally:
-        server.cleanup()
+        page = new_page(browser)
+        entries = page.evaluate("history.length")  # about:blank
+        page.goto(link + (f"&lang={lang}" if lang else ""))
+        page.wait_for_selector("[role=slider]")  # connected: the panel is drawn
+        presenting = compact_title(Role(presenting=True), translations(lang or "en"))
+        title = page.get_by_text(presenting, exact=False)
+        poll(lambda: title.count() > 0 and title.first.is_visible(), what="the tab presents")
+        page.screenshot(path=str(out / f"presenter_link_{'-'.join(argv[1:])}{lang}.png"))
+        href = page.evaluate("location.href")
+        assert token not in href and "presenter" not in href and token not in page.url, href
+        # one entry for the link, rewritten in place: Back does not bring the token back
+        assert page.evaluate("history.length") == entries + 1

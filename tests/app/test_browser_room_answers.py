@@ -5,21 +5,20 @@ watches the bars and reveals. Every kind of question goes round once. Screenshot
 
 from __future__ import annotations
 
+import contextlib
+
 import pytest
 from browser_helpers import (
-    ARGS,
-    CHROMIUM,
     app_page,
     close_notifications,
     new_page,
-    require_browser,
     screenshot_dir,
+    served_browser,
     text_input,
     type_into,
     wait,
     whole_in_view,
 )
-from server_process import Server, printed_presenter_link
 
 from app.core.actions import GoTo
 from app.core.i18n import translations
@@ -43,22 +42,32 @@ def _choose(page, kind: str) -> None:
     page.get_by_role("option", name=label, exact=True).click()
 
 
-def test_a_peer_instruction_round_on_laptops_and_a_phone(tmp_path):
-    out = screenshot_dir(tmp_path)
+@contextlib.contextmanager
+def _room(langs: tuple[str, str] = ("", "")):
+    """The teacher's tab presenting (1280×720), a laptop and a phone (390×844, touch) following in
+    ``langs`` ("" : the browser's): yields (lab, errors, (teacher_page, laptop_page, phone_page),
+    (teacher, laptop, phone)) — pages and their sessions."""
     lab = Lab(port=0, presenter_token=TOKEN)
     with app_page(lab, path=f"/?presenter={TOKEN}") as (teacher_page, teacher, errors):
         wait(lambda: teacher.role.presenting)
         browser = teacher_page.context.browser
         laptop_page = new_page(browser)
         phone_page = new_page(browser, PHONE, scale=2.0, touch=True)
-        for page in (laptop_page, phone_page):
+        for page, lang in ((laptop_page, langs[0]), (phone_page, langs[1])):
             page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
-            page.goto(lab.url)
+            page.goto(lab.url + (f"?lang={lang}" if lang else ""))
             page.wait_for_selector("[role=slider]")
             close_notifications(page)
         wait(lambda: len(lab.sessions) == 3)
         laptop, phone = (s for s in lab.sessions.values() if s is not teacher)
         wait(lambda: laptop.role.following and phone.role.following)
+        yield lab, errors, (teacher_page, laptop_page, phone_page), (teacher, laptop, phone)
+
+
+def test_a_peer_instruction_round_on_laptops_and_a_phone(tmp_path):
+    out = screenshot_dir(tmp_path)
+    with _room() as (lab, errors, pages, sessions):
+        (teacher_page, laptop_page, phone_page), (teacher, laptop, phone) = pages, sessions
         teacher.dispatch(GoTo("wrist_singular"))
         wait(lambda: laptop.state.configuration == "wrist_singular" == phone.state.configuration)
 
@@ -136,72 +145,50 @@ def test_a_round_on_the_default_serve_revealed_by_play_with_a_polish_phone(tmp_p
     on either), the printed link for the teacher, a laptop in English and a phone in Polish (``?lang=pl``).
     The teacher asks which joint's rate blows up before Play; the reveal plays the motion on every screen."""
     out = screenshot_dir(tmp_path)
-    sync_playwright = require_browser()
-    server = Server(tmp_path, argv=["serve", "--presenter", "--port", "0"])
-    try:
-        link = printed_presenter_link(server)
+    with served_browser(tmp_path, ["serve", "--presenter", "--port", "0"]) as (link, browser):
         base = link.split("?", 1)[0]
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                teacher = new_page(browser)
-                teacher.goto(link)
-                title = teacher.get_by_text("Classroom · presenting", exact=False)
-                wait(lambda: title.count() > 0 and title.first.is_visible())
-                laptop = new_page(browser)
-                laptop.goto(base)
-                phone = new_page(browser, PHONE, scale=2.0, touch=True)
-                phone.goto(base + "?lang=pl")
-                for page in (laptop, phone):
-                    page.wait_for_selector("[role=slider]", state="attached")
-                    close_notifications(page)
-                wait(lambda: "2 tabs follow" in _text(teacher))
-                teacher.get_by_text("Ask the room", exact=True).first.click()
-                _choose(teacher, "blowup")
-                teacher.get_by_role("button", name="Ask the room", exact=True).click()
-                q4 = laptop.get_by_role("button", name="q4", exact=True)
-                wait(lambda: q4.is_visible())
-                pl = translations("pl").gettext
-                wait(lambda: pl("Which joint's rate blows up first?") in _text(phone))
-                q2 = phone.get_by_role("button", name="q2", exact=True)
-                q2.scroll_into_view_if_needed()
-                q2.tap()
-                q4.click()
-                wait(lambda: "2 of 2 tabs answered" in _text(teacher))
-                teacher.screenshot(path=str(out / "room_blowup_teacher_bars.png"))
-                phone.screenshot(path=str(out / "room_blowup_phone_pl.png"))
-                before = laptop.locator("[role=slider]").nth(3).get_attribute("aria-valuenow")
-                teacher.get_by_role("button", name="Reveal the answer", exact=True).click()
-                wait(lambda: "Right!" in _text(laptop))
-                wait(lambda: pl("Not this time: the answer is {answer}.").split(":")[0] in _text(phone))
-                # Play runs: the followers' q4 slider moves with the presenter's motion.
-                wait(lambda: laptop.locator("[role=slider]").nth(3).get_attribute("aria-valuenow") != before)
-                laptop.screenshot(path=str(out / "room_blowup_laptop_playing.png"))
-                phone.screenshot(path=str(out / "room_blowup_phone_pl_revealed.png"))
-            finally:
-                browser.close()
-    finally:
-        server.cleanup()
+        teacher = new_page(browser)
+        teacher.goto(link)
+        title = teacher.get_by_text("Classroom · presenting", exact=False)
+        wait(lambda: title.count() > 0 and title.first.is_visible())
+        laptop = new_page(browser)
+        laptop.goto(base)
+        phone = new_page(browser, PHONE, scale=2.0, touch=True)
+        phone.goto(base + "?lang=pl")
+        for page in (laptop, phone):
+            page.wait_for_selector("[role=slider]", state="attached")
+            close_notifications(page)
+        wait(lambda: "2 tabs follow" in _text(teacher))
+        teacher.get_by_text("Ask the room", exact=True).first.click()
+        _choose(teacher, "blowup")
+        teacher.get_by_role("button", name="Ask the room", exact=True).click()
+        q4 = laptop.get_by_role("button", name="q4", exact=True)
+        wait(lambda: q4.is_visible())
+        pl = translations("pl").gettext
+        wait(lambda: pl("Which joint's rate blows up first?") in _text(phone))
+        q2 = phone.get_by_role("button", name="q2", exact=True)
+        q2.scroll_into_view_if_needed()
+        q2.tap()
+        q4.click()
+        wait(lambda: "2 of 2 tabs answered" in _text(teacher))
+        teacher.screenshot(path=str(out / "room_blowup_teacher_bars.png"))
+        phone.screenshot(path=str(out / "room_blowup_phone_pl.png"))
+        before = laptop.locator("[role=slider]").nth(3).get_attribute("aria-valuenow")
+        teacher.get_by_role("button", name="Reveal the answer", exact=True).click()
+        wait(lambda: "Right!" in _text(laptop))
+        wait(lambda: pl("Not this time: the answer is {answer}.").split(":")[0] in _text(phone))
+        # Play runs: the followers' q4 slider moves with the presenter's motion.
+        wait(lambda: laptop.locator("[role=slider]").nth(3).get_attribute("aria-valuenow") != before)
+        laptop.screenshot(path=str(out / "room_blowup_laptop_playing.png"))
+        phone.screenshot(path=str(out / "room_blowup_phone_pl_revealed.png"))
 
 
 def test_kappa_and_the_teachers_own_question_in_portuguese_and_spanish(tmp_path):
     """The two kinds the first test leaves out: κ typed on a Portuguese phone with a decimal comma, and the
     teacher's own question (typed in the presenter's box) answered on a Spanish laptop and the phone."""
     out = screenshot_dir(tmp_path)
-    lab = Lab(port=0, presenter_token=TOKEN)
-    with app_page(lab, path=f"/?presenter={TOKEN}") as (teacher_page, teacher, errors):
-        wait(lambda: teacher.role.presenting)
-        browser = teacher_page.context.browser
-        laptop_page = new_page(browser)
-        phone_page = new_page(browser, PHONE, scale=2.0, touch=True)
-        for page, lang in ((laptop_page, "es"), (phone_page, "pt")):
-            page.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
-            page.goto(lab.url + f"?lang={lang}")
-            page.wait_for_selector("[role=slider]")
-            close_notifications(page)
-        wait(lambda: len(lab.sessions) == 3)
-        laptop, phone = (s for s in lab.sessions.values() if s is not teacher)
-        wait(lambda: laptop.role.following and phone.role.following)
+    with _room(("es", "pt")) as (lab, errors, pages, sessions):
+        (teacher_page, laptop_page, phone_page), (teacher, laptop, phone) = pages, sessions
         teacher_page.get_by_text("Ask the room", exact=True).first.click()
         ask = teacher_page.get_by_role("button", name="Ask the room", exact=True)
         reveal = teacher_page.get_by_role("button", name="Reveal the answer", exact=True)
