@@ -131,7 +131,7 @@ class Screen:
                 self.scene.question = role.question
                 self.scene.update(snap, state)
             self.panel.set_robot_names(self.catalog.names())
-            self.panel.draw(state, snap)
+            self.panel.draw(state, snap, following=role.following)
             self.panel.show_role(role)
             self.panel.show_recording(recording)
             symbols.draw(self.panel, everything=rebuild)

@@ -197,3 +197,50 @@ def test_a_follower_that_stops_reading_holds_nobody_back():
                     slow.settle()
         finally:
             stalled.close()
+
+
+def test_a_follower_draws_its_closed_motion_and_derive_tabs_only_once_it_opens_them_or_explores(monkeypatch):
+    """The Motion and Derive tabs are drawn even when closed in a tab of one's own (their buttons act on
+    their last draw); a follower's buttons are refused, so its closed ones wait until it opens them or
+    explores on its own (a room of 300 drew them 300 times a move for nobody)."""
+    from app.views.panel.derive import DerivePanel
+    from app.views.panel.motion import MotionPanel
+
+    drawn: list[tuple[str, object]] = []
+    for cls, name in ((MotionPanel, "motion"), (DerivePanel, "derive")):
+        original = cls.draw
+
+        def counting(self, state, snap, _original=original, _name=name):
+            drawn.append((_name, state))
+            return _original(self, state, snap)
+
+        monkeypatch.setattr(cls, "draw", counting)
+    with room(1) as (lab, presenter, (follower,)):
+        poll(lambda: follower.role.following)
+        for s in (presenter, follower):  # as the page reports: loaded, the J tab open
+            s.panel.report.value = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
+            s.settle()
+            poll(lambda s=s: s.panel.open_tab == "J(q)")
+        drawn.clear()
+        presenter.dispatch(SetJoint(1, 0.3))
+        presenter.settle()
+        poll(lambda: follower.state is presenter.state)
+        follower.settle()
+        want = presenter.state
+        # the presenter's own closed tabs drawn (its buttons act on them), not the follower's
+        assert sorted(n for n, s in drawn if s is want) == ["derive", "motion"]
+        assert len([1 for n, s in drawn if s is want]) == 2  # once each: by the presenter only
+        drawn.clear()
+        follower.panel.report.value = '{"kind": "tab", "tab": "Motion"}'  # the follower opens Motion
+        poll(lambda: ("motion", follower.state) in drawn)  # drawn at once, with the state on screen
+        assert ("derive", follower.state) not in drawn
+        follower.panel.report.value = '{"kind": "tab", "tab": "J(q)"}'
+        poll(lambda: follower.panel.open_tab == "J(q)")
+        drawn.clear()
+        follower.dispatch(ExploreAlone())
+        follower.settle()
+        poll(lambda: not follower.role.following)
+        follower.dispatch(SetJoint(2, 0.2))
+        follower.settle()
+        mine = follower.state
+        assert sorted(n for n, s in drawn if s is mine) == ["derive", "motion"]  # its own tab: both again

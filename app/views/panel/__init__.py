@@ -245,15 +245,18 @@ class PanelView:
         self.joints = None
         self.parts = {}
 
-    def draw(self, state: LabState, snap: Snapshot) -> None:
-        """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes)."""
+    def draw(self, state: LabState, snap: Snapshot, following: bool = False) -> None:
+        """Put ``state`` on every input and ``snap`` on every readout (the session ignores echoes).
+        ``following``: the tab follows a presenter, its buttons refused, so a closed Motion or Derive tab
+        waits to be opened (or the tab to explore) to be drawn."""
         assert self.joints is not None
+        always = () if following else _ALWAYS_DRAWN
         sync_value(self.robot, self.menu.label_of(state.robot_name))
         self.joints.show(state.q, state.configuration)
         self._show_options(state.options)
         self.status.content = once(snap, status_html, snap, state, self.tr)
         for name, part in self.parts.items():
-            if not self.open_tab or name in _ALWAYS_DRAWN or _LABELS[name] == self.open_tab:
+            if not self.open_tab or name in always or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)
         lines = once(snap, status_lines, snap, state, self.tr) if shows_motion(state) else ""
         live = live_html(state, self.tr, lines)
@@ -367,7 +370,8 @@ _TAB_NAMES = frozenset(tab.name for tab in TABS)
 _LABELS = {tab.name: tab.label for tab in TABS}
 _ALWAYS_DRAWN = frozenset({"motion", "derive"})
 """Tabs drawn even when not open: their buttons act on what their last draw kept (the preset a
-click applies, the step a click moves from)."""
+click applies, the step a click moves from); not in a following tab, whose buttons are refused (a room
+of followers would draw them hundreds of times a move for nobody)."""
 
 
 def _chain_label(chain: ChainInfo, tr: Translator) -> str:
