@@ -51,7 +51,10 @@ class SharedFrame:
         self.messages = tuple(messages)
         self._packed: tuple[tuple[msgspec.Raw, ...], list[memoryview]] | None = None
         for i, message in enumerate(self.messages):
-            setattr(message, _TAG, (self, i))
+            try:
+                setattr(message, _TAG, (self, i))
+            except (AttributeError, TypeError):  # a message that takes no attribute: serialised per socket
+                continue
 
     def packed(self) -> tuple[tuple[msgspec.Raw, ...], list[memoryview]]:
         """Each message as msgpack (arrays as placeholders numbered from 0) and the arrays' bytes."""
