@@ -224,13 +224,16 @@ class TabCamera:
             self.frame_if_needed(scene.extent, PAD * scene.size)
 
     def look(self, position: tuple, look_at: tuple, up: tuple) -> None:
-        """Look where the presenter looks (a follower's camera)."""
+        """Look where the presenter looks (a follower's camera); a scene the tab draws itself (a follower
+        in another language) has its labels placed for that pose in the tab's own canvas, now: not on
+        the browser's echo of the pose, which may come late or never (a bare client)."""
         if self._closed:
             return
         with contextlib.suppress(Exception), self.client.atomic():
             self.client.camera.up_direction = up
             self.client.camera.position = position
             self.client.camera.look_at = look_at
+        self.moved()
 
     def close(self) -> None:
         """Stop any move (the tab has gone)."""

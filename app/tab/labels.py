@@ -5,7 +5,8 @@ position always placed.
 The layout (:class:`app.views.scene.labels.Layout`) is the browser's camera and its canvas [CSS px]:
 the part of the window the panel leaves (:func:`app.views.panel.viewport.visible_view_rect`, from the
 window size the page reported), or before that report the camera's canvas in its pixels (720 px high
-if it has not said). Labels are placed inside the whole canvas.
+if it has not said). Labels are placed inside the whole canvas, out of the motion's readout drawn over
+it while a motion is on screen (its box estimated for the window, :func:`app.views.panel.live_box.live_box`).
 """
 
 from __future__ import annotations
@@ -16,6 +17,8 @@ from collections.abc import Callable
 from typing import Any
 
 from ..services.later import Call, later
+from ..views.panel.layout import COLUMN
+from ..views.panel.live_box import live_box
 from ..views.panel.viewport import visible_view_rect
 from ..views.scene.labels import Layout
 
@@ -35,7 +38,8 @@ class TabLabels:
         camera: The tab's :class:`~app.tab.camera.TabCamera` (``view()``).
         window: The window the page reported: (width, height, touch), or None.
         lock: The session's lock (the scene's handles are the renderer's).
-        scene: The scene drawn by this tab (None while it shows another tab's nodes: a follower).
+        screen: The tab's :class:`~app.tab.screen.Screen`: its ``own_scene`` (None while it shows another
+            tab's nodes: a follower) and ``live``, the motion's readout it drew over the 3-D view.
         closed: Whether the tab has gone.
     """
 
@@ -45,11 +49,11 @@ class TabLabels:
         camera: Any,
         window: Callable[[], tuple[float, float, bool] | None],
         lock: Any,
-        scene: Callable[[], Any],
+        screen: Callable[[], Any],
         closed: Callable[[], bool],
     ) -> None:
         self.client, self.camera, self._window, self._lock = client, camera, window, lock
-        self._scene, self._closed = scene, closed
+        self._screen, self._closed = screen, closed
         self._timer: Call | None = None
         self._last = 0.0
         self._tlock = threading.Lock()
@@ -64,10 +68,15 @@ class TabLabels:
             cam = self.camera.client.camera
             height = float(getattr(cam, "image_height", 0) or ASSUMED_HEIGHT)
             width = height * view.aspect
+            window = (width + COLUMN, height, False)  # beside the docked panel
         else:
             r = visible_view_rect(*window)
             width, height = r.width, r.height
-        return Layout(view, width, height, (0.0, 0.0, width, height))
+        live = live_box(str(getattr(self._screen(), "live", "") or ""), window)
+        avoid = () if live is None else ((live.x, live.y, live.x + live.width, live.y + live.height),)
+        return Layout(
+            view, width, height, (0.0, 0.0, width, height), avoid
+        )  # the canvas at the window's corner
 
     def moved(self) -> None:
         """The camera moved: place the labels now, or once :data:`PLACE_EVERY` has passed."""
@@ -90,7 +99,7 @@ class TabLabels:
     def place(self) -> None:
         """Place the scene's labels for the camera as it is now."""
         with self._lock:
-            scene = self._scene()
+            scene = getattr(self._screen(), "own_scene", None)
             if scene is None or self._closed():
                 return
             try:

@@ -85,6 +85,7 @@ class Screen:
         self.scene_messages: tuple = ()
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
         self.layout: Callable[[], Layout | None] = lambda: None  # the labels' camera and canvas
+        self.live = ""  # the motion's readout over the 3-D view as last drawn (its labels keep out of it)
 
     def draw(
         self,
@@ -106,6 +107,7 @@ class Screen:
             capture_scene(self.client) if role.presenting or capture else contextlib.nullcontext([])
         )
         with self.client.atomic(), capturing as captured:
+            self.live = self.panel.live_content(state, snap, role)  # before the labels are placed
             if rebuild or self.scene is None:
                 name, robot, catalog = state.robot_name, state.robot, self.catalog
                 self.panel.build_robot(

@@ -114,7 +114,7 @@ class ClientSession:
         self.page.tr = self.notices.tr = translations(self.language)
         self.page.following, self.following.page = self.following, self.page
         self.labels = TabLabels(
-            client, self.camera, lambda: self.page.window, self.lock, lambda: self.screen.own_scene,
+            client, self.camera, lambda: self.page.window, self.lock, lambda: getattr(self, "screen", None),
             lambda: self._closed,
         )  # fmt: skip
         self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify, lambda: self.notices.tr)

@@ -115,3 +115,20 @@ def test_crowded_anchors_on_one_point_are_spread_apart():
     assert not overlaps(boxes)
     centres = (boxes[:, :2] + boxes[:, 2:]) / 2
     assert np.linalg.norm(centres - 300.0, axis=1).max() < 200  # still near their anchor
+
+
+def test_labels_keep_out_of_an_occupied_box():
+    """Labels anchored under a box the page draws over the view (the motion's readout, 8..382 × 8..209 px
+    on a phone) are placed outside it, apart, inside the view; without it they stay at their anchors."""
+    anchors = np.array([[100.0, 160.0], [140.0, 170.0], [200.0, 150.0], [390.0 - 30, 120.0]])
+    sizes = np.array([[27.2, 27.6]] * 4)
+    rect = (0.0, 0.0, 390.0, 422.0)
+    readout = (8.0, 8.0, 382.0, 209.0)
+    free = place(anchors, sizes, rect)
+    assert np.allclose(free[:, [0, 3]], anchors)  # nothing in the way: each at its anchor
+    boxes = place(anchors, sizes, rect, occupied=np.array([readout]))
+    x0, y0, x1, y1 = readout
+    clear = (boxes[:, 2] <= x0) | (boxes[:, 0] >= x1) | (boxes[:, 3] <= y0) | (boxes[:, 1] >= y1)
+    assert clear.all(), boxes
+    assert not overlaps(boxes) and (boxes[:, :2] >= 0).all() and (boxes[:, 2:] <= (390, 422)).all()
+    assert (boxes[:, 1] - y1 < 3 * 27.6).all(), boxes  # just below it, near their anchors

@@ -258,8 +258,7 @@ class PanelView:
         for name, part in self.parts.items():
             if not self.open_tab or name in always or _LABELS[name] == self.open_tab:
                 part.draw(state, snap)
-        lines = once(snap, status_lines, snap, state, self.tr) if shows_motion(state) else ""
-        live = live_html(state, self.tr, lines)
+        live = self.live_content(state, snap)
         if live != self.live.content:
             self.live.content = live
         if self.live.visible != bool(live):
@@ -269,6 +268,14 @@ class PanelView:
             self.hint.content = hint
         if self.hint.visible != bool(hint):
             self.hint.visible = bool(hint)
+
+    def live_content(self, state: LabState, snap: Snapshot, role: Role | None = None) -> str:
+        """The motion's readout over the 3-D view for ``state`` ("" when it is not shown: no motion on
+        screen, or ``role``'s question hides it while the room answers)."""
+        if role is not None and role.question is not None and role.question.masks in HIDES_STATUS:
+            return ""
+        lines = once(snap, status_lines, snap, state, self.tr) if shows_motion(state) else ""
+        return live_html(state, self.tr, lines)
 
     def show_recording(self, recording: bool) -> None:
         """The record button says what a click does next."""

@@ -120,7 +120,8 @@ body:has(.mantine-Modal-root .jl-big) .jl-hint {{ display: none; }}
 .mantine-Modal-inner:has(.jl-big) .mantine-Modal-content {{
   max-width: calc(100vw - {COLUMN}px * var(--jl-zoom) - 24px) !important; }}
 /* The motion's numbers in the 3-D view's top-left corner, beside the arm (out of the panel's flow, so
-   the sliders and Configuration stay where they are). */
+   the sliders and Configuration stay where they are). The 3-D labels keep out of it: its sizes here are
+   app.views.panel.live_box's. */
 .jl-live {{ position: fixed; left: 12px; top: 12px; width: 350px; z-index: 20; background: #f1f3f5;
   border: 1px solid #adb5bd; border-radius: 8px; padding: 4px 8px; box-shadow: 0 1px 6px rgba(0,0,0,.15); }}
 .jl-live-head {{ display: flex; gap: 14px; font-size: 16px; color: {_C["readout head"]};

@@ -7,7 +7,10 @@ The server never sees the page's address (viser), so the script writes a JSON re
 text input of the panel (``report``): ``{"kind": "load", "address": …, "resume": …, "tab": …,
 "languages": navigator.languages}`` when the page (re)connects (a reload, a server restart: viser
 reconnects the same page and the script runs again) and ``{"kind": "tab", "tab": …}`` when the
-user opens a tab. The server reads it as hostile input (:func:`app.core.page_state.parse_report`).
+user opens a tab, and ``{"kind": "view", "width": …, "height": …, "touch": …}`` (the window, where the
+tab's labels are placed) after the load report, when the window is resized and when the panel is built
+again in another language (a report sent into the old panel's input is lost). The server reads it as
+hostile input (:func:`app.core.page_state.parse_report`).
 The server calls ``window.__jacobianLabPage.address(text)``, ``.remember(key)`` and
 ``.showTab(label)`` back.
 The script also says in words when the connection to the lab is lost (viser shows no message).
@@ -150,9 +153,10 @@ _JS = r"""
   // The report of this (re)connection: the address, the kept key and the open tab.
   let tries = 0;
   const report = () => {
-    if (!LOAD) {  // the panel built again (another language): no report, but its channel is hidden too
-      reported = true;
-      const hide = () => { if (!findInput() && ++tries < 100) setTimeout(hide, 100); };
+    if (!LOAD) {  // the panel built again (another language): no report, but its channel is hidden too,
+      reported = true;  // and the window told again through it (a report sent as the panel was rebuilt,
+      // the window's right after a load that asks for another language, is lost with the old channel)
+      const hide = () => { if (!sendView() && ++tries < 100) setTimeout(hide, 100); };
       hide();
       return;
     }

@@ -5,8 +5,9 @@ a Derive step's vector) without moving it; after each redraw, and after each cam
 the tab, :mod:`app.tab.labels`), :meth:`ScreenLabels.place` projects the shown labels' anchors
 through the browser's camera (:class:`Layout`), sizes each label as viser lays it out (12 CSS px ×
 ``font_screen_scale`` per em, :mod:`.placement`), finds each a box inside the part of the canvas the
-panel leaves visible, apart from the boxes placed before it (in the order given: joints first, so they
-stay at their joints), and puts the label at the 3-D point of its anchor's depth that projects there.
+panel leaves visible, out of what the page draws over it (the motion's readout, :attr:`Layout.avoid`),
+apart from the boxes placed before it (in the order given: joints first, so they stay at their joints),
+and puts the label at the 3-D point of its anchor's depth that projects there.
 A label whose box is free stays at its anchor. Without a camera (a recorded scene) every label is at
 its anchor.
 """
@@ -35,12 +36,15 @@ class Layout:
         view: The camera (its ``aspect``: the canvas's).
         width, height: The canvas [CSS px].
         rect: (x0, y0, x1, y1) [px] of the canvas not under the panel.
+        avoid: Boxes (x0, y0, x1, y1) [px] the page draws over the canvas (the motion's readout): no
+            label goes under them.
     """
 
     view: View
     width: float
     height: float
     rect: tuple[float, float, float, float]
+    avoid: tuple[tuple[float, float, float, float], ...] = ()
 
 
 def anchor_label(handle: Any, position: Sequence[float] | np.ndarray) -> None:
@@ -132,7 +136,9 @@ class ScreenLabels:
             px = project(layout.view, anchors, layout.width, layout.height)
             natural = np.array([label_box(h, p) for h, p in zip(shown, px, strict=True)])
             sizes = natural[:, 2:] - natural[:, :2]
-            boxes = place(natural[:, [0, 3]], sizes, layout.rect)  # bottom-left corners
+            boxes = place(
+                natural[:, [0, 3]], sizes, layout.rect, occupied=layout.avoid
+            )  # bottom-left corners
             offsets = px - natural[:, [0, 3]]  # from a box's bottom-left corner to its label's point
             spots = anchors.copy()
             leaders = []

@@ -142,12 +142,17 @@ def _candidates(anchor: np.ndarray, size: np.ndarray, step: float, rings: int) -
 
 
 def place(
-    anchors: np.ndarray, sizes: np.ndarray, rect: tuple[float, float, float, float], rings: int = 40
+    anchors: np.ndarray,
+    sizes: np.ndarray,
+    rect: tuple[float, float, float, float],
+    rings: int = 40,
+    occupied: np.ndarray | tuple = (),
 ) -> np.ndarray:
     """Boxes (N, 4: x0, y0, x1, y1) [px] for labels of ``sizes`` (N, 2) [px] at ``anchors`` (N, 2) [px].
 
     In order (the first labels get the spots nearest their anchors): each label takes the first spot,
-    on rings around its anchor, that lies inside ``rect`` and overlaps no label placed before; an
+    on rings around its anchor, that lies inside ``rect`` and overlaps neither a label placed before nor
+    a box of ``occupied`` (K, 4) [px] (what the page draws over the view: the motion's readout); an
     anchor outside ``rect`` (or not finite) is first moved to its nearest point inside. When no spot is
     free (more text than the view holds) the label takes the spot inside that overlaps least.
     """
@@ -155,6 +160,7 @@ def place(
     S = np.asarray(sizes, float).reshape(-1, 2)
     x0, y0, x1, y1 = rect
     step = max(4.0, float(S[:, 1].min()) / 2) if len(S) else 4.0
+    taken = [np.asarray(b, float) for b in np.asarray(occupied, float).reshape(-1, 4)]
     placed: list[np.ndarray] = []
     for anchor, (w, h) in zip(A, S, strict=True):
         a = np.where(np.isfinite(anchor), anchor, ((x0 + x1) / 2, (y0 + y1) / 2))
@@ -163,8 +169,8 @@ def place(
         corners[:, 0] = np.clip(corners[:, 0], x0, max(x0, x1 - w))
         corners[:, 1] = np.clip(corners[:, 1], y0, max(y0, y1 - h))
         boxes = np.column_stack([corners, corners + (w, h)])
-        if placed:
-            P = np.array(placed)
+        if placed or taken:
+            P = np.array(taken + placed)
             ox = np.clip(
                 np.minimum(boxes[:, None, 2], P[None, :, 2]) - np.maximum(boxes[:, None, 0], P[None, :, 0]),
                 0,

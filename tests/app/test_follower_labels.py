@@ -1,0 +1,114 @@
+"""Issue 28, a follower's own labels: a phone (390×844, touch) following an English presenter in Polish
+draws its own scene (its words are not the presenter's) and places its labels for its own camera, the
+presenter's pose as the phone shows it, in the phone's own window.
+
+Server level: a real lab in classroom mode with two websocket clients, the phone's canvas 390×422 (above
+the sheet) and its page's window reported, the presenter's 876×720. The presenter goes to a named
+configuration of the Puma, then its browser turns the camera (a drag: its camera message), which the
+classroom hands the phone. Once the phone's camera is the presenter's, every label the phone shows lies,
+through that camera (:func:`app.views.camera.project`, viser's layout of its text), inside the phone's
+visible view (:func:`app.views.panel.viewport.visible_view_rect`), apart from the others. (A bare client,
+like this one, does not echo a pose the server sets: the labels are placed when the pose is set.)"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from app_helpers import labels_placed, running_lab, wait_until
+from wsclient import ViserWsClient
+
+from app.core.actions import GoTo
+from app.core.commands import PageReport
+from app.views.camera import View, project
+from app.views.panel.viewport import visible_view_rect
+from app.views.scene.labels import label_box
+from app.views.scene.placement import overlaps
+from app.viser_adapter import message_class
+
+TOKEN = "lecture-28-labels"
+PHONE = (390, 844, True)
+PROJECTOR = (1280, 720, False)
+TOL = 1e-6  # [px]
+
+
+def _report(session, **fields) -> None:
+    session.dispatch(PageReport(json.dumps(fields)))
+    session.settle()
+    session.settle()
+
+
+def _turned(camera, degrees: float, closer: float) -> tuple[np.ndarray, np.ndarray]:
+    """``camera``'s pose turned ``degrees`` about the vertical through its look-at point and brought
+    ``closer`` (a fraction of the distance) to it: a presenter's drag."""
+    look, start = np.asarray(camera.look_at, float), np.asarray(camera.position, float)
+    c, s = np.cos(np.radians(degrees)), np.sin(np.radians(degrees))
+    turn = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    return look + (1 - closer) * turn @ (start - look), look
+
+
+def phone_boxes(follower) -> tuple[np.ndarray, list[str]]:
+    """The phone's shown labels' boxes [px] through its camera, in its canvas; their texts."""
+    r = visible_view_rect(*PHONE)
+    cam = follower.client.camera
+    view = View(
+        np.asarray(cam.position), np.asarray(cam.look_at), np.array([0.0, 0, 1]), cam.fov, r.width / r.height
+    )
+    shown = [h for h in follower.scene.labels.handles if h.visible]
+    at = project(view, np.array([h.position for h in shown]).reshape(-1, 3), r.width, r.height)
+    boxes = np.array([label_box(h, p) for h, p in zip(shown, at, strict=True)]).reshape(-1, 4)
+    return boxes, [str(h.text) for h in shown]
+
+
+@pytest.fixture(scope="module")
+def room():
+    phone = visible_view_rect(*PHONE)
+    with running_lab((int(phone.width), int(phone.height)), presenter_token=TOKEN) as (lab, follower, _):
+        _report(follower, kind="load", address="?lang=pl")
+        _report(follower, kind="view", width=PHONE[0], height=PHONE[1], touch=PHONE[2])
+        big = visible_view_rect(*PROJECTOR)
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}", int(big.width), int(big.height)) as ws:
+            wait_until(lambda: len(lab.sessions) == 2)
+            presenter = next(s for s in lab.sessions.values() if s is not follower)
+            _report(presenter, kind="view", width=PROJECTOR[0], height=PROJECTOR[1], touch=PROJECTOR[2])
+            presenter.panel.classroom.token.value = TOKEN
+            wait_until(lambda: presenter.role.presenting and follower.role.following)
+            assert presenter.language == "en" and follower.language == "pl"
+            yield presenter, ws, follower
+
+
+@pytest.mark.parametrize("conf", ["wrist_singular", "elbow_singular", "shoulder_singular"])
+def test_a_polish_phone_following_an_english_presenter_places_its_labels_in_its_own_view(room, conf):
+    presenter, ws, follower = room
+    presenter.dispatch(GoTo(conf))
+    presenter.settle()
+    wait_until(lambda: follower.state.configuration == conf and follower.snapshot is not None)
+    follower.settle()
+    assert follower.screen.own_scene is not None  # its own scene, in its words
+    labels_placed(presenter)
+    position, look = _turned(presenter.client.camera, 100.0, 0.3)
+    cam = presenter.client.camera
+    ws.send(
+        message_class("ViewerCameraMessage")(
+            wxyz=(1.0, 0.0, 0.0, 0.0), position=tuple(position), fov=float(cam.fov), near=0.01, far=100.0,
+            image_height=int(cam.image_height), image_width=int(cam.image_width), look_at=tuple(look),
+            up_direction=(0.0, 0, 1),
+        )
+    )  # fmt: skip
+    wait_until(lambda: np.allclose(follower.client.camera.position, position, atol=1e-9), what="followed")
+    labels_placed(follower)  # placed for the presenter's pose as the phone shows it
+    layout = follower.scene.labels.layout
+    r = visible_view_rect(*PHONE)
+    assert (layout.width, layout.height) == (r.width, r.height)  # the phone's canvas, not the presenter's
+    boxes, texts = phone_boxes(follower)
+    assert any("utracon" in t for t in texts), texts  # the lost direction, in Polish
+    inside = (
+        (boxes[:, 0] >= -TOL)
+        & (boxes[:, 1] >= -TOL)
+        & (boxes[:, 2] <= r.width + TOL)
+        & (boxes[:, 3] <= r.height + TOL)
+    )
+    assert inside.all(), [(t, b) for t, b, ok in zip(texts, boxes, inside, strict=True) if not ok]
+    shrunk = boxes + np.array([TOL, TOL, -TOL, -TOL])
+    assert not overlaps(shrunk), [(texts[i], texts[j]) for i, j in overlaps(shrunk)]
