@@ -40,6 +40,7 @@ from .presenter_token import (
     token_weakness,
 )
 from .question_desk import QuestionDesk
+from .scene_slot import SceneSlot
 
 __all__ = [
     "Classroom",
@@ -359,15 +360,15 @@ class Classroom:
 
     # ---------------------------------------------------------------- relays
     def _relay(self, state: LabState, snapshot: Snapshot) -> None:
-        """The presenter committed ``state``: every follower draws it (no computation per follower:
-        the presenter's snapshot, and the scene messages of the presenter's redraw replayed)."""
+        """The presenter committed ``state``: every follower draws it with the presenter's snapshot and
+        replays the presenter's scene messages (another look's: those the first of its look drew)."""
         with self._lock:
             targets = [self._members[k] for k in self._following_keys()]
             presenter = self._members.get(self._presenter) if self._presenter is not None else None
             self._last = (state, snapshot)
-        scene = presenter.scene_messages if presenter is not None else ()
+        scene, slot = presenter.scene_messages if presenter is not None else (), SceneSlot()
         for member in targets:
-            member.mirror(state, snapshot, scene)
+            member.mirror(state, snapshot, scene, slot)
             self.relayed += 1
 
     def camera(self, key: int, position: tuple, look_at: tuple, up: tuple) -> None:

@@ -4,8 +4,9 @@ In a worker that does not hold the presenter (``serve --workers N --presenter``)
 arrive as data and no tab of the worker has drawn them. The worker's classroom hands every follower the
 state, its snapshot (computed once) and one :class:`SceneSlot`. The first follower to draw the state
 draws its own scene and leaves the scene messages it sent in the slot, with the state its browser showed
-before (its *base*) and its language; every other follower whose browser shows that same base state, in
-that language, replays them (re-addressed, :func:`app.viser_adapter.replay_scene`) instead of drawing
+before (its *base*) and its look (:meth:`app.tab.screen.Screen.look`: its language and the screen its
+labels were placed for); every other follower whose browser shows that same base state, with that look,
+replays them (re-addressed, :func:`app.viser_adapter.replay_scene`) instead of drawing
 the scene again. A follower that shows something else (it joined late, it came back from exploring)
 draws its own.
 """
@@ -19,26 +20,27 @@ __all__ = ["SceneSlot"]
 
 
 class SceneSlot:
-    """The scene messages of one state's first drawing, per language (empty until a follower draws it)."""
+    """The scene messages of one state's first drawing, per look (empty until a follower draws it)."""
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._made: dict[str, tuple[object, tuple]] = {}
 
-    def get(self, language: str, base: object) -> tuple:
-        """The scene messages drawn in ``language`` over ``base`` (the state shown before), or ``()``."""
+    def get(self, look: str, base: object) -> tuple:
+        """The scene messages drawn for ``look`` over ``base`` (the state shown before), or
+        ``()``."""
         with self._lock:
-            made = self._made.get(language)
+            made = self._made.get(look)
         return made[1] if made is not None and made[0] is base else ()
 
-    def wanted(self, language: str) -> bool:
-        """Whether nobody has drawn it in ``language`` yet."""
+    def wanted(self, look: str) -> bool:
+        """Whether nobody has drawn it in ``look`` yet."""
         with self._lock:
-            return language not in self._made
+            return look not in self._made
 
-    def fill(self, language: str, base: object, messages: Sequence) -> None:
-        """Keep the scene messages drawn in ``language`` over ``base`` (the first drawing only)."""
+    def fill(self, look: str, base: object, messages: Sequence) -> None:
+        """Keep the scene messages drawn in ``look`` over ``base`` (the first drawing only)."""
         if not messages:
             return
         with self._lock:
-            self._made.setdefault(language, (base, tuple(messages)))
+            self._made.setdefault(look, (base, tuple(messages)))

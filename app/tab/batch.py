@@ -43,15 +43,16 @@ class Batch:
         before, self.state = self.state, reduce(self.state, action)
         self.jump = self.jump or is_jump(before, self.state, action)
 
-    def take_mirror(self, mirror: Mirror, has_scene: bool, language: str = "") -> None:
+    def take_mirror(self, mirror: Mirror, has_scene: bool, look: str = "") -> None:
         """Take the presenter's state (``has_scene``: this tab has a scene to replay messages into;
-        ``language``: the tab's, for a relayed state's shared scene)."""
+        ``look``: the tab's language and screen, :meth:`~app.tab.screen.Screen.look`, for a relayed
+        state's shared scene)."""
         before = self.state
         self.state, self._mirror, self.jump = mirror.state, mirror, False  # the camera is the presenter's
         scene, self.lead = mirror.scene, None
         if not scene and isinstance(mirror.shared, SceneSlot):
-            scene = mirror.shared.get(language, before)  # drawn by another follower over what we show
-            if not scene and mirror.shared.wanted(language):
+            scene = mirror.shared.get(look, before)  # drawn by another follower over what we show
+            if not scene and mirror.shared.wanted(look):
                 self.lead = mirror.shared  # nobody has: our own drawing is left for the others
         if self._replay is not None and scene and has_scene:
             self._replay.extend(scene)

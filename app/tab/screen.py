@@ -36,11 +36,12 @@ __all__ = ["Screen", "SceneMessages"]
 
 
 class SceneMessages(tuple):
-    """A presenter's scene messages and the language their words are in (its 3-D labels): a follower
-    that speaks another language draws its own scene from the presenter's state instead of replaying
-    them (the presenter shares state, not words)."""
+    """A presenter's scene messages and the look they were drawn for (:meth:`Screen.look`: the language
+    of their 3-D labels and the screen the labels were placed for): a follower whose look differs (it
+    speaks another language, or a phone follows a projector) draws its own scene from the presenter's
+    state instead of replaying them (the presenter shares state, not words nor label places)."""
 
-    language: str = ""
+    look: str = ""
 
 
 class Screen:
@@ -82,7 +83,7 @@ class Screen:
             client.flush()
             self._first = state.robot
         self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
-        self.scene_messages: tuple = ()
+        self.scene_messages = SceneMessages()
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
         self.layout: Callable[[], Layout | None] = lambda: None  # the labels' camera and canvas
         self.live = ""  # the motion's readout over the 3-D view as last drawn (its labels keep out of it)
@@ -138,7 +139,17 @@ class Screen:
             self.panel.show_recording(recording)
             symbols.draw(self.panel, everything=rebuild)
         self.scene_messages = SceneMessages(captured)
-        self.scene_messages.language = self.tr.code
+        self.scene_messages.look = self.look()
+
+    def look(self) -> str:
+        """What a drawing of the scene depends on besides the state: the tab's language and the screen its
+        labels are placed for (the canvas and its visible part [CSS px]; the camera is the presenter's
+        for every follower). Tabs of the same look can be sent the same scene messages."""
+        layout = self.layout()
+        if layout is None:
+            return self.tr.code
+        x0, y0, x1, y1 = layout.rect
+        return f"{self.tr.code} {layout.width:.0f}x{layout.height:.0f} {x0:.0f},{y0:.0f},{x1:.0f},{y1:.0f}"
 
     @property
     def own_scene(self) -> SceneView | None:

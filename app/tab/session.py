@@ -225,11 +225,11 @@ class ClientSession:
     def _take(self, batch: Batch, message: Message) -> None:
         """Take one message into ``batch``: reduce an action, run a command, draw a mirror."""
         if isinstance(message, Mirror):
-            if getattr(message.scene, "language", self.language) != self.language:
-                message = Mirror(message.state, message.snapshot)  # its words are not ours: draw our own
+            if getattr(message.scene, "look", look := self.screen.look()) != look:  # other words, or
+                message = Mirror(message.state, message.snapshot, shared=message.shared)  # another screen
             if message.state.robot is not self.state.robot:  # only then may it be unknown here
                 self.catalog.keep_shown(message.state.robot_name, message.state.robot)
-            batch.take_mirror(message, self.screen.scene is not None, self.language)
+            batch.take_mirror(message, self.screen.scene is not None, look)
         elif isinstance(message, Redraw):
             batch.force = True
         elif isinstance(message, QuestionShown):
@@ -307,7 +307,7 @@ class ClientSession:
                 self._tab_to_open = ""
             self.page.update(state)  # a reload or a server restart comes back to this robot and q
         if lead is not None and not rebuild:  # what our browser showed before is the others' base
-            lead.fill(self.language, old, self.screen.scene_messages)
+            lead.fill(self.screen.scene_messages.look, old, self.screen.scene_messages)
         self.state, self.snapshot = state, snap
         self.redraws += 1
         self.pace.redrawn()

@@ -112,3 +112,46 @@ def test_a_polish_phone_following_an_english_presenter_places_its_labels_in_its_
     assert inside.all(), [(t, b) for t, b, ok in zip(texts, boxes, inside, strict=True) if not ok]
     shrunk = boxes + np.array([TOL, TOL, -TOL, -TOL])
     assert not overlaps(shrunk), [(texts[i], texts[j]) for i, j in overlaps(shrunk)]
+
+
+def test_a_phone_in_the_presenters_language_draws_its_own_scene_and_a_same_screen_follower_replays():
+    """Labels are placed per screen: a phone in the presenter's language does not replay the projector's
+    scene (its labels would be placed for the projector's canvas); of two phones of one size one draws
+    the scene, inside its view, and the other replays that drawing; a follower whose screen is the
+    presenter's replays the presenter's messages."""
+    phone = visible_view_rect(*PHONE)
+    big = visible_view_rect(*PROJECTOR)
+    with running_lab((int(phone.width), int(phone.height)), presenter_token=TOKEN) as (lab, follower, _):
+        _report(follower, kind="view", width=PHONE[0], height=PHONE[1], touch=PHONE[2])
+        url, size = f"ws://127.0.0.1:{lab.port}", (int(big.width), int(big.height))
+        with ViserWsClient(url, *size), ViserWsClient(url, *size):
+            wait_until(lambda: len(lab.sessions) == 3)
+            presenter, laptop = (s for s in lab.sessions.values() if s is not follower)
+            for s in (presenter, laptop):
+                _report(s, kind="view", width=PROJECTOR[0], height=PROJECTOR[1], touch=PROJECTOR[2])
+            with ViserWsClient(url, int(phone.width), int(phone.height)):
+                wait_until(lambda: len(lab.sessions) == 4)
+                (other,) = (s for s in lab.sessions.values() if s not in (follower, presenter, laptop))
+                _report(other, kind="view", width=PHONE[0], height=PHONE[1], touch=PHONE[2])
+                presenter.panel.classroom.token.value = TOKEN
+                room = (follower, laptop, other)
+                wait_until(lambda: presenter.role.presenting and all(s.role.following for s in room))
+                assert {s.language for s in (presenter, *room)} == {"en"}
+                for conf in ("elbow_singular", "wrist_singular"):
+                    presenter.dispatch(GoTo(conf))
+                    presenter.settle()
+                    wait_until(lambda: all(s.state is presenter.state for s in room))
+                    for s in room:
+                        s.settle()
+                assert presenter.screen.look() == laptop.screen.look() != follower.screen.look()
+                assert follower.screen.look() == other.screen.look()
+                assert laptop.screen.own_scene is None  # the presenter's scene, replayed
+                phones = [s for s in (follower, other) if s.screen.own_scene is not None]
+                assert len(phones) == 1, len(phones)  # one phone drew the scene, the other replayed it
+                drew = phones[0]
+                labels_placed(drew)
+                layout = drew.scene.labels.layout
+                assert (layout.width, layout.height) == (phone.width, phone.height)
+                boxes = drew.scene.labels.boxes
+                assert len(boxes) and (boxes[:, 0] >= -TOL).all() and (boxes[:, 2] <= phone.width + TOL).all()
+                assert (boxes[:, 1] >= -TOL).all() and (boxes[:, 3] <= phone.height + TOL).all()
