@@ -5,7 +5,7 @@ upright (390×844, touch).
 Server level: a real lab whose websocket client has that canvas and whose page reported its window plays
 the Puma's first preset (the straight line into its wrist singularity) until it stops. The readout's box
 is estimated from its HTML (:func:`app.views.panel.live_box.live_box`); the estimate holds the box
-Chromium gives the same readout (measured: 12, 12, 350 × 209.0 px at 1280×720; 8, 8, 374 × 200.7 px at
+Chromium gives the same readout (measured: 12, 12, 350 × 209.0 px at 1280×720; 8, 8, 374 × 137.5 px at
 390×844, in English). Once the labels were placed for the camera, every shown label's box (through the
 camera, viser's layout of its text) lies outside the readout's box, inside the visible view, apart from
 the others. On the old code the phone's six joint labels lay under the readout (y 141 to 206 px)."""
@@ -28,7 +28,7 @@ from app.views.scene.labels import label_box
 from app.views.scene.placement import overlaps
 
 SCREENS = {"projector": (1280, 720, False), "phone": (390, 844, True)}
-MEASURED = {"projector": (12.0, 12.0, 350.0, 209.0), "phone": (8.0, 8.0, 374.0, 200.7)}
+MEASURED = {"projector": (12.0, 12.0, 350.0, 209.0), "phone": (8.0, 8.0, 374.0, 137.5)}
 """The readout's box at the stop in Chromium [CSS px]: x, y, width, height."""
 TOL = 1e-6  # [px]
 

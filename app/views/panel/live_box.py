@@ -20,7 +20,7 @@ import math
 import re
 
 from ..scene.placement import text_width
-from .viewport import Rect, is_phone_layout, panel_zoom
+from .viewport import PHONE_LINES_PX, Rect, is_phone_layout, panel_zoom
 
 __all__ = ["live_box", "LINE", "WRAP_SLACK", "BOLD"]
 
@@ -126,13 +126,14 @@ def live_box(content: str, window: tuple[float, float, bool]) -> Rect | None:
         h += _lines(foot.group(1), _TEXT_PX, inner) * _TEXT_PX * LINE
     lines = _LINES.search(content)
     if lines is not None:
-        h += _LINES_TOP
+        below = 0.0
         for piece in _PIECE.split(lines.group(1)):
             if not _TAG.sub("", piece).strip():
                 continue
             n = _lines(piece, _TEXT_PX, inner - _SUB_PAD)
             if "jl-desc" in piece:  # two lines at most
-                h += min(n, 2) * _TEXT_PX * _DESC_LINE + _LINE_GAP
+                below += min(n, 2) * _TEXT_PX * _DESC_LINE + _LINE_GAP
             else:
-                h += n * _TEXT_PX * LINE + min(n, _subs(piece)) * SUB_EXTRA + _LINE_GAP
+                below += n * _TEXT_PX * LINE + min(n, _subs(piece)) * SUB_EXTRA + _LINE_GAP
+        h += _LINES_TOP + (min(below, PHONE_LINES_PX) if phone else below)  # a phone's scroll inside
     return Rect(edge * zoom, edge * zoom, outer * zoom, (h + _ROUNDING) * zoom)

@@ -32,6 +32,9 @@ MOBILE_MAX_WIDTH = 576
 SHEET_MAX = 0.5
 """Largest share of the window's height the bottom sheet takes (viser's own is 60 %): the 3-D view keeps
 at least half of a phone's screen."""
+PHONE_LINES_PX = 40.0
+"""On a phone, the most the status's lines in the motion's readout take [px] (two lines of 13 px text and
+their gap; the rest scrolls inside): the readout over a 422 px view leaves the arm in sight."""
 
 
 class Rect(NamedTuple):
@@ -90,6 +93,9 @@ PHONE_CSS = f"""
   .jl-live-head {{ font-size: 14px; flex-wrap: wrap; gap: 0 10px; }}
   .jl-live-head b, .jl-live-rate b {{ font-size: 16px; }}
   .jl-live-rate {{ font-size: 13px; }}
+  /* The status's lines under the rates at a stop: at most {PHONE_LINES_PX:g} px (two lines, the rest
+     scrolled inside), so the readout leaves the arm in view (it took 200 of the view's 422 px). */
+  .jl-live-lines {{ max-height: {PHONE_LINES_PX:g}px; overflow-y: auto; }}
   /* Thumbs large enough for a finger. */
   .mantine-Slider-thumb {{ width: 20px !important; height: 20px !important; border-radius: 50% !important; }}
   .mantine-Slider-root {{ min-height: 2.4em; }}
