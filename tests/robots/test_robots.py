@@ -77,6 +77,7 @@ def test_names_follow_files_added_and_removed(tmp_path, monkeypatch):
 
     monkeypatch.setattr(library, "DATA_DIR", tmp_path)
     monkeypatch.setattr(library.time, "monotonic", monotonic)
+    monkeypatch.setattr(library, "_checked", (-library.NAMES_CHECK_EVERY, -1))  # as at import
     (tmp_path / "b.toml").write_text("")
     (tmp_path / "notes.txt").write_text("")
     os.utime(tmp_path, ns=(1_000_000_000, 1_000_000_000))
@@ -109,6 +110,7 @@ def test_names_read_the_folder_time_at_most_once_a_second(tmp_path, monkeypatch)
 
     monkeypatch.setattr(library, "DATA_DIR", tmp_path)
     monkeypatch.setattr(library.time, "monotonic", lambda: clock[0])
+    monkeypatch.setattr(library, "_checked", (-library.NAMES_CHECK_EVERY, -1))  # as at import
     monkeypatch.setattr(Path, "stat", stat)
     (tmp_path / "b.toml").write_text("")
     os.utime(tmp_path, ns=(1_000_000_000, 1_000_000_000))
