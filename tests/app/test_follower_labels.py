@@ -17,13 +17,12 @@ import json
 import numpy as np
 import pytest
 from app_helpers import labels_placed, running_lab, wait_until
+from test_live_overlay_labels import boxes_through_the_camera
 from wsclient import ViserWsClient
 
 from app.core.actions import GoTo
 from app.core.commands import PageReport
-from app.views.camera import View, project
 from app.views.panel.viewport import visible_view_rect
-from app.views.scene.labels import label_box
 from app.views.scene.placement import overlaps
 from app.viser_adapter import message_class
 
@@ -50,15 +49,7 @@ def _turned(camera, degrees: float, closer: float) -> tuple[np.ndarray, np.ndarr
 
 def phone_boxes(follower) -> tuple[np.ndarray, list[str]]:
     """The phone's shown labels' boxes [px] through its camera, in its canvas; their texts."""
-    r = visible_view_rect(*PHONE)
-    cam = follower.client.camera
-    view = View(
-        np.asarray(cam.position), np.asarray(cam.look_at), np.array([0.0, 0, 1]), cam.fov, r.width / r.height
-    )
-    shown = [h for h in follower.scene.labels.handles if h.visible]
-    at = project(view, np.array([h.position for h in shown]).reshape(-1, 3), r.width, r.height)
-    boxes = np.array([label_box(h, p) for h, p in zip(shown, at, strict=True)]).reshape(-1, 4)
-    return boxes, [str(h.text) for h in shown]
+    return boxes_through_the_camera(follower, PHONE)
 
 
 @pytest.fixture(scope="module")
