@@ -205,6 +205,9 @@ class MemberStub:
     def mirror_camera(self, *pose):
         pass
 
+    def mirror_labels(self, placed):
+        pass
+
     def mirror_tab(self, label):
         pass
 

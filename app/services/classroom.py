@@ -1,19 +1,14 @@
 """Classroom mode: one presenter tab, a room of tabs that follow it.
 
-The server owns one :class:`Classroom` when it was started with a presenter token. A tab becomes the
-presenter by typing the token (compared in constant time). Wrong tokens are limited per connection
-(:data:`TOKEN_TRIES`), never per address nor for the whole room, so no tab can lock another out: a wrong
-guess never refuses the right token typed in another tab (``docs/security.md`` has the arithmetic that
-keeps guessing hopeless). A right token typed while another tab presents (and is connected) does not
-replace it: the presenting tab is asked, and the asking tab presents only if it hands over (no answer
-changes nothing; a reconnect key, which only the presenter's browser has, takes over at once). The
-replaced presenter and the room are told.
-Every other tab follows by default: each state the presenter's tab commits, with its snapshot, is
-handed to the followers, which draw it without computing it again. The presenter's camera is relayed
-too. A follower can explore on its own and come back; when the presenter's tab closes, followers keep
-the last state and are told. The room's questions: :mod:`app.services.question_desk`.
-
-The classroom never touches viser: it calls the small :class:`Member` interface a session provides.
+The server owns one :class:`Classroom` when it was started with a presenter token, which a tab types to
+present (compared in constant time; wrong tries limited per connection, :data:`TOKEN_TRIES`, never per
+address nor room-wide, so no tab locks another out: ``docs/security.md``). A right token typed while
+another tab presents asks that tab, and presents only if it hands over (a reconnect key, which only the
+presenter's browser has, takes over at once); the room is told. Every other tab follows by default: each
+state the presenter commits, with its snapshot, is handed to the followers, which draw it without
+computing it again; its camera and label placements follow too. A follower can explore on its own and
+come back; when the presenter's tab closes, followers keep the last state and are told. Questions:
+:mod:`app.services.question_desk`. The classroom calls the :class:`Member` a session provides, never viser.
 """
 
 from __future__ import annotations
@@ -353,10 +348,10 @@ class Classroom:
         """Whether this process's presenter has a request to hand over."""
         return self._asking is not None
 
-    def _following_keys(self) -> list[int]:
+    def _following_keys(self, but: int | None = None) -> list[int]:
         if not self._someone_presents():
             return []
-        return [k for k in self._members if k != self._presenter and k not in self._alone]
+        return [k for k in self._members if k not in (self._presenter, but) and k not in self._alone]
 
     # ---------------------------------------------------------------- relays
     def _relay(self, state: LabState, snapshot: Snapshot) -> None:
@@ -374,11 +369,16 @@ class Classroom:
     def camera(self, key: int, position: tuple, look_at: tuple, up: tuple) -> None:
         """The presenter's camera moved: the followers' cameras follow."""
         with self._lock:
-            if key != self._presenter:
-                return
-            targets = [self._members[k] for k in self._following_keys()]
+            targets = [self._members[k] for k in self._following_keys()] if key == self._presenter else []
         for member in targets:
             member.mirror_camera(position, look_at, up)
+
+    def labels(self, key: int, placed: object) -> None:
+        """Tab ``key`` placed the labels of a drawing others replay: the followers showing it follow."""
+        with self._lock:
+            targets = [self._members[k] for k in self._following_keys(but=key)]
+        for member in targets:
+            member.mirror_labels(placed)
 
     def tab(self, key: int, label: str) -> None:
         """The presenter opened the tab ``label``: the followers open it too."""

@@ -102,6 +102,7 @@ class Following:
         self._typed_token = ""
         self._token_timer: threading.Timer | None = None
         self.page: Any = None  # the tab's PageLink (app.tab.page), set by the session
+        self.labels: Any = None  # the tab's TabLabels (app.tab.labels), set by the session
 
     @property
     def following(self) -> bool:
@@ -144,6 +145,16 @@ class Following:
         """Look where the presenter looks."""
         if not self._closed and self.role.following:
             self._camera.look(position, look_at, up)
+
+    def mirror_labels(self, placed: Any) -> None:
+        """The tab whose drawing we replay placed its labels again: ours move alike."""
+        if not self._closed and self.role.following and self.labels is not None:
+            self.labels.replay(placed)
+
+    def labels_placed(self, placed: Any) -> None:
+        """Our labels were placed again, in a drawing other tabs replay: theirs move alike."""
+        if self.classroom is not None:
+            self.classroom.labels(self.key, placed)
 
     def mirror_tab(self, label: str) -> None:
         """Open the tab the presenter has open (queued: the session fills it, then opens it)."""

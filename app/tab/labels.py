@@ -7,6 +7,11 @@ the part of the window the panel leaves (:func:`app.views.panel.viewport.visible
 window size the page reported), or before that report the camera's canvas in its pixels (720 px high
 if it has not said). Labels are placed inside the whole canvas, out of the motion's readout drawn over
 it while a motion is on screen (its box estimated for the window, :func:`app.views.panel.live_box.live_box`).
+
+A tab whose scene others replay (the presenter, or the follower that drew a relayed state for the
+followers of its look) hands each placement's messages on (:class:`Placement`, to ``placed``: the
+classroom), and a follower showing that very drawing replays them (:meth:`TabLabels.replay`): when the
+presenter orbits, the labels of every follower of its look move with its own.
 """
 
 from __future__ import annotations
@@ -14,6 +19,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 from ..services.later import Call, later
@@ -21,13 +27,24 @@ from ..views.panel.layout import COLUMN
 from ..views.panel.live_box import live_box
 from ..views.panel.viewport import visible_view_rect
 from ..views.scene.labels import Layout
+from ..viser_adapter import capture_scene, replay_scene
 
-__all__ = ["TabLabels", "PLACE_EVERY", "ASSUMED_HEIGHT"]
+__all__ = ["TabLabels", "Placement", "PLACE_EVERY", "ASSUMED_HEIGHT"]
 
 PLACE_EVERY = 0.1
 """Labels are placed again at most this often [s] while the camera moves."""
 ASSUMED_HEIGHT = 720.0
 """The canvas's height [CSS px] until the page has reported its window."""
+
+
+@dataclass(frozen=True)
+class Placement:
+    """The scene messages of one placement of the labels of ``state``'s drawing for ``look``
+    (:meth:`app.tab.screen.Screen.look`)."""
+
+    state: Any
+    look: str
+    messages: tuple
 
 
 class TabLabels:
@@ -41,6 +58,7 @@ class TabLabels:
         screen: The tab's :class:`~app.tab.screen.Screen`: its ``own_scene`` (None while it shows another
             tab's nodes: a follower) and ``live``, the motion's readout it drew over the 3-D view.
         closed: Whether the tab has gone.
+        placed: Told each placement of a drawing other tabs replay (``screen.leads``).
     """
 
     def __init__(
@@ -51,9 +69,10 @@ class TabLabels:
         lock: Any,
         screen: Callable[[], Any],
         closed: Callable[[], bool],
+        placed: Callable[[Placement], None] | None = None,
     ) -> None:
         self.client, self.camera, self._window, self._lock = client, camera, window, lock
-        self._screen, self._closed = screen, closed
+        self._screen, self._closed, self.placed = screen, closed, placed
         self._timer: Call | None = None
         self._last = 0.0
         self._tlock = threading.Lock()
@@ -97,16 +116,33 @@ class TabLabels:
         self.place()
 
     def place(self) -> None:
-        """Place the scene's labels for the camera as it is now."""
+        """Place the scene's labels for the camera as it is now (and hand the placement on when other
+        tabs replay our drawing)."""
         with self._lock:
-            scene = getattr(self._screen(), "own_scene", None)
+            screen = self._screen()
+            scene = getattr(screen, "own_scene", None)
             if scene is None or self._closed():
                 return
             try:
-                with self.client.atomic():
+                with self.client.atomic(), capture_scene(self.client) as messages:
                     scene.place_labels()
             except RuntimeError:  # a node removed meanwhile (the tab left): nothing to place
                 return
+            placed = Placement(screen.shown, screen.look(), tuple(messages)) if screen.leads else None
+        if placed is not None and placed.messages and self.placed is not None:
+            self.placed(placed)  # outside our lock: the followers take theirs
+
+    def replay(self, placed: Placement) -> None:
+        """Another tab placed the labels of the drawing we show (a follower replaying it): place ours
+        alike, if we show that very drawing (its state, replayed, for the same look)."""
+        with self._lock:
+            screen = self._screen()
+            if screen is None or self._closed() or screen.scene is None or screen.own_scene is not None:
+                return
+            if screen.shown is not placed.state or screen.look() != placed.look:
+                return
+            with self.client.atomic():
+                replay_scene(self.client, placed.messages)
 
     def close(self) -> None:
         with self._tlock:

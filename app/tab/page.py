@@ -22,14 +22,14 @@ from typing import Any
 
 from ..core.actions import SetConfiguration
 from ..core.commands import ChooseRobot, Message
-from ..core.i18n import LANGUAGES, Translator, translations
+from ..core.i18n import DEFAULT, LANGUAGES, Translator, is_language, negotiate, translations
 from ..core.page_state import PageError, PageReport, checked_q, page_address, parse_report
 from ..core.state import LabState
 from ..services.later import Call, later
 from ..views.panel import TAB_LABELS
 from ..viser_adapter import run_javascript
 
-__all__ = ["PageLink", "ADDRESS_EVERY", "BEAT_EVERY", "TAB_KEYS"]
+__all__ = ["PageLink", "ADDRESS_EVERY", "BEAT_EVERY", "TAB_KEYS", "address_language"]
 
 ADDRESS_EVERY = 0.4
 """The page's address is rewritten at most this often [s] (a dragged slider commits 30 times a second)."""
@@ -219,3 +219,16 @@ class PageLink:
             if self._timer is not None:
                 self._timer.cancel()
                 self._timer = None
+
+
+def address_language(lang: str) -> tuple[str, tuple[str, str] | None]:
+    """The language a page's address asks for (``?lang=``, non-empty) and, for one this lab does not speak,
+    the notice (title, body) saying so: it is English then, said in English."""
+    code = lang if is_language(lang) else negotiate([lang], default="")
+    if code:
+        return code, None
+    return DEFAULT, (
+        "Language not available",
+        f"This lab does not speak “{lang[:40]}”: it speaks English here. "
+        "Available: ?lang=en (English), pt (Português), es (Español), pl (Polski).",
+    )

@@ -84,7 +84,9 @@ class Screen:
             self._first = state.robot
         self.panel = PanelView(client, dispatch, catalog.names(), state, classroom, self.tr)
         self.scene_messages = SceneMessages()
+        self.shown, self.leads = state, False  # the state on screen; whether other tabs replay our scene
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
+        self._foreign_look = ""  # the look they were drawn for (another one: we draw our own)
         self.layout: Callable[[], Layout | None] = lambda: None  # the labels' camera and canvas
         self.live = ""  # the motion's readout over the 3-D view as last drawn (its labels keep out of it)
 
@@ -118,7 +120,8 @@ class Screen:
             if replay is not None and self.scene is not None:
                 replay_scene(self.client, replay)  # the presenter's scene, drawn once for the room
                 self._foreign = True  # our SceneView no longer knows what the browser shows
-            elif keep_scene and self._foreign and role.following:
+                self._foreign_look = self.look()  # the screen its labels were placed for
+            elif keep_scene and self._foreign and role.following and self._foreign_look == self.look():
                 pass  # the state shown, drawn again for its panel: a follower's view stays the presenter's
             else:
                 kept, self._first = state.robot is self._first, None
@@ -140,6 +143,7 @@ class Screen:
             symbols.draw(self.panel, everything=rebuild)
         self.scene_messages = SceneMessages(captured)
         self.scene_messages.look = self.look()
+        self.shown, self.leads = state, bool(role.presenting or capture)
 
     def look(self) -> str:
         """What a drawing of the scene depends on besides the state: the tab's language and the screen its

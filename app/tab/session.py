@@ -53,7 +53,7 @@ from .commands import CommandRunner
 from .following import Following
 from .labels import TabLabels
 from .notices import Notices
-from .page import PageLink
+from .page import PageLink, address_language
 from .recorder import TabRecorder
 from .robots import TabCatalog
 from .screen import Screen
@@ -112,11 +112,12 @@ class ClientSession:
         self.browser_language = negotiate(accept_language, default="") if accept_language else ""
         self.language = self._wanted_language = self._decide_language()
         self.page.tr = self.notices.tr = translations(self.language)
-        self.page.following, self.following.page = self.following, self.page
         self.labels = TabLabels(
             client, self.camera, lambda: self.page.window, self.lock, lambda: getattr(self, "screen", None),
-            lambda: self._closed,
+            lambda: self._closed, lambda placed: self.following.labels_placed(placed),
         )  # fmt: skip
+        self.page.following, self.following.page = self.following, self.page
+        self.following.labels = self.labels
         self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify, lambda: self.notices.tr)
         self.recorder = TabRecorder(self.subscribe)
         self.commands = CommandRunner(
@@ -256,6 +257,7 @@ class ClientSession:
             self.page.take(message.text)
             if self.page.window != window:
                 self.labels.place()  # another canvas: the labels placed in it
+                batch.force = batch.force or self.screen.own_scene is None  # replayed for another: our own
             if self.page.tab != shown or self._wanted_language != self.language:
                 batch.force = True  # the tab opened is drawn with the state on screen
         else:
@@ -328,15 +330,9 @@ class ClientSession:
         if browser and not self.browser_language:
             self.browser_language = negotiate(list(browser), default="")
         if lang:
-            code = lang if is_language(lang) else negotiate([lang], default="")
-            if not code:
-                code = DEFAULT  # unknown: English, said in English
-                self.notices.notify(
-                    "Language not available",
-                    f"This lab does not speak “{lang[:40]}”: it speaks English here. "
-                    "Available: ?lang=en (English), pt (Português), es (Español), pl (Polski).",
-                )
-            self.page.lang = code
+            self.page.lang, unknown = address_language(lang)
+            if unknown is not None:
+                self.notices.notify(*unknown)
         self._wanted_language = self._decide_language()
 
     def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]:

@@ -41,7 +41,8 @@ def room(n_followers: int = 2):
             others = [s for s in lab.sessions.values() if s is not first]
             first.panel.classroom.token.value = TOKEN  # as typed: no other click
             first.settle()
-            poll(lambda: first.role.presenting)
+            # The role is the classroom's at once; the panel shows it (the room's question box) once drawn.
+            poll(lambda: first.role.presenting and first.panel.question.ask_box.visible)
             yield lab, first, others
         finally:
             for c in clients:

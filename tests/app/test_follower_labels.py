@@ -146,3 +146,66 @@ def test_a_phone_in_the_presenters_language_draws_its_own_scene_and_a_same_scree
                 boxes = drew.scene.labels.boxes
                 assert len(boxes) and (boxes[:, 0] >= -TOL).all() and (boxes[:, 2] <= phone.width + TOL).all()
                 assert (boxes[:, 1] >= -TOL).all() and (boxes[:, 3] <= phone.height + TOL).all()
+
+
+def _last_positions(ws: ViserWsClient) -> dict[str, np.ndarray]:
+    """The position each scene node was last moved to, in the messages ``ws``'s browser received."""
+    with ws._cond:
+        received = list(ws.messages)
+    return {
+        m["name"]: np.asarray(m["position"]) for _, m in received if m.get("type") == "SetPositionMessage"
+    }
+
+
+def test_the_presenters_orbit_moves_the_labels_of_followers_replaying_its_scene_and_a_new_window_draws_own():
+    """A laptop the presenter's size replays the presenter's scene, labels placed for that screen: when
+    the presenter turns the camera, its labels are placed again and the laptop's browser is sent the
+    very same placements (it has no scene of its own to place). When the laptop's window then becomes a
+    phone's, its look is another: it draws its own scene, its labels placed inside the phone's view."""
+    big = visible_view_rect(*PROJECTOR)
+    size = (int(big.width), int(big.height))
+    with running_lab(size, presenter_token=TOKEN) as (lab, presenter, ws):
+        _report(presenter, kind="view", width=PROJECTOR[0], height=PROJECTOR[1], touch=PROJECTOR[2])
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}", *size) as laptop_ws:
+            wait_until(lambda: len(lab.sessions) == 2)
+            (laptop,) = (s for s in lab.sessions.values() if s is not presenter)
+            _report(laptop, kind="view", width=PROJECTOR[0], height=PROJECTOR[1], touch=PROJECTOR[2])
+            presenter.panel.classroom.token.value = TOKEN
+            wait_until(lambda: presenter.role.presenting and laptop.role.following)
+            presenter.dispatch(GoTo("wrist_singular"))
+            presenter.settle()
+            wait_until(lambda: laptop.state is presenter.state)
+            laptop.settle()
+            assert laptop.screen.own_scene is None and laptop.screen.look() == presenter.screen.look()
+            labels_placed(presenter)
+            before = {h.name: np.array(h.position) for h in presenter.scene.labels.placed}
+            position, look = _turned(presenter.client.camera, 80.0, 0.2)
+            cam = presenter.client.camera
+            ws.send(
+                message_class("ViewerCameraMessage")(
+                    wxyz=(1.0, 0.0, 0.0, 0.0), position=tuple(position), fov=float(cam.fov), near=0.01,
+                    far=100.0, image_height=int(cam.image_height), image_width=int(cam.image_width),
+                    look_at=tuple(look), up_direction=(0.0, 0, 1),
+                )
+            )  # fmt: skip
+            wait_until(lambda: np.allclose(presenter.client.camera.position, position, atol=1e-9))
+            labels_placed(presenter)
+            after = {h.name: np.array(h.position) for h in presenter.scene.labels.placed}
+            moved = [n for n in after if n in before and not np.allclose(after[n], before[n], atol=1e-6)]
+            assert moved, "the orbit moved no label: nothing to relay"
+
+            def shown_as_presenters() -> bool:
+                seen = _last_positions(laptop_ws)
+                return all(n in seen and np.allclose(seen[n], p, atol=1e-5) for n, p in after.items())
+
+            wait_until(shown_as_presenters, what="the laptop's browser shows the presenter's placements")
+            # Its window becomes a phone's: another look, so its own scene, its labels in its own view.
+            _report(laptop, kind="view", width=PHONE[0], height=PHONE[1], touch=PHONE[2])
+            wait_until(lambda: laptop.screen.own_scene is not None, what="the laptop drew its own scene")
+            labels_placed(laptop)
+            phone = visible_view_rect(*PHONE)
+            layout = laptop.scene.labels.layout
+            assert (layout.width, layout.height) == (phone.width, phone.height)
+            boxes = laptop.scene.labels.boxes
+            assert len(boxes) and (boxes[:, 0] >= -TOL).all() and (boxes[:, 2] <= phone.width + TOL).all()
+            assert (boxes[:, 1] >= -TOL).all() and (boxes[:, 3] <= phone.height + TOL).all()

@@ -43,6 +43,7 @@ class Tab:
         self.state, self.snapshot = state, compute(state)
         self.mirrored: list[tuple[LabState, object]] = []
         self.cameras: list[tuple] = []
+        self.placements: list[object] = []
         self.tabs: list[str] = []
         self.role = None
         self._listeners: list = []
@@ -73,6 +74,9 @@ class Tab:
 
     def mirror_camera(self, *pose):
         self.cameras.append(pose)
+
+    def mirror_labels(self, placed):
+        self.placements.append(placed)
 
     def mirror_tab(self, label):
         self.tabs.append(label)
@@ -166,6 +170,13 @@ def test_followers_in_every_worker_follow_and_each_worker_computes_once(room):
     room.workers[1].tab(1, "Motion")
     poll(lambda: far[0].cameras and far[0].tabs == ["Motion"], what="camera and tab relayed")
     assert far[0].cameras[-1] == ((1.0, 2.0, 3.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)) and not far[2].cameras
+    # A follower that drew for its worker's others places its labels again: its worker's other followers
+    # are handed the placement (each replays it only if it shows that drawing), never itself nor a tab
+    # exploring alone, nor another worker (which places its own for the relayed camera).
+    placed = object()
+    room.workers[2].labels(10, placed)
+    assert far[1].placements == [placed] and not far[0].placements and not far[2].placements
+    assert not any(t.placements for t in near)
     late = room.tab(2, 13)  # a tab arriving later, in the other worker, is shown where the room is
     poll(lambda: late.mirrored and late.state.q[0] == 1.1 and late.tabs == ["Motion"], what="a late tab")
 
