@@ -12,7 +12,7 @@ then takes like any other.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .actions import Action
 
@@ -36,6 +36,7 @@ __all__ = [
     "ExploreAlone",
     "FollowPresenter",
     "Mirror",
+    "LabelsPlaced",
     "ChooseLanguage",
     "Redraw",
     "ResetView",
@@ -245,6 +246,15 @@ CLASSROOM = (
 )
 """Classroom commands: a follower may always send these (its other inputs are read-only)."""
 
+
+@dataclass(frozen=True, eq=False)
+class LabelsPlaced:
+    """The labels of a drawing this follower replays were placed again (``placed``: an
+    :class:`app.tab.labels.Placement`): replayed after that drawing, in the order they came."""
+
+    placed: Any
+
+
 Command = (
     ChooseRobot
     | ChooseChain
@@ -259,6 +269,7 @@ Command = (
     | FollowPresenter
     | AnswerHandover
     | Mirror
+    | LabelsPlaced
     | Redraw
     | ResetView
     | PageReport

@@ -10,6 +10,7 @@ replaces it with the presenter's state, snapshot and scene messages; a refused i
 from __future__ import annotations
 
 import time
+from typing import Any
 
 from ..core.actions import Action, DriveTool
 from ..core.commands import Message, Mirror
@@ -37,6 +38,7 @@ class Batch:
         self._mirror: Mirror | None = None  # the presenter's last state, drawn as it is
         self._replay: list | None = []  # the presenter's scene messages, in order (None: draw our own)
         self.lead: SceneSlot | None = None  # a relayed state's slot this tab's own drawing fills
+        self.placed: list = []  # label placements in the drawing on screen, replayed once committed
 
     def take(self, action: Action) -> None:
         """Reduce ``action``."""
@@ -58,6 +60,14 @@ class Batch:
             self._replay.extend(scene)
         else:
             self._replay = None
+
+    def take_placed(self, placed: Any) -> None:
+        """Labels placed again (:class:`app.tab.labels.Placement`) in the drawing of ``placed.state``: right
+        after its scene messages if this batch replays them, else once the batch is committed."""
+        if self._mirror is not None and self._mirror.state is placed.state and self._replay:
+            self._replay.extend(placed.messages)
+        else:
+            self.placed.append(placed)
 
     def mirrored(self) -> tuple[object, list | None]:
         """The presenter's snapshot and scene messages when the state to commit is the presenter's

@@ -31,6 +31,7 @@ from ..core.commands import (
     EndQuestion,
     ExploreAlone,
     FollowPresenter,
+    LabelsPlaced,
     Message,
     Mirror,
     OpenTab,
@@ -149,7 +150,8 @@ class Following:
     def mirror_labels(self, placed: Any) -> None:
         """The tab whose drawing we replay placed its labels again: ours move alike."""
         if not self._closed and self.role.following and self.labels is not None:
-            self.labels.replay(placed)
+            if not self.labels.replay(placed):  # its drawing not on screen yet: after it, in order
+                self._dispatch(LabelsPlaced(placed))
 
     def labels_placed(self, placed: Any) -> None:
         """Our labels were placed again, in a drawing other tabs replay: theirs move alike."""

@@ -132,17 +132,18 @@ class TabLabels:
         if placed is not None and placed.messages and self.placed is not None:
             self.placed(placed)  # outside our lock: the followers take theirs
 
-    def replay(self, placed: Placement) -> None:
-        """Another tab placed the labels of the drawing we show (a follower replaying it): place ours
-        alike, if we show that very drawing (its state, replayed, for the same look)."""
+    def replay(self, placed: Placement) -> bool:
+        """Another tab placed the labels of a drawing we replay: place ours alike, if we show that very
+        drawing (its state, replayed, for the same look). False when we do not show it (yet): the
+        placement is then queued after the drawing it belongs to (:class:`app.core.commands.LabelsPlaced`)."""
         with self._lock:
             screen = self._screen()
-            if screen is None or self._closed() or screen.scene is None or screen.own_scene is not None:
-                return
-            if screen.shown is not placed.state or screen.look() != placed.look:
-                return
-            with self.client.atomic():
-                replay_scene(self.client, placed.messages)
+            if screen is None or self._closed() or screen.shown is not placed.state:
+                return False
+            if screen.scene is not None and screen.own_scene is None and screen.look() == placed.look:
+                with self.client.atomic():
+                    replay_scene(self.client, placed.messages)
+            return True
 
     def close(self) -> None:
         with self._tlock:

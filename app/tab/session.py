@@ -27,6 +27,7 @@ from ..core.actions import Action, Step
 from ..core.build_table import BUILT_NAME
 from ..core.commands import (
     ChooseLanguage,
+    LabelsPlaced,
     Message,
     Mirror,
     OpenTab,
@@ -214,6 +215,8 @@ class ClientSession:
                         self._commit(batch.state, rebuild, batch.jump, snap, scene, lead)
                     elif batch.symbolic or batch.question:
                         self.screen.draw_symbols(self.symbols, self.role if batch.question else None)
+                    for placed in batch.placed:  # placed in the drawing now on screen: after it
+                        self.labels.replay(placed)
                 except Exception as exc:  # the tab keeps its last good state on screen
                     self.notices.error(exc)
         self.pace.finish()
@@ -231,6 +234,8 @@ class ClientSession:
             if message.state.robot is not self.state.robot:  # only then may it be unknown here
                 self.catalog.keep_shown(message.state.robot_name, message.state.robot)
             batch.take_mirror(message, self.screen.scene is not None, look)
+        elif isinstance(message, LabelsPlaced):
+            batch.take_placed(message.placed)
         elif isinstance(message, Redraw):
             batch.force = True
         elif isinstance(message, QuestionShown):
@@ -336,8 +341,7 @@ class ClientSession:
         self._wanted_language = self._decide_language()
 
     def subscribe(self, fn: Callable[[LabState, Snapshot], None]) -> Callable[[], None]:
-        """Call ``fn(state, snapshot)`` after every commit (the classroom, a recorder); returns the
-        unsubscribe function."""
+        """Call ``fn(state, snapshot)`` after every commit (the classroom, a recorder); returns the undo."""
         return self.subscribers.add(fn)
 
     # ------------------------------------------------------------------ what the tab shows
