@@ -193,6 +193,7 @@ class Lab:
                 classroom=self.classroom,
                 language=self.language,
                 accept_language=client_header(self.server, client.client_id, "Accept-Language"),
+                user_agent=client_header(self.server, client.client_id, "User-Agent"),
             )
         except Exception as exc:  # this client sees the error; the server and other clients carry on
             log.error("client %s: cannot start a session", client.client_id, exc_info=exc)

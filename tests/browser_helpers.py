@@ -67,6 +67,13 @@ def image(png: bytes) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
 
 
+PHONE_USER_AGENT = (
+    "Mozilla/5.0 (Linux; Android 14; Pixel 8) AppleWebKit/537.36 (KHTML, like Gecko) "
+    "Chrome/156.0.0.0 Mobile Safari/537.36"
+)
+"""What Chromium on an Android phone sends (a touch page narrower than 600 px is given it)."""
+
+
 def new_page(
     browser,
     viewport: dict[str, int] | None = None,
@@ -81,6 +88,8 @@ def new_page(
     options: dict[str, Any] = {"locale": locale} if locale else {}
     if touch:  # a phone or tablet: a mobile viewport and touch events
         options.update(is_mobile=True, has_touch=True)
+        if (viewport or VIEWPORT)["width"] < 600:  # a phone says so, as Chromium on Android does
+            options["user_agent"] = PHONE_USER_AGENT
     page = browser.new_page(viewport=viewport or VIEWPORT, device_scale_factor=scale, **options)
     page.set_default_timeout(POLL_TIMEOUT * 1000)
     page.set_default_navigation_timeout(POLL_TIMEOUT * 1000)

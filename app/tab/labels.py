@@ -4,9 +4,10 @@ position always placed.
 
 The layout (:class:`app.views.scene.labels.Layout`) is the browser's camera and its canvas [CSS px]:
 the part of the window the panel leaves (:func:`app.views.panel.viewport.visible_view_rect`, from the
-window size the page reported), or before that report the camera's canvas in its pixels (720 px high
-if it has not said). Labels are placed inside the whole canvas, out of the motion's readout drawn over
-it while a motion is on screen (its box estimated for the window, :func:`app.views.panel.live_box.live_box`).
+window size the page reported), or before that report the camera's canvas in its device pixels over a
+guessed pixel ratio (:func:`guessed_pixel_ratio`; 720 px high if it has not said). Labels are placed
+inside the whole canvas, out of the motion's readout drawn over it while a motion is on screen (its box
+estimated for the window, :func:`app.views.panel.live_box.live_box`).
 
 A tab whose scene others replay (the presenter, or the follower that drew a relayed state for the
 followers of its look) hands each placement's messages on (:class:`Placement`, to ``placed``: the
@@ -29,7 +30,14 @@ from ..views.panel.viewport import visible_view_rect
 from ..views.scene.labels import Layout
 from ..viser_adapter import capture_scene, replay_scene
 
-__all__ = ["TabLabels", "Placement", "PLACE_EVERY", "ASSUMED_HEIGHT"]
+__all__ = [
+    "TabLabels",
+    "Placement",
+    "PLACE_EVERY",
+    "ASSUMED_HEIGHT",
+    "PHONE_PIXEL_RATIO",
+    "guessed_pixel_ratio",
+]
 
 PLACE_EVERY = 0.1
 """Labels are placed again at most this often [s] while the camera moves."""
@@ -47,6 +55,20 @@ class Placement:
     messages: tuple
 
 
+PHONE_PIXEL_RATIO = 2.0
+"""Device pixels per CSS pixel taken for a phone (2 to 3 on today's phones: 2 errs towards labels larger
+than they are, so they are set further apart, not over each other)."""
+
+
+def guessed_pixel_ratio(user_agent: str) -> float:
+    """Device pixels per CSS pixel of a browser whose page has not reported its window yet: a phone's
+    (``Mobi`` in its ``User-Agent``, as MDN advises telling phones) :data:`PHONE_PIXEL_RATIO`, else 1.
+    The camera reports its canvas in device pixels; the labels' sizes are CSS pixels. On a 390×844 phone
+    at scale 2 the labels were placed for a 780×1688 canvas for the 2 s a 4× throttled page takes to
+    build its panel and report its window."""
+    return PHONE_PIXEL_RATIO if "Mobi" in user_agent else 1.0
+
+
 class TabLabels:
     """Places a tab's scene labels for its camera and window.
 
@@ -59,6 +81,7 @@ class TabLabels:
             tab's nodes: a follower) and ``live``, the motion's readout it drew over the 3-D view.
         closed: Whether the tab has gone.
         placed: Told each placement of a drawing other tabs replay (``screen.leads``).
+        user_agent: The browser's ``User-Agent`` (:func:`guessed_pixel_ratio`).
     """
 
     def __init__(
@@ -70,10 +93,12 @@ class TabLabels:
         screen: Callable[[], Any],
         closed: Callable[[], bool],
         placed: Callable[[Placement], None] | None = None,
+        user_agent: str = "",
     ) -> None:
         self.client, self.camera, self._window, self._lock = client, camera, window, lock
         self._screen, self._closed, self.placed = screen, closed, placed
         self._timer: Call | None = None
+        self.pixel_ratio = guessed_pixel_ratio(user_agent)  # until the page reports its window
         self._last = 0.0
         self._tlock = threading.Lock()
 
@@ -83,9 +108,10 @@ class TabLabels:
         if view is None:
             return None
         window = self._window()
-        if window is None:  # the camera's canvas as a device of pixel ratio 1 (a bare websocket client)
+        if window is None:  # the camera's canvas, its pixel ratio guessed (1: a bare websocket client)
             cam = self.camera.client.camera
-            height = float(getattr(cam, "image_height", 0) or ASSUMED_HEIGHT)
+            height = float(getattr(cam, "image_height", 0) or ASSUMED_HEIGHT * self.pixel_ratio)
+            height /= self.pixel_ratio  # its device pixels, in CSS px as the labels' sizes are
             width = height * view.aspect
             window = (width + COLUMN, height, False)  # beside the docked panel
         else:

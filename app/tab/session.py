@@ -82,6 +82,7 @@ class ClientSession:
         classroom: Classroom | None = None,
         language: str = "",
         accept_language: str = "",
+        user_agent: str = "",
     ) -> None:
         self.client, self.key, self.symbolic = client, client.client_id, symbolic
         self.catalog = TabCatalog(catalog)  # the shared robots plus this tab's own (uploads, Build tab)
@@ -107,15 +108,14 @@ class ClientSession:
             client, self.dispatch, self.catalog.names, self.catalog.load,
             lambda title, body: self.notices.notify(title, body), lambda: self._closed, self._page_languages,
         )  # fmt: skip
-        # The tab's language: its own choice (address, Language menu) > the room's (serve --lang) > its
-        # browser's (the handshake's Accept-Language, then navigator.languages) > English.
+        # Its language: its own (address, menu) > the room's (--lang) > its browser's (handshake) > English.
         self.room_language = language if is_language(language) else ""
         self.browser_language = negotiate(accept_language, default="") if accept_language else ""
         self.language = self._wanted_language = self._decide_language()
         self.page.tr = self.notices.tr = translations(self.language)
         self.labels = TabLabels(
             client, self.camera, lambda: self.page.window, self.lock, lambda: getattr(self, "screen", None),
-            lambda: self._closed, lambda placed: self.following.labels_placed(placed),
+            lambda: self._closed, lambda placed: self.following.labels_placed(placed), user_agent=user_agent,
         )  # fmt: skip
         self.page.following, self.following.page = self.following, self.page
         self.following.labels = self.labels
@@ -191,11 +191,7 @@ class ClientSession:
 
     # ------------------------------------------------------------------ visit
     def visit(self) -> bool:
-        """Take every queued message and redraw once (called by the renderer thread).
-
-        Returns:
-            True when messages arrived meanwhile (the renderer visits again).
-        """
+        """Take every queued message and redraw once (the renderer's thread); True when more arrived."""
         with self._queue_lock:
             messages, self._queue = coalesced(self._queue), []
         self.pace.start()

@@ -7,6 +7,9 @@ messages only hold the labels that moved, measured against the presenter's previ
 
 from __future__ import annotations
 
+import pytest
+from browser_helpers import PHONE_USER_AGENT
+
 from app.core.commands import LabelsPlaced, Mirror
 from app.core.role import Role
 from app.core.state import LabState
@@ -71,3 +74,40 @@ def test_a_follower_showing_the_drawing_replays_at_once_and_one_that_lags_queues
     alone.role = Role(presenter=True)  # exploring on its own: its scene is its own
     alone.mirror_labels(placed)
     assert alone.labels.replayed == [] and sent == []
+
+
+PHONE_UA = PHONE_USER_AGENT
+
+
+def test_before_a_phone_reports_its_window_its_labels_are_placed_for_its_canvas_in_css_pixels():
+    """A phone's camera reports its canvas in device pixels (780×1688 for 390×844 at scale 2): until its
+    page reports the window, its labels are placed for 390×844 CSS px (its User-Agent says it is a phone),
+    not for a canvas twice as large (labels then lay twice as far apart as they could, some off the
+    screen). A browser that is not a phone keeps a ratio of 1; once the window is reported, it decides."""
+    import json
+
+    from app_helpers import labels_placed, running_lab
+    from fakes import poll
+    from wsclient import ViserWsClient
+
+    from app.core.commands import PageReport
+    from app.tab.labels import PHONE_PIXEL_RATIO, guessed_pixel_ratio
+    from app.views.panel.viewport import visible_view_rect
+
+    assert guessed_pixel_ratio(PHONE_UA) == PHONE_PIXEL_RATIO == 2.0
+    assert guessed_pixel_ratio("Mozilla/5.0 (X11; Linux x86_64) Chrome/156.0.0.0 Safari/537.36") == 1.0
+    with running_lab((876, 720)) as (lab, desk, _):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}", 780, 1688, headers={"User-Agent": PHONE_UA}):
+            phone = poll(lambda: next((s for s in lab.sessions.values() if s is not desk), None))
+            labels_placed(phone)
+            layout = phone.scene.labels.layout
+            assert (layout.width, layout.height) == pytest.approx((390.0, 844.0))
+            labels_placed(desk)
+            assert desk.scene.labels.layout.height == pytest.approx(720.0)  # a bare client: ratio 1
+            phone.dispatch(
+                PageReport(json.dumps({"kind": "view", "width": 390, "height": 844, "touch": True}))
+            )
+            phone.settle()
+            labels_placed(phone)
+            r = visible_view_rect(390, 844, True)
+            assert (phone.scene.labels.layout.width, phone.scene.labels.layout.height) == (r.width, r.height)
