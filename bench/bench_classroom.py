@@ -17,6 +17,7 @@ Usage::
     python bench/bench_classroom.py --followers 10 30 --moves 40
     python bench/bench_classroom.py --followers 60 --workers 1 2   # one process and two, side by side
     python bench/bench_classroom.py --followers 60 150 300 --workers 2 --app-root /tmp/base   # before/after
+    python bench/bench_classroom.py --followers 150 --workers 2 --screens 1 4 8   # a hall of mixed phones
 
 ``--app-root DIR`` adds, for every run, the same run against the app of another checkout (a baseline), one
 after the other, so the two are measured on the same machine at nearly the same load. Each row also gives
@@ -30,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import collections
+import json
 import os
 import re
 import subprocess
@@ -83,6 +85,17 @@ PAGE_LOADED = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
 """What a browser's page reports once connected (app/views/panel/page.py): it shows the first tab."""
 
 
+SCREENS = [(390, 844), (412, 915), (360, 800), (375, 667), (430, 932), (393, 873), (414, 896), (1280, 720)]
+"""Windows [CSS px] followers report with ``--screens K`` (follower i the (i mod K)-th): phones upright
+(Android and iPhone sizes), then a laptop. Labels are placed per screen, so followers of K screens share
+K drawings per worker, not one."""
+
+
+def view_report(width: int, height: int) -> str:
+    """What a page reports of its window (app/views/panel/page.py), a phone's with touch."""
+    return json.dumps({"kind": "view", "width": width, "height": height, "touch": width < 600})
+
+
 def gui(ws: ViserWsClient, kind: str, label_start: str) -> str:
     _, msg = ws.wait_for(
         lambda m: m["type"] == kind and str(m["props"].get("label", "")).startswith(label_start), timeout=60
@@ -101,7 +114,14 @@ def spread(log: Path) -> list[int]:
 
 
 def run(
-    robot: str, followers: int, moves: int, period: float, workers: int | None, log: Path, app_root: Path
+    robot: str,
+    followers: int,
+    moves: int,
+    period: float,
+    workers: int | None,
+    log: Path,
+    app_root: Path,
+    screens: int = 0,
 ) -> dict:
     proc, port = start_server(robot, workers, log, app_root)
     url = f"ws://127.0.0.1:{port}"
@@ -118,10 +138,13 @@ def run(
             timeout=60,
         )
         room = []
-        for _ in range(followers):
+        for i in range(followers):
             c = ViserWsClient(url)
             c.start(timeout=60)
-            c.set_value(gui(c, "GuiTextMessage", "page"), PAGE_LOADED)  # as its page script does
+            page = gui(c, "GuiTextMessage", "page")
+            c.set_value(page, PAGE_LOADED)  # as its page script does
+            if screens:  # and its window
+                c.set_value(page, view_report(*SCREENS[i % screens]))
             clients.append(c)
             room.append(c)
         for c in room:  # each follower has drawn the presenter's arm once
@@ -177,25 +200,33 @@ def main() -> int:
     parser.add_argument(
         "--app-root", type=Path, default=None, help="also run the app of this checkout (a baseline) beside it"
     )
+    parser.add_argument(
+        "--screens",
+        type=int,
+        nargs="+",
+        default=[0],
+        help="followers report windows of K distinct screens (SCREENS), for each K; 0: none reported",
+    )
     parser.add_argument("--log", type=Path, default=Path("/tmp/bench-classroom.log"), help="the server's log")
     args = parser.parse_args()
     print(f"robot {args.robot}; presenter moves q2 every {args.period:g} s; {os.cpu_count()} CPUs")
     print(f"load average before: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     print(
-        "app       workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move"
+        "app       screens workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move"
         "  ms/follower/move  tree MB  client %"
         "   (presenter slider → each follower's redrawn arm; CPU and memory (PSS): the server's process tree)"
     )
     roots = [("this", ROOT)] + ([("baseline", args.app_root.resolve())] if args.app_root else [])
-    runs = [(n, w, a) for n in args.followers for w in (args.workers or [None]) for a in roots]
-    for n, workers, (app, root) in runs:
-        r = run(args.robot, n, args.moves, args.period, workers, args.log, root)
+    workers_ = args.workers or [None]
+    runs = [(n, w, k, a) for n in args.followers for w in workers_ for k in args.screens for a in roots]
+    for n, workers, k, (app, root) in runs:
+        r = run(args.robot, n, args.moves, args.period, workers, args.log, root, k)
         s = r["samples"]
         p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)
         mx = s.max() if len(s) else np.nan
         spread_ = "+".join(str(k) for k in r["spread"])
         print(
-            f"{app:9} {workers or '-':>7} {n:9d} {spread_:>7} {p50:8.1f} {p95:8.1f} {mx:8.1f} "
+            f"{app:9} {k or '-':>7} {workers or '-':>7} {n:9d} {spread_:>7} {p50:8.1f} {p95:8.1f} {mx:8.1f} "
             f"{r['missed']:7d} {r['cpu']:6.0f} {r['cpu_per_move']:8.1f} {r['cpu_per_move'] / n:17.3f} "
             f"{r['pss']:8.0f} {r['client']:9.0f}",
             flush=True,
