@@ -28,6 +28,8 @@ __all__ = [
     "app_page",
     "text_input",
     "type_into",
+    "served_browser",
+    "presenting_lab",
 ]
 
 CHROMIUM = "/usr/bin/chromium"
@@ -273,3 +275,30 @@ def served_browser(tmp_path, argv: list[str]) -> Iterator[tuple[str, Any]]:
                 browser.close()
     finally:
         server.cleanup()
+
+
+@contextlib.contextmanager
+def presenting_lab(token: str, query: str = "") -> Iterator[tuple[Any, Any, Any, Any]]:
+    """A lab in classroom mode (``token``) in this process, a headless Chromium, and a 1280×720 page opened
+    at the presenter link (``query``: more of its address, e.g. ``&fixedDpr=1``) that now presents, its
+    notifications out of the way; all closed after the block. Yields ``(lab, browser, page, session)``."""
+    from app.server import Lab
+    from app.services.presenter_token import presenter_link
+
+    sync_playwright = require_browser()
+    lab = Lab(port=0, presenter_token=token)
+    try:
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            try:
+                page = new_page(browser)
+                page.goto(presenter_link(lab.url, token) + query)
+                page.wait_for_selector("[role=slider]")
+                presenter = lab.session()
+                poll(lambda: presenter.role.presenting, what="the first tab presents")
+                close_notifications(page)
+                yield lab, browser, page, presenter
+            finally:
+                browser.close()
+    finally:
+        lab.stop()

@@ -18,12 +18,10 @@ import numpy as np
 import pytest
 from app_helpers import labels_placed
 from browser_helpers import (
-    ARGS,
-    CHROMIUM,
     canvas_box,
     close_notifications,
     new_page,
-    require_browser,
+    presenting_lab,
     screenshot_dir,
     steady_canvas,
 )
@@ -33,8 +31,6 @@ from test_follower_labels import PHONE, phone_boxes
 
 from app.core.actions import GoTo
 from app.core.commands import ChooseRobot
-from app.server import Lab
-from app.services.presenter_token import presenter_link
 from app.views.panel.viewport import visible_view_rect
 from app.views.scene.placement import overlaps
 
@@ -82,57 +78,42 @@ def _check(follower, phone, what: str) -> None:
 
 def test_a_polish_phone_following_an_english_presenter_draws_its_labels_in_its_own_view(tmp_path):
     out = screenshot_dir(tmp_path)
-    sync_playwright = require_browser()
-    lab = Lab(port=0, presenter_token=TOKEN)
-    try:
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                errors: list[str] = []
-                big = new_page(browser)
-                big.goto(presenter_link(lab.url, TOKEN))
-                big.wait_for_selector("[role=slider]")
-                presenter = lab.session()
-                poll(lambda: presenter.role.presenting, what="the first tab presents")
-                close_notifications(big)
-                phone = new_page(browser, {"width": PHONE[0], "height": PHONE[1]}, scale=SCALE, touch=True)
-                phone.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
-                phone.goto(lab.url + f"/?lang=pl&fixedDpr={SCALE}")  # no adaptive re-render between captures
-                phone.wait_for_selector("[role=slider]", state="attached")
-                poll(lambda: len(lab.sessions) == 2, what="the phone connected")
-                follower = next(s for s in lab.sessions.values() if s is not presenter)
-                poll(
-                    lambda: follower.role.following and follower.language == "pl",
-                    what="the phone follows in Polish",
-                )
-                close_notifications(phone)
-                r = visible_view_rect(*PHONE)
-                assert canvas_box(phone) == {"x": 0, "y": 0, "width": r.width, "height": r.height}
-                presenter.dispatch(ChooseRobot("puma560"))
-                presenter.dispatch(GoTo("wrist_singular"))
-                poll(
-                    lambda: follower.state.configuration == "wrist_singular",
-                    what="the phone at the singularity",
-                )
-                _check(follower, phone, "at the wrist singularity")
-                assert follower.screen.own_scene is not None
-                phone.screenshot(path=str(out / "follower_pl_phone_wrist.png"))
-                big.screenshot(path=str(out / "follower_pl_presenter_wrist.png"))
-                before = np.asarray(follower.client.camera.position, float).copy()
-                # The presenter drags its view round; the phone's camera follows.
-                big.mouse.move(420, 420)
-                big.mouse.down()
-                big.mouse.move(300, 380, steps=12)
-                big.mouse.up()
-                poll(
-                    lambda: np.linalg.norm(np.asarray(follower.client.camera.position) - before) > 0.2,
-                    what="the phone's camera turned with the presenter's",
-                )
-                _check(follower, phone, "after the presenter's drag")
-                phone.screenshot(path=str(out / "follower_pl_phone_turned.png"))
-                big.screenshot(path=str(out / "follower_pl_presenter_turned.png"))
-                assert not errors, errors
-            finally:
-                browser.close()
-    finally:
-        lab.stop()
+    with presenting_lab(TOKEN) as (lab, browser, big, presenter):
+        errors: list[str] = []
+        phone = new_page(browser, {"width": PHONE[0], "height": PHONE[1]}, scale=SCALE, touch=True)
+        phone.on("pageerror", lambda exc: errors.append(f"pageerror: {exc}"))
+        phone.goto(lab.url + f"/?lang=pl&fixedDpr={SCALE}")  # no adaptive re-render between captures
+        phone.wait_for_selector("[role=slider]", state="attached")
+        poll(lambda: len(lab.sessions) == 2, what="the phone connected")
+        follower = next(s for s in lab.sessions.values() if s is not presenter)
+        poll(
+            lambda: follower.role.following and follower.language == "pl",
+            what="the phone follows in Polish",
+        )
+        close_notifications(phone)
+        r = visible_view_rect(*PHONE)
+        assert canvas_box(phone) == {"x": 0, "y": 0, "width": r.width, "height": r.height}
+        presenter.dispatch(ChooseRobot("puma560"))
+        presenter.dispatch(GoTo("wrist_singular"))
+        poll(
+            lambda: follower.state.configuration == "wrist_singular",
+            what="the phone at the singularity",
+        )
+        _check(follower, phone, "at the wrist singularity")
+        assert follower.screen.own_scene is not None
+        phone.screenshot(path=str(out / "follower_pl_phone_wrist.png"))
+        big.screenshot(path=str(out / "follower_pl_presenter_wrist.png"))
+        before = np.asarray(follower.client.camera.position, float).copy()
+        # The presenter drags its view round; the phone's camera follows.
+        big.mouse.move(420, 420)
+        big.mouse.down()
+        big.mouse.move(300, 380, steps=12)
+        big.mouse.up()
+        poll(
+            lambda: np.linalg.norm(np.asarray(follower.client.camera.position) - before) > 0.2,
+            what="the phone's camera turned with the presenter's",
+        )
+        _check(follower, phone, "after the presenter's drag")
+        phone.screenshot(path=str(out / "follower_pl_phone_turned.png"))
+        big.screenshot(path=str(out / "follower_pl_presenter_turned.png"))
+        assert not errors, errors

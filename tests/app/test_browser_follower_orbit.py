@@ -11,21 +11,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from app_helpers import labels_placed
-from browser_helpers import (
-    ARGS,
-    CHROMIUM,
-    close_notifications,
-    new_page,
-    require_browser,
-    screenshot_dir,
-    steady_canvas,
-)
+from browser_helpers import close_notifications, new_page, presenting_lab, screenshot_dir, steady_canvas
 from fakes import poll
 
 from app.core.actions import GoTo
 from app.core.commands import ChooseRobot
-from app.server import Lab
-from app.services.presenter_token import presenter_link
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
@@ -40,55 +30,37 @@ def _unlike(a: np.ndarray, b: np.ndarray) -> float:
 
 def test_a_follower_replaying_the_presenters_scene_shows_its_labels_where_the_presenter_does(tmp_path):
     out = screenshot_dir(tmp_path)
-    sync_playwright = require_browser()
-    lab = Lab(port=0, presenter_token=TOKEN)
-    try:
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-            try:
-                big = new_page(browser)
-                big.goto(presenter_link(lab.url, TOKEN) + "&fixedDpr=1")
-                big.wait_for_selector("[role=slider]")
-                presenter = lab.session()
-                poll(lambda: presenter.role.presenting, what="the first tab presents")
-                close_notifications(big)
-                laptop = new_page(browser)
-                laptop.goto(lab.url + "/?fixedDpr=1")
-                laptop.wait_for_selector("[role=slider]")
-                poll(lambda: len(lab.sessions) == 2, what="the laptop connected")
-                follower = next(s for s in lab.sessions.values() if s is not presenter)
-                poll(lambda: follower.role.following, what="the laptop follows")
-                close_notifications(laptop)
-                presenter.dispatch(ChooseRobot("puma560"))
-                presenter.dispatch(GoTo("wrist_singular"))
-                poll(lambda: follower.state.configuration == "wrist_singular", what="the laptop there")
-                poll(
-                    lambda: (
-                        follower.screen.own_scene is None
-                        and follower.screen.look() == presenter.screen.look()
-                    ),
-                    what="the laptop replays the presenter's scene (the same look)",
-                )
-                labels_placed(presenter, still=10, interval=0.1)
-                before = presenter.scene.labels.boxes.copy()
-                big.mouse.move(420, 420)
-                big.mouse.down()
-                big.mouse.move(300, 380, steps=12)
-                big.mouse.up()
-                labels_placed(presenter, still=10, interval=0.1)  # stood still a second, labels placed
-                after = presenter.scene.labels.boxes
-                assert before.shape != after.shape or np.abs(after - before).max() > 20  # the labels moved
-                assert follower.screen.own_scene is None  # still replaying
+    with presenting_lab(TOKEN, "&fixedDpr=1") as (lab, browser, big, presenter):
+        laptop = new_page(browser)
+        laptop.goto(lab.url + "/?fixedDpr=1")
+        laptop.wait_for_selector("[role=slider]")
+        poll(lambda: len(lab.sessions) == 2, what="the laptop connected")
+        follower = next(s for s in lab.sessions.values() if s is not presenter)
+        poll(lambda: follower.role.following, what="the laptop follows")
+        close_notifications(laptop)
+        presenter.dispatch(ChooseRobot("puma560"))
+        presenter.dispatch(GoTo("wrist_singular"))
+        poll(lambda: follower.state.configuration == "wrist_singular", what="the laptop there")
+        poll(
+            lambda: follower.screen.own_scene is None and follower.screen.look() == presenter.screen.look(),
+            what="the laptop replays the presenter's scene (the same look)",
+        )
+        labels_placed(presenter, still=10, interval=0.1)
+        before = presenter.scene.labels.boxes.copy()
+        big.mouse.move(420, 420)
+        big.mouse.down()
+        big.mouse.move(300, 380, steps=12)
+        big.mouse.up()
+        labels_placed(presenter, still=10, interval=0.1)  # stood still a second, labels placed
+        after = presenter.scene.labels.boxes
+        assert before.shape != after.shape or np.abs(after - before).max() > 20  # the labels moved
+        assert follower.screen.own_scene is None  # still replaying
 
-                def alike() -> tuple[float] | None:  # (the share of pixels unlike): 0.0 is an answer
-                    a, b = steady_canvas(big), steady_canvas(laptop)
-                    return (_unlike(a, b),) if a.shape == b.shape and _unlike(a, b) < 0.002 else None
+        def alike() -> tuple[float] | None:  # (the share of pixels unlike): 0.0 is an answer
+            a, b = steady_canvas(big), steady_canvas(laptop)
+            return (_unlike(a, b),) if a.shape == b.shape and _unlike(a, b) < 0.002 else None
 
-                (share,) = poll(alike, what="the laptop's 3-D view the presenter's, labels and all")
-                big.screenshot(path=str(out / "orbit_presenter.png"))
-                laptop.screenshot(path=str(out / "orbit_follower.png"))
-                assert share < 0.002, share
-            finally:
-                browser.close()
-    finally:
-        lab.stop()
+        (share,) = poll(alike, what="the laptop's 3-D view the presenter's, labels and all")
+        big.screenshot(path=str(out / "orbit_presenter.png"))
+        laptop.screenshot(path=str(out / "orbit_follower.png"))
+        assert share < 0.002, share
