@@ -18,6 +18,7 @@ Usage::
     python bench/bench_classroom.py --followers 60 --workers 1 2   # one process and two, side by side
     python bench/bench_classroom.py --followers 60 150 300 --workers 2 --app-root /tmp/base   # before/after
     python bench/bench_classroom.py --followers 150 --workers 2 --screens 1 4 8   # a hall of mixed phones
+    python bench/bench_classroom.py --followers 150 --workers 2 --orbit --period 0.1   # the presenter orbits
 
 ``--app-root DIR`` adds, for every run, the same run against the app of another checkout (a baseline), one
 after the other, so the two are measured on the same machine at nearly the same load. Each row also gives
@@ -32,6 +33,7 @@ from __future__ import annotations
 import argparse
 import collections
 import json
+import math
 import os
 import re
 import subprocess
@@ -45,6 +47,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
 
+from app.viser_adapter import message_class  # noqa: E402
 from bench.common import cpu_seconds, memory  # noqa: E402
 
 ARM_NODE = "/lab/arm/cylinders"
@@ -107,6 +110,24 @@ def is_arm_update(m: dict) -> bool:
     return m["type"] == "SceneNodeUpdateMessage" and m["name"] == ARM_NODE
 
 
+def is_camera_update(m: dict) -> bool:
+    return m["type"] == "SetCameraPositionMessage"
+
+
+def turn_camera(ws: ViserWsClient, i: int) -> float:
+    """The presenter's browser reports its camera turned ``i`` × 3° about the vertical (a drag); returns
+    the send time."""
+    a = math.radians(3.0 * (i + 1))
+    position = (3.0 * math.cos(a), 3.0 * math.sin(a), 1.5)
+    message = message_class("ViewerCameraMessage")(
+        wxyz=(1.0, 0.0, 0.0, 0.0), position=position, fov=1.0, near=0.01, far=100.0,
+        image_height=600, image_width=800, look_at=(0.0, 0.0, 0.3), up_direction=(0.0, 0.0, 1.0),
+    )  # fmt: skip
+    t = time.perf_counter()
+    ws.send(message)
+    return t
+
+
 def spread(log: Path) -> list[int]:
     """Tabs connected per server process (from the log), most first."""
     pids = re.findall(r"tab \d+ connected \(\d+ open in process (\d+)\)", log.read_text())
@@ -122,6 +143,7 @@ def run(
     log: Path,
     app_root: Path,
     screens: int = 0,
+    orbit: bool = False,
 ) -> dict:
     proc, port = start_server(robot, workers, log, app_root)
     url = f"ws://127.0.0.1:{port}"
@@ -155,10 +177,12 @@ def run(
         cpu0, own0, t0 = cpu_seconds(proc.pid), time.process_time(), time.perf_counter()
         for i in range(moves):
             marks = [c.mark() for c in room]
-            sent = presenter.set_value(slider, float(-30.0 + (i % 60)))
+            value = float(-30.0 + (i % 60))
+            sent = turn_camera(presenter, i) if orbit else presenter.set_value(slider, value)
+            arrived = is_camera_update if orbit else is_arm_update
             for c, mark in zip(room, marks, strict=True):
                 try:
-                    received, _ = c.wait_for(is_arm_update, after=mark, timeout=10)
+                    received, _ = c.wait_for(arrived, after=mark, timeout=10)
                     samples.append((received - sent) * 1e3)
                 except TimeoutError:
                     missed += 1
@@ -207,9 +231,15 @@ def main() -> int:
         default=[0],
         help="followers report windows of K distinct screens (SCREENS), for each K; 0: none reported",
     )
+    parser.add_argument(
+        "--orbit",
+        action="store_true",
+        help="the presenter turns the camera instead (3° a move; each follower's camera update is timed)",
+    )
     parser.add_argument("--log", type=Path, default=Path("/tmp/bench-classroom.log"), help="the server's log")
     args = parser.parse_args()
-    print(f"robot {args.robot}; presenter moves q2 every {args.period:g} s; {os.cpu_count()} CPUs")
+    what = "turns the camera 3°" if args.orbit else "moves q2"
+    print(f"robot {args.robot}; presenter {what} every {args.period:g} s; {os.cpu_count()} CPUs")
     print(f"load average before: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     print(
         "app       screens workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move"
@@ -220,7 +250,7 @@ def main() -> int:
     workers_ = args.workers or [None]
     runs = [(n, w, k, a) for n in args.followers for w in workers_ for k in args.screens for a in roots]
     for n, workers, k, (app, root) in runs:
-        r = run(args.robot, n, args.moves, args.period, workers, args.log, root, k)
+        r = run(args.robot, n, args.moves, args.period, workers, args.log, root, k, args.orbit)
         s = r["samples"]
         p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)
         mx = s.max() if len(s) else np.nan

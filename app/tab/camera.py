@@ -37,6 +37,7 @@ from ..views.camera import (
     needs_framing,
     step_axes,
 )
+from ..viser_adapter import set_camera
 
 __all__ = ["CameraMove", "TabCamera", "is_jump", "JUMP"]
 
@@ -230,9 +231,7 @@ class TabCamera:
         if self._closed:
             return
         with contextlib.suppress(Exception), self.client.atomic():
-            self.client.camera.up_direction = up
-            self.client.camera.position = position
-            self.client.camera.look_at = look_at
+            set_camera(self.client, position, look_at, up)
         self.moved()
 
     def close(self) -> None:
@@ -243,8 +242,5 @@ class TabCamera:
     def _set(self, position: np.ndarray, look_at: np.ndarray) -> None:
         if self._closed:
             return
-        cam = self.client.camera
-        cam.up_direction = (0.0, 0.0, 1.0)
-        cam.position = np.asarray(position, float)
-        cam.look_at = np.asarray(look_at, float)  # after position: setting position moves look_at
+        set_camera(self.client, position, look_at, (0.0, 0.0, 1.0))
         self.moved()

@@ -53,7 +53,8 @@ Wrapped:
 * :func:`quiet_banner` — viser's console lines (``rich.print``, printed whatever ``verbose`` says) left
   out while a server starts and stops: the app prints its address once, not once per worker.
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
-  ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts.
+  ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts;
+  :func:`set_camera` — a tab's camera pose (``CameraHandle._state``), its orientation worked out once.
 
 A package of eleven modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.uploads`,
 :mod:`.handshake`, :mod:`.props`, :mod:`.mirror`, :mod:`.frames`, :mod:`.icons`, :mod:`.events`,
@@ -94,7 +95,7 @@ from .limits import (
     welcome_tabs,
 )
 from .mirror import capture_scene, replay_scene
-from .props import install_fast_prop_casts, set_pose, update_props
+from .props import install_fast_prop_casts, set_camera, set_pose, update_props
 
 __all__ = [
     "TESTED_VISER",
@@ -135,6 +136,7 @@ __all__ = [
     "update_props",
     "on_event_loop",
     "set_pose",
+    "set_camera",
     "clip",
     "client_address",
     "forwarded_client",

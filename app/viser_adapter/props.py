@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import time
 from collections.abc import Sequence
 from typing import Any
 
-from .core import ViserApiChanged, _private
+import numpy as np
+import viser
+
+from .core import ViserApiChanged, _private, message_class
 
 __all__ = ["install_fast_prop_casts", "update_props", "set_pose"]
 
@@ -254,3 +258,43 @@ def _pose_message(name: str) -> type:
 
         _POSE_MESSAGES[name] = message_class(name)
     return _POSE_MESSAGES[name]
+
+
+# --------------------------------------------------------------------------- a tab's camera
+def set_camera(client: viser.ClientHandle, position: Any, look_at: Any, up: Any) -> None:
+    """Point ``client``'s camera: what assigning its ``up_direction``, ``position`` and then ``look_at``
+    sends (a message for each that changed, in that order) and keeps (the handle's
+    pose and orientation), with the orientation worked out once instead of four times (a follower's share
+    of a presenter's orbit: viser's setters each rebuild the orientation, and the position's moves
+    ``look_at`` first).
+
+    Raises:
+        ValueError: a value is not finite, or ``look_at`` is ``position``.
+        ViserApiChanged: the camera's state or its message classes moved.
+    """
+    cam = client.camera
+    try:
+        state, update = cam._state, cam._update_wxyz
+        queue = state.client._websock_connection.queue_message
+    except AttributeError as exc:
+        raise ViserApiChanged("set_camera", f"CameraHandle._state / _update_wxyz ({exc})") from exc
+    new = [np.asarray(v, np.float64).reshape(3) for v in (up, position, look_at)]
+    if not all(np.isfinite(v).all() for v in new):
+        raise ValueError(f"a camera pose must be finite: {[v.tolist() for v in new]}")
+    old = (state.up_direction, state.position, state.look_at)
+    changed = [not np.allclose(o, n) for o, n in zip(old, new, strict=True)]
+    if not any(changed):
+        return
+    state.up_direction, state.position, state.look_at = new
+    try:
+        update()
+    except Exception:
+        state.up_direction, state.position, state.look_at = old
+        raise
+    state.update_timestamp = time.time()
+    for name, value, sent in zip(_CAMERA_MESSAGES, new, changed, strict=True):
+        if sent:
+            queue(message_class(name)(tuple(float(x) for x in value)))
+
+
+_CAMERA_MESSAGES = ("SetCameraUpDirectionMessage", "SetCameraPositionMessage", "SetCameraLookAtMessage")

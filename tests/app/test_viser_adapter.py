@@ -411,3 +411,48 @@ def test_an_unchanged_plain_prop_queues_nothing_and_a_changed_one_is_sent(connec
     html.remove()
     with pytest.raises(RuntimeError, match="removed"):
         html.content = "<b>two</b>"  # the value it held, but removed: refused as viser refuses it
+
+
+def test_set_camera_leaves_the_camera_as_visers_setters_do_and_sends_its_final_pose(server):
+    """Two tabs, one pointed with viser's own setters (up, position, then look_at), one with
+    ``set_camera``: the same pose and orientation on the server, and the last position, look-at and up
+    each browser was sent are the same; an unchanged pose sends nothing; a bad one changes nothing."""
+    url = f"ws://127.0.0.1:{server.get_port()}"
+    with ViserWsClient(url) as ws_a, ViserWsClient(url) as ws_b:
+        poll(lambda: len(server.get_clients()) == 2)
+        a, b = sorted(server.get_clients().values(), key=lambda c: c.client_id)  # ws_a connected first
+        rng = np.random.default_rng(7)
+        for _ in range(5):
+            position, look_at = rng.normal(size=3) * 2 + np.array([0, 0, 3.0]), rng.normal(size=3) * 0.3
+            up = (0.0, 0.0, 1.0) if rng.random() < 0.6 else tuple(rng.normal(size=3))
+            a.camera.up_direction = up
+            a.camera.position = position
+            a.camera.look_at = look_at
+            va.set_camera(b, position, look_at, up)
+            for name in ("position", "look_at", "up_direction"):
+                np.testing.assert_allclose(getattr(b.camera, name), getattr(a.camera, name), atol=1e-12)
+            q_a, q_b = np.asarray(a.camera.wxyz), np.asarray(b.camera.wxyz)
+            assert np.allclose(q_a, q_b, atol=1e-9) or np.allclose(q_a, -q_b, atol=1e-9)
+
+        def last(ws, kind: str):
+            with ws._cond:
+                sent = [m for _, m in ws.messages if m["type"] == kind]
+            return sent[-1] if sent else None
+
+        for kind in ("SetCameraPositionMessage", "SetCameraLookAtMessage", "SetCameraUpDirectionMessage"):
+            poll(lambda kind=kind: last(ws_a, kind) is not None and last(ws_b, kind) is not None)
+            key = "look_at" if kind == "SetCameraLookAtMessage" else "position"  # (viser's up: "position")
+            poll(
+                lambda kind=kind, key=key: np.allclose(last(ws_a, kind)[key], last(ws_b, kind)[key]),
+                what=f"{kind} alike",
+            )
+        mark = ws_b.mark()
+        va.set_camera(b, b.camera.position.copy(), b.camera.look_at.copy(), b.camera.up_direction.copy())
+        before = b.camera.position.copy()
+        with pytest.raises(ValueError, match="finite"):
+            va.set_camera(b, (np.nan, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+        np.testing.assert_array_equal(b.camera.position, before)
+        va.set_camera(b, before + 1.0, b.camera.look_at, b.camera.up_direction)  # a change: sent after
+        ws_b.wait_for(lambda m: m["type"] == "SetCameraPositionMessage", after=mark)
+        kinds = [m["type"] for _, m in ws_b.messages[mark:] if m["type"].startswith("SetCamera")]
+        assert kinds == ["SetCameraPositionMessage"]  # nothing for the unchanged pose nor the refused one

@@ -14,6 +14,8 @@ its anchor.
 
 from __future__ import annotations
 
+import threading
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -128,28 +130,16 @@ class ScreenLabels:
         """Move every shown label to its place in ``layout`` (at its anchor when None)."""
         shown = [h for h in self.handles if _shown(h)]
         anchors = np.array([label_anchor(h) for h in shown]).reshape(-1, 3)
-        spots = anchors
-        boxes = np.zeros((0, 4))
+        spots, boxes, leaders = anchors, np.zeros((0, 4)), list[Any]()
         if layout is not None and shown:
             for h in shown:
                 _words(h, layout.rect[2] - layout.rect[0])
-            px = project(layout.view, anchors, layout.width, layout.height)
-            natural = np.array([label_box(h, p) for h, p in zip(shown, px, strict=True)])
-            sizes = natural[:, 2:] - natural[:, :2]
-            boxes = place(
-                natural[:, [0, 3]], sizes, layout.rect, occupied=layout.avoid
-            )  # bottom-left corners
-            offsets = px - natural[:, [0, 3]]  # from a box's bottom-left corner to its label's point
-            spots = anchors.copy()
-            leaders = []
-            for k, anchor in enumerate(anchors):
-                if np.isfinite(px[k]).all():
-                    at = boxes[k, [0, 3]] + offsets[k]
-                    spots[k] = lift(layout.view, at, anchor, layout.width, layout.height)
-                    near = np.clip(px[k], boxes[k, :2], boxes[k, 2:])  # the box's point nearest its anchor
-                    if np.hypot(*(near - px[k])) > LEADER_PX:
-                        start = lift(layout.view, near, anchor, layout.width, layout.height)
-                        leaders.append((start, anchor))
+            key = _placement_key(layout, shown, anchors)
+            made = _PLACED.get(key)
+            if made is None:
+                made = _placed(layout, shown, anchors)
+                _PLACED.put(key, made)
+            spots, boxes, leaders = made
             self._lead(leaders)
         for handle, spot in zip(shown, spots, strict=True):
             if np.isfinite(spot).all():
@@ -169,3 +159,61 @@ class ScreenLabels:
             pts[: len(leaders)] = np.array(leaders)
             pts[len(leaders) :] = pts[0, 0]
             update_props(self.leaders, points=finite(pts).astype(np.float32))
+
+
+def _placed(layout: Layout, shown: list[Any], anchors: np.ndarray) -> tuple[np.ndarray, np.ndarray, list]:
+    """Where ``shown`` (anchored at ``anchors``) go in ``layout``: their 3-D spots, their boxes [px] and
+    the leader lines (start, end) [m] of those moved away from their anchors."""
+    px = project(layout.view, anchors, layout.width, layout.height)
+    natural = np.array([label_box(h, p) for h, p in zip(shown, px, strict=True)])
+    sizes = natural[:, 2:] - natural[:, :2]
+    boxes = place(natural[:, [0, 3]], sizes, layout.rect, occupied=layout.avoid)  # bottom-left corners
+    offsets = px - natural[:, [0, 3]]  # from a box's bottom-left corner to its label's point
+    spots = anchors.copy()
+    leaders = []
+    for k, anchor in enumerate(anchors):
+        if np.isfinite(px[k]).all():
+            at = boxes[k, [0, 3]] + offsets[k]
+            spots[k] = lift(layout.view, at, anchor, layout.width, layout.height)
+            near = np.clip(px[k], boxes[k, :2], boxes[k, 2:])  # the box's point nearest its anchor
+            if np.hypot(*(near - px[k])) > LEADER_PX:
+                start = lift(layout.view, near, anchor, layout.width, layout.height)
+                leaders.append((start, anchor))
+    spots.setflags(write=False)  # shared by every tab that places the same labels alike
+    boxes.setflags(write=False)
+    return spots, boxes, leaders
+
+
+def _placement_key(layout: Layout, shown: list[Any], anchors: np.ndarray) -> tuple:
+    """Everything a placement depends on, as values: the camera, the canvas, and each label's words, size,
+    anchoring and 3-D anchor."""
+    v = layout.view
+    labels = tuple((str(h.text), float(h.font_screen_scale), str(h.anchor)) for h in shown)
+    camera = (v.position.tobytes(), v.look_at.tobytes(), v.up.tobytes(), float(v.fov), float(v.aspect))
+    return (camera, layout.width, layout.height, layout.rect, layout.avoid, labels, anchors.tobytes())
+
+
+class _Recent:
+    """The last few placements made in this process: the followers of a room that show the same labels
+    through the same camera in the same canvas (each placing its own scene's labels when the presenter
+    turns the camera) work them out once. Values are never changed after they are put."""
+
+    def __init__(self, size: int) -> None:
+        self._size, self._lock = size, threading.Lock()
+        self._items: OrderedDict[tuple, tuple[np.ndarray, np.ndarray, list]] = OrderedDict()
+
+    def get(self, key: tuple) -> tuple[np.ndarray, np.ndarray, list] | None:
+        with self._lock:
+            made = self._items.get(key)
+            if made is not None:
+                self._items.move_to_end(key)
+            return made
+
+    def put(self, key: tuple, made: tuple[np.ndarray, np.ndarray, list]) -> None:
+        with self._lock:
+            self._items[key] = made
+            while len(self._items) > self._size:
+                self._items.popitem(last=False)
+
+
+_PLACED = _Recent(32)

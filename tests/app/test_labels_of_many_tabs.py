@@ -1,22 +1,33 @@
-"""Issue 28: a presenter's label placements reach a follower that replays its scene in the order they were
-made, also when the follower has not yet drawn the state they were placed in (it lags): the placement is
-then queued after that state's drawing, its messages replayed right after the drawing's own.
-
-Replaying deltas out of order leaves labels where the presenter no longer shows them: a placement's
-messages only hold the labels that moved, measured against the presenter's previous positions."""
+"""Issue 28 (and 32), labels of many tabs: a presenter's label placements reach a follower that replays its
+scene in the order they were made, also when the follower has not yet drawn the state they were placed in
+(it lags): the placement is then queued after that state's drawing, its messages replayed right after the
+drawing's own (a placement's messages only hold the labels that moved, measured against the presenter's
+previous positions: replayed out of order, labels stay where the presenter no longer shows them). Tabs
+that place the same labels through the same camera work the placement out once. Before a phone's page
+reports its window, its labels are placed for its canvas in CSS pixels."""
 
 from __future__ import annotations
 
-import pytest
-from browser_helpers import PHONE_USER_AGENT
+import json
 
-from app.core.commands import LabelsPlaced, Mirror
+import numpy as np
+import pytest
+from app_helpers import labels_placed, running_lab
+from browser_helpers import PHONE_USER_AGENT
+from fakes import poll
+from wsclient import ViserWsClient
+
+from app.core.actions import GoTo
+from app.core.commands import LabelsPlaced, Mirror, PageReport
 from app.core.role import Role
 from app.core.state import LabState
 from app.services.catalog import RobotCatalog
 from app.tab.batch import Batch
 from app.tab.following import Following
-from app.tab.labels import Placement
+from app.tab.labels import PHONE_PIXEL_RATIO, Placement, guessed_pixel_ratio
+from app.views.camera import View
+from app.views.panel.viewport import visible_view_rect
+from app.views.scene import labels as L
 
 STATE = LabState.initial("planar2", RobotCatalog().load("planar2"))
 
@@ -84,15 +95,6 @@ def test_before_a_phone_reports_its_window_its_labels_are_placed_for_its_canvas_
     page reports the window, its labels are placed for 390×844 CSS px (its User-Agent says it is a phone),
     not for a canvas twice as large (labels then lay twice as far apart as they could, some off the
     screen). A browser that is not a phone keeps a ratio of 1; once the window is reported, it decides."""
-    import json
-
-    from app_helpers import labels_placed, running_lab
-    from fakes import poll
-    from wsclient import ViserWsClient
-
-    from app.core.commands import PageReport
-    from app.tab.labels import PHONE_PIXEL_RATIO, guessed_pixel_ratio
-    from app.views.panel.viewport import visible_view_rect
 
     assert guessed_pixel_ratio(PHONE_UA) == PHONE_PIXEL_RATIO == 2.0
     assert guessed_pixel_ratio("Mozilla/5.0 (X11; Linux x86_64) Chrome/156.0.0.0 Safari/537.36") == 1.0
@@ -111,3 +113,39 @@ def test_before_a_phone_reports_its_window_its_labels_are_placed_for_its_canvas_
             labels_placed(phone)
             r = visible_view_rect(390, 844, True)
             assert (phone.scene.labels.layout.width, phone.scene.labels.layout.height) == (r.width, r.height)
+
+
+def test_tabs_that_place_the_same_labels_through_the_same_camera_work_the_placement_out_once(monkeypatch):
+    """Followers drawing their own scenes (they joined since the presenter's last change) each place their
+    labels when the presenter turns the camera: the same labels, camera and canvas give the same places,
+    worked out once in the process and put on every tab (each sends its own label moves). Another
+    camera is another placement."""
+
+    with running_lab((876, 720)) as (lab, one, _), ViserWsClient(f"ws://127.0.0.1:{lab.port}", 876, 720):
+        two = poll(lambda: next((s for s in lab.sessions.values() if s is not one), None))
+        for s in (one, two):
+            s.dispatch(GoTo("wrist_singular"))
+            s.settle()
+            labels_placed(s)
+        layout = one.scene.labels.layout  # placed for each tab's own camera before; now both for one
+        made: list = []
+        real = L._placed
+        monkeypatch.setattr(L, "_PLACED", L._Recent(4))
+        monkeypatch.setattr(L, "_placed", lambda *a: made.append(a) or real(*a))
+        for s in (one, two):
+            with s.lock, s.client.atomic():
+                s.scene.labels.place(layout)
+        assert len(made) == 1  # once for both tabs
+        np.testing.assert_array_equal(one.scene.labels.boxes, two.scene.labels.boxes)
+        for h1, h2 in zip(one.scene.labels.placed, two.scene.labels.placed, strict=True):
+            assert h1.text == h2.text and np.allclose(h1.position, h2.position)
+        v = layout.view
+        turned = L.Layout(
+            View(v.position + np.array([0.3, -0.2, 0.0]), v.look_at, v.up, v.fov, v.aspect),
+            layout.width, layout.height, layout.rect, layout.avoid,
+        )  # fmt: skip
+        with two.lock, two.client.atomic():
+            two.scene.labels.place(turned)
+        assert len(made) == 2  # another camera: worked out again
+        fresh = real(*made[-1])  # and the same as working it out anew
+        np.testing.assert_allclose(two.scene.labels.boxes, fresh[1])
