@@ -6,8 +6,9 @@ The layout (:class:`app.views.scene.labels.Layout`) is the browser's camera and 
 the part of the window the panel leaves (:func:`app.views.panel.viewport.visible_view_rect`, from the
 window size the page reported), or before that report the camera's canvas in its device pixels over a
 guessed pixel ratio (:func:`guessed_pixel_ratio`; 720 px high if it has not said). Labels are placed
-inside the whole canvas, out of the motion's readout drawn over it while a motion is on screen (its box
-estimated for the window, :func:`app.views.panel.live_box.live_box`).
+inside the whole canvas, out of what the page draws over it: the motion's readout while a motion is on
+screen and the first hint until the tab's first change (their boxes estimated for the window:
+:func:`app.views.panel.live_box.live_box`, :func:`app.views.panel.hint_box.hint_box`).
 
 A tab whose scene others replay (the presenter, or the follower that drew a relayed state for the
 followers of its look) hands each placement's messages on (:class:`Placement`, to ``placed``: the
@@ -24,6 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..services.later import Call, later
+from ..views.panel.hint_box import hint_box
 from ..views.panel.layout import COLUMN
 from ..views.panel.live_box import live_box
 from ..views.panel.viewport import visible_view_rect
@@ -78,7 +80,8 @@ class TabLabels:
         window: The window the page reported: (width, height, touch), or None.
         lock: The session's lock (the scene's handles are the renderer's).
         screen: The tab's :class:`~app.tab.screen.Screen`: its ``own_scene`` (None while it shows another
-            tab's nodes: a follower) and ``live``, the motion's readout it drew over the 3-D view.
+            tab's nodes: a follower), ``live`` and ``hint``, the motion's readout and the first hint it
+            drew over the 3-D view.
         closed: Whether the tab has gone.
         placed: Told each placement of a drawing other tabs replay (``screen.leads``).
         user_agent: The browser's ``User-Agent`` (:func:`guessed_pixel_ratio`).
@@ -117,8 +120,12 @@ class TabLabels:
         else:
             r = visible_view_rect(*window)
             width, height = r.width, r.height
-        live = live_box(str(getattr(self._screen(), "live", "") or ""), window)
-        avoid = () if live is None else ((live.x, live.y, live.x + live.width, live.y + live.height),)
+        screen = self._screen()
+        over = (
+            live_box(str(getattr(screen, "live", "") or ""), window),
+            hint_box(str(getattr(screen, "hint", "") or ""), window),
+        )
+        avoid = tuple((b.x, b.y, b.x + b.width, b.y + b.height) for b in over if b is not None)
         return Layout(
             view, width, height, (0.0, 0.0, width, height), avoid
         )  # the canvas at the window's corner

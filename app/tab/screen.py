@@ -24,6 +24,7 @@ from ..core.state import LabState
 from ..views.camera import View
 from ..views.panel import PanelView
 from ..views.panel.common import Dispatch
+from ..views.panel.hint import hint_html
 from ..views.scene import SceneView
 from ..views.scene.labels import Layout
 from ..viser_adapter import capture_scene, replay_scene
@@ -89,6 +90,7 @@ class Screen:
         self._foreign_look = ""  # the look they were drawn for (another one: we draw our own)
         self.layout: Callable[[], Layout | None] = lambda: None  # the labels' camera and canvas
         self.live = ""  # the motion's readout over the 3-D view as last drawn (its labels keep out of it)
+        self.hint = ""  # the first hint over the 3-D view as last drawn (its labels keep out of it too)
 
     def draw(
         self,
@@ -111,6 +113,7 @@ class Screen:
         )
         with self.client.atomic(), capturing as captured:
             self.live = self.panel.live_content(state, snap, role)  # before the labels are placed
+            self.hint = hint_html(state, self.tr)
             if rebuild or self.scene is None:
                 name, robot, catalog = state.robot_name, state.robot, self.catalog
                 self.panel.build_robot(

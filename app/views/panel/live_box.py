@@ -22,7 +22,7 @@ import re
 from ..scene.placement import text_width
 from .viewport import PHONE_LINES_PX, Rect, is_phone_layout, panel_zoom
 
-__all__ = ["live_box", "LINE", "WRAP_SLACK", "BOLD"]
+__all__ = ["live_box", "text_lines", "text_span", "LINE", "WRAP_SLACK", "BOLD"]
 
 LINE = 1.35
 """.jl's line height [em]."""
@@ -72,7 +72,7 @@ def _runs(fragment: str) -> list[tuple[str, bool]]:
     return out
 
 
-def _lines(fragment: str, px: float, most: float) -> int:
+def text_lines(fragment: str, px: float, most: float) -> int:
     """How many lines ``fragment`` takes at ``px`` in ``most`` px (greedy at spaces; a word wider than a
     line breaks anywhere, as ``overflow-wrap: anywhere`` does)."""
     space = text_width(" ", px)
@@ -90,6 +90,19 @@ def _lines(fragment: str, px: float, most: float) -> int:
         else:
             used = used + space + w if used else w
     return count
+
+
+def text_span(fragment: str, px: float) -> float:
+    """How wide [px] ``fragment``'s longest line is unwrapped, by the estimate :func:`text_lines` wraps with
+    (so a box as wide as its text, ``width: fit-content``, is taken this wide: never narrower)."""
+    space, widest, used = text_width(" ", px), 0.0, 0.0
+    for word, bold in _runs(fragment) + [("\n", False)]:
+        if word == "\n":
+            widest, used = max(widest, used), 0.0
+            continue
+        w = text_width(word, px) * (BOLD if bold else 1.0) * WRAP_SLACK
+        used = used + space + w if used else w
+    return widest
 
 
 def _subs(fragment: str) -> int:
@@ -123,14 +136,14 @@ def live_box(content: str, window: tuple[float, float, bool]) -> Rect | None:
     h += math.ceil(len(_RATE.findall(content)) / 3) * _RATE_PX[phone] * LINE
     foot = _FOOT.search(content)
     if foot is not None:
-        h += _lines(foot.group(1), _TEXT_PX, inner) * _TEXT_PX * LINE
+        h += text_lines(foot.group(1), _TEXT_PX, inner) * _TEXT_PX * LINE
     lines = _LINES.search(content)
     if lines is not None:
         below = 0.0
         for piece in _PIECE.split(lines.group(1)):
             if not _TAG.sub("", piece).strip():
                 continue
-            n = _lines(piece, _TEXT_PX, inner - _SUB_PAD)
+            n = text_lines(piece, _TEXT_PX, inner - _SUB_PAD)
             if "jl-desc" in piece:  # two lines at most
                 below += min(n, 2) * _TEXT_PX * _DESC_LINE + _LINE_GAP
             else:

@@ -27,7 +27,8 @@ BASE_CSS = """
 .jl-desc-all:checked + .jl-desc { -webkit-line-clamp: unset; }
 .jl-lines { min-height: 29px; display: flow-root; }  /* flow-root: its lines' margins stay inside, so its
   top does not move as they come and go; while a motion is on screen ("jl-held") the page script holds its height */
-/* The first hint: one line over the 3-D view's lower edge (out of the panel's flow: no slider moves). */
+/* The first hint: one line over the 3-D view's lower edge (out of the panel's flow: no slider moves). The 3-D
+   labels keep out of it: its sizes here are app.views.panel.hint_box's. */
 .jl-hint { position: fixed; left: 72px; bottom: 14px; max-width: min(640px, calc(100vw - 500px)); z-index: 20;
   color: #1f3a93; background: #eef2ff; font-size: 15px; border: 1px solid #8ea2e6; border-radius: 8px;
   padding: 4px 10px; box-shadow: 0 1px 6px rgba(0,0,0,.15); }

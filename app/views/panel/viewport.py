@@ -86,8 +86,8 @@ PHONE_CSS = f"""
      there rather than half under the sheet. */
   div:has(> canvas) {{ bottom: {SHEET_MAX * 100:g}% !important; }}
   div[style="width: 20em;"] .mantine-Text-root {{ font-size: max(1em, 12px) !important; }}
-  /* The first hint and the motion's numbers: across the top of the view, above the arm (the numbers'
-     sizes are app.views.panel.live_box's too). */
+  /* The first hint and the motion's numbers: across the top of the view, above the arm (their sizes are
+     app.views.panel.hint_box's and live_box's too). */
   .jl-hint {{ left: 8px; right: 8px; top: 8px; bottom: auto; max-width: none; font-size: 14px; }}
   .jl-live {{ left: 8px; right: 8px; top: 8px; width: auto; }}
   .jl-live-head {{ font-size: 14px; flex-wrap: wrap; gap: 0 10px; }}
