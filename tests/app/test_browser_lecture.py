@@ -234,3 +234,31 @@ def test_every_visible_text_reaches_4_5_to_1_and_12_px_on_screen(tmp_path, tab):
             "() => parseFloat(getComputedStyle(document.querySelector('.jl-status')).fontSize)"
         )
         assert status >= KEY_TEXT_PX
+
+
+_SPLIT = """() => {
+  const column = document.querySelector('[data-dock-region="right"]');
+  const top = column.querySelector('.jl-top'), views = column.querySelector('.jl-views');
+  if (!top || !views) return null;
+  const sliders = [...top.querySelectorAll('[role=slider]')].map((s) => s.getBoundingClientRect().bottom);
+  return {top: top.getBoundingClientRect().bottom, views: views.getBoundingClientRect().height,
+          last: Math.max(...sliders), grow: top.style.getPropertyValue('flex-grow')};
+}"""
+
+
+def test_a_page_built_again_in_polish_keeps_the_split_under_the_joints(tmp_path):
+    """The panel built again in another language (``?lang=pl``: the page is first drawn in English, then in
+    Polish) is re-rendered by React over the split the page script set: the joints' cell got viser's grow
+    of 0.5 back and took 547 of the column's 705 px, the views of J 154 px, an empty band under q6 (seen
+    at 1280×720). The script sets its split again: the joints' panel ends under q6, the views of J get
+    the rest, as in English."""
+    out = _out(tmp_path)
+    with app_page(Lab(port=0), path="/?lang=pl") as (page, session, errors):
+        wait(lambda: session.language == "pl", timeout=120)
+        m = wait(
+            lambda: (s := page.evaluate(_SPLIT)) is not None and s["grow"] == "0" and s["views"] >= 230 and s,
+            timeout=120,
+        )
+        assert m["top"] - m["last"] <= 30, m  # the joints' panel ends under its last slider
+        page.screenshot(path=str(out / "lecture_1280x720_pl.png"))
+    assert not errors, errors

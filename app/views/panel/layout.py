@@ -166,8 +166,9 @@ LAYOUT_JS = """
       const shadow = d !== column && !column.contains(d) && d.style.position === "absolute";
       if (shadow) d.classList.add("jl-shadow");
     }
+    // viser's two panel cells (its flex, or once React re-rendered over ours its grow and our basis).
     const cells = [...column.querySelectorAll("div")].filter(
-      (d) => d.style && d.style.minHeight === "50px" && d.style.flex);
+      (d) => d.style && d.style.minHeight === "50px" && (d.style.flex || d.style.flexBasis));
     const top = cells.find((c) => c.querySelector(".jl-status"));
     if (!top) return;  // not drawn yet: tagging now would mark the joints' cell as a view for good
     for (const c of cells) {
@@ -181,7 +182,12 @@ LAYOUT_JS = """
       const content = inner.scrollHeight;
       const chrome = top.offsetHeight - viewport.clientHeight;
       const want = Math.round(Math.min(chrome + content + 2, __TOP_MAX__ * column.clientHeight));
-      if (Math.abs(top.offsetHeight - want) > 1) top.style.setProperty("flex", `0 0 ${want}px`, "important");
+      // Set again when React gave the cell its own grow back (a panel built again in another language):
+      // with a grow of 0.5 the joints' panel took half the column, the views of J cut below it.
+      const grown = top.style.getPropertyValue("flex-grow") !== "0";
+      if (grown || Math.abs(top.offsetHeight - want) > 1) {
+        top.style.setProperty("flex", `0 0 ${want}px`, "important");
+      }
     }
   };
   const cue = () => {
