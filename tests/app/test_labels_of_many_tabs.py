@@ -87,19 +87,16 @@ def test_a_follower_showing_the_drawing_replays_at_once_and_one_that_lags_queues
     assert alone.labels.replayed == [] and sent == []
 
 
-PHONE_UA = PHONE_USER_AGENT
-
-
 def test_before_a_phone_reports_its_window_its_labels_are_placed_for_its_canvas_in_css_pixels():
     """A phone's camera reports its canvas in device pixels (780×1688 for 390×844 at scale 2): until its
     page reports the window, its labels are placed for 390×844 CSS px (its User-Agent says it is a phone),
     not for a canvas twice as large (labels then lay twice as far apart as they could, some off the
     screen). A browser that is not a phone keeps a ratio of 1; once the window is reported, it decides."""
 
-    assert guessed_pixel_ratio(PHONE_UA) == PHONE_PIXEL_RATIO == 2.0
+    assert guessed_pixel_ratio(PHONE_USER_AGENT) == PHONE_PIXEL_RATIO == 2.0
     assert guessed_pixel_ratio("Mozilla/5.0 (X11; Linux x86_64) Chrome/156.0.0.0 Safari/537.36") == 1.0
     with running_lab((876, 720)) as (lab, desk, _):
-        with ViserWsClient(f"ws://127.0.0.1:{lab.port}", 780, 1688, headers={"User-Agent": PHONE_UA}):
+        with ViserWsClient(f"ws://127.0.0.1:{lab.port}", 780, 1688, headers={"User-Agent": PHONE_USER_AGENT}):
             phone = poll(lambda: next((s for s in lab.sessions.values() if s is not desk), None))
             labels_placed(phone)
             layout = phone.scene.labels.layout

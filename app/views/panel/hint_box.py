@@ -17,6 +17,7 @@ the zoom) and a line higher.
 
 from __future__ import annotations
 
+import functools
 import re
 
 from .live_box import LINE, text_lines, text_span
@@ -43,6 +44,7 @@ _MARGIN = 1.0  # [px] more each way: a zoomed column rounds its offsets (1366×7
 _BODY = re.compile(r'<div class="[^"]*\bjl-hint\b[^"]*">(.*)</div>\s*$', re.S)
 
 
+@functools.lru_cache(maxsize=256)  # a pure estimate, asked for by every follower's look of one state
 def hint_box(content: str, window: tuple[float, float, bool]) -> Rect | None:
     """The box (x, y, width, height) [CSS px, from the window's top-left corner] of the first hint showing
     ``content`` (:func:`~app.views.panel.hint.hint_html`) in a window of (width, height, touch); None when

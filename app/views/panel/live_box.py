@@ -15,6 +15,7 @@ a pixel on the phones; elsewhere up to a line of 13 px text and the margin for r
 
 from __future__ import annotations
 
+import functools
 import html as html_lib
 import math
 import re
@@ -109,6 +110,7 @@ def _subs(fragment: str) -> int:
     return len(re.findall(r"<su[bp]>", fragment))
 
 
+@functools.lru_cache(maxsize=256)  # a pure estimate, asked for by every follower's look of one state
 def live_box(content: str, window: tuple[float, float, bool]) -> Rect | None:
     """The box (x, y, width, height) [CSS px, from the window's top-left corner] of the readout showing
     ``content`` (:func:`~app.views.panel.live.live_html`) in a window of (width, height, touch); None
