@@ -46,6 +46,7 @@ class Tab:
         self.placements: list[object] = []
         self.tabs: list[str] = []
         self.role = None
+        self.told = ""  # the last note told (a note is said once: a later role, e.g. a new count, has none)
         self._listeners: list = []
 
     @property
@@ -83,6 +84,7 @@ class Tab:
 
     def role_changed(self, role):
         self.role = role
+        self.told = role.note or self.told
 
 
 class Room:
@@ -219,8 +221,8 @@ def test_the_presenter_comes_back_in_another_worker_and_a_hand_over_and_a_takeov
     presenter.commit(_moved(presenter, 0.9))
     poll(lambda: far.state.q[0] == 0.9, what="followed")
     room.workers[1].closed(1)  # the presenter's tab reloads ...
-    poll(lambda: far.role.note == PRESENTER_AWAY and not far.role.following, what="told, in worker 2")
-    assert near.role.note == PRESENTER_AWAY
+    poll(lambda: far.told == PRESENTER_AWAY and not far.role.following, what="told, in worker 2")
+    assert near.told == PRESENTER_AWAY
     back = room.tab(2, 4)  # ... and lands on the other worker, with its page's key
     assert room.workers[2].resume(4, "not-the-key-0123456789") is False
     last = room.workers[2].resume(4, key)
@@ -229,17 +231,17 @@ def test_the_presenter_comes_back_in_another_worker_and_a_hand_over_and_a_takeov
     back.commit(_moved(back, -0.4))
     poll(lambda: near.state.q[0] == -0.4 and far.state.q[0] == -0.4, what="followed from worker 2")
     assert room.workers[1].claim(2, TOKEN) == WAITING  # a tab of worker 1 asks the presenter (worker 2)
-    poll(lambda: back.role.asked and back.role.note == ASKED, what="the presenter asked")
-    assert back.role.presenting and near.role.waiting and near.role.note == WAITING
+    poll(lambda: back.role.asked and back.told == ASKED, what="the presenter asked")
+    assert back.role.presenting and near.role.waiting and near.told == WAITING
     room.workers[2].answer(4, accept=True)
-    poll(lambda: back.role.note == HANDED_OVER and back.role.following, what="the presenter told")
-    poll(lambda: far.role.note == HANDED_OVER_ROOM and near.role.presenting, what="the room told")
+    poll(lambda: back.told == HANDED_OVER and back.role.following, what="the presenter told")
+    poll(lambda: far.told == HANDED_OVER_ROOM and near.role.presenting, what="the room told")
     key = room.workers[1].resume_key(2)
     assert key == room.hub.resume_key and room.hub.presenter == (1, 2)
     again = room.tab(2, 5)  # the presenter's other tab (its browser has the key) takes over at once
     last = room.workers[2].resume(5, key)
     assert last and last[0].q[0] == -0.4 and again.state.q[0] == -0.4  # what the new presenter showed
-    poll(lambda: near.role.note == TAKEN_OVER and near.role.following, what="the replaced presenter told")
+    poll(lambda: near.told == TAKEN_OVER and near.role.following, what="the replaced presenter told")
     room.workers[2].resign(5)
     poll(lambda: not far.role.presenter and not back.role.following, what="resigned everywhere")
 
@@ -293,7 +295,7 @@ def _asked_room(room, claimant_worker: int):
     assert room.workers[1].claim(1, TOKEN) == ""
     poll(lambda: other.role is not None and other.role.following, what="followed")
     assert room.workers[claimant_worker].claim(2, TOKEN) == WAITING
-    poll(lambda: presenter.role.asked and presenter.role.note == ASKED, what="the presenter asked")
+    poll(lambda: presenter.role.asked and presenter.told == ASKED, what="the presenter asked")
     assert presenter.role.presenting and asking.role.waiting and room.hub.asking == (claimant_worker, 2)
     return presenter, asking, other
 
@@ -312,8 +314,8 @@ def test_a_hand_over_across_workers_happens_only_when_the_presenter_agrees(room,
     assert presenter.role.presenting and asking.role.waiting and room.hub.presenter == (1, 1)
     room.workers[1].answer(1, accept=True)
     poll(lambda: asking.role.presenting and presenter.role.following, what="handed over")
-    assert presenter.role.note == HANDED_OVER and not asking.role.waiting
-    poll(lambda: other.role.note == HANDED_OVER_ROOM, what="the room told")
+    assert presenter.told == HANDED_OVER and not asking.role.waiting
+    poll(lambda: other.told == HANDED_OVER_ROOM, what="the room told")
     new_key = room.workers[claimant_worker].resume_key(2)
     assert new_key == room.hub.resume_key != old_key and room.hub.asking is None
     asking.commit(_moved(asking, -0.6))
@@ -324,7 +326,7 @@ def test_a_hand_over_across_workers_happens_only_when_the_presenter_agrees(room,
 def test_a_refused_hand_over_keeps_the_presenter_and_the_tab_may_ask_again(room, claimant_worker):
     presenter, asking, other = _asked_room(room, claimant_worker)
     room.workers[1].answer(1, accept=False)
-    poll(lambda: asking.role.note == KEPT and not asking.role.waiting, what="the asking tab told")
+    poll(lambda: asking.told == KEPT and not asking.role.waiting, what="the asking tab told")
     assert presenter.role.presenting and not presenter.role.asked and room.hub.asking is None
     assert room.workers[claimant_worker].claim(2, TOKEN) == WAITING
     poll(lambda: presenter.role.asked, what="asked again")
