@@ -80,7 +80,10 @@ def main() -> int:
     try:
         for client in clients:
             client.start()
-        time.sleep(1.0)
+        end = time.monotonic() + 60
+        while len(lab.sessions) < tabs and time.monotonic() < end:  # every tab's session built
+            time.sleep(0.05)
+        time.sleep(0.5)
         session = lab.session()
         session.settle()
         if args.followers:  # the first tab types the token and presents, the others follow it
@@ -89,9 +92,9 @@ def main() -> int:
             clients[-1].set_value(session.panel.classroom.token._impl.uuid, token)  # type: ignore[union-attr]
             time.sleep(1.0)
             session.settle()
-            following = sum(each.following.following for each in lab.sessions.values())
+            following = sum(each.following.following for each in list(lab.sessions.values()))
             print(f"{following} of {args.followers} tabs follow the presenter")
-        for each in lab.sessions.values():  # as a browser's page script: the page loaded, on its first tab
+        for each in list(lab.sessions.values()):  # as a browser's page script: the page loaded, on its first tab
             each.panel.report.value = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
         session.settle()
         slider = session.panel.joints.sliders[1]  # type: ignore[union-attr]
@@ -109,6 +112,11 @@ def main() -> int:
             time.sleep(0.1)
         time.sleep(0.5)
         after, drawn = thread_cpu(), session.redraws - redraws
+        if args.top and args.loop:  # the clients' closing (followers redrawing their own) left out
+            stopped = threading.Event()
+            loop = lab.server._websock_server._background_event_loop
+            loop.call_soon_threadsafe(lambda: (profile.disable(), stopped.set()))
+            stopped.wait(10)
     finally:
         for client in clients:
             client.close()

@@ -38,7 +38,9 @@ Wrapped:
   ``queue_message`` and the messages' ``owner``), for a presenter's followers.
 * :func:`share_owner` and :func:`install_shared_frames` — every tab's scene messages stamped with one
   ``owner`` (``SceneApi._owner_id``), and viser's ``_message_producer`` replaced by one that packs a
-  :class:`SharedFrame` (a presenter's scene frame replayed to a room) once for every socket (:mod:`.frames`).
+  :class:`SharedFrame` (a presenter's scene frame replayed to a room) once for every socket (:mod:`.frames`);
+  a replayed frame is queued in a follower's buffer (``AsyncMessageBuffer``) as one entry, viser's
+  culling of what it replaces done there (:mod:`.frame_refs`).
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
   type aliases built once.
 * :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``

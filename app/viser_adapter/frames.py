@@ -23,21 +23,32 @@ from __future__ import annotations
 import itertools
 import time
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, ClassVar
 
 import msgspec
 import viser
 import zstandard
+from viser.infra._messages import Message as _InfraMessage
 
 from .core import ViserApiChanged, _private
 
-__all__ = ["SHARED_OWNER", "SharedFrame", "share_owner", "install_shared_frames", "frame_of"]
+__all__ = [
+    "SHARED_OWNER",
+    "SharedFrame",
+    "FrameRef",
+    "share_owner",
+    "install_shared_frames",
+    "shared_frames_installed",
+    "frame_of",
+    "frame_tag",
+]
 
 SHARED_OWNER = "tab"
 """The owner stamped on every tab's scene messages (viser's client only tells "" — the broadcast scope —
 from any other string)."""
 
 _TAG = "_jl_frame"
+_serial = itertools.count()
 _original: dict[str, Any] = {}
 
 
@@ -50,6 +61,8 @@ class SharedFrame:
     def __init__(self, messages: Sequence[Any]) -> None:
         self.messages = tuple(messages)
         self._packed: tuple[tuple[msgspec.Raw, ...], list[memoryview]] | None = None
+        self._keys: tuple[str, ...] | None = None
+        self._keyset: frozenset[str] | None = None
         for i, message in enumerate(self.messages):
             try:
                 setattr(message, _TAG, (self, i))
@@ -68,8 +81,59 @@ class SharedFrame:
     def __len__(self) -> int:
         return len(self.messages)
 
+    def keys(self) -> tuple[str, ...]:
+        """Each message's redundancy key (viser's: a newer message with the same key replaces it)."""
+        if self._keys is None:
+            self._keys = tuple(m.redundancy_key() for m in self.messages)
+        return self._keys
+
+    def keyset(self) -> frozenset[str]:
+        if self._keyset is None:
+            self._keyset = frozenset(self.keys())
+        return self._keyset
+
+    @property
+    def removes(self) -> bool:
+        """Whether a message of the frame removes a node (viser's push then purges that node's messages)."""
+        return any(getattr(m, "lifecycle_phase", None) == "remove" for m in self.messages)
+
+
+class FrameRef(_InfraMessage):
+    """A :class:`~.frames.SharedFrame` waiting in one socket's buffer, less the messages a newer frame
+    replaced there (``skip``: their indices)."""
+
+    include_in_scene_serialization: ClassVar[bool] = False
+
+    def __init__(self, frame: SharedFrame, skip: frozenset[int] = frozenset(), key: str = "") -> None:
+        self.frame, self.skip = frame, skip
+        self.key = key or f"jl-frame:{next(_serial)}"  # kept when replaced: viser's index holds it
+
+    def redundancy_key(self) -> str:
+        return self.key  # never culled by viser: the culling of its messages is push_frame's
+
+    @property
+    def whole(self) -> bool:
+        return not self.skip
+
+    def messages(self) -> list[Any]:
+        """The frame's messages still to send, in order."""
+        return [m for i, m in enumerate(self.frame.messages) if i not in self.skip]
+
+    def replaced_by(self, keys: frozenset[str]) -> frozenset[int]:
+        """Indices of the messages still to send that a frame with ``keys`` replaces."""
+        own = self.frame.keys()
+        return frozenset(i for i, k in enumerate(own) if i not in self.skip and k in keys)
+
+    def as_serializable_dict(self, binary_buffers: Any = None) -> dict[str, Any]:
+        raise ViserApiChanged("FrameRef", "a FrameRef reached viser's own serialiser (frames not installed)")
+
 
 _ENCODE = msgspec.msgpack.Encoder().encode
+
+
+def frame_tag(message: Any) -> tuple[SharedFrame, int] | None:
+    """(frame, index) of a message tagged by a :class:`SharedFrame`, else None."""
+    return getattr(message, _TAG, None)
 
 
 def frame_of(messages: Sequence[Any]) -> SharedFrame:
@@ -102,19 +166,33 @@ def _whole_frame(window: Sequence[Any]) -> tuple[int, SharedFrame] | None:
     return None
 
 
-def _wire(infra: Any, zstd: Any, window: Sequence[Any]) -> bytes:
-    """viser's wire bytes of ``window``: a whole shared frame in it placed as packed once."""
+def _shared_run(window: Sequence[Any]) -> tuple[int, int, SharedFrame] | None:
+    """(start, end, frame) of the window's first frame to place as packed: a :class:`FrameRef` that
+    skips nothing, else the first frame whose messages all lie in the window in order."""
+    for i, message in enumerate(window):
+        if isinstance(message, FrameRef) and message.whole:
+            return i, i + 1, message.frame
     found = _whole_frame(window)
+    return None if found is None else (found[0], found[0] + len(found[1]), found[1])
+
+
+def _wire(infra: Any, zstd: Any, window: Sequence[Any]) -> bytes:
+    """viser's wire bytes of ``window``: one whole shared frame in it placed as packed once, the rest
+    (and the messages a :class:`FrameRef` still holds) serialised for this socket."""
+    run = _shared_run(window)
     binary: list[memoryview] = []
-    if found is None:
-        serialized: Sequence[Any] = tuple(m.as_serializable_dict(binary) for m in window)
-    else:
-        start, frame = found
-        raws, frame_buffers = frame.packed()
+    serialized: list[Any] = []
+    if run is not None:
+        raws, frame_buffers = run[2].packed()
         binary.extend(frame_buffers)  # the frame's placeholders count from 0: its arrays come first
-        before = [m.as_serializable_dict(binary) for m in window[:start]]
-        after = [m.as_serializable_dict(binary) for m in window[start + len(frame) :]]
-        serialized = tuple(itertools.chain(before, raws, after))
+    for i, message in enumerate(window):
+        if run is not None and run[0] <= i < run[1]:
+            if i == run[0]:
+                serialized.extend(raws)
+        elif isinstance(message, FrameRef):
+            serialized.extend(m.as_serializable_dict(binary) for m in message.messages())
+        else:
+            serialized.append(message.as_serializable_dict(binary))
     inner = _ENCODE(
         {
             "messages": serialized,
@@ -161,6 +239,11 @@ def install_shared_frames() -> None:
     if "_message_producer" not in _original:
         _original["_message_producer"] = producer
         infra._message_producer = _producer
+
+
+def shared_frames_installed() -> bool:
+    """Whether the producer of this module sends (a :class:`FrameRef` may be queued)."""
+    return "_message_producer" in _original
 
 
 def uninstall_shared_frames() -> None:

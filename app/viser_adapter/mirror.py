@@ -18,7 +18,8 @@ from typing import Any
 import viser
 
 from .core import ViserApiChanged, _private
-from .frames import SharedFrame
+from .frame_refs import push_frame, segments
+from .frames import SHARED_OWNER, SharedFrame, shared_frames_installed
 
 __all__ = ["capture_scene", "replay_scene"]
 
@@ -54,14 +55,31 @@ def capture_scene(client: viser.ClientHandle) -> Iterator[list[Any]]:
 
 
 def replay_scene(client: viser.ClientHandle, messages: Sequence[Any]) -> None:
-    """Send copies of ``messages`` (captured for another client) to ``client``'s scene."""
+    """Send ``messages`` (captured for another client) to ``client``'s scene: under the shared owner, a
+    whole captured frame as one entry of its buffer (:func:`~.frame_refs.push_frame`), else copies."""
     conn = _connection(client, "replay_scene")
     owner = _owner(client)
+    if owner == SHARED_OWNER and shared_frames_installed() and not _recording(conn):
+        buffer = conn.get_message_buffer()
+        for segment in segments(messages):
+            if isinstance(segment, SharedFrame) and not segment.removes:
+                push_frame(buffer, segment)
+            elif isinstance(segment, SharedFrame):
+                for message in segment.messages:
+                    conn.queue_message(message)
+            else:
+                conn.queue_message(segment)
+        return
     for message in messages:
         if getattr(message, "owner", owner) != owner:  # drawn for a tab with another owner: re-addressed
             message = copy.copy(message)
             message.owner = owner
         conn.queue_message(message)
+
+
+def _recording(conn: Any) -> bool:
+    """Whether a serializer records what is queued on ``conn`` (it must see each message)."""
+    return bool(_private("replay_scene", "WebsockConnection._record_handles", lambda: conn._record_handles))
 
 
 def _owner(client: viser.ClientHandle) -> str:
