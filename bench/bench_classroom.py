@@ -134,6 +134,18 @@ def spread(log: Path) -> list[int]:
     return sorted(collections.Counter(pids).values(), reverse=True)
 
 
+def quiet_tree(pid: int, limit: float = 0.1, patience: float = 120.0) -> float:
+    """Wait until the server's tree spends under ``limit`` of a core over a second (the room joined, the
+    symbolic J computed); return the seconds waited (``patience`` at most)."""
+    start = time.perf_counter()
+    while time.perf_counter() - start < patience:
+        before = cpu_seconds(pid)
+        time.sleep(1.0)  # a sample of the tree's CPU over one second (a measurement, not a wait for a state)
+        if cpu_seconds(pid) - before < limit:
+            break
+    return time.perf_counter() - start
+
+
 def run(
     robot: str,
     followers: int,
@@ -171,7 +183,8 @@ def run(
             room.append(c)
         for c in room:  # each follower has drawn the presenter's arm once
             c.wait_for(is_arm_update, timeout=120)
-        time.sleep(1.0)  # let the joining burst settle
+        time.sleep(1.0)  # let the joining burst settle ...
+        quiet = quiet_tree(proc.pid)  # ... and the symbolic J's computation (not a move's work)
         pss, _rss, _count = memory(proc.pid)
         samples, missed = [], 0
         cpu0, own0, t0 = cpu_seconds(proc.pid), time.process_time(), time.perf_counter()
@@ -197,6 +210,7 @@ def run(
             "client": (time.process_time() - own0) / wall * 100,
             "spread": spread(log),
             "pss": pss,
+            "quiet": quiet,
         }
     finally:
         for c in clients:
@@ -236,6 +250,12 @@ def main() -> int:
         action="store_true",
         help="the presenter turns the camera instead (3° a move; each follower's camera update is timed)",
     )
+    parser.add_argument(
+        "--repeat",
+        type=int,
+        default=1,
+        help="run every setting R times, the apps taking turns, and print each app's medians",
+    )
     parser.add_argument("--log", type=Path, default=Path("/tmp/bench-classroom.log"), help="the server's log")
     args = parser.parse_args()
     what = "turns the camera 3°" if args.orbit else "moves q2"
@@ -243,14 +263,23 @@ def main() -> int:
     print(f"load average before: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     print(
         "app       screens workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move"
-        "  ms/follower/move  tree MB  client %"
+        "  ms/follower/move  tree MB  client %  quiet s"
         "   (presenter slider → each follower's redrawn arm; CPU and memory (PSS): the server's process tree)"
     )
     roots = [("this", ROOT)] + ([("baseline", args.app_root.resolve())] if args.app_root else [])
     workers_ = args.workers or [None]
-    runs = [(n, w, k, a) for n in args.followers for w in workers_ for k in args.screens for a in roots]
+    runs = [
+        (n, w, k, a)
+        for n in args.followers
+        for w in workers_
+        for k in args.screens
+        for _ in range(args.repeat)
+        for a in roots
+    ]
+    results: dict[tuple, list[dict]] = collections.defaultdict(list)
     for n, workers, k, (app, root) in runs:
         r = run(args.robot, n, args.moves, args.period, workers, args.log, root, k, args.orbit)
+        results[(n, workers, k, app)].append(r)
         s = r["samples"]
         p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)
         mx = s.max() if len(s) else np.nan
@@ -258,9 +287,22 @@ def main() -> int:
         print(
             f"{app:9} {k or '-':>7} {workers or '-':>7} {n:9d} {spread_:>7} {p50:8.1f} {p95:8.1f} {mx:8.1f} "
             f"{r['missed']:7d} {r['cpu']:6.0f} {r['cpu_per_move']:8.1f} {r['cpu_per_move'] / n:17.3f} "
-            f"{r['pss']:8.0f} {r['client']:9.0f}",
+            f"{r['pss']:8.0f} {r['client']:9.0f} {r['quiet']:8.0f}",
             flush=True,
         )
+    if args.repeat > 1:  # each app's medians over its runs (a busy moment in one run weighs less)
+        print("medians     screens workers followers   p50 ms   p95 ms   max ms  missed  ms/follower/move")
+        for (n, workers, k, app), rs in results.items():
+            p50s = [np.percentile(r["samples"], 50) for r in rs if len(r["samples"])]
+            p95s = [np.percentile(r["samples"], 95) for r in rs if len(r["samples"])]
+            maxes = [r["samples"].max() for r in rs if len(r["samples"])]
+            per = [r["cpu_per_move"] / n for r in rs]
+            print(
+                f"{app:11} {k or '-':>7} {workers or '-':>7} {n:9d} {np.median(p50s):8.1f} "
+                f"{np.median(p95s):8.1f} {np.median(maxes):8.1f} {sum(r['missed'] for r in rs):7d} "
+                f"{np.median(per):17.3f}",
+                flush=True,
+            )
     print(f"load average after: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     return 0
 

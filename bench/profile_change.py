@@ -58,11 +58,16 @@ def main() -> int:
     parser.add_argument(
         "--cpu", action="store_true", help="profile with the thread's CPU clock (waits for the GIL left out)"
     )
+    parser.add_argument("--callees", default="", help="also print what this function of the visit calls")
     args = parser.parse_args()
     profile = cProfile.Profile(time.thread_time) if args.cpu else cProfile.Profile()
     visit = ClientSession.visit
 
+    measuring = [True]  # the clients' closing (followers redrawing their own scenes) left out
+
     def profiled(self: ClientSession) -> bool:
+        if not measuring[0]:
+            return visit(self)
         profile.enable()
         try:
             return visit(self)
@@ -94,7 +99,8 @@ def main() -> int:
             session.settle()
             following = sum(each.following.following for each in list(lab.sessions.values()))
             print(f"{following} of {args.followers} tabs follow the presenter")
-        for each in list(lab.sessions.values()):  # as a browser's page script: the page loaded, on its first tab
+        # as a browser's page script: the page loaded, on its first tab
+        for each in list(lab.sessions.values()):
             each.panel.report.value = '{"kind": "load", "address": "", "resume": "", "tab": ""}'
         session.settle()
         slider = session.panel.joints.sliders[1]  # type: ignore[union-attr]
@@ -112,6 +118,7 @@ def main() -> int:
             time.sleep(0.1)
         time.sleep(0.5)
         after, drawn = thread_cpu(), session.redraws - redraws
+        measuring[0] = False
         if args.top and args.loop:  # the clients' closing (followers redrawing their own) left out
             stopped = threading.Event()
             loop = lab.server._websock_server._background_event_loop
@@ -135,6 +142,8 @@ def main() -> int:
         pstats.Stats(profile).sort_stats(
             "tottime" if args.loop or args.tottime else "cumulative"
         ).print_stats(args.top)
+        if args.callees:
+            pstats.Stats(profile).sort_stats("cumulative").print_callees(args.callees)
     return 0
 
 
