@@ -13,6 +13,8 @@ new frame carries are marked as replaced (the waiting entry becomes a :class:`Fr
 them), and single messages waiting with such a key are dropped, as viser's own push would drop them.
 The producer of :mod:`.frames` places a :class:`FrameRef` that skips nothing as the frame's packed
 bytes, and serialises the messages of one that skips some for that socket alone.
+A single message queued after a waiting frame does not cut that frame's message of the same key (viser
+would drop it): both are sent, in order, so the browser ends the same.
 
 Only for followers whose scene has the shared owner, while the producer of :mod:`.frames` is installed
 (viser's own producer could not serialise a :class:`FrameRef`), no recording of that connection is
