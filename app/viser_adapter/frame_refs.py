@@ -28,7 +28,7 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from .core import _private
-from .frames import FrameRef, SharedFrame, frame_tag
+from .frames import FrameRef, SharedFrame, frame_at
 
 __all__ = ["FrameRef", "push_frame", "segments"]
 
@@ -37,18 +37,11 @@ _PENDING = "_jl_pending_frames"
 
 def segments(messages: Sequence[Any]) -> Iterator[Any]:
     """``messages`` as whole tagged frames (:class:`SharedFrame`) and single messages, in order."""
-    i, n = 0, len(messages)
-    while i < n:
-        tag = frame_tag(messages[i])
-        if tag is not None and tag[1] == 0:
-            frame = tag[0]
-            end = i + len(frame)
-            if end <= n and all(a is b for a, b in zip(messages[i:end], frame.messages, strict=True)):
-                yield frame
-                i = end
-                continue
-        yield messages[i]
-        i += 1
+    i = 0
+    while i < len(messages):
+        frame = frame_at(messages, i)
+        yield messages[i] if frame is None else frame
+        i += 1 if frame is None else len(frame)
 
 
 def push_frame(buffer: Any, frame: SharedFrame) -> None:
@@ -74,7 +67,7 @@ def push_frame(buffer: Any, frame: SharedFrame) -> None:
         by_key = buffer.id_from_redundancy_key
         for key in keys:  # single messages still waiting that the frame replaces (as viser's push culls)
             ident = by_key.get(key)
-            if ident is not None and ident not in pending:
+            if ident is not None:
                 buffer.pop_message_locked(ident)
     ref = FrameRef(frame)
     buffer.push(ref)

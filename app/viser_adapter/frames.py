@@ -40,7 +40,7 @@ __all__ = [
     "install_shared_frames",
     "shared_frames_installed",
     "frame_of",
-    "frame_tag",
+    "frame_at",
 ]
 
 SHARED_OWNER = "tab"
@@ -63,6 +63,8 @@ class SharedFrame:
         self._packed: tuple[tuple[msgspec.Raw, ...], list[memoryview]] | None = None
         self._keys: tuple[str, ...] | None = None
         self._keyset: frozenset[str] | None = None
+        self.removes = any(getattr(m, "lifecycle_phase", None) == "remove" for m in self.messages)
+        """Whether a message of the frame removes a node (viser's push then purges that node's messages)."""
         for i, message in enumerate(self.messages):
             try:
                 setattr(message, _TAG, (self, i))
@@ -91,11 +93,6 @@ class SharedFrame:
         if self._keyset is None:
             self._keyset = frozenset(self.keys())
         return self._keyset
-
-    @property
-    def removes(self) -> bool:
-        """Whether a message of the frame removes a node (viser's push then purges that node's messages)."""
-        return any(getattr(m, "lifecycle_phase", None) == "remove" for m in self.messages)
 
 
 class FrameRef(_InfraMessage):
@@ -131,11 +128,6 @@ class FrameRef(_InfraMessage):
 _ENCODE = msgspec.msgpack.Encoder().encode
 
 
-def frame_tag(message: Any) -> tuple[SharedFrame, int] | None:
-    """(frame, index) of a message tagged by a :class:`SharedFrame`, else None."""
-    return getattr(message, _TAG, None)
-
-
 def frame_of(messages: Sequence[Any]) -> SharedFrame:
     """The frame ``messages`` were tagged with by a previous call, or a new one tagging them."""
     first = getattr(messages[0], _TAG, None) if messages else None
@@ -153,15 +145,23 @@ def share_owner(client: viser.ClientHandle) -> None:
     scene._owner_id = SHARED_OWNER
 
 
+def frame_at(messages: Sequence[Any], start: int) -> SharedFrame | None:
+    """The frame whose messages are all of ``messages`` from ``start`` on, in order, else None."""
+    tag = getattr(messages[start], _TAG, None)
+    if tag is None or tag[1] != 0:
+        return None
+    frame = tag[0]
+    run = messages[start : start + len(frame)]
+    if len(run) == len(frame) and all(a is b for a, b in zip(run, frame.messages, strict=True)):
+        return frame
+    return None
+
+
 def _whole_frame(window: Sequence[Any]) -> tuple[int, SharedFrame] | None:
     """(start, frame) of the first frame whose messages all lie in ``window`` in order, else None."""
-    for start, message in enumerate(window):
-        tag = getattr(message, _TAG, None)
-        if tag is None or tag[1] != 0:
-            continue
-        frame = tag[0]
-        run = window[start : start + len(frame)]
-        if len(run) == len(frame) and all(a is b for a, b in zip(run, frame.messages, strict=True)):
+    for start in range(len(window)):
+        frame = frame_at(window, start)
+        if frame is not None:
             return start, frame
     return None
 
