@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import cProfile
+import gc
 import os
 import pstats
 import sys
@@ -64,6 +65,15 @@ def main() -> int:
     visit = ClientSession.visit
 
     measuring = [True]  # the clients' closing (followers redrawing their own scenes) left out
+    collections: list[tuple[str, int, float]] = []  # (thread, generation, seconds) during the changes
+    collecting = [False, 0.0]
+
+    def timed_collection(phase: str, info: dict) -> None:
+        if phase == "start":
+            collecting[1] = time.thread_time()
+        elif collecting[0]:
+            name = threading.current_thread().name
+            collections.append((name, info["generation"], time.thread_time() - collecting[1]))
 
     def profiled(self: ClientSession) -> bool:
         if not measuring[0]:
@@ -112,13 +122,15 @@ def main() -> int:
         own = {t.native_id for t in threading.enumerate() if t.name in ("MainThread", "viser-ws-client")}
         names = {t.native_id: t.name for t in threading.enumerate()}
         profile.clear()
+        gc.callbacks.append(timed_collection)
+        collecting[0] = True
         before, redraws = thread_cpu(), session.redraws
         for i in range(args.changes):
             clients[-1].set_value(uuid, float(-30 + i % 60))
             time.sleep(0.1)
         time.sleep(0.5)
         after, drawn = thread_cpu(), session.redraws - redraws
-        measuring[0] = False
+        collecting[0] = measuring[0] = False
         if args.top and args.loop:  # the clients' closing (followers redrawing their own) left out
             stopped = threading.Event()
             loop = lab.server._websock_server._background_event_loop
@@ -138,6 +150,14 @@ def main() -> int:
     for name, seconds in sorted(spent.items(), key=lambda kv: -kv[1]):
         print(f"  {name:<40} {seconds / args.changes * 1e3:7.3f} ms per change")
     print(f"  {'server threads':<40} {sum(spent.values()) / args.changes * 1e3:7.3f} ms per change")
+    for generation in range(3):  # the server's threads' collections (this process's clients left out)
+        own_names = ("MainThread", "viser-ws-client")
+        times = [t for name, g, t in collections if g == generation and not name.startswith(own_names)]
+        if times:
+            print(
+                f"  garbage collections, generation {generation}: {len(times)}, "
+                f"{sum(times) / args.changes * 1e3:.3f} ms per change, longest {max(times) * 1e3:.1f} ms"
+            )
     if args.top:
         pstats.Stats(profile).sort_stats(
             "tottime" if args.loop or args.tottime else "cumulative"

@@ -40,7 +40,9 @@ Wrapped:
   ``owner`` (``SceneApi._owner_id``), and viser's ``_message_producer`` replaced by one that packs a
   :class:`SharedFrame` (a presenter's scene frame replayed to a room) once for every socket (:mod:`.frames`);
   a replayed frame is queued in a follower's buffer (``AsyncMessageBuffer``) as one entry, viser's
-  culling of what it replaces done there (:mod:`.frame_refs`).
+  culling of what it replaces done there (:mod:`.frame_refs`); that producer reads a socket's windows
+  with :mod:`.windows` (viser's ``_window_loop`` paced once per window sent, the buffer read at once
+  when a push wakes it).
 * :func:`install_fast_prop_casts` — ``AssignablePropsBase._cast_value_recursive`` with its
   type aliases built once.
 * :func:`update_props` — several props of a scene node in one ``SceneNodeUpdateMessage``

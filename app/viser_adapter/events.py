@@ -45,6 +45,16 @@ class LoopSafeEvent(asyncio.Event):
             if not waiter.done():
                 waiter.set_result(True)
 
+    async def set_on_loop(self) -> None:
+        """Wait for the next :meth:`set` made on the loop's thread, whether or not the flag is up (a
+        push inside an atomic block raises it off the loop; the block's end sets it on the loop)."""
+        waiter = asyncio.get_running_loop().create_future()
+        self._waiters.append(waiter)
+        try:
+            await waiter
+        finally:
+            self._waiters.remove(waiter)
+
 
 def install_loop_safe_events() -> None:
     """Give every message buffer viser creates from now on a :class:`LoopSafeEvent` (idempotent).

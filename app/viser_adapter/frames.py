@@ -31,6 +31,7 @@ import zstandard
 from viser.infra._messages import Message as _InfraMessage
 
 from .core import ViserApiChanged, _private
+from .windows import check_buffer, windows
 
 __all__ = [
     "SHARED_OWNER",
@@ -211,9 +212,10 @@ def _wire(infra: Any, zstd: Any, window: Sequence[Any]) -> bytes:
 
 
 async def _producer(websocket: Any, buffer: Any, client_id: int, backlog_done_message: Any = None) -> None:
-    """viser's ``_message_producer`` (same windows, same wire format), shared frames packed once."""
+    """viser's ``_message_producer`` (same windows, paced once per window: :mod:`.windows`; same wire
+    format), shared frames packed once."""
     infra = _infra_module()
-    window_generator = buffer.window_generator(client_id, backlog_done_message=backlog_done_message)
+    window_generator = windows(buffer, client_id, backlog_done_message)
     zstd = zstandard.ZstdCompressor(level=1)
     try:
         while not buffer.done:
@@ -236,6 +238,7 @@ def install_shared_frames() -> None:
     producer = getattr(infra, "_message_producer", None)
     if not callable(producer) or not callable(getattr(infra, "_append_aligned_buffers", None)):
         raise ViserApiChanged("install_shared_frames", "viser.infra._infra._message_producer moved")
+    check_buffer()
     if "_message_producer" not in _original:
         _original["_message_producer"] = producer
         infra._message_producer = _producer
