@@ -28,7 +28,9 @@ from typing import Any, ClassVar
 import msgspec
 import viser
 import zstandard
+from viser._messages import GuiUpdateMessage as _GuiUpdate
 from viser.infra._messages import Message as _InfraMessage
+from viser.infra._messages import wire_field_names
 
 from .core import ViserApiChanged, _private
 from .windows import check_buffer, windows
@@ -127,6 +129,18 @@ class FrameRef(_InfraMessage):
 
 
 _ENCODE = msgspec.msgpack.Encoder().encode
+_PLAIN = frozenset({str, bool, int, float})
+
+
+def _serializable(message: Any, binary: list[memoryview]) -> Any:
+    """``message.as_serializable_dict(binary)``; a GUI update of plain values (a follower's 3-4 a move:
+    a slider's value, a readout's HTML) built directly, without viser's walk of the annotations, which
+    leaves such values as they are."""
+    if type(message) is _GuiUpdate:
+        updates = message.updates
+        if all(type(v) in _PLAIN for v in updates.values()):
+            return {"uuid": message.uuid, "updates": updates, "type": "GuiUpdateMessage"}
+    return message.as_serializable_dict(binary)
 
 
 def frame_of(messages: Sequence[Any]) -> SharedFrame:
@@ -191,9 +205,9 @@ def _wire(infra: Any, zstd: Any, window: Sequence[Any]) -> bytes:
             if i == run[0]:
                 serialized.extend(raws)
         elif isinstance(message, FrameRef):
-            serialized.extend(m.as_serializable_dict(binary) for m in message.messages())
+            serialized.extend(_serializable(m, binary) for m in message.messages())
         else:
-            serialized.append(message.as_serializable_dict(binary))
+            serialized.append(_serializable(message, binary))
     inner = _ENCODE(
         {
             "messages": serialized,
@@ -239,6 +253,8 @@ def install_shared_frames() -> None:
     if not callable(producer) or not callable(getattr(infra, "_append_aligned_buffers", None)):
         raise ViserApiChanged("install_shared_frames", "viser.infra._infra._message_producer moved")
     check_buffer()
+    if wire_field_names(_GuiUpdate) != ("uuid", "updates"):
+        raise ViserApiChanged("install_shared_frames", "GuiUpdateMessage's fields are not (uuid, updates)")
     if "_message_producer" not in _original:
         _original["_message_producer"] = producer
         infra._message_producer = _producer

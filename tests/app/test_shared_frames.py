@@ -194,3 +194,29 @@ def test_a_drag_of_the_handle_reaches_its_tab_under_the_shared_owner():
         )
         ws.send(drag)
         poll(lambda: np.allclose(fk(session.state.robot, session.state.q)[:2, 3], target[:2], atol=1e-6))
+
+
+def test_a_gui_update_of_plain_values_is_serialised_as_viser_serialises_it():
+    """The producer builds a GUI update of plain values (str, bool, int, float) itself: over random
+    updates, the same dict as viser's ``as_serializable_dict`` and the same msgpack bytes; numpy values
+    and tuples still go through viser's walk."""
+    import random
+
+    update = message_class("GuiUpdateMessage")
+    rng = random.Random(3)
+    values = [
+        "<div>J</div>", "", "ação ∞", True, False, 0, -7, 2**40, 0.5, -1e-300, float("inf"),
+        np.float32(0.25), np.int64(3), np.bool_(True), (1.0, 2.0), ("a", np.float64(2.0)),
+    ]  # fmt: skip
+    fast = 0
+    for i in range(200):
+        keys = rng.sample(["value", "content", "label", "visible", "precision", "hint"], rng.randint(1, 3))
+        message = update(f"uuid-{i}", {k: rng.choice(values) for k in keys})
+        ours, theirs = [], []
+        got = frames_module._serializable(message, ours)
+        assert got == message.as_serializable_dict(theirs) and ours == theirs
+        assert frames_module._ENCODE(got) == frames_module._ENCODE(message.as_serializable_dict([]))
+        plain = all(type(v) in (str, bool, int, float) for v in message.updates.values())
+        fast += plain
+        assert (got["updates"] is message.updates) == plain  # the plain ones are not walked
+    assert 20 < fast < 200
