@@ -219,7 +219,7 @@ class Lab:
             open_tabs = len(self.sessions)
         log.info("tab %d connected (%d open in process %d)", client.client_id, open_tabs, os.getpid())
         if self.collector is not None:
-            self.collector.changed()
+            self.collector.joined()
         if gone:  # the tab closed while its session was being built
             session.close()
             return
@@ -252,7 +252,7 @@ class Lab:
                 self.classroom.questions.leave(client.client_id)
             session.close()
             if self.collector is not None:
-                self.collector.changed()
+                self.collector.left()
 
     def _address(self, client_id: int) -> str:
         return client_address(self.server, client_id, self.trusted_proxies)
