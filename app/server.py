@@ -28,7 +28,6 @@ from .services.catalog import RobotCatalog
 from .services.classroom import Classroom, presenter_link
 from .services.classroom_relay import RelayedClassroom, RoomChannel
 from .services.lifecycle import check_listen_address, wait_for_stop
-from .services.quiet_collector import QuietCollector
 from .services.ratelimit import RoomLimits
 from .services.renderer import Renderer
 from .services.symbolic_service import SymbolicService
@@ -84,9 +83,6 @@ class Lab:
             chose its own (``?lang=``, the Language menu); "" (default): each tab its browser's.
         trusted_proxy: Addresses or networks of reverse proxies whose ``X-Forwarded-For`` names the
             client (``--trusted-proxy``); any other peer's header is ignored.
-        collect_quietly: Run Python's full garbage collection when tabs have settled and freeze what
-            is left (:class:`~app.services.quiet_collector.QuietCollector`), so that a room's next move
-            does not wait for it: the server's processes (``serve``) do; a notebook's kernel does not.
 
     Raises:
         UnknownRobotError, RobotDefinitionError: the robot or file cannot be loaded
@@ -111,7 +107,6 @@ class Lab:
         trusted_proxy: Sequence[str] = (),
         package_dirs: Mapping[str, str] | None = None,
         package_path: Sequence[str] = (),
-        collect_quietly: bool = False,
     ) -> None:
         if language and not is_language(language):  # before anything starts
             raise ValueError(f"no language {language!r}: choose one of {', '.join(CODES)}")
@@ -166,7 +161,6 @@ class Lab:
         self._gone: set[int] = set()
         self._lock = threading.Lock()
         self._session_hooks: list[Callable[[ClientSession], None]] = []
-        self.collector = QuietCollector(lambda: self.renderer.visits) if collect_quietly else None
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
         if listen_socket is not None:
@@ -218,8 +212,6 @@ class Lab:
                 self.sessions[client.client_id] = session
             open_tabs = len(self.sessions)
         log.info("tab %d connected (%d open in process %d)", client.client_id, open_tabs, os.getpid())
-        if self.collector is not None:
-            self.collector.joined()
         if gone:  # the tab closed while its session was being built
             session.close()
             return
@@ -251,8 +243,6 @@ class Lab:
                 self.classroom.closed(client.client_id)
                 self.classroom.questions.leave(client.client_id)
             session.close()
-            if self.collector is not None:
-                self.collector.left()
 
     def _address(self, client_id: int) -> str:
         return client_address(self.server, client_id, self.trusted_proxies)
@@ -282,8 +272,6 @@ class Lab:
         for session in sessions:
             session.close()
         self.renderer.close()
-        if self.collector is not None:
-            self.collector.close()
         with quiet_banner():
             self.server.stop()
         self.symbolic.close()
@@ -353,7 +341,6 @@ def serve(
         trusted_proxy=trusted_proxy,
         package_dirs=package_dirs,
         package_path=package_path,
-        collect_quietly=True,
     )
     print(f"Jacobian Lab: open {lab.url} in a browser (robot: {lab.default_robot})", flush=True)
     if presenter_token:

@@ -107,8 +107,7 @@ def _worker_main(
     own = worker_socket(sock)
     if own is not sock:
         sock.close()
-    service = remote_service(symbolic)
-    lab = Lab(listen_socket=own, room_pipe=room, symbolic=service, collect_quietly=True, **lab_options)
+    lab = Lab(listen_socket=own, room_pipe=room, symbolic=remote_service(symbolic), **lab_options)
     stop = threading.Event()
     signals = install_stop_signals(stop.set)
     ready.send(("ready", os.getpid(), lab.port))
