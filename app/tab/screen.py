@@ -120,11 +120,12 @@ class Screen:
                     robot, task_rows(robot), catalog.chains(name), state.chain,
                     catalog.meshes(name), catalog.presets(name),
                 )  # fmt: skip
+            look = self.look()  # the screen the scene is drawn (or replayed) for: live and hint are set
             if replay is not None and self.scene is not None:
                 replay_scene(self.client, replay)  # the presenter's scene, drawn once for the room
                 self._foreign = True  # our SceneView no longer knows what the browser shows
-                self._foreign_look = self.look()  # the screen its labels were placed for
-            elif keep_scene and self._foreign and role.following and self._foreign_look == self.look():
+                self._foreign_look = look  # the screen its labels were placed for
+            elif keep_scene and self._foreign and role.following and self._foreign_look == look:
                 pass  # the state shown, drawn again for its panel: a follower's view stays the presenter's
             else:
                 kept, self._first = state.robot is self._first, None
@@ -145,7 +146,7 @@ class Screen:
             self.panel.show_recording(recording)
             symbols.draw(self.panel, everything=rebuild)
         self.scene_messages = SceneMessages(captured)
-        self.scene_messages.look = self.look()
+        self.scene_messages.look = look
         self.shown, self.leads = state, bool(role.presenting or capture)
 
     def look(self) -> str:
