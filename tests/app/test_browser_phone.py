@@ -190,3 +190,35 @@ def test_a_tap_on_play_plays_the_blow_up_and_the_button_stays_under_the_finger(t
         assert box is not None and box["y"] >= 0 and box["y"] + box["height"] <= SIZES["phone"][1] / 2
         page.screenshot(path=str(out / "phone-tap-play-stopped.png"))
         assert not errors
+
+
+_VALUE_BOXES = """() => [...document.querySelectorAll('input.mantine-NumberInput-input')]
+  .filter((i) => i.getBoundingClientRect().width > 0)
+  .map((i) => ({value: i.value, text: i.scrollWidth, box: i.clientWidth}))"""
+
+
+@pytest.mark.parametrize("size", ["phone", "tablet"])
+def test_every_slider_s_value_box_shows_its_whole_value(tmp_path, size):
+    """Every joint just above its lower limit (the longest numbers a slider shows, "-179.9"): each value
+    box shows its whole text. On a phone the box was 2 px short of "-179.9" (its last digit cut)."""
+    from app.core.actions import SetJoint
+    from app.core.ranges import from_display
+
+    with app_page(
+        Lab(port=0, robot="puma560"), {"width": SIZES[size][0], "height": SIZES[size][1]}, scale=2, touch=True
+    ) as (page, session, errors):
+        joints = session.panel.joints
+        assert joints is not None
+        for i, r in enumerate(joints.ranges):
+            session.dispatch(SetJoint(i, from_display(r, r.lo + 0.1)))
+        session.settle()
+        shown = [f"{r.lo + 0.1:.1f}" for r in joints.ranges]
+
+        def boxes() -> list[dict[str, Any]] | None:
+            got = page.evaluate(_VALUE_BOXES)
+            return got if [b["value"] for b in got[: len(shown)]] == shown else None
+
+        got = poll(boxes, what=f"the sliders' boxes showing {shown}")
+        page.screenshot(path=str(screenshot_dir(tmp_path) / f"value_boxes_{size}.png"))
+        assert [b for b in got if b["text"] > b["box"]] == []
+        assert not errors

@@ -99,6 +99,8 @@ PHONE_CSS = f"""
   /* Thumbs large enough for a finger. */
   .mantine-Slider-thumb {{ width: 20px !important; height: 20px !important; border-radius: 50% !important; }}
   .mantine-Slider-root {{ min-height: 2.4em; }}
+  /* A slider's value box (viser's 3 rem): its text is 12 px here, and "-179.9" lost its last digit. */
+  .mantine-NumberInput-root[style*="width: 3rem"] {{ width: 3.6rem !important; }}
   /* A menu's list (Configuration, Robot) fixed to the screen: placed absolutely, the list opened below a
      menu at the sheet's foot made the page taller, which hid the menu from the list's placement, which
      closed the list: it flickered shut under a tap (hundreds of times a second). Fixed, it makes nothing
