@@ -25,6 +25,10 @@ LIVE = """() => { const e = [...document.querySelectorAll('.jl-live')].find((e) 
   if (!e) return null; const b = e.getBoundingClientRect();
   return {text: e.innerText, x: b.left, y: b.top, right: b.right, bottom: b.bottom}; }"""
 STATUS = "() => { const e = document.querySelector('.jl-status'); return e ? e.innerText : ''; }"
+# Whether the classroom box's body is hidden (folded to its title line), None when there is no such box.
+CLASSROOM_FOLDED = """() => { const head = [...document.querySelectorAll('div[style*="cursor: pointer"]')]
+  .find((d) => d.textContent.trim().startsWith('Classroom ·'));
+  const body = head && head.nextElementSibling; return body ? body.getAttribute('aria-hidden') : null; }"""
 
 
 def _rates(text: str) -> list[str]:
@@ -45,6 +49,8 @@ def test_a_follower_on_a_phone_shows_the_presenters_wrist_blow_up_with_its_rates
         close_notifications(phone)
         following = phone.get_by_text("following", exact=False)
         poll(lambda: following.count() > 0, what="the phone follows")
+        # Its classroom box folds to its title line, as on a laptop: the sliders come up the sheet.
+        poll(lambda: phone.evaluate(CLASSROOM_FOLDED) == "true", what="the phone's classroom box folded")
         presenter.locator('[role=tab][title="Motion"]').first.click()
         presenter.get_by_role("button", name="Play", exact=True).click()
         # At the climax the motion is slowed down; the phone shows the overlay with the six rates.

@@ -201,9 +201,10 @@ LAYOUT_JS = """
   };
   // The classroom box folds to its title line once the tab presents or follows (title "Classroom · …"),
   // once per role: a teacher or student who opens it again keeps it open. A request to hand over
-  // ("Classroom — …") unfolds it: the presenter must see the two buttons.
+  // ("Classroom — …") unfolds it: the presenter must see the two buttons. In the docked column and in a
+  // phone's bottom sheet alike (only a folder's head whose title names the box is touched).
   const fold = () => {
-    for (const head of document.querySelectorAll('[data-dock-region] div[style*="cursor: pointer"]')) {
+    for (const head of document.querySelectorAll('div[style*="cursor: pointer"]')) {
       const title = head.textContent.trim();
       const role = title.split(":")[0];  // "Classroom · presenting", not the number of followers
       const words = window.__jacobianLabClassroomWords || ["Classroom"];
