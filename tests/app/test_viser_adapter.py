@@ -422,9 +422,10 @@ def test_set_camera_leaves_the_camera_as_visers_setters_do_and_sends_its_final_p
         poll(lambda: len(server.get_clients()) == 2)
         a, b = sorted(server.get_clients().values(), key=lambda c: c.client_id)  # ws_a connected first
         rng = np.random.default_rng(7)
-        for _ in range(5):
+        for i in range(5):
             position, look_at = rng.normal(size=3) * 2 + np.array([0, 0, 3.0]), rng.normal(size=3) * 0.3
-            up = (0.0, 0.0, 1.0) if rng.random() < 0.6 else tuple(rng.normal(size=3))
+            # The last pose's up is one no earlier pose had: its arrival means every earlier one arrived.
+            up = (0.0, 0.0, 1.0) if rng.random() < 0.6 and i < 4 else tuple(rng.normal(size=3))
             a.camera.up_direction = up
             a.camera.position = position
             a.camera.look_at = look_at
@@ -439,13 +440,17 @@ def test_set_camera_leaves_the_camera_as_visers_setters_do_and_sends_its_final_p
                 sent = [m for _, m in ws.messages if m["type"] == kind]
             return sent[-1] if sent else None
 
-        for kind in ("SetCameraPositionMessage", "SetCameraLookAtMessage", "SetCameraUpDirectionMessage"):
-            poll(lambda kind=kind: last(ws_a, kind) is not None and last(ws_b, kind) is not None)
+        final = {"SetCameraPositionMessage": position, "SetCameraLookAtMessage": look_at}
+        final["SetCameraUpDirectionMessage"] = np.asarray(up)
+        for kind, value in final.items():
             key = "look_at" if kind == "SetCameraLookAtMessage" else "position"  # (viser's up: "position")
-            poll(
-                lambda kind=kind, key=key: np.allclose(last(ws_a, kind)[key], last(ws_b, kind)[key]),
-                what=f"{kind} alike",
-            )
+
+            def arrived(ws, kind=kind, key=key, value=value) -> bool:  # the last pose's: nothing in flight
+                got = last(ws, kind)
+                return got is not None and np.allclose(got[key], value)
+
+            poll(lambda arrived=arrived: arrived(ws_a) and arrived(ws_b), what=f"the last {kind} in both")
+            assert np.allclose(last(ws_a, kind)[key], last(ws_b, kind)[key])  # alike
         mark = ws_b.mark()
         va.set_camera(b, b.camera.position.copy(), b.camera.look_at.copy(), b.camera.up_direction.copy())
         before = b.camera.position.copy()
