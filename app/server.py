@@ -41,6 +41,7 @@ from .viser_adapter import (
     install_input_checks,
     install_loop_safe_events,
     install_message_limits,
+    install_panel_ledger,
     install_shared_frames,
     listen_on,
     quiet_banner,
@@ -131,6 +132,7 @@ class Lab:
         install_message_limits()  # what one websocket message and one tab may cost
         self.room = install_input_checks(RoomLimits())  # every value a tab sends, checked as it enters
         install_fast_prop_casts()
+        install_panel_ledger()  # followers showing the same panel hold the same GUI ids (one frame for all)
         install_loop_safe_events()  # the renderer thread's sends never touch the event loop's waiters
         install_icon_cache()  # a class of tabs connecting at once would read viser's icon archive per icon
         install_shared_frames()  # a scene frame replayed to a room is serialised once, not once per tab

@@ -38,7 +38,17 @@ def decode_frame(data: bytes) -> list[dict[str, Any]]:
     """The messages of one server → client frame, binary placeholders replaced by arrays."""
     raw_size = int.from_bytes(data[:8], "little")
     compressed_size = int.from_bytes(data[8:16], "little")
-    inner = zstandard.ZstdDecompressor().decompress(data[16 : 16 + compressed_size], max_output_size=raw_size)
+    # One zstd frame, or several one after the other (a window compressed once for a room, its socket's
+    # timestamp in a frame of its own): read across frames, as the browser's ZSTD_decompress does.
+    reader = zstandard.ZstdDecompressor().stream_reader(
+        data[16 : 16 + compressed_size], read_across_frames=True
+    )
+    chunks = []
+    while chunk := reader.read(raw_size + 1):
+        chunks.append(chunk)
+    inner = b"".join(chunks)
+    if len(inner) != raw_size:
+        raise ValueError(f"a frame of {len(inner)} bytes said it held {raw_size}")
     payload = msgspec.msgpack.decode(inner)
     buffers = []
     offset = 16 + compressed_size

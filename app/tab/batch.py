@@ -9,6 +9,7 @@ replaces it with the presenter's state, snapshot and scene messages; a refused i
 
 from __future__ import annotations
 
+import threading
 import time
 from typing import Any
 
@@ -19,7 +20,7 @@ from ..core.state import LabState
 from ..services.scene_slot import SceneSlot
 from .camera import is_jump
 
-__all__ = ["Batch", "coalesced", "VisitPace", "MAX_REDRAWS_PER_SECOND"]
+__all__ = ["Batch", "coalesced", "VisitPace", "Queued", "MAX_REDRAWS_PER_SECOND"]
 
 
 class Batch:
@@ -68,6 +69,12 @@ class Batch:
             self._replay.extend(placed.messages)
         else:
             self.placed.append(placed)
+
+    def mirror_shared(self) -> object:
+        """The relayed state's slot when the state to commit is the presenter's, else None."""
+        if self._mirror is None or self._mirror.state is not self.state:
+            return None
+        return self._mirror.shared
 
     def mirrored(self) -> tuple[object, list | None]:
         """The presenter's snapshot and scene messages when the state to commit is the presenter's
@@ -121,3 +128,38 @@ class VisitPace:
     def next_visit(self) -> float:
         """[monotonic s]"""
         return self._last_redraw + max(1.0 / MAX_REDRAWS_PER_SECOND, COST_SHARE * self._cost)
+
+
+class Queued:
+    """What a tab's queue tells (the queue is :class:`~app.tab.session.ClientSession`'s)."""
+
+    _queue_lock: threading.Lock
+    _scheduled: bool
+    _queue: list
+    client: Any
+
+    @property
+    def pending(self) -> bool:
+        """Whether messages of this tab wait for, or are in, the renderer's visit."""
+        with self._queue_lock:
+            return self._scheduled
+
+    @property
+    def queued(self) -> int:
+        """How many messages wait to be taken."""
+        with self._queue_lock:
+            return len(self._queue)
+
+    def settle(self, timeout: float = 10.0) -> None:
+        """Wait until every dispatched message has been drawn (for tests and scripts).
+
+        Raises:
+            TimeoutError: messages are still queued after ``timeout`` seconds.
+        """
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            with self._queue_lock:
+                if not self._scheduled and not self._queue:
+                    return
+            time.sleep(0.005)
+        raise TimeoutError(f"client {self.client.client_id}: actions still queued after {timeout} s")

@@ -49,6 +49,7 @@ from ..core.state import LabState
 from ..services.background import background
 from ..services.classroom import TOO_MANY_TRIES, WAITING, Classroom
 from ..services.question_desk import NOT_PRESENTING
+from ..services.scene_slot import SceneSlot
 from .camera import TabCamera
 from .notices import Notices
 
@@ -104,6 +105,7 @@ class Following:
         self._token_timer: threading.Timer | None = None
         self.page: Any = None  # the tab's PageLink (app.tab.page), set by the session
         self.labels: Any = None  # the tab's TabLabels (app.tab.labels), set by the session
+        self.rider: Any = None  # the session, when followers' frames may be shared (ride_key, leads)
 
     @property
     def following(self) -> bool:
@@ -140,6 +142,13 @@ class Following:
         """Draw the presenter's state (queued like any message; the latest of a burst wins; the scene
         messages of every one are replayed, in order; ``shared``: the worker's slot for a relayed state's
         scene)."""
+        rider = self.rider
+        if isinstance(shared, SceneSlot) and rider is not None:
+            key = rider.ride_key()
+            if key is not None and not shared.join(key, (rider, Mirror(state, snapshot, scene, shared))):
+                return  # another follower showing the same draws it; its frame is sent to this tab too
+            if key is not None:
+                rider.leads(shared, key)
         self._dispatch(Mirror(state, snapshot, scene, shared))
 
     def mirror_camera(self, position: tuple, look_at: tuple, up: tuple) -> None:

@@ -18,6 +18,7 @@ presenter orbits, the labels of every follower of its look move with its own.
 
 from __future__ import annotations
 
+import math
 import threading
 import time
 from collections.abc import Callable
@@ -105,21 +106,33 @@ class TabLabels:
         self._last = 0.0
         self._tlock = threading.Lock()
 
-    def layout(self) -> Layout | None:
-        """The camera and canvas the labels are seen in, or None before the camera is known."""
-        view = self.camera.view()
-        if view is None:
+    def canvas(self) -> tuple[float, float, tuple] | None:
+        """The canvas the labels are seen in [CSS px] and the page's window, or None before the camera is
+        known: what :meth:`layout` needs besides the view (the look of a drawing, without working out
+        the view)."""
+        try:
+            aspect = float(self.camera.client.camera.aspect)
+        except Exception:
+            return None
+        if not (math.isfinite(aspect) and aspect > 0.05):
             return None
         window = self._window()
         if window is None:  # the camera's canvas, its pixel ratio guessed (1: a bare websocket client)
             cam = self.camera.client.camera
             height = float(getattr(cam, "image_height", 0) or ASSUMED_HEIGHT * self.pixel_ratio)
             height /= self.pixel_ratio  # its device pixels, in CSS px as the labels' sizes are
-            width = height * view.aspect
-            window = (width + COLUMN, height, False)  # beside the docked panel
-        else:
-            r = visible_view_rect(*window)
-            width, height = r.width, r.height
+            width = height * aspect
+            return width, height, (width + COLUMN, height, False)  # beside the docked panel
+        r = visible_view_rect(*window)
+        return r.width, r.height, window
+
+    def layout(self) -> Layout | None:
+        """The camera and canvas the labels are seen in, or None before the camera is known."""
+        view = self.camera.view()
+        canvas = self.canvas() if view is not None else None
+        if view is None or canvas is None:
+            return None
+        width, height, window = canvas
         screen = self._screen()
         over = (
             live_box(str(getattr(screen, "live", "") or ""), window),

@@ -89,6 +89,7 @@ class Screen:
         self._foreign = False  # the browser shows the presenter's scene nodes, not our SceneView's
         self._foreign_look = ""  # the look they were drawn for (another one: we draw our own)
         self.layout: Callable[[], Layout | None] = lambda: None  # the labels' camera and canvas
+        self.canvas: Callable[[], tuple | None] = lambda: None  # the labels' canvas alone (TabLabels.canvas)
         self.live = ""  # the motion's readout over the 3-D view as last drawn (its labels keep out of it)
         self.hint = ""  # the first hint over the 3-D view as last drawn (its labels keep out of it too)
 
@@ -153,11 +154,24 @@ class Screen:
         """What a drawing of the scene depends on besides the state: the tab's language and the screen its
         labels are placed for (the canvas and its visible part [CSS px]; the camera is the presenter's
         for every follower). Tabs of the same look can be sent the same scene messages."""
-        layout = self.layout()
-        if layout is None:
+        canvas = self.canvas()
+        if canvas is None:
             return self.tr.code
-        x0, y0, x1, y1 = layout.rect
-        return f"{self.tr.code} {layout.width:.0f}x{layout.height:.0f} {x0:.0f},{y0:.0f},{x1:.0f},{y1:.0f}"
+        width, height = canvas[0], canvas[1]
+        return f"{self.tr.code} {width:.0f}x{height:.0f} 0,0,{width:.0f},{height:.0f}"
+
+    @property
+    def foreign(self) -> tuple[bool, str]:
+        """Whether the browser shows scene nodes our SceneView did not draw, and the look they were for."""
+        return self._foreign, self._foreign_look
+
+    def rode(self, state: LabState, look: str, live: str, hint: str) -> None:
+        """The browser was sent another follower's frame of ``state`` (drawn for ``look``): it shows that
+        follower's scene nodes, not our SceneView's."""
+        self._foreign, self._foreign_look = True, look
+        self.scene_messages = SceneMessages()
+        self.scene_messages.look = look
+        self.shown, self.leads, self.live, self.hint = state, False, live, hint
 
     @property
     def own_scene(self) -> SceneView | None:

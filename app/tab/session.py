@@ -16,9 +16,9 @@ and the subscribers (the classroom, a recorder). An error in any message is show
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import threading
-import time
 from collections.abc import Callable
 
 import viser
@@ -48,7 +48,7 @@ from ..services.scene_slot import SceneSlot
 from ..services.symbolic_service import SymbolicService
 from ..views.panel import TAB_LABELS, PanelView
 from ..views.scene import SceneView
-from .batch import MAX_REDRAWS_PER_SECOND, Batch, VisitPace, coalesced
+from .batch import MAX_REDRAWS_PER_SECOND, Batch, Queued, VisitPace, coalesced
 from .camera import TabCamera
 from .commands import CommandRunner
 from .following import Following
@@ -56,6 +56,7 @@ from .labels import TabLabels
 from .notices import Notices
 from .page import PageLink, address_language
 from .recorder import TabRecorder
+from .ride import Riding
 from .robots import TabCatalog
 from .screen import Screen
 from .subscribers import Subscribers
@@ -67,7 +68,7 @@ __all__ = ["ClientSession", "MAX_REDRAWS_PER_SECOND"]
 log = logging.getLogger(__name__)
 
 
-class ClientSession:
+class ClientSession(Riding, Queued):
     """State, views and effects of one connected tab: ``state`` (frozen :class:`~app.core.state.LabState`)
     is what it has chosen, ``snapshot`` what is on screen, ``redraws`` counts draws (one per batch)."""
 
@@ -118,6 +119,10 @@ class ClientSession:
             lambda: self._closed, lambda placed: self.following.labels_placed(placed), user_agent=user_agent,
         )  # fmt: skip
         self.page.following, self.following.page = self.following, self.page
+        self.following.rider = self  # a follower may be sent another's frame (ride_key, take_ride)
+        self._leading: list[tuple[SceneSlot, tuple]] = []  # relayed states whose frame we draw for others
+        self._ridden = None  # the frame of this visit's draw, for those that wait for it
+        self.rides = 0  # frames taken from another follower's draw
         self.following.labels = self.labels
         self.symbols = TabSymbols(symbolic, self.dispatch, self.notices.notify, lambda: self.notices.tr)
         self.recorder = TabRecorder(self.subscribe)
@@ -138,7 +143,7 @@ class ClientSession:
                 client, self.dispatch, self.catalog, self.state, classroom is not None, self.page.tr,
                 self.camera.view, first=arm_first,
             )  # fmt: skip
-            self.screen.layout = self.labels.layout
+            self.screen.layout, self.screen.canvas = self.labels.layout, self.labels.canvas
             self.camera.moved = self.labels.moved  # from the first frame on (placed before the panel)
             self._commit(self.state, rebuild=True, jump=True, snap=first)
         client.camera.on_update(self._camera_moved)
@@ -163,38 +168,25 @@ class ClientSession:
         """When this tab may be redrawn again [monotonic s] (:class:`~app.tab.batch.VisitPace`)."""
         return self.pace.next_visit()
 
-    @property
-    def pending(self) -> bool:
-        """Whether messages of this tab wait for, or are in, the renderer's visit."""
-        with self._queue_lock:
-            return self._scheduled
-
-    @property
-    def queued(self) -> int:
-        """How many messages wait to be taken."""
-        with self._queue_lock:
-            return len(self._queue)
-
-    def settle(self, timeout: float = 10.0) -> None:
-        """Wait until every dispatched message has been drawn (for tests and scripts).
-
-        Raises:
-            TimeoutError: messages are still queued after ``timeout`` seconds.
-        """
-        end = time.monotonic() + timeout
-        while time.monotonic() < end:
-            with self._queue_lock:
-                if not self._scheduled and not self._queue:
-                    return
-            time.sleep(0.005)
-        raise TimeoutError(f"client {self.client.client_id}: actions still queued after {timeout} s")
-
     # ------------------------------------------------------------------ visit
     def visit(self) -> bool:
         """Take every queued message and redraw once (the renderer's thread); True when more arrived."""
         with self._queue_lock:
             messages, self._queue = coalesced(self._queue), []
+            leading, self._leading = self._leading, []
         self.pace.start()
+        try:
+            self._visit(messages, leading)
+        finally:
+            self._send_rides(leading)
+        self.pace.finish()
+        with self._queue_lock:
+            if self._queue and not self._closed:
+                return True
+            self._scheduled = False
+            return False
+
+    def _visit(self, messages: list[Message], leading: list[tuple[SceneSlot, tuple]]) -> None:
         if messages and not self._closed:
             with self.lock:
                 batch = Batch(self.state)
@@ -208,19 +200,15 @@ class ClientSession:
                         snap, scene = batch.mirrored()
                         rebuild = batch.state.robot is not self.state.robot
                         lead = batch.lead if scene is None and snap is not None else None
-                        self._commit(batch.state, rebuild, batch.jump, snap, scene, lead)
+                        shared = batch.mirror_shared() if snap is not None and not rebuild else None
+                        ride = next((r for r in leading if r[0] is shared), None)
+                        self._commit(batch.state, rebuild, batch.jump, snap, scene, lead, ride)
                     elif batch.symbolic or batch.question:
                         self.screen.draw_symbols(self.symbols, self.role if batch.question else None)
                     for placed in batch.placed:  # placed in the drawing now on screen: after it
                         self.labels.replay(placed)
                 except Exception as exc:  # the tab keeps its last good state on screen
                     self.notices.error(exc)
-        self.pace.finish()
-        with self._queue_lock:
-            if self._queue and not self._closed:
-                return True
-            self._scheduled = False
-            return False
 
     def _take(self, batch: Batch, message: Message) -> None:
         """Take one message into ``batch``: reduce an action, run a command, draw a mirror."""
@@ -277,11 +265,14 @@ class ClientSession:
         snap: object = None,
         scene: list | None = None,
         lead: SceneSlot | None = None,
+        ride: tuple[SceneSlot, tuple] | None = None,
     ) -> None:
         """Take ``state``: compute its snapshot once (unless given: the presenter's), draw in one
         batch, then run the effects. ``scene``: the presenter's scene messages to replay instead of
         drawing the scene (a follower's scene then shows the presenter's nodes); ``lead``: a relayed
-        state's slot, filled with the scene messages of this drawing for the worker's other followers."""
+        state's slot, filled with the scene messages of this drawing for the worker's other followers;
+        ``ride``: a relayed state's slot and the key of the followers that wait for this whole frame
+        (:meth:`ride_key`, checked again here), sent to them once drawn (:meth:`_send_rides`)."""
         old, following = self.state, self.following.following
         if not isinstance(snap, Snapshot):  # a forced redraw of the state shown (a role change) reuses it
             snap = self.snapshot if state is self.state and self.snapshot is not None else compute(state)
@@ -293,9 +284,13 @@ class ClientSession:
             self.screen.relanguage(self.page.tr, state)
             self._tab_to_open = self.page.tab  # the rebuilt panel opens on its first tab
             rebuild = True
+        if ride is not None and (self._ride_parts() != ride[1] or not following):
+            ride = None  # it changed since it joined: the others draw their own
         self.symbols.update(state, None if rebuild else old)  # what it shows is drawn below
         self.screen.panel.open_tab = self.page.tab  # only the open tab's readouts are filled
-        with self.client.atomic():  # the page's address, when due, rides in the redraw's frame
+        riding = self._capture_ride(ride)
+        atomic: contextlib.AbstractContextManager[object] = self.client.atomic()
+        with riding as captured, atomic:  # the page's address, when due, rides in the redraw's frame
             self._drawing.active = True
             try:
                 recording = self.recorder.recording
@@ -311,6 +306,8 @@ class ClientSession:
             self.page.update(state)  # a reload or a server restart comes back to this robot and q
         if lead is not None and not rebuild:  # what our browser showed before is the others' base
             lead.fill(self.screen.scene_messages.look, old, self.screen.scene_messages)
+        if ride is not None and isinstance(snap, Snapshot):
+            self._keep_ride(ride, old, state, snap, captured)
         self.state, self.snapshot = state, snap
         self.redraws += 1
         self.pace.redrawn()
@@ -384,6 +381,7 @@ class ClientSession:
     def close(self) -> None:
         """Forget the tab (it has gone: its handles went with its connection). Stops its ticker."""
         self._closed = True
+        self._let_go()  # those that wait for our frame draw their own
         self.following.close()
         self.ticker.close()
         if self._own_renderer:

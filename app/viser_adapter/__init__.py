@@ -56,6 +56,11 @@ Wrapped:
   where the value arrives instead of in its thread pool (``GuiApi._thread_executor``, :mod:`.inline`).
 * :func:`quiet_banner` — viser's console lines (``rich.print``, printed whatever ``verbose`` says) left
   out while a server starts and stops: the app prints its address once, not once per worker.
+* :func:`install_panel_ledger` — a tab's GUI ids named after where each element sits (viser's
+  ``_make_uuid``, found from its caller's ``self``) and a digest of what its panel shows (``_GuiHandle``'s
+  ``__init__``, ``remove``, ``_queue_update`` and an input's ``value``: :mod:`.panel_ledger`), so that
+  followers showing the same panel take one follower's frame (:func:`capture_frame`,
+  :func:`take_gui_updates`).
 * :func:`set_pose` — a scene node's position and orientation (``handle._impl.position`` / ``wxyz``,
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts;
   :func:`set_camera` — a tab's camera pose (``CameraHandle._state``), its orientation worked out once.
@@ -98,7 +103,16 @@ from .limits import (
     upload_too_large,
     welcome_tabs,
 )
-from .mirror import capture_scene, replay_scene
+from .mirror import capture_scene, replay_scene, ridden_frame, send_ridden
+from .panel_ledger import (
+    capture_frame,
+    gui_digest,
+    install_panel_ledger,
+    panel_after,
+    panel_ledger_installed,
+    take_gui_updates,
+    uninstall_panel_ledger,
+)
 from .props import install_fast_prop_casts, set_camera, set_pose, update_props
 
 __all__ = [
@@ -147,4 +161,13 @@ __all__ = [
     "trusted_proxies",
     "client_header",
     "quiet_banner",
+    "install_panel_ledger",
+    "uninstall_panel_ledger",
+    "panel_ledger_installed",
+    "gui_digest",
+    "take_gui_updates",
+    "panel_after",
+    "capture_frame",
+    "ridden_frame",
+    "send_ridden",
 ]

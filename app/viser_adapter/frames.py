@@ -20,6 +20,7 @@ only; the others are not held back.
 
 from __future__ import annotations
 
+import collections
 import itertools
 import time
 from collections.abc import Sequence
@@ -39,6 +40,7 @@ __all__ = [
     "SHARED_OWNER",
     "SharedFrame",
     "FrameRef",
+    "JoinedFrame",
     "share_owner",
     "install_shared_frames",
     "shared_frames_installed",
@@ -61,14 +63,16 @@ class SharedFrame:
     packed_count = 0
     """How many frames have been packed in this process (for tests: once per frame, whatever the room)."""
 
-    def __init__(self, messages: Sequence[Any]) -> None:
+    def __init__(self, messages: Sequence[Any], tag: bool = True) -> None:
+        """``tag``: mark each message as this frame's (a frame of messages already tagged with others'
+        frames, a follower's whole frame sent to the followers alike, leaves their tags)."""
         self.messages = tuple(messages)
         self._packed: tuple[tuple[msgspec.Raw, ...], list[memoryview]] | None = None
         self._keys: tuple[str, ...] | None = None
         self._keyset: frozenset[str] | None = None
         self.removes = any(getattr(m, "lifecycle_phase", None) == "remove" for m in self.messages)
         """Whether a message of the frame removes a node (viser's push then purges that node's messages)."""
-        for i, message in enumerate(self.messages):
+        for i, message in enumerate(self.messages if tag else ()):
             try:
                 setattr(message, _TAG, (self, i))
             except (AttributeError, TypeError):  # a message that takes no attribute: serialised per socket
@@ -96,6 +100,24 @@ class SharedFrame:
         if self._keyset is None:
             self._keyset = frozenset(self.keys())
         return self._keyset
+
+
+class JoinedFrame(SharedFrame):
+    """Frames sent together as one (a follower's draw: the room's scene frame and its GUI updates), each
+    packed once: their packed messages one after the other when only the first has arrays (their
+    placeholders count from 0 in each frame), else packed anew as one frame."""
+
+    def __init__(self, parts: Sequence[SharedFrame]) -> None:
+        super().__init__([m for part in parts for m in part.messages], tag=False)
+        self.parts = tuple(parts)
+
+    def packed(self) -> tuple[tuple[msgspec.Raw, ...], list[memoryview]]:
+        if self._packed is None and not any(part.packed()[1] for part in self.parts[1:]):
+            self._packed = (
+                tuple(raw for part in self.parts for raw in part.packed()[0]),
+                self.parts[0].packed()[1] if self.parts else [],
+            )
+        return super().packed()
 
 
 class FrameRef(_InfraMessage):
@@ -191,9 +213,73 @@ def _shared_run(window: Sequence[Any]) -> tuple[int, int, SharedFrame] | None:
     return None if found is None else (found[0], found[0] + len(found[1]), found[1])
 
 
+_SENT: collections.OrderedDict[tuple[SharedFrame, ...], tuple[bytes, int, bytes, list[memoryview]]] = (
+    collections.OrderedDict()
+)
+"""The compressed messages of the last windows made only of whole frames, by their frames."""
+_SENT_KEPT = 16
+
+
+def _raw_zstd_frame(content: bytes) -> bytes:
+    """``content`` (at most 255 bytes) as one zstd frame of one raw block: nothing to compress, so no
+    compressor is run (the frame format: RFC 8878; single segment, its size in one byte)."""
+    return (
+        b"\x28\xb5\x2f\xfd\x20"  # the magic number, then: a single segment whose size takes one byte
+        + bytes((len(content),))
+        + ((len(content) << 3) | 1).to_bytes(3, "little")  # the last block, raw, of that size
+        + content
+    )
+
+
+def _whole_frames(window: Sequence[Any]) -> tuple[SharedFrame, ...] | None:
+    """The frames of ``window`` when it holds only whole frames, arrays in the first alone."""
+    if not window or not all(type(m) is FrameRef and m.whole for m in window):
+        return None
+    frames = tuple(m.frame for m in window)
+    if any(f.packed()[1] for f in frames[1:]):
+        return None
+    return frames
+
+
+def _room_wire(infra: Any, zstd: Any, frames: tuple[SharedFrame, ...]) -> bytes | None:
+    """viser's wire bytes of a window of whole ``frames``, compressed once for every socket that sends
+    the same window (followers sent one follower's draw: :func:`~.mirror.send_ridden`): the messages as one
+    zstd frame made once, the socket's own timestamp after them as a raw zstd frame of its own (the browser's
+    ``ZSTD_decompress`` reads the frames one after the other). None when the tail would not fit."""
+    sent = _SENT.get(frames)
+    if sent is None:
+        raws = [raw for frame in frames for raw in frame.packed()[0]]
+        buffers = frames[0].packed()[1]
+        head = b"\x83" + _ENCODE("messages") + _ENCODE(raws)  # a map of three: the messages first, as viser's
+        lengths = _ENCODE("binaryBufferLengths") + _ENCODE(tuple(b.nbytes for b in buffers))
+        sent = (zstd.compress(head), len(head), lengths, buffers)
+        _SENT[frames] = sent
+        while len(_SENT) > _SENT_KEPT:
+            _SENT.popitem(last=False)
+    compressed, head_size, lengths, buffers = sent
+    tail = _ENCODE("timestampSec") + _ENCODE(time.perf_counter()) + lengths
+    if len(tail) > 255:
+        return None
+    raw = _raw_zstd_frame(tail)
+    parts: list[bytes | memoryview] = [
+        (head_size + len(tail)).to_bytes(8, "little"),
+        (len(compressed) + len(raw)).to_bytes(8, "little"),
+        compressed,
+        raw,
+    ]
+    infra._append_aligned_buffers(parts, buffers, 16 + len(compressed) + len(raw))
+    return b"".join(parts)
+
+
 def _wire(infra: Any, zstd: Any, window: Sequence[Any]) -> bytes:
     """viser's wire bytes of ``window``: one whole shared frame in it placed as packed once, the rest
-    (and the messages a :class:`FrameRef` still holds) serialised for this socket."""
+    (and the messages a :class:`FrameRef` still holds) serialised for this socket; a window of whole frames
+    alone compressed once for every socket that sends it (:func:`_room_wire`)."""
+    frames = _whole_frames(window)
+    if frames is not None:
+        made = _room_wire(infra, zstd, frames)
+        if made is not None:
+            return made
     run = _shared_run(window)
     binary: list[memoryview] = []
     serialized: list[Any] = []
@@ -204,6 +290,8 @@ def _wire(infra: Any, zstd: Any, window: Sequence[Any]) -> bytes:
         if run is not None and run[0] <= i < run[1]:
             if i == run[0]:
                 serialized.extend(raws)
+        elif isinstance(message, FrameRef) and message.whole and not message.frame.packed()[1]:
+            serialized.extend(message.frame.packed()[0])  # no arrays: its packed bytes fit anywhere
         elif isinstance(message, FrameRef):
             serialized.extend(_serializable(m, binary) for m in message.messages())
         else:

@@ -30,6 +30,7 @@ from typing import Any
 from ..services.ratelimit import RoomLimits
 from .core import ViserApiChanged, _private, clip
 from .inline import run_marked_inline
+from .panel_ledger import touched
 from .uploads import give_back_memory, watch_upload
 
 __all__ = ["install_input_checks", "check_message", "check_gui_value", "room_limits", "MAX_TEXT"]
@@ -264,7 +265,9 @@ async def _gui_updates(self: Any, client_id: int, message: Any) -> None:
     run_marked_inline(self)  # a callback that only queues an action runs here, not in the pool
     if state.sync_cb is not None and _client_owned(self):
         state.sync_cb = None  # see _client_owned
+    touched(self, message.uuid)  # what the tab's panel shows changes (its digest: .panel_ledger)
     await _original["_handle_gui_updates"](self, client_id, message)
+    touched(self, message.uuid)
 
 
 def _client_owned(api: Any) -> bool:

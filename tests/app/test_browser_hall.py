@@ -11,7 +11,7 @@ import os
 from pathlib import Path
 
 import pytest
-from browser_helpers import new_page, served_browser
+from browser_helpers import new_page, presenting_lab, served_browser
 from fakes import poll
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
@@ -52,3 +52,52 @@ def test_followers_show_the_presenters_readouts_after_a_move(tmp_path):
         presenter.screenshot(path=str(out / "hall_presenter.png"))
         followers[0].screenshot(path=str(out / "hall_follower.png"))
         followers[2].screenshot(path=str(out / "hall_follower_2.png"))
+
+
+SLIDER_TEXTS = """() => Array.from(document.querySelectorAll('[role=slider]')).slice(0, 3)
+  .map((s) => s.getAttribute('aria-valuenow'))"""
+
+
+def test_chromium_followers_sent_one_follower_s_draw_show_the_presenter_s(tmp_path):
+    """Three Chromium followers of one worker, alike: after the first moves one of them draws each move
+    and the others are sent its frame as it is (app/tab/ride.py: its GUI updates and the room's scene,
+    compressed once for all their sockets). Every browser decodes it and shows the presenter's J and
+    sliders; the page raises no script error."""
+    out = Path(os.environ.get("APP_SCREENSHOT_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    with presenting_lab("hall-rides-4Rt8-long-enough-token") as (lab, browser, presenter_page, presenter):
+        errors: list[str] = []
+        followers = []
+        for _ in range(3):
+            page = new_page(browser)
+            page.on("pageerror", lambda exc: errors.append(str(exc)))
+            page.goto(lab.url)
+            page.wait_for_selector("[role=slider]", state="attached")
+            followers.append(page)
+        sessions = [s for s in lab.sessions.values() if s is not presenter]
+        poll(lambda: len(sessions) == 3 and all(s.role.following for s in sessions), what="three follow")
+        thumb = presenter_page.locator("[role=slider]").first
+        thumb.focus()
+        rides = 0
+        for step in range(6):
+            before = presenter.state
+            thumb.press("ArrowRight")
+            poll(lambda before=before: presenter.state.q != before.q, what="the presenter moved")
+            poll(lambda: all(s.state is presenter.state for s in sessions), what="the followers took the move")
+            for s in sessions:
+                s.settle()
+            if step == 3:
+                rides = sum(s.rides for s in sessions)
+        assert sum(s.rides for s in sessions) > rides  # the last moves were sent as one follower's draw
+        want_table, want_sliders = presenter_page.evaluate(FIRST_TABLE), presenter_page.evaluate(SLIDER_TEXTS)
+        assert want_table and want_sliders[0] is not None
+        poll(
+            lambda: all(
+                f.evaluate(FIRST_TABLE) == want_table and f.evaluate(SLIDER_TEXTS) == want_sliders
+                for f in followers
+            ),
+            what="every follower shows the presenter's J and sliders",
+        )
+        for i, f in enumerate(followers):
+            f.screenshot(path=str(out / f"hall_rider_{i}.png"))
+        assert not errors, errors

@@ -1,6 +1,6 @@
 """Issue 31: 60 websocket followers of the default ``serve --presenter --workers 2`` answer a question;
 the presenter's bars count every answer once, across both workers (each follower picks a known choice,
-so the bars are known), and a forged click on another tab's answer changes nothing."""
+so the bars are known), and a click naming another tab's answer reaches only the sender's own panel."""
 
 from __future__ import annotations
 
@@ -83,7 +83,15 @@ def test_sixty_websocket_followers_on_two_workers_every_answer_counted_once(tmp_
             choice = k % 5  # regular, wrist, elbow, shoulder, boundary: 12 each
             c.set_value(buttons[choice], True)
             want[choice] += 1
-        room[0][0].set_value(room[1][2][3], True)  # tab 0 clicks tab 1's "shoulder": not its own widget
+            if k == 1:
+                # Tab 0 sends a click naming tab 1's "shoulder". A tab's GUI ids follow its panel's
+                # structure, so that id is also tab 0's own "shoulder": the click changes tab 0's answer (its
+                # own widget), never tab 1's (a tab's messages reach only its own widgets); an id no tab has
+                # changes nothing. Sent before the others answer: the room's count ends after it.
+                room[0][0].set_value(room[1][2][3], True)
+                room[0][0].set_value("root-999-999", True)
+                want[0] -= 1
+                want[3] += 1
         bars = _bars(presenter, mark, f"{FOLLOWERS} of {FOLLOWERS} tabs answered")
         rows = re.findall(r'anywhere">([^<]+?)</span>.*?text-align:right">(\d+)</span>', bars)
         assert rows == [(label, str(n)) for label, n in zip(CHOICES, want, strict=True)], bars

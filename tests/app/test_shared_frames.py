@@ -220,3 +220,53 @@ def test_a_gui_update_of_plain_values_is_serialised_as_viser_serialises_it():
         fast += plain
         assert (got["updates"] is message.updates) == plain  # the plain ones are not walked
     assert 20 < fast < 200
+
+
+def test_a_window_of_whole_frames_is_compressed_once_for_every_socket():
+    """Followers sent one follower's draw (app/tab/ride.py) have the same window: its messages are
+    compressed once (one zstd frame), each socket's timestamp after them in a raw zstd frame of its own;
+    decoded (across frames, as the browser's ZSTD_decompress reads them), viser's own messages."""
+    import time
+
+    import msgspec
+    import zstandard
+
+    from app.viser_adapter.frames import FrameRef
+
+    scene, panel = SharedFrame(scene_messages(3)), SharedFrame([gui("a"), gui("b")], tag=False)
+    panel_plain = SharedFrame(
+        [message_class("GuiUpdateMessage")(f"u{i}", {"value": 0.5 * i}) for i in range(3)]
+    )
+    window = [FrameRef(scene), FrameRef(panel_plain)]
+    infra = frames_module._infra_module()
+
+    class Counting:
+        def __init__(self) -> None:
+            self.zstd, self.calls = zstandard.ZstdCompressor(level=1), 0
+
+        def compress(self, data: bytes) -> bytes:
+            self.calls += 1
+            return self.zstd.compress(data)
+
+    zstd = Counting()
+    first = frames_module._wire(infra, zstd, window)
+    time.sleep(0.002)  # another socket, later: its own timestamp
+    second = frames_module._wire(infra, zstd, window)
+    assert zstd.calls == 1
+    want = decode_frame(viser_bytes([*scene.messages, *panel_plain.messages]))
+    same(decode_frame(first), want)
+    same(decode_frame(second), want)
+
+    def stamp(data: bytes) -> float:
+        size = int.from_bytes(data[8:16], "little")
+        reader = zstandard.ZstdDecompressor().stream_reader(data[16 : 16 + size], read_across_frames=True)
+        return msgspec.msgpack.decode(reader.read())["timestampSec"]
+
+    assert stamp(second) > stamp(first)
+    # Arrays in a frame after the first cannot share its numbering: serialised for the socket, as before.
+    mixed = [FrameRef(SharedFrame([gui("c")], tag=False)), FrameRef(panel)]
+    assert frames_module._whole_frames(mixed) is None
+    same(
+        decode_frame(frames_module._wire(infra, zstd, mixed)),
+        decode_frame(viser_bytes([gui("c"), *panel.messages])),
+    )
