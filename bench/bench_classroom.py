@@ -8,8 +8,10 @@ websocket protocol, no rendering), then moves the presenter's q2 slider every ``
 sample is the time from sending the presenter's new value to one follower receiving the frame that
 carries its redrawn arm (the batched update of ``/lab/arm/cylinders``): N samples per move. Also printed:
 how the followers spread over the workers, the CPU of the server's whole process tree per presenter
-move (``bench/common.py``), this client's CPU and the load average before and after. Every tab reports
-its page loaded, as a browser's page script does (it shows the first tab).
+move (``bench/common.py``), this client's CPU and the load average before and after. The followers'
+websockets share a few event-loop threads (``--client-threads``) and this process's heap is frozen out of
+the garbage collector once the room has joined: the samples time the app, not this process's own pauses.
+Every tab reports its page loaded, as a browser's page script does (it shows the first tab).
 
 Usage::
 
@@ -32,6 +34,7 @@ from __future__ import annotations
 
 import argparse
 import collections
+import gc
 import json
 import math
 import os
@@ -45,7 +48,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
-from wsclient import ViserWsClient  # noqa: E402  (a test helper, not part of the app)
+from wsclient import ClientLoop, ViserWsClient  # noqa: E402  (a test helper, not part of the app)
 
 from app.viser_adapter import message_class  # noqa: E402
 from bench.common import cpu_seconds, memory  # noqa: E402
@@ -156,10 +159,12 @@ def run(
     app_root: Path,
     screens: int = 0,
     orbit: bool = False,
+    client_threads: int = 0,
 ) -> dict:
     proc, port = start_server(robot, workers, log, app_root)
     url = f"ws://127.0.0.1:{port}"
     clients: list[ViserWsClient] = []
+    loops = [ClientLoop() for _ in range(client_threads)] if client_threads else []
     try:
         presenter = ViserWsClient(url)
         presenter.start()
@@ -173,7 +178,7 @@ def run(
         )
         room = []
         for i in range(followers):
-            c = ViserWsClient(url)
+            c = ViserWsClient(url, shared=loops[i % len(loops)] if loops else None)
             c.start(timeout=60)
             page = gui(c, "GuiTextMessage", "page")
             c.set_value(page, PAGE_LOADED)  # as its page script does
@@ -186,6 +191,11 @@ def run(
         time.sleep(1.0)  # let the joining burst settle ...
         quiet = quiet_tree(proc.pid)  # ... and the symbolic J's computation (not a move's work)
         pss, _rss, _count = memory(proc.pid)
+        # This process keeps every message its followers received: a full collection of that heap took up
+        # to ~280 ms, during which no follower's frame was read (a whole move's samples late). What the
+        # room has made so far is frozen out of the collector: its pauses are the clients', not the app's.
+        gc.collect()
+        gc.freeze()
         samples, missed = [], 0
         cpu0, own0, t0 = cpu_seconds(proc.pid), time.process_time(), time.perf_counter()
         for i in range(moves):
@@ -213,8 +223,11 @@ def run(
             "quiet": quiet,
         }
     finally:
+        gc.unfreeze()
         for c in clients:
             c.close()
+        for loop in loops:
+            loop.close()
         proc.terminate()
         try:
             proc.wait(10)
@@ -256,10 +269,20 @@ def main() -> int:
         default=1,
         help="run every setting R times, the apps taking turns, and print each app's medians",
     )
+    parser.add_argument(
+        "--client-threads",
+        type=int,
+        default=4,
+        help="the followers' websockets share this many event-loop threads (0: one thread each, as before"
+        " 2026-12-06: hundreds of threads taking turns at this process's interpreter lock delay the samples)",
+    )
     parser.add_argument("--log", type=Path, default=Path("/tmp/bench-classroom.log"), help="the server's log")
     args = parser.parse_args()
     what = "turns the camera 3°" if args.orbit else "moves q2"
-    print(f"robot {args.robot}; presenter {what} every {args.period:g} s; {os.cpu_count()} CPUs")
+    print(
+        f"robot {args.robot}; presenter {what} every {args.period:g} s; {os.cpu_count()} CPUs; followers' "
+        f"websockets on {args.client_threads or 'one each of their'} client thread(s)"
+    )
     print(f"load average before: {' '.join(Path('/proc/loadavg').read_text().split()[:3])}")
     print(
         "app       screens workers followers  spread   p50 ms   p95 ms   max ms  missed  CPU %  ms/move"
@@ -278,7 +301,18 @@ def main() -> int:
     ]
     results: dict[tuple, list[dict]] = collections.defaultdict(list)
     for n, workers, k, (app, root) in runs:
-        r = run(args.robot, n, args.moves, args.period, workers, args.log, root, k, args.orbit)
+        r = run(
+            args.robot,
+            n,
+            args.moves,
+            args.period,
+            workers,
+            args.log,
+            root,
+            k,
+            args.orbit,
+            args.client_threads,
+        )
         results[(n, workers, k, app)].append(r)
         s = r["samples"]
         p50, p95 = np.percentile(s, [50, 95]) if len(s) else (np.nan, np.nan)

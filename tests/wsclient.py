@@ -69,15 +69,36 @@ def decode_frame(data: bytes) -> list[dict[str, Any]]:
     return [restore(m) for m in payload["messages"]]
 
 
+class ClientLoop:
+    """One event loop thread for many :class:`ViserWsClient` (a bench's room of followers: one thread per
+    client would be hundreds of threads taking turns at the interpreter lock, each a switch interval
+    late)."""
+
+    def __init__(self) -> None:
+        self.loop = asyncio.new_event_loop()
+        self._thread = threading.Thread(target=self.loop.run_forever, daemon=True, name="viser-ws-clients")
+        self._thread.start()
+
+    def close(self) -> None:
+        self.loop.call_soon_threadsafe(self.loop.stop)
+        self._thread.join(5.0)
+
+
 class ViserWsClient:
-    """A headless viser client running its own event loop thread.
+    """A headless viser client running its own event loop thread (or the thread of a shared
+    :class:`ClientLoop`).
 
     Attributes:
         messages: Every message received, as (perf_counter time, message dict), in order.
     """
 
     def __init__(
-        self, url: str, width: int = 800, height: int = 600, headers: dict[str, str] | None = None
+        self,
+        url: str,
+        width: int = 800,
+        height: int = 600,
+        headers: dict[str, str] | None = None,
+        shared: ClientLoop | None = None,
     ) -> None:
         self.url = url
         self.headers = dict(
@@ -86,10 +107,14 @@ class ViserWsClient:
         self.size = (width, height)
         self.messages: list[tuple[float, dict[str, Any]]] = []
         self._cond = threading.Condition()
-        self._loop = asyncio.new_event_loop()
+        self._loop = shared.loop if shared is not None else asyncio.new_event_loop()
         self._ws: Any = None
         self._error: BaseException | None = None
-        self._thread = threading.Thread(target=self._loop.run_forever, daemon=True, name="viser-ws-client")
+        self._thread: threading.Thread | None = None
+        if shared is None:
+            self._thread = threading.Thread(
+                target=self._loop.run_forever, daemon=True, name="viser-ws-client"
+            )
 
     def __enter__(self) -> ViserWsClient:
         self.start()
@@ -105,7 +130,8 @@ class ViserWsClient:
         later"), or, on a busy machine, drops a connection it accepted before it could answer (no HTTP
         response); like viser's page, this client then connects again (at once, then every second).
         """
-        self._thread.start()
+        if self._thread is not None:
+            self._thread.start()
         end = time.monotonic() + timeout
         while True:
             try:
@@ -214,5 +240,6 @@ class ViserWsClient:
                 asyncio.run_coroutine_threadsafe(self._ws.close(), self._loop).result(5.0)
             except Exception:
                 pass
-        self._loop.call_soon_threadsafe(self._loop.stop)
-        self._thread.join(5.0)
+        if self._thread is not None:  # its own thread (a shared ClientLoop is closed by its owner)
+            self._loop.call_soon_threadsafe(self._loop.stop)
+            self._thread.join(5.0)

@@ -157,7 +157,8 @@ class Riding:
             old = self.state
             self.symbols.update(ride.state, old)
             self.screen.rode(ride.state, ride.look, ride.live, ride.hint)
-            self.page.update(ride.state)
+            # Its page's address is not rewritten while it rides (a follower's reload follows the
+            # presenter anyway): its window is then the same as every other rider's, compressed once.
             self.state, self.snapshot = ride.state, ride.snapshot
             self.redraws += 1
             self.rides += 1

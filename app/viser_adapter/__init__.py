@@ -65,9 +65,10 @@ Wrapped:
   ``SetPositionMessage`` / ``SetOrientationMessage``) without viser's attribute hook and casts;
   :func:`set_camera` — a tab's camera pose (``CameraHandle._state``), its orientation worked out once.
 
-A package of eleven modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.uploads`,
-:mod:`.handshake`, :mod:`.props`, :mod:`.mirror`, :mod:`.frames`, :mod:`.icons`, :mod:`.events`,
-:mod:`.inline`), so each stays short; nothing outside this package touches viser's private API.
+A package of fourteen modules (:mod:`.core`, :mod:`.limits`, :mod:`.gate`, :mod:`.uploads`,
+:mod:`.handshake`, :mod:`.props`, :mod:`.mirror`, :mod:`.frames`, :mod:`.frame_refs`, :mod:`.windows`,
+:mod:`.panel_ledger`, :mod:`.icons`, :mod:`.events`, :mod:`.inline`), so each stays short; nothing outside
+this package touches viser's private API.
 """
 
 from .core import (

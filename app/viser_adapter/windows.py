@@ -12,7 +12,8 @@ the pushing thread and again through ``call_soon_threadsafe``) and paused a thir
 :func:`windows` yields the same windows in the same order (viser's backlog marker, consumption cursor,
 atomic blocks, ``excluded_self_client``, ``max_window_size``, persistent or popped messages) and paces
 the same way after a window that drained the buffer (at most one such window per
-``window_duration_sec`` unless flushed), but takes a woken socket's messages at once: the event is
+``window_duration_sec`` unless flushed; the pause is only waited out when a push comes within it, so a
+socket sent one window a move sets no timer), but takes a woken socket's messages at once: the event is
 cleared before the buffer is read, so a push after that read wakes it again, and an empty read inside
 an atomic block pauses like viser's instead of spinning.
 """
@@ -102,6 +103,12 @@ async def _loop(
                 yield window
                 more = buffer.atomic_counter == 0 and last_sent < buffer.message_counter - 1
                 next_window = 0.0 if more else loop.time() + buffer.window_duration_sec
+                # Nothing waits: sleep until a push, and pause (what is left of the window) only then. A
+                # wake by a push already read (viser sets the event again through the loop) sleeps on: a
+                # follower sent one window a move sets no timer.
+                while not more and not buffer.done and last_sent >= buffer.message_counter - 1:
+                    await event.wait()
+                    event.clear()
             elif buffer.atomic_counter and isinstance(event, LoopSafeEvent):
                 await event.set_on_loop()  # the block's end, not its pushes (they only raise the flag)
             elif buffer.atomic_counter:

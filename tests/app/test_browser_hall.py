@@ -83,7 +83,9 @@ def test_chromium_followers_sent_one_follower_s_draw_show_the_presenter_s(tmp_pa
             before = presenter.state
             thumb.press("ArrowRight")
             poll(lambda before=before: presenter.state.q != before.q, what="the presenter moved")
-            poll(lambda: all(s.state is presenter.state for s in sessions), what="the followers took the move")
+            poll(
+                lambda: all(s.state is presenter.state for s in sessions), what="the followers took the move"
+            )
             for s in sessions:
                 s.settle()
             if step == 3:

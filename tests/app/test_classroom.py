@@ -30,10 +30,13 @@ TOKEN = "lecture-7"
 
 
 @contextlib.contextmanager
-def room(n_followers: int = 2):
-    """A lab in classroom mode with 1 + n tabs: (lab, presenter, followers) — the presenter claimed."""
+def room(n_followers: int = 2, sockets: list | None = None):
+    """A lab in classroom mode with 1 + n tabs: (lab, presenter, followers) — the presenter claimed
+    (``sockets``: a list given the followers' websocket clients, in the order they connected)."""
     with running_lab(presenter_token=TOKEN) as (lab, first, _):
         clients = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(n_followers)]
+        if sockets is not None:
+            sockets.extend(clients)
         try:
             for c in clients:
                 c.start()

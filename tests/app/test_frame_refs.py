@@ -166,3 +166,32 @@ def test_a_follower_is_queued_one_entry_per_presenter_frame():
                 else:
                     assert got.messages == frame
                 assert not any(m is x for m in seen for x in frame)  # none of its messages one by one
+
+
+def test_a_slow_rider_is_left_only_the_latest_of_the_frames_it_was_sent(loop):
+    """Followers sent one follower's draw (app/tab/ride.py) get it as one JoinedFrame entry: the room's
+    scene frame and the draw's GUI updates. A socket that does not read is left, element by element and
+    node by node, only the latest of what waits: the same messages viser's own buffer would keep, fed
+    message by message; the others' buffers are not touched."""
+    update = message_class("GuiUpdateMessage")
+    slow = AsyncMessageBuffer(loop, persistent_messages=False)
+    other = AsyncMessageBuffer(loop, persistent_messages=False)
+    theirs = AsyncMessageBuffer(loop, persistent_messages=False)
+    for move in range(6):
+        scene = SharedFrame(node_messages([0, 1, 2], float(move)))
+        panel = SharedFrame(
+            [update("root-3-0-1", {"value": float(move)}), update("root-7-2", {"content": f"<p>{move}</p>"})],
+            tag=False,
+        )
+        joined = JoinedFrame([scene, panel])
+        push_frame(slow, joined)
+        for m in joined.messages:
+            theirs.push(m)
+        push_frame(other, joined)
+        drain(other)  # a follower that reads
+    entries = list(slow.message_from_id.values())
+    assert len(entries) == 1 and isinstance(entries[0], FrameRef) and entries[0].whole  # only the last move
+    assert expanded(slow) == [theirs.message_from_id[i] for i in sorted(theirs.message_from_id)]
+    assert not other.message_from_id
+    raws, buffers = entries[0].frame.packed()  # each part packed once: the scene's arrays, then the panel
+    assert len(raws) == 8 and len(buffers) == len(scene.packed()[1])

@@ -15,9 +15,8 @@ from collections.abc import Iterator
 from typing import Any
 
 import pytest
-from app_helpers import running_lab
 from fakes import poll
-from test_classroom import TOKEN
+from test_classroom import room
 from wsclient import ViserWsClient
 
 import app.tab.screen as screen_module
@@ -30,29 +29,20 @@ from app.viser_adapter import gui_digest, handle_uuid
 @contextlib.contextmanager
 def hall(n: int) -> Iterator[tuple[Any, Any, list, list[ViserWsClient]]]:
     """A lab with a presenter and ``n`` followers: (lab, presenter, followers, their websockets)."""
-    with running_lab(presenter_token=TOKEN) as (lab, first, _):
-        clients = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(n)]
-        try:
-            for c in clients:
-                c.start()
-            poll(lambda: len(lab.sessions) == 1 + n)
-            by_key = {s.key: s for s in lab.sessions.values() if s is not first}
-            followers = [by_key[k] for k in sorted(by_key)]
-            first.panel.classroom.token.value = TOKEN
-            first.settle()
-            poll(lambda: first.role.presenting and all(f.role.following for f in followers))
-            for s in (first, *followers):
-                s.settle()
-            for c, f in zip(clients, followers, strict=True):  # tabs are numbered in the order they came
-                c.client_id = f.key  # type: ignore[attr-defined]
-                mark, was = f"<p>tab {f.key}</p>", f.panel.source.content
-                f.panel.source.content = mark  # which browser is whose: it shows this tab's mark
-                poll(lambda c=c, mark=mark: any(p.get("content") == mark for p in panel_of(c).values()))
-                f.panel.source.content = was
-            yield lab, first, followers, clients
-        finally:
-            for c in clients:
-                c.close()
+    clients: list[ViserWsClient] = []
+    with room(n, clients) as (lab, first, others):
+        by_key = {s.key: s for s in others}
+        followers = [by_key[k] for k in sorted(by_key)]
+        poll(lambda: all(f.role.following for f in followers))
+        for s in (first, *followers):
+            s.settle()
+        for c, f in zip(clients, followers, strict=True):  # tabs are numbered in the order they came
+            c.client_id = f.key  # type: ignore[attr-defined]
+            mark, was = f"<p>tab {f.key}</p>", f.panel.source.content
+            f.panel.source.content = mark  # which browser is whose: it shows this tab's mark
+            poll(lambda c=c, mark=mark: any(p.get("content") == mark for p in panel_of(c).values()))
+            f.panel.source.content = was
+        yield lab, first, followers, clients
 
 
 def panel_of(ws: ViserWsClient) -> dict[str, dict]:
@@ -88,37 +78,31 @@ def panel_draws(monkeypatch: pytest.MonkeyPatch) -> list:
 
 
 def test_tabs_that_build_the_same_panel_hold_the_same_ids_and_digest():
-    with running_lab() as (lab, first, ws):
-        others = [ViserWsClient(f"ws://127.0.0.1:{lab.port}") for _ in range(2)]
-        try:
-            for c in others:
-                c.start()
-            poll(lambda: len(lab.sessions) == 3)
-            tabs = list(lab.sessions.values())
-            for t in tabs:
-                t.settle()
-            ledgers = [t.client.gui.__dict__["_jl_ledger"] for t in tabs]
-            assert len(ledgers[0].live) > 100  # the whole panel
-            assert all(set(x.live) == set(ledgers[0].live) for x in ledgers)
-            ids = [handle_uuid(t.panel.joints.sliders[1]) for t in tabs]
-            assert ids[0] == ids[1] == ids[2] and all(c.isalnum() or c in "-_" for c in ids[0])
-            assert len({gui_digest(t.client) for t in tabs}) == 1
-            # A prop of one tab changes its digest; back as it was, the digest is the others' again.
-            a, b = tabs[1], tabs[2]
-            status = a.panel.source
-            was = status.content
-            status.content = "<p>something else</p>"
-            assert gui_digest(a.client) != gui_digest(b.client)
-            status.content = was
-            assert gui_digest(a.client) == gui_digest(b.client)
-            # A value a browser sends changes that tab's digest too (the input gate tells the ledger).
-            before = gui_digest(first.client)
-            slider = first.panel.joints.sliders[0]
-            ws.set_value(handle_uuid(slider), float(slider.value) + 5.0)
-            poll(lambda: gui_digest(first.client) != before)
-        finally:
-            for c in others:
-                c.close()
+    with hall(3) as (lab, presenter, tabs, sockets):
+        ledgers = [t.client.gui.__dict__["_jl_ledger"] for t in (presenter, *tabs)]
+        assert len(ledgers[0].live) > 100  # the whole panel
+        assert all(set(x.live) == set(ledgers[0].live) for x in ledgers)  # the presenter's too
+        ids = [handle_uuid(t.panel.joints.sliders[1]) for t in tabs]
+        assert ids[0] == ids[1] == ids[2] and all(c.isalnum() or c in "-_" for c in ids[0])
+        assert len({gui_digest(t.client) for t in tabs}) == 1
+        # A prop of one tab changes its digest; back as it was, the digest is the others' again.
+        a, b = tabs[1], tabs[2]
+        status = a.panel.source
+        was = status.content
+        status.content = "<p>something else</p>"
+        assert gui_digest(a.client) != gui_digest(b.client)
+        status.content = was
+        assert gui_digest(a.client) == gui_digest(b.client)
+        # A value a browser sends changes that tab's digest too (the input gate tells the ledger): a tab
+        # exploring on its own, whose input is not undone as a follower's is.
+        a.dispatch(ExploreAlone())
+        a.settle()
+        poll(lambda: not a.role.following)
+        a.settle()
+        before, slider = gui_digest(a.client), a.panel.joints.sliders[0]
+        moved = float(slider.value) + 5.0
+        sockets[1].set_value(handle_uuid(slider), moved)
+        poll(lambda: abs(float(slider.value) - moved) < 1e-9 and gui_digest(a.client) != before)
 
 
 def test_followers_showing_the_same_are_sent_one_draw_and_end_with_its_panel(monkeypatch):

@@ -113,7 +113,8 @@ def test_the_same_messages_as_viser_in_the_same_order(loop, seed, persistent):
 
 def test_a_follower_window_is_paced_once_where_viser_waited_more(loop, monkeypatch):
     """A presenter's move reaches a follower as one atomic block (its frame and panel updates): with
-    viser's loop each window cost three or four ``asyncio.wait`` with a timer; ours pauses at most once."""
+    viser's loop each window cost three or four ``asyncio.wait`` with a timer; ours sleeps until the next
+    push and waits out a pause only when that push comes within the window's length."""
     waits = {"ours": 0, "viser": 0}
     real_wait = asyncio.wait
 
@@ -154,7 +155,9 @@ def test_a_follower_window_is_paced_once_where_viser_waited_more(loop, monkeypat
         if ours:
             assert isinstance(socket.buffer.message_event, LoopSafeEvent)
             assert socket.windows == 12  # one window a move: the atomic block was never split
-            assert waits["ours"] <= socket.windows
+            # moves further apart than a window: the pause after each is over before the next push, so
+            # it is never waited out (no timer); a tight loop could still wake within one: at most a few
+            assert waits["ours"] <= 2, waits
     assert waits["viser"] >= 2 * 12  # what was saved: viser's loop waited at least twice a window
 
 
