@@ -4,9 +4,10 @@ shows as one number, so that followers showing the same panel can be sent one fr
 viser gives every GUI element a random id (``viser._gui_api._make_uuid``), so two tabs' panels, built
 by the same code from the same robot, differ in every message: a follower's slider update could never be
 another follower's. Here a tab's element (``client.gui``) is named after where it sits: its container's
-id and how many elements that container held when it was made (``root-3-0``; a name still in use gets
-a suffix, ``root-3-0_1``). Two tabs that built the same panel in the same order hold the same ids,
-whatever else they did before; elements of the server's own GUI (``server.gui``, shown to every tab) keep
+id and how many elements that container held when it was made (``root-3-0``; a name this tab has
+given before gets a suffix, ``root-3-0_1``: viser's page may drop an element removed and made again
+under the same id in one batch). Two tabs that built the same panel in the same order, after the same
+rebuilds, hold the same ids; elements of the server's own GUI (``server.gui``, shown to every tab) keep
 random ids. The ids are no secret, as viser's were not: a tab's messages reach only its own elements.
 
 A tab's :class:`PanelLedger` keeps its live elements by id and an order-free digest of what each shows
@@ -65,7 +66,7 @@ class PanelLedger:
         self._lock = threading.Lock()
         self.live: dict[str, Any] = {}
         self._kids: dict[str, int] = {}  # container id -> how many live elements it holds
-        self._issued: set[str] = set()  # structural ids made and not removed
+        self._issued: set[str] = set()  # every structural id made for this tab (never made twice)
         self._contrib: dict[str, int] = {}
         self._total = 0
         self._dirty: set[str] = set()
@@ -76,7 +77,8 @@ class PanelLedger:
         with self._lock:
             base = f"{parent}-{self._kids.get(parent, 0)}"  # letters, digits, - and _: safe in any selector
             made, k = base, 0
-            while made in self._issued or made in self.live:
+            while made in self._issued or made in self.live:  # an id is never given twice in a tab: the
+                # browser may drop an element removed and added again under one id in one batch
                 k += 1
                 made = f"{base}_{k}"
             self._issued.add(made)
@@ -99,7 +101,6 @@ class PanelLedger:
                     self._kids[impl.parent_container_id] = left
                 else:
                     self._kids.pop(impl.parent_container_id, None)
-            self._issued.discard(impl.uuid)
             self._dirty.add(impl.uuid)
 
     def touch(self, uuid: str) -> None:

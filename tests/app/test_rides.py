@@ -200,3 +200,16 @@ def test_a_rider_that_changed_after_joining_draws_its_own():
         rider.settle()
         assert rider.rides == rides  # it drew its own
         assert rider.panel.source.content == "<p>changed meanwhile</p>"
+
+
+def test_a_tab_never_gives_one_id_twice():
+    """An element removed and made again (a panel rebuilt in another language, another robot's joints)
+    gets a new id: viser's page may drop an element removed and added under one id in one batch."""
+    from app.viser_adapter.panel_ledger import PanelLedger
+
+    ledger = PanelLedger()
+    first = ledger.new_id("root")
+    assert first == "root-0"
+    assert ledger.new_id("root") == "root-0_1"  # nothing was made there yet, but root-0 was given
+    other = PanelLedger()  # another tab with the same history gives the same ids
+    assert [other.new_id("root"), other.new_id("root")] == ["root-0", "root-0_1"]
