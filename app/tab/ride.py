@@ -15,7 +15,7 @@ import contextlib
 import logging
 import threading
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..core.role import Role
 from ..core.snapshot import Snapshot
@@ -90,12 +90,12 @@ class Riding:
     _ridden: RideFrame | None
     rides: int
 
-    @property
-    def role(self) -> Role:
-        raise NotImplementedError
+    if TYPE_CHECKING:  # the session's own (declared for the checker only)
 
-    def dispatch(self, message: Any) -> None:
-        raise NotImplementedError
+        @property
+        def role(self) -> Role: ...
+
+        def dispatch(self, message: Any) -> None: ...
 
     def ride_key(self) -> tuple | None:
         """What a follower's frame for the next relayed state depends on: the state it shows, its look

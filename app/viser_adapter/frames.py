@@ -34,6 +34,7 @@ from viser.infra._messages import Message as _InfraMessage
 from viser.infra._messages import wire_field_names
 
 from .core import ViserApiChanged, _private
+from .props import _PLAIN
 from .windows import check_buffer, windows
 
 __all__ = [
@@ -151,7 +152,6 @@ class FrameRef(_InfraMessage):
 
 
 _ENCODE = msgspec.msgpack.Encoder().encode
-_PLAIN = frozenset({str, bool, int, float})
 
 
 def _serializable(message: Any, binary: list[memoryview]) -> Any:
